@@ -1,0 +1,1 @@
+//! Criterion benchmarks that span several handstack crates live in `benches/` of this package.
