@@ -26,6 +26,13 @@ impl SimClock {
         self.now_ns.fetch_add(ns, Ordering::Relaxed);
     }
 
+    /// Runs `f` and returns its result with the simulated time it took.
+    pub fn time<T>(&self, f: impl FnOnce() -> T) -> (T, u64) {
+        let start = self.now_ns();
+        let out = f();
+        (out, self.now_ns() - start)
+    }
+
     /// A delay provider that advances this clock instead of sleeping.
     pub fn delay(&self) -> SimDelay {
         SimDelay {
