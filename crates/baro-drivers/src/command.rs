@@ -14,7 +14,7 @@ pub(crate) const ADC_READ: u8 = 0x00;
 /// Read PROM word 0 … 7 at `PROM_READ | (index << 1)`.
 pub(crate) const PROM_READ: u8 = 0xA0;
 
-/// Time the chip needs after [`RESET`] before it answers again (datasheet: 2.8 ms).
+/// Time the chip needs after the reset command (0x1E) before it answers again (datasheet: 2.8 ms).
 pub const RESET_TIME_NS: u32 = 2_800_000;
 
 /// The command starting a D1 conversion at `osr`.
@@ -46,7 +46,11 @@ pub(crate) enum Decoded {
 
 #[cfg(feature = "sim")]
 pub(crate) fn decode(byte: u8) -> Option<Decoded> {
-    let osr_of = |b: u8| Osr::ALL.into_iter().find(|o| o.command_offset() == b & 0x0F);
+    let osr_of = |b: u8| {
+        Osr::ALL
+            .into_iter()
+            .find(|o| o.command_offset() == b & 0x0F)
+    };
     match byte {
         RESET => Some(Decoded::Reset),
         ADC_READ => Some(Decoded::AdcRead),

@@ -137,7 +137,10 @@ where
     /// Any conversion in flight is lost.
     pub async fn reset<D: hal::delay::DelayNs>(&mut self, delay: &mut D) -> Result<(), Error<E>> {
         self.pending = None;
-        self.iface.command(command::RESET).await.map_err(Error::Comm)?;
+        self.iface
+            .command(command::RESET)
+            .await
+            .map_err(Error::Comm)?;
         delay.delay_ns(command::RESET_TIME_NS).await;
         Ok(())
     }

@@ -48,7 +48,10 @@ pub trait Transport {
 }
 
 #[maybe_async_cfg::maybe(
-    idents(hal(sync = "embedded_hal", async = "embedded_hal_async"), Transport(sync, async = "AsyncTransport")),
+    idents(
+        hal(sync = "embedded_hal", async = "embedded_hal_async"),
+        Transport(sync, async = "AsyncTransport")
+    ),
     sync(keep_self),
     async(feature = "async", keep_self)
 )]
@@ -67,7 +70,10 @@ impl<I2C: hal::i2c::I2c> Transport for I2cInterface<I2C> {
 }
 
 #[maybe_async_cfg::maybe(
-    idents(hal(sync = "embedded_hal", async = "embedded_hal_async"), Transport(sync, async = "AsyncTransport")),
+    idents(
+        hal(sync = "embedded_hal", async = "embedded_hal_async"),
+        Transport(sync, async = "AsyncTransport")
+    ),
     sync(keep_self),
     async(feature = "async", keep_self)
 )]

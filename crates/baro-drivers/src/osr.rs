@@ -88,10 +88,7 @@ mod tests {
     #[test]
     fn ratios_and_command_offsets_follow_the_command_table() {
         let got: [(u16, u8); 5] = Osr::ALL.map(|o| (o.ratio(), o.command_offset()));
-        assert_eq!(
-            got,
-            [(256, 0), (512, 2), (1024, 4), (2048, 6), (4096, 8)]
-        );
+        assert_eq!(got, [(256, 0), (512, 2), (1024, 4), (2048, 6), (4096, 8)]);
     }
 
     #[test]

@@ -40,13 +40,19 @@ fn async_measure_and_scheduler_match_the_truth_and_the_bound() {
     assert_eq!(single.temperature_centi_celsius, -500);
 
     let scheduler = SchedulerAsync::new(Osr::Osr2048);
-    let mut out = [Measurement { temperature_centi_celsius: 0, pressure_pa: 0 }; 3];
+    let mut out = [Measurement {
+        temperature_centi_celsius: 0,
+        pressure_pa: 0,
+    }; 3];
     let (r, cycle) = clock.time(|| block_on(scheduler.sample_all(&mut bank, &mut delay, &mut out)));
     r.unwrap();
     assert_eq!(cycle, scheduler.cycle_bound_ns());
     for (i, m) in out.iter().enumerate() {
         assert!((f64::from(m.pressure_pa) - truth(i).pressure_mbar * 100.0).abs() <= 1.0);
-        assert!((f64::from(m.temperature_centi_celsius) - truth(i).temperature_celsius * 100.0).abs() <= 1.0);
+        assert!(
+            (f64::from(m.temperature_centi_celsius) - truth(i).temperature_celsius * 100.0).abs()
+                <= 1.0
+        );
     }
 }
 

@@ -61,7 +61,10 @@ fn init_split_phase_and_measure_send_the_datasheet_commands() {
     let split = baro.compensate(d1.code).unwrap();
     let blocking = baro.measure(&mut delay, Osr::Osr256).unwrap();
     assert_eq!(split, blocking);
-    assert_eq!((split.temperature_centi_celsius, split.pressure_pa), (2007, 100_009));
+    assert_eq!(
+        (split.temperature_centi_celsius, split.pressure_pa),
+        (2007, 100_009)
+    );
 
     baro.destroy();
     spi.done();

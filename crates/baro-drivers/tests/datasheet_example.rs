@@ -22,7 +22,9 @@ fn first_order_intermediates_match_the_datasheet_example() {
 
 #[test]
 fn example_compensates_to_20_07_celsius_and_1000_09_mbar() {
-    let m = Calibration::new(C).compensate(D1, D2).expect("example is in range");
+    let m = Calibration::new(C)
+        .compensate(D1, D2)
+        .expect("example is in range");
     assert_eq!(
         m,
         Measurement {
@@ -123,7 +125,10 @@ fn crc_follows_an520_on_a_known_image() {
 #[test]
 fn all_zero_prom_is_blank_even_though_its_crc_matches() {
     assert_eq!(crc4(&[0; 8]), 0);
-    assert_eq!(Prom::from_words([0; 8]).calibration(), Err(PromError::Blank));
+    assert_eq!(
+        Prom::from_words([0; 8]).calibration(),
+        Err(PromError::Blank)
+    );
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! Driver ↔ chip model over I2C and SPI across the datasheet range (10 … 1200 mbar,
 //! −40 … 85 °C), for every OSR.
 
-use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock, SimError, Tca9548aSim, BusTiming};
+use baro_drivers::sim::{BusTiming, Conditions, Ms5611Sim, SimClock, SimError, Tca9548aSim};
 use baro_drivers::{Address, Error, Measurement, Ms5611, Osr, Prom, PromError};
 
 const PRESSURES_MBAR: [f64; 8] = [10.0, 100.0, 300.0, 600.0, 900.0, 1013.25, 1100.0, 1200.0];
@@ -16,7 +16,9 @@ enum Link {
 fn measure(link: Link, truth: Conditions, osr: Osr, noise: bool, seed: u64) -> Measurement {
     let clock = SimClock::new();
     let mut delay = clock.delay();
-    let chip = Ms5611Sim::new(truth, clock).with_noise(noise).with_seed(seed);
+    let chip = Ms5611Sim::new(truth, clock)
+        .with_noise(noise)
+        .with_seed(seed);
     match link {
         Link::I2c => Ms5611::new_with_i2c(chip, Address::CsbLow)
             .init(&mut delay)
@@ -35,7 +37,10 @@ fn sweep(link: Link, osr: Osr, noise: bool) -> (f64, f64, f64) {
     let (mut worst_p, mut worst_t, mut sum_sq, mut n) = (0.0f64, 0.0f64, 0.0, 0.0);
     for (i, &p) in PRESSURES_MBAR.iter().enumerate() {
         for (j, &t) in TEMPERATURES_C.iter().enumerate() {
-            let truth = Conditions { pressure_mbar: p, temperature_celsius: t };
+            let truth = Conditions {
+                pressure_mbar: p,
+                temperature_celsius: t,
+            };
             let m = measure(link, truth, osr, noise, (i * 31 + j) as u64);
             let ep = f64::from(m.pressure_pa) - p * 100.0;
             let et = f64::from(m.temperature_centi_celsius) - t * 100.0;
@@ -65,7 +70,9 @@ fn with_noise_every_osr_stays_within_its_datasheet_resolution() {
             let sigma_p = f64::from(osr.pressure_noise_rms_mbar()) * 100.0;
             let sigma_t = f64::from(osr.temperature_noise_rms_celsius()) * 100.0;
             let (p, t, rms) = sweep(link, osr, true);
-            println!("{osr:?}: worst {p:.1} Pa (σ {sigma_p:.1}), {t:.1} c°C (σ {sigma_t:.1}), rms {rms:.2} Pa");
+            println!(
+                "{osr:?}: worst {p:.1} Pa (σ {sigma_p:.1}), {t:.1} c°C (σ {sigma_t:.1}), rms {rms:.2} Pa"
+            );
             // Temperature noise also moves the compensated pressure (about 1.9 Pa per 0.01 °C
             // with the example PROM), hence the allowance beyond σ_p.
             let allowed_p = 5.0 * (sigma_p.powi(2) + (1.9 * sigma_t).powi(2)).sqrt() + 1.0;
@@ -87,9 +94,15 @@ fn a_noisier_osr_really_is_noisier() {
 fn reading_before_the_conversion_ends_returns_zero_like_the_chip() {
     let clock = SimClock::new();
     let mut delay = clock.delay();
-    let truth = Conditions { pressure_mbar: 950.0, temperature_celsius: 30.0 };
+    let truth = Conditions {
+        pressure_mbar: 950.0,
+        temperature_celsius: 30.0,
+    };
     let chip = Ms5611Sim::new(truth, clock.clone());
-    let mut baro = Ms5611::new_with_spi(chip).init(&mut delay).map_err(|e| e.error).unwrap();
+    let mut baro = Ms5611::new_with_spi(chip)
+        .init(&mut delay)
+        .map_err(|e| e.error)
+        .unwrap();
     baro.start_temperature(Osr::Osr4096).unwrap();
     clock.advance_ns(9_000_000); // typ 8.22 ms < 9.0 ms < max 9.04 ms: the model takes the max
     assert_eq!(baro.read_result(), Err(Error::AdcNotReady));
@@ -104,7 +117,10 @@ fn a_corrupt_prom_in_the_model_is_caught_by_the_driver() {
     let clock = SimClock::new();
     let mut words = Prom::with_crc(0, baro_drivers::sim::DATASHEET_COEFFICIENTS, 1).words();
     words[5] ^= 0x0004;
-    let truth = Conditions { pressure_mbar: 1000.0, temperature_celsius: 20.0 };
+    let truth = Conditions {
+        pressure_mbar: 1000.0,
+        temperature_celsius: 20.0,
+    };
     let chip = Ms5611Sim::new(truth, clock.clone()).with_prom(Prom::from_words(words));
     let err = Ms5611::new_with_i2c(chip, Address::CsbLow)
         .init(&mut clock.delay())
@@ -115,7 +131,10 @@ fn a_corrupt_prom_in_the_model_is_caught_by_the_driver() {
 #[test]
 fn a_wrong_address_is_a_nack() {
     let clock = SimClock::new();
-    let truth = Conditions { pressure_mbar: 1000.0, temperature_celsius: 20.0 };
+    let truth = Conditions {
+        pressure_mbar: 1000.0,
+        temperature_celsius: 20.0,
+    };
     let chip = Ms5611Sim::new(truth, clock.clone()).with_address(Address::CsbHigh);
     let err = Ms5611::new_with_i2c(chip, Address::CsbLow)
         .init(&mut clock.delay())

@@ -43,14 +43,19 @@ fn spi_scheduler_cycle_is_within_10_percent_of_the_conversion_bound() {
         let clock = SimClock::new();
         let mut bank = spi_bank(&clock, BusTiming::default());
         let scheduler = Scheduler::new(osr);
-        let mut out = [Measurement { temperature_centi_celsius: 0, pressure_pa: 0 }; SENSORS];
+        let mut out = [Measurement {
+            temperature_centi_celsius: 0,
+            pressure_pa: 0,
+        }; SENSORS];
         let mut delay = clock.delay();
         let (r, cycle) = clock.time(|| scheduler.sample_all(&mut bank, &mut delay, &mut out));
         r.unwrap();
         check_readings(&out, osr);
 
         let (r, serial) = clock.time(|| {
-            bank.iter_mut().map(|b| b.measure(&mut delay, osr)).collect::<Result<Vec<_>, _>>()
+            bank.iter_mut()
+                .map(|b| b.measure(&mut delay, osr))
+                .collect::<Result<Vec<_>, _>>()
         });
         check_readings(&r.unwrap(), osr);
 
@@ -60,7 +65,10 @@ fn spi_scheduler_cycle_is_within_10_percent_of_the_conversion_bound() {
             "SPI 20 MHz {osr:?}: scheduler {cycle} ns, bound {bound} ns (+{over:.2} %), one-by-one {serial} ns ({:.2}x)",
             serial as f64 / cycle as f64
         );
-        assert!(cycle >= bound, "faster than the conversions allow: the model is wrong");
+        assert!(
+            cycle >= bound,
+            "faster than the conversions allow: the model is wrong"
+        );
         assert!(over <= 10.0, "{osr:?}: {over:.2} % over the bound");
         assert!(serial as f64 >= 5.0 * cycle as f64);
     }
@@ -72,7 +80,10 @@ fn with_instant_transfers_the_cycle_is_exactly_the_bound() {
         let clock = SimClock::new();
         let mut bank = spi_bank(&clock, BusTiming::INSTANT);
         let scheduler = Scheduler::new(osr);
-        let mut out = [Measurement { temperature_centi_celsius: 0, pressure_pa: 0 }; SENSORS];
+        let mut out = [Measurement {
+            temperature_centi_celsius: 0,
+            pressure_pa: 0,
+        }; SENSORS];
         let (r, cycle) =
             clock.time(|| scheduler.sample_all(&mut bank, &mut clock.delay(), &mut out));
         r.unwrap();
@@ -105,12 +116,17 @@ fn i2c_behind_a_tca9548a_is_bus_limited_and_still_twice_as_fast_as_one_by_one() 
             })
             .collect();
         let scheduler = Scheduler::new(osr);
-        let mut out = [Measurement { temperature_centi_celsius: 0, pressure_pa: 0 }; SENSORS];
+        let mut out = [Measurement {
+            temperature_centi_celsius: 0,
+            pressure_pa: 0,
+        }; SENSORS];
         let (r, cycle) = clock.time(|| scheduler.sample_all(&mut bank, &mut delay, &mut out));
         r.unwrap();
         check_readings(&out, osr);
         let (r, serial) = clock.time(|| {
-            bank.iter_mut().map(|b| b.measure(&mut delay, osr)).collect::<Result<Vec<_>, _>>()
+            bank.iter_mut()
+                .map(|b| b.measure(&mut delay, osr))
+                .collect::<Result<Vec<_>, _>>()
         });
         r.unwrap();
         let bound = scheduler.cycle_bound_ns();

@@ -29,7 +29,8 @@ impl<Env: Environment> I2c for Ms5611Sim<Env> {
         for op in operations {
             match op {
                 Operation::Write(bytes) => {
-                    self.clock.advance_ns(self.timing.i2c_message_ns(bytes.len()));
+                    self.clock
+                        .advance_ns(self.timing.i2c_message_ns(bytes.len()));
                     // The chip takes one command per message; further bytes are ignored.
                     if let Some(&first) = bytes.first() {
                         self.command(first)?;

@@ -58,7 +58,8 @@ impl<D: I2cTarget> I2c for Tca9548aSim<D> {
             for op in operations {
                 match op {
                     Operation::Write(bytes) => {
-                        self.clock.advance_ns(self.timing.i2c_message_ns(bytes.len()));
+                        self.clock
+                            .advance_ns(self.timing.i2c_message_ns(bytes.len()));
                         if let Some(&m) = bytes.last() {
                             self.mask = m;
                         }
