@@ -37,29 +37,41 @@ fn check_readings(out: &[Measurement], osr: Osr) {
     }
 }
 
+/// Simulated time of one scheduler cycle and of one pass of one-by-one `measure` calls.
+fn cycle_and_serial<DI, E>(
+    bank: &mut [Ms5611<DI, Ready>],
+    clock: &SimClock,
+    osr: Osr,
+) -> ([Measurement; SENSORS], u64, u64)
+where
+    DI: baro_drivers::Transport<Error = E>,
+    E: core::fmt::Debug,
+{
+    let scheduler = Scheduler::new(osr);
+    let mut out = [Measurement {
+        temperature_centi_celsius: 0,
+        pressure_pa: 0,
+    }; SENSORS];
+    let mut delay = clock.delay();
+    let (r, cycle) = clock.time(|| scheduler.sample_all(bank, &mut delay, &mut out));
+    r.unwrap();
+    check_readings(&out, osr);
+    let (r, serial) = clock.time(|| {
+        bank.iter_mut()
+            .map(|b| b.measure(&mut delay, osr))
+            .collect::<Result<Vec<_>, _>>()
+    });
+    check_readings(&r.unwrap(), osr);
+    (out, cycle, serial)
+}
+
 #[test]
 fn spi_scheduler_cycle_is_within_10_percent_of_the_conversion_bound() {
     for osr in Osr::ALL {
         let clock = SimClock::new();
         let mut bank = spi_bank(&clock, BusTiming::default());
-        let scheduler = Scheduler::new(osr);
-        let mut out = [Measurement {
-            temperature_centi_celsius: 0,
-            pressure_pa: 0,
-        }; SENSORS];
-        let mut delay = clock.delay();
-        let (r, cycle) = clock.time(|| scheduler.sample_all(&mut bank, &mut delay, &mut out));
-        r.unwrap();
-        check_readings(&out, osr);
-
-        let (r, serial) = clock.time(|| {
-            bank.iter_mut()
-                .map(|b| b.measure(&mut delay, osr))
-                .collect::<Result<Vec<_>, _>>()
-        });
-        check_readings(&r.unwrap(), osr);
-
-        let bound = scheduler.cycle_bound_ns();
+        let (_, cycle, serial) = cycle_and_serial(&mut bank, &clock, osr);
+        let bound = Scheduler::new(osr).cycle_bound_ns();
         let over = (cycle as f64 / bound as f64 - 1.0) * 100.0;
         println!(
             "SPI 20 MHz {osr:?}: scheduler {cycle} ns, bound {bound} ns (+{over:.2} %), one-by-one {serial} ns ({:.2}x)",
@@ -115,21 +127,8 @@ fn i2c_behind_a_tca9548a_is_bus_limited_and_still_twice_as_fast_as_one_by_one() 
                     .unwrap()
             })
             .collect();
-        let scheduler = Scheduler::new(osr);
-        let mut out = [Measurement {
-            temperature_centi_celsius: 0,
-            pressure_pa: 0,
-        }; SENSORS];
-        let (r, cycle) = clock.time(|| scheduler.sample_all(&mut bank, &mut delay, &mut out));
-        r.unwrap();
-        check_readings(&out, osr);
-        let (r, serial) = clock.time(|| {
-            bank.iter_mut()
-                .map(|b| b.measure(&mut delay, osr))
-                .collect::<Result<Vec<_>, _>>()
-        });
-        r.unwrap();
-        let bound = scheduler.cycle_bound_ns();
+        let (_, cycle, serial) = cycle_and_serial(&mut bank, &clock, osr);
+        let bound = Scheduler::new(osr).cycle_bound_ns();
         println!(
             "I2C 400 kHz via TCA9548A {osr:?}: scheduler {cycle} ns, bound {bound} ns (+{:.1} %), one-by-one {serial} ns",
             (cycle as f64 / bound as f64 - 1.0) * 100.0
