@@ -48,22 +48,9 @@ pub struct BaroSample {
     pub temperature_c: f32,
 }
 
-/// Register values the driver keeps so that a setting change is one write, not a read-modify-write.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Shadow {
-    config: u8,
-    gyro_config: u8,
-    accel_config: u8,
-    accel_config2: u8,
-}
-
-/// Register values after DEVICE_RESET (all zero: ±2 g, ±250 °/s, DLPF_CFG 0).
-const SHADOW_RESET: Shadow = Shadow {
-    config: 0,
-    gyro_config: 0,
-    accel_config: 0,
-    accel_config2: 0,
-};
+/// CONFIG, GYRO_CONFIG, ACCEL_CONFIG, ACCEL_CONFIG2 (0x1A…0x1D) as last written, so that a
+/// setting change is one write, not a read-modify-write. All zero after DEVICE_RESET.
+type Shadow = [u8; 4];
 
 /// ICM-20789 driver over an embedded-hal I2C bus (blocking: `Icm20789`; async: `Icm20789Async`).
 #[maybe_async_cfg::maybe(
@@ -105,7 +92,7 @@ impl<I2C: I2cBus> Icm20789<I2C> {
             address: address.addr(),
             accel_scale: AccelScale::G2,
             gyro_scale: GyroScale::Dps250,
-            shadow: SHADOW_RESET,
+            shadow: [0; 4],
             calibration: None,
         }
     }
@@ -171,7 +158,7 @@ impl<I2C: I2cBus> Icm20789<I2C> {
         let id = self.who_am_i().await?;
         self.write_reg(reg::PWR_MGMT_1, reg::DEVICE_RESET).await?;
         delay.delay_us(reg::RESET_TIME_US).await;
-        self.shadow = SHADOW_RESET;
+        self.shadow = [0; 4];
         self.accel_scale = AccelScale::G2;
         self.gyro_scale = GyroScale::Dps250;
         self.calibration = None;
@@ -180,38 +167,45 @@ impl<I2C: I2cBus> Icm20789<I2C> {
         Ok(id)
     }
 
+    /// Replaces the `mask` bits of a shadowed configuration register with `bits`.
+    async fn write_field(
+        &mut self,
+        register: u8,
+        mask: u8,
+        bits: u8,
+    ) -> Result<(), Error<I2C::Error>> {
+        let slot = usize::from(register - reg::CONFIG);
+        let value = (self.shadow[slot] & !mask) | (bits & mask);
+        self.write_reg(register, value).await?;
+        self.shadow[slot] = value;
+        Ok(())
+    }
+
     /// Sets the accelerometer full scale.
     pub async fn set_accel_scale(&mut self, scale: AccelScale) -> Result<(), Error<I2C::Error>> {
-        let value = (self.shadow.accel_config & !0b1_1000) | (scale.bits() << 3);
-        self.write_reg(reg::ACCEL_CONFIG, value).await?;
-        self.shadow.accel_config = value;
+        self.write_field(reg::ACCEL_CONFIG, 0b1_1000, scale.bits() << 3)
+            .await?;
         self.accel_scale = scale;
         Ok(())
     }
 
     /// Sets the gyroscope full scale.
     pub async fn set_gyro_scale(&mut self, scale: GyroScale) -> Result<(), Error<I2C::Error>> {
-        let value = (self.shadow.gyro_config & !0b1_1000) | (scale.bits() << 3);
-        self.write_reg(reg::GYRO_CONFIG, value).await?;
-        self.shadow.gyro_config = value;
+        self.write_field(reg::GYRO_CONFIG, 0b1_1000, scale.bits() << 3)
+            .await?;
         self.gyro_scale = scale;
         Ok(())
     }
 
     /// Sets the gyro / temperature low-pass filter (FCHOICE_B stays 0 so the DLPF is used).
     pub async fn set_gyro_dlpf(&mut self, dlpf: GyroDlpf) -> Result<(), Error<I2C::Error>> {
-        let value = (self.shadow.config & !0b111) | dlpf.bits();
-        self.write_reg(reg::CONFIG, value).await?;
-        self.shadow.config = value;
-        Ok(())
+        self.write_field(reg::CONFIG, 0b111, dlpf.bits()).await
     }
 
-    /// Sets the accelerometer low-pass filter.
+    /// Sets the accelerometer low-pass filter (ACCEL_FCHOICE_B stays 0).
     pub async fn set_accel_dlpf(&mut self, dlpf: AccelDlpf) -> Result<(), Error<I2C::Error>> {
-        let value = (self.shadow.accel_config2 & !0b1111) | dlpf.bits();
-        self.write_reg(reg::ACCEL_CONFIG2, value).await?;
-        self.shadow.accel_config2 = value;
-        Ok(())
+        self.write_field(reg::ACCEL_CONFIG2, 0b1111, dlpf.bits())
+            .await
     }
 
     /// Sets SMPLRT_DIV: output rate 1 kHz / (1 + `divider`) for DLPF settings 1…6.

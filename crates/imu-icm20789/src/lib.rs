@@ -29,6 +29,7 @@
 //! # #[cfg(feature = "sim")] {
 //! use imu_icm20789::{BaroMode, FrameOrder, Icm20789, AccelScale};
 //! use imu_icm20789::sim::{ChipModel, Truth};
+//! use embedded_hal::delay::DelayNs;
 //!
 //! // On hardware the bus is your HAL's I2C and the delay its timer; here the chip model.
 //! let chip = ChipModel::new(Truth::constant([0.0, 0.0, 9.81], [0.0; 3], 101_325.0), 7);
@@ -40,7 +41,7 @@
 //!
 //! let conversion = icm.start_pressure(BaroMode::LowNoise, FrameOrder::PressureFirst)?;
 //! let imu = icm.read_imu()?; // the bus is free while the barometer converts
-//! delay.wait_until_ready(&conversion);
+//! delay.delay_us(conversion.wait_us()); // on hardware: do other work until then
 //! let baro = icm.read_pressure(conversion)?;
 //!
 //! assert!((imu.accel_mps2[2] - 9.81).abs() < 0.05);
