@@ -26,7 +26,10 @@
 //! # Example: one fingertip sample, overlapping the IMU read with the pressure conversion
 //!
 //! ```
-//! # #[cfg(feature = "sim")] {
+//! # #[cfg(not(feature = "sim"))]
+//! # fn main() {}
+//! # #[cfg(feature = "sim")]
+//! # fn main() -> Result<(), imu_icm20789::Error<imu_icm20789::sim::SimError>> {
 //! use imu_icm20789::{BaroMode, FrameOrder, Icm20789, AccelScale};
 //! use imu_icm20789::sim::{ChipModel, Truth};
 //! use embedded_hal::delay::DelayNs;
@@ -46,8 +49,8 @@
 //!
 //! assert!((imu.accel_mps2[2] - 9.81).abs() < 0.05);
 //! assert!((baro.pressure_pa - 101_325.0).abs() < 5.0);
+//! # Ok(())
 //! # }
-//! # Ok::<(), imu_icm20789::Error<imu_icm20789::sim::SimError>>(())
 //! ```
 #![no_std]
 #![deny(unsafe_code, missing_docs)]
