@@ -12,7 +12,10 @@
 //! the multimodal-pad paper (seed 002, §III-A: "Low Power (3.2 Pa noise, 1.3 µA), Normal
 //! (1.6 Pa, 2.6 µA), Low Noise (0.8 Pa, 5.2 µA), Ultra Low Noise (0.4 Pa, 10.4 µA)"). The
 //! command codes agree with TDK's and ArduPilot's reference drivers (`0x401A`, `0x5059`,
-//! `0x609C`, `0x70DF` appear there verbatim).
+//! `0x609C`, `0x70DF` appear there verbatim). The maximum conversion times equal the waits
+//! (1800 / 6300 / 23800 / 94500 µs) that TDK InvenSense's own Linux IIO driver for the same
+//! barometer core uses (`drivers/iio/pressure/icp10100.c`, `icp10100_cmd_measure`); the typical
+//! times have not been checked against the datasheet PDF, so nothing here waits only for them.
 
 /// Pressure measurement mode: speed and current against noise.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
