@@ -1,0 +1,23 @@
+//! The physics each tactile-hand scene needs, calibrated to the papers, and seeded datasets.
+//!
+//! One module per physical model, each usable alone:
+//!
+//! - [`fingertip`]: the barometric fingertip of seed 000 — a silicone pad over three MS5611 in
+//!   an inverted triangle, a 4 × 6 cell grid (3 × 3 for Arrival-of-Time), pressure rises that
+//!   decay with distance, saturate with force and arrive later the farther the sensor.
+//!
+//! A [`Scene`](scene::Scene) builds only the models its [`SceneConfig`](scene::SceneConfig)
+//! names, and steps only those. Every random source is seeded from the scene
+//! ([`seed::stream`]). Sensor readings leave the simulator only through the chip models of
+//! `baro-drivers` and `imu-icm20789`, decoded by the real drivers, so a dataset holds exactly
+//! what a driver would have read.
+//!
+//! What is and is not modelled, and how each model compares with the papers' figures, is in
+//! `docs/sim-calibration.md`.
+
+pub mod error;
+pub mod fingertip;
+pub mod scene;
+pub mod seed;
+
+pub use error::SimError;
