@@ -4,7 +4,8 @@
 //!
 //! - [`fingertip`]: the barometric fingertip of seed 000 — a silicone pad over three MS5611 in
 //!   an inverted triangle, a 4 × 6 cell grid (3 × 3 for Arrival-of-Time), pressure rises that
-//!   decay with distance, saturate with force and arrive later the farther the sensor.
+//!   decay with distance, saturate with force and arrive later the farther the sensor;
+//!   read through three MS5611 chip models by the real driver.
 //!
 //! A [`Scene`](scene::Scene) builds only the models its [`SceneConfig`](scene::SceneConfig)
 //! names, and steps only those. Every random source is seeded from the scene

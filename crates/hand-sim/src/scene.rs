@@ -6,9 +6,10 @@
 //! ```
 //!
 //! Adding a model: a `pub <name>: Option<Config>` field here, the same name in [`Scene`], one
-//! line in [`Scene::build`] and one in [`Scene::step_to`].
+//! line each in [`Scene::build`], [`Scene::step_to`] and [`Scene::models`].
 
 use crate::SimError;
+use crate::fingertip::{Fingertip, FingertipConfig};
 use serde::Deserialize;
 
 /// A physical model a scene can hold: stepped on the scene's simulated clock.
@@ -29,6 +30,8 @@ pub trait Model {
 pub struct SceneConfig {
     /// Root of every random stream in the scene.
     pub seed: u64,
+    /// The barometric fingertip (seed 000), if the scene needs it.
+    pub fingertip: Option<FingertipConfig>,
 }
 
 impl SceneConfig {
@@ -39,18 +42,25 @@ impl SceneConfig {
 }
 
 /// The models a scene built, each `None` unless its config names it.
-#[derive(Debug)]
 pub struct Scene {
     /// The scene seed.
     pub seed: u64,
+    /// The barometric fingertip, if built.
+    pub fingertip: Option<Fingertip>,
     now_ns: u64,
 }
 
 impl Scene {
     /// Builds exactly the models `config` names.
     pub fn build(config: &SceneConfig) -> Result<Scene, SimError> {
+        let seed = config.seed;
         Ok(Scene {
-            seed: config.seed,
+            seed,
+            fingertip: config
+                .fingertip
+                .as_ref()
+                .map(|c| Fingertip::new(c, seed))
+                .transpose()?,
             now_ns: 0,
         })
     }
@@ -62,12 +72,25 @@ impl Scene {
 
     /// Steps every built model to `t_ns`; the models that were not built are not touched.
     pub fn step_to(&mut self, t_ns: u64) -> Result<(), SimError> {
+        step(&mut self.fingertip, t_ns)?;
         self.now_ns = self.now_ns.max(t_ns);
         Ok(())
     }
 
     /// The names of the models this scene built.
     pub fn models(&self) -> Vec<&'static str> {
-        Vec::new()
+        let mut built = Vec::new();
+        name_if_built(&self.fingertip, &mut built);
+        built
+    }
+}
+
+fn step<M: Model>(model: &mut Option<M>, t_ns: u64) -> Result<(), SimError> {
+    model.as_mut().map_or(Ok(()), |m| m.step_to(t_ns))
+}
+
+fn name_if_built<M: Model>(model: &Option<M>, built: &mut Vec<&'static str>) {
+    if model.is_some() {
+        built.push(M::NAME);
     }
 }

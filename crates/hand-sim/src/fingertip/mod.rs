@@ -1,7 +1,20 @@
 //! The barometric fingertip of seed 000: three MS5611 under a silicone pad.
+//!
+//! - [`geometry`]: the 4 × 6 cell grid, its 3 × 3 Arrival-of-Time partition, eq. 4 labels;
+//! - [`contact`]: which cells are pressed, how hard, when;
+//! - [`law`]: contact → each sensor's steady rise and arrival delay (calibrated to Tables 1–2);
+//! - [`physics`]: true pressures over time (baseline, drift, re-zero, first-order response);
+//! - [`model`]: the three chip models read through the real driver, as a scene model.
 
 pub mod contact;
 pub mod geometry;
+pub mod law;
+mod law_calibrated;
+pub mod model;
+pub mod physics;
 
 pub use contact::{ContactEvent, ContactPatch, KGF_N};
 pub use geometry::{Cell, CellSet};
+pub use law::LawParams;
+pub use model::{Fingertip, FingertipConfig, TapConfig};
+pub use physics::FingertipPhysics;
