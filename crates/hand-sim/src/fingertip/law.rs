@@ -64,7 +64,8 @@ impl LawParams {
     /// ```
     pub fn steady_rise_hpa(&self, patch: &ContactPatch) -> [f64; SENSORS] {
         let n = patch.cells.len();
-        if n == 0 || !(patch.force_n > 0.0) {
+        // NaN, zero and negative forces all press nothing.
+        if n == 0 || patch.force_n.is_nan() || patch.force_n <= 0.0 {
             return [0.0; SENSORS];
         }
         let per_cell = patch.force_n.min(MAX_FORCE_N) / n as f64;

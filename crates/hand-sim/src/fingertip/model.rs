@@ -273,7 +273,7 @@ fn driver_error(e: impl core::fmt::Debug) -> SimError {
 fn tap_timeline(taps: &[TapConfig]) -> Result<Vec<(u64, ContactPatch)>, SimError> {
     let mut spans = Vec::with_capacity(taps.len());
     for tap in taps {
-        let ok = |v: f64| v.is_finite() && v >= 0.0 && v < 1e6;
+        let ok = |v: f64| (0.0..1e6).contains(&v);
         if !ok(tap.at_s) || !ok(tap.hold_s) || !ok(tap.force_kgf) {
             return Err(SimError::config(
                 "taps",
