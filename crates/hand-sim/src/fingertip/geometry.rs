@@ -6,7 +6,7 @@
 //! paper's unique area number `r.c` (`Arr_1 = 1.1`, `Arr_6 = 1.6`, `Arr_24 = 4.6`).
 //!
 //! The paper gives no dimensions. A 3 mm cell pitch (an 18 × 12 mm pad) is our assumption,
-//! the size of a robot fingertip; sensor positions are fitted (see [`super::law`]).
+//! the size of a robot fingertip; the sensor positions are [`super::LawParams::CALIBRATED`]'s.
 
 /// Rows of the fine grid.
 pub const ROWS: u8 = 4;
@@ -78,10 +78,7 @@ impl Cell {
 
     /// The 3 × 3 Arrival-of-Time region (0-based, row-major) holding this cell's centre.
     pub fn aot_region(self) -> usize {
-        let [x, y] = self.centre_mm();
-        let col = (((x + WIDTH_MM / 2.0) / (WIDTH_MM / 3.0)) as usize).min(2);
-        let row = (((HEIGHT_MM / 2.0 - y) / (HEIGHT_MM / 3.0)) as usize).min(2);
-        row * 3 + col
+        aot_region_at(self.centre_mm())
     }
 
     /// Every cell, row-major.
@@ -146,6 +143,15 @@ impl CellSet {
         self.0
     }
 
+    /// The mean of the cells' centres, mm (the pad centre for an empty set).
+    pub fn centroid_mm(self) -> [f64; 2] {
+        let n = self.len().max(1) as f64;
+        self.iter().fold([0.0, 0.0], |acc, c| {
+            let [x, y] = c.centre_mm();
+            [acc[0] + x / n, acc[1] + y / n]
+        })
+    }
+
     /// Eq. 4's average-area label: the mean of the cells' unique numbers (0 for no contact).
     pub fn average_area(self) -> f64 {
         if self.is_empty() {
@@ -154,6 +160,14 @@ impl CellSet {
             self.iter().map(Cell::label).sum::<f64>() / self.len() as f64
         }
     }
+}
+
+/// The 3 × 3 Arrival-of-Time region (0-based, row-major) holding the pad point `p` (mm);
+/// points off the pad fall in the nearest edge region.
+pub fn aot_region_at(p: [f64; 2]) -> usize {
+    let [x, y] = p;
+    let band = |v: f64, span: f64| ((v / (span / 3.0)).max(0.0) as usize).min(2);
+    band(HEIGHT_MM / 2.0 - y, HEIGHT_MM) * 3 + band(x + WIDTH_MM / 2.0, WIDTH_MM)
 }
 
 /// The three sensors, in the paper's numbering: sensor 1 top right, sensor 2 bottom centre,

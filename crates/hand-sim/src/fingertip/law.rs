@@ -88,11 +88,7 @@ impl LawParams {
 
     /// When sensor `k` starts to rise after a contact at `patch` begins, ms.
     pub fn arrival_delay_ms(&self, patch: &ContactPatch, k: usize) -> f64 {
-        let n = patch.cells.len().max(1) as f64;
-        let centroid = patch.cells.iter().fold([0.0, 0.0], |acc, c| {
-            let [x, y] = c.centre_mm();
-            [acc[0] + x / n, acc[1] + y / n]
-        });
+        let centroid = patch.cells.centroid_mm();
         self.delay_base_ms + dist2(centroid, self.sensors_mm[k]).sqrt() / self.front_speed_mm_per_ms
     }
 }

@@ -4,9 +4,11 @@
 //! - [`contact`]: which cells are pressed, how hard, when;
 //! - [`law`]: contact → each sensor's steady rise and arrival delay (calibrated to Tables 1–2);
 //! - [`physics`]: true pressures over time (baseline, drift, re-zero, first-order response);
-//! - [`model`]: the three chip models read through the real driver, as a scene model.
+//! - [`model`]: the three chip models read through the real driver, as a scene model;
+//! - [`dataset`]: the seeded tap and weight datasets the learning issues train on.
 
 pub mod contact;
+pub mod dataset;
 pub mod geometry;
 pub mod law;
 mod law_calibrated;

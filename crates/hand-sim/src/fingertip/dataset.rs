@@ -1,0 +1,199 @@
+//! Seeded fingertip datasets for the learning issues, as CSV text.
+//!
+//! - [`taps`]: every contact shape of seed 000 Figure 7 at every position (moved right, then
+//!   down, as §4 describes), at 5 / 7 / 9 kgf, two repeats, at every MS5611 OSR: the raw
+//!   driver readings around contact onset (for arrival times) and the held pressures (for the
+//!   contact-area MLP). Two files: `taps.csv` (one row per tap) and `series.csv` (one row per
+//!   frame).
+//! - [`weights`]: seed 000 Table 1's experiment — 0 → 200 gf in 10 gf steps on the whole pad,
+//!   one step every 2 s, read at OSR 4096 — three seeded runs, one row per frame.
+
+use super::geometry::{COLS, Cell, CellSet, ROWS};
+use super::model::{Fingertip, FingertipConfig, TapConfig};
+use crate::SimError;
+use crate::scene::Model;
+use hand_traits::TactileSource;
+use std::fmt::Write;
+
+/// A contact shape of Figure 7: its name and its size in cells (rows × columns).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shape {
+    /// Figure 7's name for it: `1`, `4-1`, `9`, `16`, `12`, `4-2`.
+    pub name: &'static str,
+    /// Rows it covers.
+    pub rows: u8,
+    /// Columns it covers.
+    pub cols: u8,
+}
+
+/// Figure 7's six shapes. The figure itself is lost in the text we have: sizes 4-1 and 4-2 are
+/// "the same size, different cases", taken as a 2 × 2 square and a 1 × 4 bar; size 12 as 3 × 4.
+pub const FIGURE7_SHAPES: [Shape; 6] = [
+    Shape {
+        name: "1",
+        rows: 1,
+        cols: 1,
+    },
+    Shape {
+        name: "4-1",
+        rows: 2,
+        cols: 2,
+    },
+    Shape {
+        name: "9",
+        rows: 3,
+        cols: 3,
+    },
+    Shape {
+        name: "16",
+        rows: 4,
+        cols: 4,
+    },
+    Shape {
+        name: "12",
+        rows: 3,
+        cols: 4,
+    },
+    Shape {
+        name: "4-2",
+        rows: 1,
+        cols: 4,
+    },
+];
+
+impl Shape {
+    /// Every placement on the pad, moved right one cell at a time, then down (§4).
+    pub fn placements(self) -> impl Iterator<Item = CellSet> {
+        (1..=ROWS.saturating_sub(self.rows) + 1).flat_map(move |r| {
+            (1..=COLS.saturating_sub(self.cols) + 1)
+                .filter_map(move |c| CellSet::rect(Cell::new(r, c)?, self.rows, self.cols))
+        })
+    }
+}
+
+/// The forces of Figure 9 / Table 2, kgf.
+pub const TAP_FORCES_KGF: [f64; 3] = [5.0, 7.0, 9.0];
+/// Repeats of each shape, position and force.
+pub const TAP_REPEATS: u32 = 2;
+/// Every OSR the taps are read at.
+pub const TAP_OSRS: [u16; 5] = [256, 512, 1024, 2048, 4096];
+/// Contact onset in each tap's run, ns.
+const ONSET_NS: u64 = 50_000_000;
+/// Series kept around onset: from 30 ms before to 90 ms after, ns.
+const WINDOW_NS: (u64, u64) = (30_000_000, 90_000_000);
+/// Hold duration, and the late part of it averaged for the held pressures, ns.
+const HOLD_NS: u64 = 400_000_000;
+const HELD_FROM_NS: u64 = 250_000_000;
+
+/// The tap dataset: (`taps.csv`, `series.csv`).
+pub fn taps(seed: u64) -> Result<(String, String), SimError> {
+    let mut taps = String::from(
+        "# hand-sim fingertip taps (seed 000 Figure 7 shapes x positions x 5/7/9 kgf x repeats x OSR).\n\
+         # mask: 24-bit cell set (bit i = cell i, row-major, cell 0 = area 1.1); average_area: eq. 4 label;\n\
+         # aot_region: 3 x 3 region (0-8, row-major) of the patch centroid; held*_pa: mean reading over\n\
+         # 250-350 ms into the 400 ms hold; onset at t_us = 0 in series.csv.\n\
+         tap,osr,shape,size,mask,average_area,aot_region,force_kgf,repeat,held1_pa,held2_pa,held3_pa\n",
+    );
+    let mut series = String::from(
+        "# hand-sim fingertip tap series: every frame from 30 ms before to 90 ms after contact onset,\n\
+         # pressures in Pa exactly as the MS5611 driver decoded them; t_us relative to onset.\n\
+         tap,t_us,p1_pa,p2_pa,p3_pa\n",
+    );
+    let mut id = 0u32;
+    for osr in TAP_OSRS {
+        for shape in FIGURE7_SHAPES {
+            for cells in shape.placements() {
+                for force_kgf in TAP_FORCES_KGF {
+                    for repeat in 0..TAP_REPEATS {
+                        let corner = cells
+                            .iter()
+                            .next()
+                            .ok_or_else(|| SimError::config("shape", "empty"))?;
+                        let tap = TapConfig {
+                            at_s: ONSET_NS as f64 * 1e-9,
+                            hold_s: HOLD_NS as f64 * 1e-9,
+                            row: corner.row(),
+                            col: corner.col(),
+                            rows: shape.rows,
+                            cols: shape.cols,
+                            force_kgf,
+                        };
+                        let config = FingertipConfig {
+                            osr,
+                            taps: vec![tap],
+                            ..FingertipConfig::default()
+                        };
+                        let tap_seed = crate::seed::derive(seed, &format!("fingertip/tap/{id}"));
+                        let mut tip = Fingertip::new(&config, tap_seed)?;
+                        tip.step_to(ONSET_NS + HOLD_NS)?;
+                        let mut held = [0.0f64; 3];
+                        let mut n = 0.0;
+                        for f in tip.frames() {
+                            let t_ns = f.t_us * 1000;
+                            if t_ns + WINDOW_NS.0 >= ONSET_NS && t_ns <= ONSET_NS + WINDOW_NS.1 {
+                                let t_us = f.t_us as i64 - (ONSET_NS / 1000) as i64;
+                                let [a, b, c] = f.pressure_pa;
+                                writeln!(series, "{id},{t_us},{a},{b},{c}").map_err(fmt_error)?;
+                            }
+                            if (ONSET_NS + HELD_FROM_NS..=ONSET_NS + HOLD_NS - 50_000_000)
+                                .contains(&t_ns)
+                            {
+                                for (h, p) in held.iter_mut().zip(f.pressure_pa) {
+                                    *h += f64::from(p);
+                                }
+                                n += 1.0;
+                            }
+                        }
+                        let centroid = super::geometry::aot_region_at(cells.centroid_mm());
+                        writeln!(
+                            taps,
+                            "{id},{osr},{},{},{},{:.4},{centroid},{force_kgf},{repeat},{:.1},{:.1},{:.1}",
+                            shape.name,
+                            cells.len(),
+                            cells.bits(),
+                            cells.average_area(),
+                            held[0] / n,
+                            held[1] / n,
+                            held[2] / n
+                        )
+                        .map_err(fmt_error)?;
+                        id += 1;
+                    }
+                }
+            }
+        }
+    }
+    Ok((taps, series))
+}
+
+/// The weight-series dataset (`weights.csv`).
+pub fn weights(seed: u64) -> Result<String, SimError> {
+    const STEP_NS: u64 = 2_000_000_000;
+    let mut out = String::from(
+        "# hand-sim fingertip weight series (seed 000 Table 1's experiment): 0 -> 200 gf in 10 gf steps\n\
+         # on the whole pad, one step every 2 s, read at OSR 4096 with 0.1 hPa/min drift; three runs.\n\
+         run,t_us,weight_gf,p1_pa,p2_pa,p3_pa\n",
+    );
+    let all = Cell::all().fold(CellSet::EMPTY, CellSet::with);
+    for run in 0..3u32 {
+        let mut tip = Fingertip::new(
+            &FingertipConfig::default(),
+            crate::seed::derive(seed, &format!("fingertip/weights/{run}")),
+        )?;
+        for step in 0..=20u32 {
+            let weight_gf = f64::from(step * 10);
+            tip.set_contact(super::ContactPatch::from_kgf(all, weight_gf / 1000.0))?;
+            let end = u64::from(step + 1) * STEP_NS;
+            while tip.now_ns() < end {
+                let f = tip.read_frame()?;
+                let [a, b, c] = f.pressure_pa;
+                writeln!(out, "{run},{},{weight_gf},{a},{b},{c}", f.t_us).map_err(fmt_error)?;
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn fmt_error(_: std::fmt::Error) -> SimError {
+    SimError::config("dataset", "formatting failed")
+}
