@@ -5,6 +5,8 @@
 //! - [`fingertip`]: the barometric fingertip of seed 000 — a silicone pad over three MS5611 in
 //!   an inverted triangle, a 4 × 6 cell grid (3 × 3 for Arrival-of-Time), pressure rises that
 //!   decay with distance, saturate with force and arrive later the farther the sensor.
+//! - [`grasp`]: the Table 5 objects between two MX-28 fingers (position control under a torque
+//!   limit, load / current, overload shutdown, slip, crushing, the fingertip contact patch).
 //!
 //! A [`Scene`](scene::Scene) builds only the models its [`SceneConfig`](scene::SceneConfig)
 //! names, and steps only those. Every random source is seeded from the scene
@@ -17,6 +19,7 @@
 
 pub mod error;
 pub mod fingertip;
+pub mod grasp;
 pub mod scene;
 pub mod seed;
 
