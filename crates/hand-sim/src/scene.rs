@@ -29,6 +29,8 @@ pub trait Model {
 pub struct SceneConfig {
     /// Root of every random stream in the scene.
     pub seed: u64,
+    /// `[grasp]`: Table 5 objects between two MX-28 fingers.
+    pub grasp: Option<crate::grasp::GraspConfig>,
 }
 
 impl SceneConfig {
@@ -43,6 +45,8 @@ impl SceneConfig {
 pub struct Scene {
     /// The scene seed.
     pub seed: u64,
+    /// The grasp model, if the scene names it.
+    pub grasp: Option<crate::grasp::GraspSim>,
     now_ns: u64,
 }
 
@@ -51,6 +55,11 @@ impl Scene {
     pub fn build(config: &SceneConfig) -> Result<Scene, SimError> {
         Ok(Scene {
             seed: config.seed,
+            grasp: config
+                .grasp
+                .as_ref()
+                .map(|c| crate::grasp::GraspSim::new(c, config.seed))
+                .transpose()?,
             now_ns: 0,
         })
     }
@@ -62,12 +71,19 @@ impl Scene {
 
     /// Steps every built model to `t_ns`; the models that were not built are not touched.
     pub fn step_to(&mut self, t_ns: u64) -> Result<(), SimError> {
+        if let Some(m) = &mut self.grasp {
+            m.step_to(t_ns)?;
+        }
         self.now_ns = self.now_ns.max(t_ns);
         Ok(())
     }
 
     /// The names of the models this scene built.
     pub fn models(&self) -> Vec<&'static str> {
-        Vec::new()
+        let mut names = Vec::new();
+        if self.grasp.is_some() {
+            names.push(<crate::grasp::GraspSim as Model>::NAME);
+        }
+        names
     }
 }

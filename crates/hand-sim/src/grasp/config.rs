@@ -110,8 +110,6 @@ impl TryFrom<String> for ObjectChoice {
         s.strip_prefix("random:")
             .and_then(|i| i.parse().ok())
             .map(ObjectChoice::Random)
-            .ok_or_else(|| {
-                format!("unknown object {s:?}: a Table 5 name or \"random:<0…65535>\"")
-            })
+            .ok_or_else(|| format!("unknown object {s:?}: a Table 5 name or \"random:<0…65535>\""))
     }
 }

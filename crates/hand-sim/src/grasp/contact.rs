@@ -4,8 +4,8 @@
 use super::object::ObjectParams;
 use super::rig::RigParams;
 use super::servo::LoadLinearisation;
-use crate::fingertip::geometry::{Cell, CellSet, HEIGHT_MM};
 use crate::fingertip::ContactPatch;
+use crate::fingertip::geometry::{Cell, CellSet, HEIGHT_MM};
 
 /// Poisson's ratio assumed for skin and objects (rubber-like 0.5 for the skin; the term barely
 /// matters for stiff objects).
@@ -66,7 +66,9 @@ pub fn patch(obj: &ObjectParams, force_n: f64) -> ContactPatch {
         let [x, y] = c.centre_mm();
         (x / ax).powi(2) + (y / ay).powi(2) <= 1.0
     };
-    let mut cells = Cell::all().filter(inside).fold(CellSet::EMPTY, CellSet::with);
+    let mut cells = Cell::all()
+        .filter(inside)
+        .fold(CellSet::EMPTY, CellSet::with);
     if cells.is_empty() {
         let dist = |c: &Cell| {
             let [x, y] = c.centre_mm();

@@ -49,7 +49,10 @@ pub fn random_objects(
             })
         });
         out.push(found.ok_or_else(|| {
-            SimError::config("random object", format!("no holdable {i} in {MAX_DRAWS} draws"))
+            SimError::config(
+                "random object",
+                format!("no holdable {i} in {MAX_DRAWS} draws"),
+            )
         })?);
     }
     Ok(out)

@@ -71,7 +71,8 @@ impl Default for ServoParams {
 impl ServoParams {
     /// The P gain as duty (fraction of full PWM) per radian of position error.
     pub fn kp_duty_per_rad(&self) -> f64 {
-        f64::from(self.p_gain) / 8.0 * TICKS_PER_REV / core::f64::consts::TAU
+        f64::from(self.p_gain) / 8.0 * TICKS_PER_REV
+            / core::f64::consts::TAU
             / f64::from(TORQUE_LIMIT_MAX)
     }
 

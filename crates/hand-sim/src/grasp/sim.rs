@@ -34,7 +34,9 @@ impl GraspSim {
                 ObjectChoice::Table5(_) => None,
             })
             .max()
-            .map_or(Ok(Vec::new()), |n| random_objects(scene_seed, n, &config.rig))?;
+            .map_or(Ok(Vec::new()), |n| {
+                random_objects(scene_seed, n, &config.rig)
+            })?;
         let rigs = config
             .objects
             .iter()
