@@ -6,6 +6,8 @@
 //!   an inverted triangle, a 4 × 6 cell grid (3 × 3 for Arrival-of-Time), pressure rises that
 //!   decay with distance, saturate with force and arrive later the farther the sensor;
 //!   read through three MS5611 chip models by the real driver.
+//! - [`grasp`]: the Table 5 objects between two MX-28 fingers (position control under a torque
+//!   limit, load / current, overload shutdown, slip, crushing, the fingertip contact patch).
 //!
 //! A [`Scene`](scene::Scene) builds only the models its [`SceneConfig`](scene::SceneConfig)
 //! names, and steps only those. Every random source is seeded from the scene
@@ -18,6 +20,7 @@
 
 pub mod error;
 pub mod fingertip;
+pub mod grasp;
 pub mod scene;
 pub mod seed;
 

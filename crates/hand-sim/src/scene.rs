@@ -32,6 +32,8 @@ pub struct SceneConfig {
     pub seed: u64,
     /// The barometric fingertip (seed 000), if the scene needs it.
     pub fingertip: Option<FingertipConfig>,
+    /// `[grasp]`: Table 5 objects between two MX-28 fingers.
+    pub grasp: Option<crate::grasp::GraspConfig>,
 }
 
 impl SceneConfig {
@@ -47,6 +49,8 @@ pub struct Scene {
     pub seed: u64,
     /// The barometric fingertip, if built.
     pub fingertip: Option<Fingertip>,
+    /// The grasp model, if the scene names it.
+    pub grasp: Option<crate::grasp::GraspSim>,
     now_ns: u64,
 }
 
@@ -61,6 +65,11 @@ impl Scene {
                 .as_ref()
                 .map(|c| Fingertip::new(c, seed))
                 .transpose()?,
+            grasp: config
+                .grasp
+                .as_ref()
+                .map(|c| crate::grasp::GraspSim::new(c, seed))
+                .transpose()?,
             now_ns: 0,
         })
     }
@@ -73,6 +82,7 @@ impl Scene {
     /// Steps every built model to `t_ns`; the models that were not built are not touched.
     pub fn step_to(&mut self, t_ns: u64) -> Result<(), SimError> {
         step(&mut self.fingertip, t_ns)?;
+        step(&mut self.grasp, t_ns)?;
         self.now_ns = self.now_ns.max(t_ns);
         Ok(())
     }
@@ -81,6 +91,7 @@ impl Scene {
     pub fn models(&self) -> Vec<&'static str> {
         let mut built = Vec::new();
         name_if_built(&self.fingertip, &mut built);
+        name_if_built(&self.grasp, &mut built);
         built
     }
 }
