@@ -359,3 +359,36 @@ fn term_centroid<T: Real>(mf: &Mf<T>, min: T, max: T) -> T {
     let mu: Vec<T> = (0..n).map(|k| mf.membership(min + T::of(k as f64) * dx)).collect();
     defuzz::sampled(Statistic::Centroid, &mu, min, dx).unwrap_or((min + max) / (T::one() + T::one()))
 }
+
+impl<T: Real> From<&Engine<T>> for EngineBuilder<T> {
+    /// A builder holding the engine's variables (with their own settings) and rules, to edit.
+    fn from(engine: &Engine<T>) -> Self {
+        let mut b = EngineBuilder::new(engine.name.clone())
+            .conjunction(engine.conjunction)
+            .disjunction(engine.disjunction)
+            .implication(engine.implication);
+        b.inputs = engine.inputs.iter().map(|v| (v.clone(), true)).collect();
+        b.outputs = engine.outputs.iter().map(|v| (v.clone(), true)).collect();
+        b.rules = engine.rules.iter().map(|r| RuleSource::Built(r.clone())).collect();
+        b
+    }
+}
+
+impl<T: Real> Engine<T> {
+    /// The same engine with every integral / maximum defuzzifier at `resolution` (e.g. an
+    /// imported 101-sample MATLAB engine switched to [`Resolution::Exact`]).
+    pub fn with_resolution(&self, resolution: Resolution) -> Result<Engine<T>, BuildError> {
+        let mut b = EngineBuilder::from(self);
+        for (v, _) in &mut b.outputs {
+            v.defuzzifier = match v.defuzzifier {
+                Defuzzifier::Centroid(_) => Defuzzifier::Centroid(resolution),
+                Defuzzifier::Bisector(_) => Defuzzifier::Bisector(resolution),
+                Defuzzifier::MeanOfMaximum(_) => Defuzzifier::MeanOfMaximum(resolution),
+                Defuzzifier::SmallestOfMaximum(_) => Defuzzifier::SmallestOfMaximum(resolution),
+                Defuzzifier::LargestOfMaximum(_) => Defuzzifier::LargestOfMaximum(resolution),
+                d @ (Defuzzifier::CenterAverage | Defuzzifier::WeightedAverage) => d,
+            };
+        }
+        b.build()
+    }
+}

@@ -10,8 +10,15 @@ mod defuzz;
 mod engine;
 mod error;
 mod exact;
+#[cfg(feature = "std")]
+mod fis;
+#[cfg(feature = "std")]
+mod fll;
+#[cfg(feature = "std")]
+mod format;
 mod mf;
 mod norms;
+mod preset;
 mod real;
 mod rules;
 mod variable;
@@ -22,6 +29,13 @@ pub use engine::{Engine, Scratch};
 pub use error::{BuildError, EvalError};
 pub use mf::{Mf, MfError};
 pub use norms::{SNorm, TNorm};
+pub use preset::{GraspController, GraspScales, TERM_NAMES, TORQUE_RAW_MAX, grasp_controller, grasp_engine};
 pub use real::Real;
 pub use rules::{Consequent, Expr, Rule, parse_rule, rule_text};
 pub use variable::{InputVariable, OutOfRange, OutputVariable, Term};
+#[cfg(feature = "std")]
+pub use fis::{from_fis, to_fis};
+#[cfg(feature = "std")]
+pub use fll::{from_fll, to_fll};
+#[cfg(feature = "std")]
+pub use format::FileError;
