@@ -27,7 +27,11 @@
 //!   it. With the partition above, center-average interpolates the table bilinearly-like between
 //!   centres: the surface is smooth and monotone, like the paper's Figure 18
 //!   (`tests/preset.rs` checks both on a grid).
-//! * **Operators.** min AND (Mamdani), max aggregation, min implication; center average.
+//! * **Operators.** Product AND, max aggregation, min implication, center average. With center
+//!   average the AND decides monotonicity: under min, a rule cell already clamped to NH keeps
+//!   gaining weight as `e` grows and the torque can *fall* (0.8 units at e = −0.975,
+//!   de = 0.225). Product makes the weights separable, μᵢ(e)·νⱼ(de), so the output is a weighted
+//!   mean of row averages that grow with `i`, with weights shifting right as `e` grows.
 //!
 //! [`GraspController`] maps the torque to an [`Effort`], optionally inside an object's Table 5
 //! torque band (e.g. paper cup 50…1023, cube 80…400).
@@ -36,7 +40,7 @@ use alloc::format;
 
 use hand_traits::{Effort, GraspObservation, GraspPolicy};
 
-use crate::{Defuzzifier, Engine, EngineBuilder, EvalError, Mf, Real, Scratch};
+use crate::{Defuzzifier, Engine, EngineBuilder, EvalError, Mf, Real, Scratch, TNorm};
 
 /// The paper's term names, most negative first (Table 3).
 pub const TERM_NAMES: [&str; 9] = ["NH", "NB", "NM", "NS", "ZO", "PS", "PM", "PB", "PH"];
@@ -73,6 +77,7 @@ pub fn grasp_engine<T: Real>() -> Engine<T> {
     let mut b = EngineBuilder::new("grasp")
         .input("e", -T::one(), T::one(), input_terms())
         .input("de", -T::one(), T::one(), input_terms())
+        .conjunction(TNorm::AlgebraicProduct)
         .defuzzifier(Defuzzifier::CenterAverage)
         .output("torque", T::zero(), T::of(TORQUE_RAW_MAX), output_terms);
     for i in 0..9 {

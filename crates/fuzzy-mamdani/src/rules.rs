@@ -110,14 +110,26 @@ pub(crate) fn compile(expr: &Expr, offsets: &[usize], out: &mut Vec<Op>) {
 /// Runs a compiled antecedent on the fuzzified inputs `mu`.
 #[inline]
 pub(crate) fn eval_ops<T: Real>(ops: &[Op], mu: &[T], and: TNorm, or: SNorm) -> T {
+    let term = |i: u32, negated: bool| {
+        let m = mu.get(i as usize).copied().unwrap_or_else(T::zero);
+        if negated { T::one() - m } else { m }
+    };
+    // The shapes of nearly every rule (one or two propositions) skip the stack.
+    match *ops {
+        [Op::Term { mu: a, negated }] => return term(a, negated),
+        [Op::Term { mu: a, negated: na }, Op::Term { mu: b, negated: nb }, op] => {
+            let (x, y) = (term(a, na), term(b, nb));
+            return if op == Op::And { and.apply(x, y) } else { or.apply(x, y) };
+        }
+        _ => {}
+    }
     let mut stack = [T::zero(); MAX_DEPTH];
     let mut top = 0usize;
     for op in ops {
         match *op {
             Op::Term { mu: i, negated } => {
-                let m = mu.get(i as usize).copied().unwrap_or_else(T::zero);
                 if let Some(slot) = stack.get_mut(top) {
-                    *slot = if negated { T::one() - m } else { m };
+                    *slot = term(i, negated);
                 }
                 top += 1;
             }
