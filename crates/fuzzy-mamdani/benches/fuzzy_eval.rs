@@ -10,7 +10,14 @@ use std::hint::black_box;
 
 fn inputs() -> Vec<[f64; 2]> {
     // A deterministic sweep over the universes, including the ends and a little beyond.
-    (0..64).map(|k| [-1.05 + 2.1 * (k as f64 * 0.618_034).fract(), -1.05 + 2.1 * (k as f64 * 0.414_214).fract()]).collect()
+    (0..64)
+        .map(|k| {
+            [
+                -1.05 + 2.1 * (k as f64 * 0.618_034).fract(),
+                -1.05 + 2.1 * (k as f64 * 0.414_214).fract(),
+            ]
+        })
+        .collect()
 }
 
 fn reference(c: &mut Criterion) {
@@ -36,7 +43,10 @@ fn reference(c: &mut Criterion) {
 }
 
 fn preset(c: &mut Criterion) {
-    let xs: Vec<[f32; 2]> = inputs().iter().map(|x| [x[0] as f32, x[1] as f32]).collect();
+    let xs: Vec<[f32; 2]> = inputs()
+        .iter()
+        .map(|x| [x[0] as f32, x[1] as f32])
+        .collect();
     let engine = fuzzy_mamdani::grasp_engine::<f32>();
     let mut s = engine.scratch();
     let mut k = 0;

@@ -5,10 +5,10 @@ use alloc::vec::Vec;
 
 use crate::defuzz::{self, Statistic};
 use crate::engine::{Compiled, OutputPlan, ScratchShape};
-use crate::rules::{self, MAX_DEPTH};
+use crate::rules::{self, MAX_DEPTH, Op};
 use crate::{
-    BuildError, Defuzzifier, Engine, InputVariable, Mf, OutOfRange, OutputVariable, Real, Resolution, Rule, SNorm,
-    TNorm, Term,
+    BuildError, Defuzzifier, Engine, InputVariable, Mf, OutOfRange, OutputVariable, Real,
+    Resolution, Rule, SNorm, TNorm, Term,
 };
 
 /// The most samples a sampled defuzzifier may ask for (the table is terms × samples values).
@@ -44,7 +44,13 @@ enum RuleSource<T> {
 }
 
 fn terms<T, S: Into<String>>(terms: impl IntoIterator<Item = (S, Mf<T>)>) -> Vec<Term<T>> {
-    terms.into_iter().map(|(name, mf)| Term { name: name.into(), mf }).collect()
+    terms
+        .into_iter()
+        .map(|(name, mf)| Term {
+            name: name.into(),
+            mf,
+        })
+        .collect()
 }
 
 impl<T: Real> EngineBuilder<T> {
@@ -73,7 +79,13 @@ impl<T: Real> EngineBuilder<T> {
         max: T,
         terms_: impl IntoIterator<Item = (S, Mf<T>)>,
     ) -> Self {
-        let var = InputVariable { name: name.into(), min, max, terms: terms(terms_), out_of_range: self.out_of_range };
+        let var = InputVariable {
+            name: name.into(),
+            min,
+            max,
+            terms: terms(terms_),
+            out_of_range: self.out_of_range,
+        };
         self.inputs.push((var, false));
         self
     }
@@ -165,14 +177,22 @@ impl<T: Real> EngineBuilder<T> {
         let inputs: Vec<InputVariable<T>> = b
             .inputs
             .iter()
-            .map(|(v, own)| InputVariable { out_of_range: if *own { v.out_of_range } else { b.out_of_range }, ..v.clone() })
+            .map(|(v, own)| InputVariable {
+                out_of_range: if *own { v.out_of_range } else { b.out_of_range },
+                ..v.clone()
+            })
             .collect();
         let outputs: Vec<OutputVariable<T>> = b
             .outputs
             .iter()
             .map(|(v, own)| match own {
                 true => v.clone(),
-                false => OutputVariable { aggregation: b.aggregation, defuzzifier: b.defuzzifier, default: b.default, ..v.clone() },
+                false => OutputVariable {
+                    aggregation: b.aggregation,
+                    defuzzifier: b.defuzzifier,
+                    default: b.default,
+                    ..v.clone()
+                },
             })
             .collect();
         if inputs.is_empty() || outputs.is_empty() {
@@ -200,7 +220,10 @@ impl<T: Real> EngineBuilder<T> {
             rules_.push(rule);
         }
         for (o, var) in outputs.iter().enumerate() {
-            let negated = rules_.iter().flat_map(|r| &r.consequents).any(|c| c.output == o && c.negated);
+            let negated = rules_
+                .iter()
+                .flat_map(|r| &r.consequents)
+                .any(|c| c.output == o && c.negated);
             check_defuzzifier(var, b.implication, negated)?;
         }
         let compiled = compile(&inputs, &outputs, &rules_);
@@ -217,18 +240,32 @@ impl<T: Real> EngineBuilder<T> {
     }
 }
 
-fn check_variable<T: Real>(name: &str, min: T, max: T, terms: &[Term<T>]) -> Result<(), BuildError> {
+fn check_variable<T: Real>(
+    name: &str,
+    min: T,
+    max: T,
+    terms: &[Term<T>],
+) -> Result<(), BuildError> {
     if !(min.is_finite() && max.is_finite() && min < max) {
-        return Err(BuildError::BadRange { variable: name.to_string() });
+        return Err(BuildError::BadRange {
+            variable: name.to_string(),
+        });
     }
     if terms.is_empty() {
-        return Err(BuildError::NoTerms { variable: name.to_string() });
+        return Err(BuildError::NoTerms {
+            variable: name.to_string(),
+        });
     }
     for (i, t) in terms.iter().enumerate() {
-        t.mf.validate()
-            .map_err(|source| BuildError::BadTerm { variable: name.to_string(), term: t.name.clone(), source })?;
+        t.mf.validate().map_err(|source| BuildError::BadTerm {
+            variable: name.to_string(),
+            term: t.name.clone(),
+            source,
+        })?;
         if terms[..i].iter().any(|u| u.name == t.name) {
-            return Err(BuildError::DuplicateName { name: t.name.clone() });
+            return Err(BuildError::DuplicateName {
+                name: t.name.clone(),
+            });
         }
     }
     Ok(())
@@ -240,13 +277,23 @@ fn check_rule<T: Real>(
     inputs: &[InputVariable<T>],
     outputs: &[OutputVariable<T>],
 ) -> Result<(), BuildError> {
-    fn check_expr<T>(e: &crate::Expr, i: usize, inputs: &[InputVariable<T>]) -> Result<(), BuildError> {
+    fn check_expr<T>(
+        e: &crate::Expr,
+        i: usize,
+        inputs: &[InputVariable<T>],
+    ) -> Result<(), BuildError> {
         match e {
             crate::Expr::Is { input, term, .. } => match inputs.get(*input) {
-                None => Err(BuildError::Unknown { rule: i, what: "input", name: input.to_string() }),
-                Some(v) if *term >= v.terms.len() => {
-                    Err(BuildError::Unknown { rule: i, what: "term", name: term.to_string() })
-                }
+                None => Err(BuildError::Unknown {
+                    rule: i,
+                    what: "input",
+                    name: input.to_string(),
+                }),
+                Some(v) if *term >= v.terms.len() => Err(BuildError::Unknown {
+                    rule: i,
+                    what: "term",
+                    name: term.to_string(),
+                }),
                 Some(_) => Ok(()),
             },
             crate::Expr::And(a, b) | crate::Expr::Or(a, b) => {
@@ -257,19 +304,38 @@ fn check_rule<T: Real>(
     }
     check_expr(&rule.antecedent, i, inputs)?;
     if rule.antecedent.depth() > MAX_DEPTH {
-        return Err(BuildError::BadRule { rule: i, reason: "antecedent nests deeper than 16" });
+        return Err(BuildError::BadRule {
+            rule: i,
+            reason: "antecedent nests deeper than 16",
+        });
     }
     if rule.consequents.is_empty() {
-        return Err(BuildError::BadRule { rule: i, reason: "no consequent" });
+        return Err(BuildError::BadRule {
+            rule: i,
+            reason: "no consequent",
+        });
     }
     if !(rule.weight >= T::zero() && rule.weight <= T::one()) {
-        return Err(BuildError::BadRule { rule: i, reason: "weight must be in [0, 1]" });
+        return Err(BuildError::BadRule {
+            rule: i,
+            reason: "weight must be in [0, 1]",
+        });
     }
     for c in &rule.consequents {
         match outputs.get(c.output) {
-            None => return Err(BuildError::Unknown { rule: i, what: "output", name: c.output.to_string() }),
+            None => {
+                return Err(BuildError::Unknown {
+                    rule: i,
+                    what: "output",
+                    name: c.output.to_string(),
+                });
+            }
             Some(v) if c.term >= v.terms.len() => {
-                return Err(BuildError::Unknown { rule: i, what: "term", name: c.term.to_string() });
+                return Err(BuildError::Unknown {
+                    rule: i,
+                    what: "term",
+                    name: c.term.to_string(),
+                });
             }
             Some(_) => {}
         }
@@ -277,32 +343,61 @@ fn check_rule<T: Real>(
     Ok(())
 }
 
-fn check_defuzzifier<T: Real>(var: &OutputVariable<T>, implication: TNorm, negated: bool) -> Result<(), BuildError> {
-    let fail = |reason| Err(BuildError::Defuzzifier { output: var.name.clone(), reason });
+fn check_defuzzifier<T: Real>(
+    var: &OutputVariable<T>,
+    implication: TNorm,
+    negated: bool,
+) -> Result<(), BuildError> {
+    let fail = |reason| {
+        Err(BuildError::Defuzzifier {
+            output: var.name.clone(),
+            reason,
+        })
+    };
     if var.default.is_some_and(|d| !d.is_finite()) {
         return fail("the default value must be finite");
     }
-    let singleton = var.terms.iter().any(|t| matches!(t.mf, Mf::Singleton { .. }));
+    let singleton = var
+        .terms
+        .iter()
+        .any(|t| matches!(t.mf, Mf::Singleton { .. }));
     match var.defuzzifier.resolution() {
-        None if negated => fail("the averaging defuzzifiers need terms with a centre, not their complements"),
+        None if negated => {
+            fail("the averaging defuzzifiers need terms with a centre, not their complements")
+        }
         None => Ok(()),
         Some(_) if singleton => fail("a singleton term has no area: use an averaging defuzzifier"),
-        Some(Resolution::Samples(n)) if !(2..=MAX_SAMPLES).contains(&n) => fail("samples must be in 2..=2^20"),
+        Some(Resolution::Samples(n)) if !(2..=MAX_SAMPLES).contains(&n) => {
+            fail("samples must be in 2..=2^20")
+        }
         Some(Resolution::Samples(_)) => Ok(()),
-        Some(Resolution::Exact) if var.terms.iter().any(|t| t.mf.linear_breakpoints().is_none()) => {
+        Some(Resolution::Exact)
+            if var
+                .terms
+                .iter()
+                .any(|t| t.mf.linear_breakpoints().is_none()) =>
+        {
             fail("the exact path needs triangle / trapezoid terms")
         }
-        Some(Resolution::Exact) if !matches!(implication, TNorm::Minimum | TNorm::AlgebraicProduct) => {
+        Some(Resolution::Exact)
+            if !matches!(implication, TNorm::Minimum | TNorm::AlgebraicProduct) =>
+        {
             fail("the exact path needs min or product implication")
         }
-        Some(Resolution::Exact) if !matches!(var.aggregation, SNorm::Maximum | SNorm::UnboundedSum) => {
+        Some(Resolution::Exact)
+            if !matches!(var.aggregation, SNorm::Maximum | SNorm::UnboundedSum) =>
+        {
             fail("the exact path needs max or unbounded-sum aggregation")
         }
         Some(Resolution::Exact) => Ok(()),
     }
 }
 
-fn compile<T: Real>(inputs: &[InputVariable<T>], outputs: &[OutputVariable<T>], rules_: &[Rule<T>]) -> Compiled<T> {
+fn compile<T: Real>(
+    inputs: &[InputVariable<T>],
+    outputs: &[OutputVariable<T>],
+    rules_: &[Rule<T>],
+) -> Compiled<T> {
     let mut input_offsets = Vec::with_capacity(inputs.len() + 1);
     let mut input_mfs = Vec::new();
     for v in inputs {
@@ -317,16 +412,50 @@ fn compile<T: Real>(inputs: &[InputVariable<T>], outputs: &[OutputVariable<T>], 
         rule_ops.push((start, ops.len() as u32));
         weights.push(r.weight);
     }
-    let plans: Vec<OutputPlan<T>> = outputs.iter().enumerate().map(|(o, v)| plan(o, v, rules_)).collect();
+    let and_pairs = rule_ops
+        .iter()
+        .map(|&(lo, hi)| match ops[lo as usize..hi as usize] {
+            [
+                Op::Term {
+                    mu: a,
+                    negated: false,
+                },
+                Op::Term {
+                    mu: b,
+                    negated: false,
+                },
+                Op::And,
+            ] => Some([a, b]),
+            _ => None,
+        })
+        .collect::<Option<Vec<_>>>();
+    let plans: Vec<OutputPlan<T>> = outputs
+        .iter()
+        .enumerate()
+        .map(|(o, v)| plan(o, v, rules_))
+        .collect();
     let shape = ScratchShape {
         input_terms: input_mfs.len(),
         rules: rules_.len(),
-        acts: plans.iter().map(|p| p.consequents.len().max(2 * p.mfs.len())).max().unwrap_or(0),
+        acts: plans
+            .iter()
+            .map(|p| p.consequents.len().max(2 * p.mfs.len()))
+            .max()
+            .unwrap_or(0),
         levels: 2 * outputs.iter().map(|v| v.terms.len()).max().unwrap_or(0),
         samples: plans.iter().map(|p| p.samples).max().unwrap_or(0),
         outputs: outputs.len(),
     };
-    Compiled { input_offsets, input_mfs, ops, rule_ops, weights, plans, shape }
+    Compiled {
+        input_offsets,
+        input_mfs,
+        ops,
+        rule_ops,
+        and_pairs,
+        weights,
+        plans,
+        shape,
+    }
 }
 
 fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputPlan<T> {
@@ -343,21 +472,42 @@ fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputP
         _ => 0,
     };
     let span = v.max - v.min;
-    let dx = if samples > 1 { span / T::of((samples - 1) as f64) } else { span };
+    let dx = if samples > 1 {
+        span / T::of((samples - 1) as f64)
+    } else {
+        span
+    };
     let mut table = Vec::with_capacity(samples * mfs.len());
     for mf in &mfs {
         table.extend((0..samples).map(|k| mf.membership(v.min + T::of(k as f64) * dx)));
     }
-    let centers = mfs.iter().map(|mf| mf.center().unwrap_or_else(|| term_centroid(mf, v.min, v.max))).collect();
-    OutputPlan { mfs, centers, consequents, stat: Statistic::of(v.defuzzifier), samples, dx, table }
+    let centers = mfs
+        .iter()
+        .map(|mf| {
+            mf.center()
+                .unwrap_or_else(|| term_centroid(mf, v.min, v.max))
+        })
+        .collect();
+    OutputPlan {
+        mfs,
+        centers,
+        consequents,
+        stat: Statistic::of(v.defuzzifier),
+        samples,
+        dx,
+        table,
+    }
 }
 
 /// The centroid of a term without a natural centre, over 1001 samples of the universe.
 fn term_centroid<T: Real>(mf: &Mf<T>, min: T, max: T) -> T {
     let n = 1001;
     let dx = (max - min) / T::of((n - 1) as f64);
-    let mu: Vec<T> = (0..n).map(|k| mf.membership(min + T::of(k as f64) * dx)).collect();
-    defuzz::sampled(Statistic::Centroid, &mu, min, dx).unwrap_or((min + max) / (T::one() + T::one()))
+    let mu: Vec<T> = (0..n)
+        .map(|k| mf.membership(min + T::of(k as f64) * dx))
+        .collect();
+    defuzz::sampled(Statistic::Centroid, &mu, min, dx)
+        .unwrap_or((min + max) / (T::one() + T::one()))
 }
 
 impl<T: Real> From<&Engine<T>> for EngineBuilder<T> {
@@ -369,7 +519,11 @@ impl<T: Real> From<&Engine<T>> for EngineBuilder<T> {
             .implication(engine.implication);
         b.inputs = engine.inputs.iter().map(|v| (v.clone(), true)).collect();
         b.outputs = engine.outputs.iter().map(|v| (v.clone(), true)).collect();
-        b.rules = engine.rules.iter().map(|r| RuleSource::Built(r.clone())).collect();
+        b.rules = engine
+            .rules
+            .iter()
+            .map(|r| RuleSource::Built(r.clone()))
+            .collect();
         b
     }
 }

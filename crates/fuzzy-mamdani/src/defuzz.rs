@@ -110,11 +110,12 @@ pub(crate) fn sampled<T: Real>(stat: Statistic, mu: &[T], min: T, dx: T) -> Opti
         Statistic::Bisector => {
             let half = total / (T::one() + T::one());
             let mut run = T::zero();
-            mu.iter().position(|&m| {
-                run = run + m;
-                run >= half
-            })
-            .map(x)
+            mu.iter()
+                .position(|&m| {
+                    run = run + m;
+                    run >= half
+                })
+                .map(x)
         }
         Statistic::Mom => {
             let (mut n, mut sum) = (0usize, T::zero());
@@ -144,7 +145,15 @@ pub(crate) struct PieceStats<T> {
 impl<T: Real> PieceStats<T> {
     pub(crate) fn new() -> Self {
         let z = T::zero();
-        PieceStats { area: z, moment: z, peak: z, som: z, lom: z, plateau_len: z, plateau_moment: z }
+        PieceStats {
+            area: z,
+            moment: z,
+            peak: z,
+            som: z,
+            lom: z,
+            plateau_len: z,
+            plateau_moment: z,
+        }
     }
 
     /// Adds the linear piece from `(x0, y0)` to `(x1, y1)`.
@@ -192,7 +201,9 @@ impl<T: Real> PieceStats<T> {
         let two = T::one() + T::one();
         match stat {
             Statistic::Centroid => Some(self.moment / self.area),
-            Statistic::Mom if self.plateau_len > T::zero() => Some(self.plateau_moment / self.plateau_len),
+            Statistic::Mom if self.plateau_len > T::zero() => {
+                Some(self.plateau_moment / self.plateau_len)
+            }
             Statistic::Mom => Some((self.som + self.lom) / two),
             Statistic::Som => Some(self.som),
             Statistic::Lom => Some(self.lom),
@@ -213,7 +224,11 @@ pub(crate) fn bisector_in_piece<T: Real>(x0: T, y0: T, x1: T, y1: T, r: T) -> T 
     // Solve y0 u + s u²/2 = r in the cancellation-free form u = 2r / (y0 + √(y0² + 2 s r)).
     let disc = (y0 * y0 + two * s * r).max(T::zero());
     let den = y0 + disc.sqrt();
-    let u = if den > T::zero() { two * r / den } else { T::zero() };
+    let u = if den > T::zero() {
+        two * r / den
+    } else {
+        T::zero()
+    };
     (x0 + u).min(x1)
 }
 

@@ -6,7 +6,9 @@ use alloc::vec::Vec;
 use crate::defuzz::{self, PieceStats, Statistic};
 use crate::exact::{self, Act};
 use crate::rules::{self, Op};
-use crate::{Defuzzifier, EvalError, InputVariable, Mf, OutOfRange, OutputVariable, Real, Rule, SNorm, TNorm};
+use crate::{
+    Defuzzifier, EvalError, InputVariable, Mf, OutOfRange, OutputVariable, Real, Rule, SNorm, TNorm,
+};
 
 /// A Mamdani fuzzy inference engine, built by [`crate::EngineBuilder`] or imported from a
 /// `.fis` / `.fll` file.
@@ -54,6 +56,8 @@ pub(crate) struct Compiled<T> {
     pub(crate) ops: Vec<Op>,
     /// `ops[start..end]` of each rule.
     pub(crate) rule_ops: Vec<(u32, u32)>,
+    /// When every rule is `a and b` (no NOT): the two flat membership indices of each rule.
+    pub(crate) and_pairs: Option<Vec<[u32; 2]>>,
     pub(crate) weights: Vec<T>,
     pub(crate) plans: Vec<OutputPlan<T>>,
     pub(crate) shape: ScratchShape,
@@ -154,13 +158,20 @@ impl<T: Real> Engine<T> {
     /// infinite input is an error (except ±∞ under [`OutOfRange::Clamp`], which saturates).
     /// An output for which no rule fires takes its declared default, or is
     /// [`EvalError::NoRuleFired`]: never a silent NaN.
-    pub fn evaluate<'s>(&self, scratch: &'s mut Scratch<T>, inputs: &[T]) -> Result<&'s [T], EvalError> {
+    pub fn evaluate<'s>(
+        &self,
+        scratch: &'s mut Scratch<T>,
+        inputs: &[T],
+    ) -> Result<&'s [T], EvalError> {
         let c = &self.compiled;
         if scratch.shape != c.shape {
             return Err(EvalError::ScratchMismatch);
         }
         if inputs.len() != self.inputs.len() {
-            return Err(EvalError::InputCount { expected: self.inputs.len(), got: inputs.len() });
+            return Err(EvalError::InputCount {
+                expected: self.inputs.len(),
+                got: inputs.len(),
+            });
         }
         for (i, (var, &x)) in self.inputs.iter().zip(inputs).enumerate() {
             let x = admit(var, x, i)?;
@@ -169,11 +180,7 @@ impl<T: Real> Engine<T> {
                 *m = mf.membership(x);
             }
         }
-        for (r, s) in scratch.strength.iter_mut().enumerate() {
-            let (lo, hi) = c.rule_ops[r];
-            let ops = &c.ops[lo as usize..hi as usize];
-            *s = c.weights[r] * rules::eval_ops(ops, &scratch.mu, self.conjunction, self.disjunction);
-        }
+        self.fire(scratch);
         for (o, plan) in c.plans.iter().enumerate() {
             let var = &self.outputs[o];
             let value = self.defuzzify(var, plan, scratch);
@@ -185,12 +192,53 @@ impl<T: Real> Engine<T> {
         Ok(&scratch.out)
     }
 
-    fn defuzzify(&self, var: &OutputVariable<T>, plan: &OutputPlan<T>, s: &mut Scratch<T>) -> Option<T> {
-        let Scratch { strength, acts, levels, agg, points, lines, .. } = s;
-        let fired = plan.consequents.iter().filter(|c| strength[c.0 as usize] > T::zero());
+    /// Every rule's weighted firing strength into `scratch.strength`.
+    fn fire(&self, scratch: &mut Scratch<T>) {
+        let c = &self.compiled;
+        let (mu, strength) = (&scratch.mu, &mut scratch.strength);
+        if let Some(pairs) = &c.and_pairs {
+            // All rules are `a and b`: a tight gather loop, monomorphic for the common T-norms.
+            let get = |i: u32| mu.get(i as usize).copied().unwrap_or_else(T::zero);
+            let it = strength.iter_mut().zip(pairs).zip(&c.weights);
+            match self.conjunction {
+                TNorm::Minimum => it.for_each(|((s, p), &w)| *s = w * get(p[0]).min(get(p[1]))),
+                TNorm::AlgebraicProduct => {
+                    it.for_each(|((s, p), &w)| *s = w * get(p[0]) * get(p[1]))
+                }
+                t => it.for_each(|((s, p), &w)| *s = w * t.apply(get(p[0]), get(p[1]))),
+            }
+            return;
+        }
+        for (r, s) in strength.iter_mut().enumerate() {
+            let (lo, hi) = c.rule_ops[r];
+            let ops = &c.ops[lo as usize..hi as usize];
+            *s = c.weights[r] * rules::eval_ops(ops, mu, self.conjunction, self.disjunction);
+        }
+    }
+
+    fn defuzzify(
+        &self,
+        var: &OutputVariable<T>,
+        plan: &OutputPlan<T>,
+        s: &mut Scratch<T>,
+    ) -> Option<T> {
+        let Scratch {
+            strength,
+            acts,
+            levels,
+            agg,
+            points,
+            lines,
+            ..
+        } = s;
+        let fired = plan
+            .consequents
+            .iter()
+            .filter(|c| strength[c.0 as usize] > T::zero());
         if var.defuzzifier == Defuzzifier::CenterAverage {
+            // Silent rules add 0 to both sums: no branch needed.
             let (mut num, mut den) = (T::zero(), T::zero());
-            for &(r, t, _) in fired {
+            for &(r, t, _) in &plan.consequents {
                 let w = strength[r as usize];
                 num = num + w * plan.centers[t as usize];
                 den = den + w;
@@ -216,9 +264,17 @@ impl<T: Real> Engine<T> {
         if var.aggregation == SNorm::Maximum {
             // max_r I(w_r, μ) = I(max_r w_r, μ) for any T-norm I: one activation per term.
             let nonzero = levels.iter().enumerate().filter(|(_, w)| **w > T::zero());
-            acts.extend(nonzero.map(|(k, &w)| Act { term: (k / 2) as u32, negated: k % 2 == 1, w }));
+            acts.extend(nonzero.map(|(k, &w)| Act {
+                term: (k / 2) as u32,
+                negated: k % 2 == 1,
+                w,
+            }));
         } else {
-            acts.extend(fired.map(|&(r, term, negated)| Act { term, negated, w: strength[r as usize] }));
+            acts.extend(fired.map(|&(r, term, negated)| Act {
+                term,
+                negated,
+                w: strength[r as usize],
+            }));
         }
         let stat = plan.stat?;
         if plan.samples > 0 {
@@ -229,7 +285,16 @@ impl<T: Real> Engine<T> {
         let mut stats = PieceStats::new();
         let range = (var.min, var.max);
         let (imp, aggr) = (self.implication, var.aggregation);
-        exact::for_each_piece(acts, &plan.mfs, imp, aggr, range, points, lines, |a, b, c, d| stats.add(a, b, c, d));
+        exact::for_each_piece(
+            acts,
+            &plan.mfs,
+            imp,
+            aggr,
+            range,
+            points,
+            lines,
+            |a, b, c, d| stats.add(a, b, c, d),
+        );
         if stat != Statistic::Bisector {
             return stats.finish(stat);
         }
@@ -238,13 +303,22 @@ impl<T: Real> Engine<T> {
         }
         let half = stats.area / (T::one() + T::one());
         let (mut run, mut found) = (T::zero(), None);
-        exact::for_each_piece(acts, &plan.mfs, imp, aggr, range, points, lines, |x0, y0, x1, y1| {
-            let piece = (y0 + y1) / (T::one() + T::one()) * (x1 - x0);
-            if found.is_none() && run + piece >= half {
-                found = Some(defuzz::bisector_in_piece(x0, y0, x1, y1, half - run));
-            }
-            run = run + piece;
-        });
+        exact::for_each_piece(
+            acts,
+            &plan.mfs,
+            imp,
+            aggr,
+            range,
+            points,
+            lines,
+            |x0, y0, x1, y1| {
+                let piece = (y0 + y1) / (T::one() + T::one()) * (x1 - x0);
+                if found.is_none() && run + piece >= half {
+                    found = Some(defuzz::bisector_in_piece(x0, y0, x1, y1, half - run));
+                }
+                run = run + piece;
+            },
+        );
         // Rounding can leave the running sum a hair under `half` at the end: the right end.
         found.or(Some(var.max))
     }
@@ -273,13 +347,21 @@ fn accumulate<T: Real>(agg: &mut [T], acts: &[Act<T>], table: &[T], imp: TNorm, 
     agg.fill(T::zero());
     let n = agg.len();
     for a in acts {
-        let Some(row) = table.get(a.term as usize * n..(a.term as usize + 1) * n) else { continue };
+        let Some(row) = table.get(a.term as usize * n..(a.term as usize + 1) * n) else {
+            continue;
+        };
         let w = a.w;
         // The common pairs get their own monomorphic loop so the compiler can vectorise it.
         match (imp, aggr, a.negated) {
-            (TNorm::Minimum, SNorm::Maximum, false) => fold(agg, row, |m| w.min(m), |x, y| x.max(y)),
-            (TNorm::AlgebraicProduct, SNorm::Maximum, false) => fold(agg, row, |m| w * m, |x, y| x.max(y)),
-            (TNorm::Minimum, SNorm::UnboundedSum, false) => fold(agg, row, |m| w.min(m), |x, y| x + y),
+            (TNorm::Minimum, SNorm::Maximum, false) => {
+                fold(agg, row, |m| w.min(m), |x, y| x.max(y))
+            }
+            (TNorm::AlgebraicProduct, SNorm::Maximum, false) => {
+                fold(agg, row, |m| w * m, |x, y| x.max(y))
+            }
+            (TNorm::Minimum, SNorm::UnboundedSum, false) => {
+                fold(agg, row, |m| w.min(m), |x, y| x + y)
+            }
             (_, _, neg) => {
                 let m = |m: T| if neg { T::one() - m } else { m };
                 fold(agg, row, |v| imp.apply(w, m(v)), |x, y| aggr.apply(x, y));

@@ -42,7 +42,9 @@ pub(crate) fn for_each_piece<T: Real>(
     points.push(min);
     points.push(max);
     for a in acts {
-        let Some(mf) = mfs.get(a.term as usize) else { continue };
+        let Some(mf) = mfs.get(a.term as usize) else {
+            continue;
+        };
         if let Some((p, n)) = mf.linear_breakpoints() {
             points.extend(p[..n].iter().copied().filter(|x| *x > min && *x < max));
         }
@@ -68,8 +70,13 @@ pub(crate) fn for_each_piece<T: Real>(
         let (q1, q3) = (x0 + quarter * h, x1 - quarter * h);
         lines.clear();
         for a in acts {
-            let Some(mf) = mfs.get(a.term as usize) else { continue };
-            let (v1, v3) = (implied(mf, a, implication, q1), implied(mf, a, implication, q3));
+            let Some(mf) = mfs.get(a.term as usize) else {
+                continue;
+            };
+            let (v1, v3) = (
+                implied(mf, a, implication, q1),
+                implied(mf, a, implication, q3),
+            );
             let y0 = (k1 * v1 - k3 * v3).max(T::zero());
             let y1 = (k1 * v3 - k3 * v1).max(T::zero());
             if y0 > T::zero() || y1 > T::zero() {
@@ -77,7 +84,9 @@ pub(crate) fn for_each_piece<T: Real>(
             }
         }
         if aggregation == SNorm::UnboundedSum {
-            let (y0, y1) = lines.iter().fold((T::zero(), T::zero()), |s, l| (s.0 + l.0, s.1 + l.1));
+            let (y0, y1) = lines
+                .iter()
+                .fold((T::zero(), T::zero()), |s, l| (s.0 + l.0, s.1 + l.1));
             visit(x0, y0, x1, y1);
         } else {
             upper_envelope(lines, x0, x1, &mut visit);
@@ -93,7 +102,9 @@ fn upper_envelope<T: Real>(lines: &[(T, T)], x0: T, x1: T, visit: &mut impl FnMu
     // Start on the highest line at t = 0, the steeper one on a tie.
     let Some(mut cur) = (0..lines.len()).max_by(|&i, &j| {
         let (a, b) = (&lines[i], &lines[j]);
-        (a.0, slope(a)).partial_cmp(&(b.0, slope(b))).unwrap_or(core::cmp::Ordering::Equal)
+        (a.0, slope(a))
+            .partial_cmp(&(b.0, slope(b)))
+            .unwrap_or(core::cmp::Ordering::Equal)
     }) else {
         visit(x0, T::zero(), x1, T::zero());
         return;
@@ -138,19 +149,36 @@ mod tests {
     #[test]
     fn envelope_of_two_crossing_lines_switches_at_the_crossing() {
         let mut pieces = Vec::new();
-        upper_envelope(&[(1.0, 0.0), (0.0, 1.0f64)], 0.0, 2.0, &mut |a, b, c, d| pieces.push((a, b, c, d)));
+        upper_envelope(&[(1.0, 0.0), (0.0, 1.0f64)], 0.0, 2.0, &mut |a, b, c, d| {
+            pieces.push((a, b, c, d))
+        });
         assert_eq!(pieces, [(0.0, 1.0, 1.0, 0.5), (1.0, 0.5, 2.0, 1.0)]);
     }
 
     #[test]
     fn clipped_triangle_has_a_plateau_between_the_clip_points() {
-        let mfs = [Mf::Triangle { a: 0.0, b: 1.0, c: 2.0f64 }];
-        let acts = [Act { term: 0, negated: false, w: 0.5 }];
+        let mfs = [Mf::Triangle {
+            a: 0.0,
+            b: 1.0,
+            c: 2.0f64,
+        }];
+        let acts = [Act {
+            term: 0,
+            negated: false,
+            w: 0.5,
+        }];
         let (mut pts, mut lines) = (Vec::with_capacity(8), Vec::with_capacity(1));
         let mut pieces = Vec::new();
-        for_each_piece(&acts, &mfs, TNorm::Minimum, SNorm::Maximum, (0.0, 2.0), &mut pts, &mut lines, |a, b, c, d| {
-            pieces.push((a, b, c, d))
-        });
+        for_each_piece(
+            &acts,
+            &mfs,
+            TNorm::Minimum,
+            SNorm::Maximum,
+            (0.0, 2.0),
+            &mut pts,
+            &mut lines,
+            |a, b, c, d| pieces.push((a, b, c, d)),
+        );
         assert_eq!(pieces.len(), 4);
         assert_eq!(pieces[1], (0.5, 0.5, 1.0, 0.5));
     }

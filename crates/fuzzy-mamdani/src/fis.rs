@@ -10,12 +10,24 @@ use std::vec::Vec;
 
 use crate::format::{FileError, numbers, syntax};
 use crate::{
-    Consequent, Defuzzifier, Engine, EngineBuilder, Expr, InputVariable, Mf, OutOfRange, OutputVariable, Real,
-    Resolution, Rule, SNorm, TNorm, Term,
+    Consequent, Defuzzifier, Engine, EngineBuilder, Expr, InputVariable, Mf, OutOfRange,
+    OutputVariable, Real, Resolution, Rule, SNorm, TNorm, Term,
 };
 
-const MF_NAMES: [&str; 12] =
-    ["trimf", "trapmf", "gaussmf", "gauss2mf", "gbellmf", "sigmf", "dsigmf", "psigmf", "smf", "zmf", "pimf", "singleton"];
+const MF_NAMES: [&str; 12] = [
+    "trimf",
+    "trapmf",
+    "gaussmf",
+    "gauss2mf",
+    "gbellmf",
+    "sigmf",
+    "dsigmf",
+    "psigmf",
+    "smf",
+    "zmf",
+    "pimf",
+    "singleton",
+];
 
 fn mf_from<T: Real>(kind: &str, p: &[f64], line: usize) -> Result<Mf<T>, FileError> {
     let p: Vec<T> = p.iter().map(|v| T::of(*v)).collect();
@@ -23,7 +35,12 @@ fn mf_from<T: Real>(kind: &str, p: &[f64], line: usize) -> Result<Mf<T>, FileErr
         ("trimf", &[a, b, c]) => Mf::Triangle { a, b, c },
         ("trapmf", &[a, b, c, d]) => Mf::Trapezoid { a, b, c, d },
         ("gaussmf", &[sigma, mean]) => Mf::Gaussian { sigma, mean },
-        ("gauss2mf", &[sigma1, mean1, sigma2, mean2]) => Mf::Gaussian2 { sigma1, mean1, sigma2, mean2 },
+        ("gauss2mf", &[sigma1, mean1, sigma2, mean2]) => Mf::Gaussian2 {
+            sigma1,
+            mean1,
+            sigma2,
+            mean2,
+        },
         ("gbellmf", &[a, b, c]) => Mf::Bell { a, b, c },
         ("sigmf", &[a, c]) => Mf::Sigmoid { a, c },
         ("dsigmf", &[a1, c1, a2, c2]) => Mf::SigmoidDifference { a1, c1, a2, c2 },
@@ -32,7 +49,12 @@ fn mf_from<T: Real>(kind: &str, p: &[f64], line: usize) -> Result<Mf<T>, FileErr
         ("zmf", &[a, b]) => Mf::Z { a, b },
         ("pimf", &[a, b, c, d]) => Mf::Pi { a, b, c, d },
         ("singleton", &[x]) => Mf::Singleton { x },
-        _ => return Err(syntax(line, format!("`{kind}` with {} parameters is not a supported MF", p.len()))),
+        _ => {
+            return Err(syntax(
+                line,
+                format!("`{kind}` with {} parameters is not a supported MF", p.len()),
+            ));
+        }
     })
 }
 
@@ -69,6 +91,9 @@ fn defuzz_from(name: &str, line: usize) -> Result<Defuzzifier, FileError> {
     })
 }
 
+/// An output section as read: name, min, max, terms.
+type OutputSection<T> = (String, T, T, Vec<Term<T>>);
+
 enum Block {
     System,
     Input(usize),
@@ -90,9 +115,15 @@ enum Block {
 /// ```
 pub fn from_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
     let mut name = String::new();
-    let (mut and, mut or, mut imp, mut agg) = (TNorm::Minimum, SNorm::Maximum, TNorm::Minimum, SNorm::Maximum);
+    let (mut and, mut or, mut imp, mut agg) = (
+        TNorm::Minimum,
+        SNorm::Maximum,
+        TNorm::Minimum,
+        SNorm::Maximum,
+    );
     let mut defuzz = Defuzzifier::Centroid(Resolution::Samples(101));
-    let (mut inputs, mut outputs): (Vec<InputVariable<T>>, Vec<(String, T, T, Vec<Term<T>>)>) = (Vec::new(), Vec::new());
+    let (mut inputs, mut outputs): (Vec<InputVariable<T>>, Vec<OutputSection<T>>) =
+        (Vec::new(), Vec::new());
     let mut rules = Vec::new();
     let mut block = Block::System;
     for (i, raw) in text.lines().enumerate() {
@@ -111,8 +142,12 @@ pub fn from_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
                     terms: Vec::new(),
                     out_of_range: OutOfRange::Clamp,
                 }),
-                Block::Output(k) if k == outputs.len() => outputs.push((String::new(), T::zero(), T::one(), Vec::new())),
-                Block::Input(_) | Block::Output(_) => return Err(syntax(line, "sections must be numbered 1, 2, … in order")),
+                Block::Output(k) if k == outputs.len() => {
+                    outputs.push((String::new(), T::zero(), T::one(), Vec::new()))
+                }
+                Block::Input(_) | Block::Output(_) => {
+                    return Err(syntax(line, "sections must be numbered 1, 2, … in order"));
+                }
                 _ => {}
             }
             continue;
@@ -121,7 +156,9 @@ pub fn from_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
             rules.push(fis_rule(content, line, &inputs, outputs.len())?);
             continue;
         }
-        let (key, value) = content.split_once('=').ok_or_else(|| syntax(line, "expected `Key=value`"))?;
+        let (key, value) = content
+            .split_once('=')
+            .ok_or_else(|| syntax(line, "expected `Key=value`"))?;
         let (key, value) = (key.trim(), value.trim());
         let unquoted = value.trim_matches('\'');
         let (vname, vmin, vmax, vterms) = match block {
@@ -137,12 +174,39 @@ pub fn from_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
                 match key {
                     "Name" => name = unquoted.to_string(),
                     "Type" if unquoted == "mamdani" => {}
-                    "Type" => return Err(syntax(line, format!("only Mamdani systems are supported, not `{unquoted}`"))),
-                    "AndMethod" => and = pick(unquoted, &[("min", TNorm::Minimum), ("prod", TNorm::AlgebraicProduct)], line)?,
-                    "OrMethod" => or = pick(unquoted, &[("max", SNorm::Maximum), ("probor", SNorm::AlgebraicSum)], line)?,
-                    "ImpMethod" => imp = pick(unquoted, &[("min", TNorm::Minimum), ("prod", TNorm::AlgebraicProduct)], line)?,
+                    "Type" => {
+                        return Err(syntax(
+                            line,
+                            format!("only Mamdani systems are supported, not `{unquoted}`"),
+                        ));
+                    }
+                    "AndMethod" => {
+                        and = pick(
+                            unquoted,
+                            &[("min", TNorm::Minimum), ("prod", TNorm::AlgebraicProduct)],
+                            line,
+                        )?
+                    }
+                    "OrMethod" => {
+                        or = pick(
+                            unquoted,
+                            &[("max", SNorm::Maximum), ("probor", SNorm::AlgebraicSum)],
+                            line,
+                        )?
+                    }
+                    "ImpMethod" => {
+                        imp = pick(
+                            unquoted,
+                            &[("min", TNorm::Minimum), ("prod", TNorm::AlgebraicProduct)],
+                            line,
+                        )?
+                    }
                     "AggMethod" => {
-                        let table = [("max", SNorm::Maximum), ("sum", SNorm::UnboundedSum), ("probor", SNorm::AlgebraicSum)];
+                        let table = [
+                            ("max", SNorm::Maximum),
+                            ("sum", SNorm::UnboundedSum),
+                            ("probor", SNorm::AlgebraicSum),
+                        ];
                         agg = pick(unquoted, &table, line)?;
                     }
                     "DefuzzMethod" => defuzz = defuzz_from(unquoted, line)?,
@@ -162,13 +226,24 @@ pub fn from_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
             _ => return Err(syntax(line, format!("unexpected key `{key}`"))),
         }
     }
-    let mut b = EngineBuilder::new(name).conjunction(and).disjunction(or).implication(imp);
+    let mut b = EngineBuilder::new(name)
+        .conjunction(and)
+        .disjunction(or)
+        .implication(imp);
     for v in inputs {
         b = b.input_variable(v);
     }
     for (name, min, max, terms) in outputs {
         let default = Some((min + max) / (T::one() + T::one()));
-        b = b.output_variable(OutputVariable { name, min, max, terms, aggregation: agg, defuzzifier: defuzz, default });
+        b = b.output_variable(OutputVariable {
+            name,
+            min,
+            max,
+            terms,
+            aggregation: agg,
+            defuzzifier: defuzz,
+            default,
+        });
     }
     for r in rules {
         b = b.rule_struct(r);
@@ -177,7 +252,12 @@ pub fn from_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
 }
 
 fn section_of(s: &str, line: usize) -> Result<Block, FileError> {
-    let index = |rest: &str| rest.parse::<usize>().ok().filter(|k| *k >= 1).map(|k| k - 1);
+    let index = |rest: &str| {
+        rest.parse::<usize>()
+            .ok()
+            .filter(|k| *k >= 1)
+            .map(|k| k - 1)
+    };
     if s == "System" {
         Ok(Block::System)
     } else if s == "Rules" {
@@ -192,7 +272,11 @@ fn section_of(s: &str, line: usize) -> Result<Block, FileError> {
 }
 
 fn pick<N: Copy>(value: &str, table: &[(&str, N)], line: usize) -> Result<N, FileError> {
-    table.iter().find(|(n, _)| *n == value).map(|(_, v)| *v).ok_or_else(|| syntax(line, format!("unsupported method `{value}`")))
+    table
+        .iter()
+        .find(|(n, _)| *n == value)
+        .map(|(_, v)| *v)
+        .ok_or_else(|| syntax(line, format!("unsupported method `{value}`")))
 }
 
 /// `'name':'type',[p1 p2 …]`
@@ -200,27 +284,49 @@ fn fis_mf<T: Real>(value: &str, line: usize) -> Result<Term<T>, FileError> {
     let bad = || syntax(line, "an MF is `'name':'type',[parameters]`");
     let (name, rest) = value.split_once(':').ok_or_else(bad)?;
     let (kind, params) = rest.split_once(',').ok_or_else(bad)?;
-    let params = params.trim().strip_prefix('[').and_then(|p| p.strip_suffix(']')).ok_or_else(bad)?;
-    let mf = mf_from(kind.trim().trim_matches('\''), &numbers(params, line)?, line)?;
+    let params = params
+        .trim()
+        .strip_prefix('[')
+        .and_then(|p| p.strip_suffix(']'))
+        .ok_or_else(bad)?;
+    let mf = mf_from(
+        kind.trim().trim_matches('\''),
+        &numbers(params, line)?,
+        line,
+    )?;
     let name = name.trim().trim_matches('\'').to_string();
-    mf.validate().map_err(|e| syntax(line, format!("MF `{name}`: {e}")))?;
+    mf.validate()
+        .map_err(|e| syntax(line, format!("MF `{name}`: {e}")))?;
     Ok(Term { name, mf })
 }
 
 /// `i1 i2 …, o1 … (weight) : connection` with 1-based term indices, 0 absent, negative NOT.
-fn fis_rule<T: Real>(text: &str, line: usize, inputs: &[InputVariable<T>], outputs: usize) -> Result<Rule<T>, FileError> {
+fn fis_rule<T: Real>(
+    text: &str,
+    line: usize,
+    inputs: &[InputVariable<T>],
+    outputs: usize,
+) -> Result<Rule<T>, FileError> {
     let bad = |m: &str| syntax(line, format!("rule: {m}"));
-    let (body, conn) = text.rsplit_once(':').ok_or_else(|| bad("missing `: connection`"))?;
-    let (ante, rest) = body.split_once(',').ok_or_else(|| bad("missing `,` between inputs and outputs"))?;
-    let (outs, weight) = rest.split_once('(').ok_or_else(|| bad("missing `(weight)`"))?;
+    let (body, conn) = text
+        .rsplit_once(':')
+        .ok_or_else(|| bad("missing `: connection`"))?;
+    let (ante, rest) = body
+        .split_once(',')
+        .ok_or_else(|| bad("missing `,` between inputs and outputs"))?;
+    let (outs, weight) = rest
+        .split_once('(')
+        .ok_or_else(|| bad("missing `(weight)`"))?;
     let weight = numbers(weight.trim().trim_end_matches(')'), line)?;
     let (ante, outs) = (numbers(ante, line)?, numbers(outs, line)?);
     if ante.len() != inputs.len() || outs.len() != outputs || weight.len() != 1 {
-        return Err(bad("needs one index per input, one per output and one weight"));
+        return Err(bad(
+            "needs one index per input, one per output and one weight",
+        ));
     }
     let or = match numbers(conn, line)?[..] {
-        [c] if c == 1.0 => false,
-        [c] if c == 2.0 => true,
+        [1.0] => false,
+        [2.0] => true,
         _ => return Err(bad("connection is 1 (AND) or 2 (OR)")),
     };
     let mut antecedent: Option<Expr> = None;
@@ -229,7 +335,11 @@ fn fis_rule<T: Real>(text: &str, line: usize, inputs: &[InputVariable<T>], outpu
             continue;
         }
         let term = k.abs() as usize - 1;
-        let e = Expr::Is { input, term, negated: k < 0.0 };
+        let e = Expr::Is {
+            input,
+            term,
+            negated: k < 0.0,
+        };
         antecedent = Some(match antecedent {
             None => e,
             Some(a) if or => a.or(e),
@@ -240,10 +350,18 @@ fn fis_rule<T: Real>(text: &str, line: usize, inputs: &[InputVariable<T>], outpu
         .iter()
         .enumerate()
         .filter(|(_, k)| **k != 0.0)
-        .map(|(output, &k)| Consequent { output, term: k.abs() as usize - 1, negated: k < 0.0 })
+        .map(|(output, &k)| Consequent {
+            output,
+            term: k.abs() as usize - 1,
+            negated: k < 0.0,
+        })
         .collect();
     let antecedent = antecedent.ok_or_else(|| bad("no input is used"))?;
-    Ok(Rule { antecedent, consequents, weight: T::of(weight[0]) })
+    Ok(Rule {
+        antecedent,
+        consequents,
+        weight: T::of(weight[0]),
+    })
 }
 
 /// Writes a single-rule-block engine as MATLAB `.fis` text.
@@ -253,8 +371,14 @@ fn fis_rule<T: Real>(text: &str, line: usize, inputs: &[InputVariable<T>], outpu
 pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
     let unsupported = |what: &str| FileError::Unsupported(what.to_string());
     let first = &engine.outputs()[0];
-    if engine.outputs().iter().any(|o| o.aggregation != first.aggregation || o.defuzzifier != first.defuzzifier) {
-        return Err(unsupported("outputs with different aggregation or defuzzifier"));
+    if engine
+        .outputs()
+        .iter()
+        .any(|o| o.aggregation != first.aggregation || o.defuzzifier != first.defuzzifier)
+    {
+        return Err(unsupported(
+            "outputs with different aggregation or defuzzifier",
+        ));
     }
     let t = |n: TNorm| match n {
         TNorm::Minimum => Ok("min"),
@@ -279,7 +403,9 @@ pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
         Defuzzifier::SmallestOfMaximum(_) => DEFUZZ[3],
         Defuzzifier::LargestOfMaximum(_) => DEFUZZ[4],
         Defuzzifier::CenterAverage => DEFUZZ[5],
-        Defuzzifier::WeightedAverage => return Err(unsupported("the weighted-average defuzzifier")),
+        Defuzzifier::WeightedAverage => {
+            return Err(unsupported("the weighted-average defuzzifier"));
+        }
     };
     let mut s = format!(
         "[System]\nName='{}'\nType='mamdani'\nVersion=2.0\nNumInputs={}\nNumOutputs={}\nNumRules={}\n\
@@ -291,29 +417,60 @@ pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
         t(engine.conjunction())?,
         t(engine.implication())?,
     );
-    let vars = engine.inputs().iter().map(|v| ("Input", &v.name, v.min, v.max, &v.terms));
-    let outs = engine.outputs().iter().map(|v| ("Output", &v.name, v.min, v.max, &v.terms));
+    let vars = engine
+        .inputs()
+        .iter()
+        .map(|v| ("Input", &v.name, v.min, v.max, &v.terms));
+    let outs = engine
+        .outputs()
+        .iter()
+        .map(|v| ("Output", &v.name, v.min, v.max, &v.terms));
     let (mut ni, mut no) = (0, 0);
     for (kind, name, min, max, terms) in vars.chain(outs) {
         let k = if kind == "Input" { &mut ni } else { &mut no };
         *k += 1;
-        s += &format!("\n[{kind}{k}]\nName='{name}'\nRange=[{min} {max}]\nNumMFs={}\n", terms.len());
+        s += &format!(
+            "\n[{kind}{k}]\nName='{name}'\nRange=[{min} {max}]\nNumMFs={}\n",
+            terms.len()
+        );
         for (j, term) in terms.iter().enumerate() {
             let (p, n) = term.mf.params();
             let p: Vec<String> = p[..n].iter().map(|v| v.to_string()).collect();
-            s += &format!("MF{}='{}':'{}',[{}]\n", j + 1, term.name, mf_name(&term.mf), p.join(" "));
+            s += &format!(
+                "MF{}='{}':'{}',[{}]\n",
+                j + 1,
+                term.name,
+                mf_name(&term.mf),
+                p.join(" ")
+            );
         }
     }
     s += "\n[Rules]\n";
     for r in engine.rules() {
         let mut ante = std::vec![0i64; engine.inputs().len()];
-        let or = flatten(&r.antecedent, &mut ante, None).ok_or_else(|| unsupported("a nested or repeated antecedent"))?;
+        let or = flatten(&r.antecedent, &mut ante, None)
+            .ok_or_else(|| unsupported("a nested or repeated antecedent"))?;
         let mut outs = std::vec![0i64; engine.outputs().len()];
         for c in &r.consequents {
-            outs[c.output] = if c.negated { -(c.term as i64 + 1) } else { c.term as i64 + 1 };
+            outs[c.output] = if c.negated {
+                -(c.term as i64 + 1)
+            } else {
+                c.term as i64 + 1
+            };
         }
-        let join = |v: &[i64]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(" ");
-        s += &format!("{}, {} ({}) : {}\n", join(&ante), join(&outs), r.weight, if or == Some(true) { 2 } else { 1 });
+        let join = |v: &[i64]| {
+            v.iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        s += &format!(
+            "{}, {} ({}) : {}\n",
+            join(&ante),
+            join(&outs),
+            r.weight,
+            if or == Some(true) { 2 } else { 1 }
+        );
     }
     Ok(s)
 }
@@ -321,12 +478,20 @@ pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
 /// Fills MATLAB's index row for a flat AND-chain or OR-chain; `Some(is_or)` (None: single term).
 fn flatten(e: &Expr, row: &mut [i64], conn: Option<bool>) -> Option<Option<bool>> {
     match e {
-        Expr::Is { input, term, negated } => {
+        Expr::Is {
+            input,
+            term,
+            negated,
+        } => {
             let slot = row.get_mut(*input)?;
             if *slot != 0 {
                 return None;
             }
-            *slot = if *negated { -(*term as i64 + 1) } else { *term as i64 + 1 };
+            *slot = if *negated {
+                -(*term as i64 + 1)
+            } else {
+                *term as i64 + 1
+            };
             Some(conn)
         }
         Expr::And(a, b) | Expr::Or(a, b) => {

@@ -24,13 +24,19 @@ pub enum FileError {
 }
 
 pub(crate) fn syntax(line: usize, message: impl Into<String>) -> FileError {
-    FileError::Syntax { line, message: message.into() }
+    FileError::Syntax {
+        line,
+        message: message.into(),
+    }
 }
 
 /// Parses every whitespace- (or comma-) separated number of `text`.
 pub(crate) fn numbers(text: &str, line: usize) -> Result<std::vec::Vec<f64>, FileError> {
     text.split(|c: char| c.is_whitespace() || c == ',')
         .filter(|t| !t.is_empty())
-        .map(|t| t.parse::<f64>().map_err(|_| syntax(line, std::format!("`{t}` is not a number"))))
+        .map(|t| {
+            t.parse::<f64>()
+                .map_err(|_| syntax(line, std::format!("`{t}` is not a number")))
+        })
         .collect()
 }

@@ -148,7 +148,12 @@ impl<T: Real> Mf<T> {
             Mf::Triangle { a, b, c } | Mf::Bell { a, b, c } => ([a, b, c, z], 3),
             Mf::Trapezoid { a, b, c, d } | Mf::Pi { a, b, c, d } => ([a, b, c, d], 4),
             Mf::Gaussian { sigma, mean } => ([sigma, mean, z, z], 2),
-            Mf::Gaussian2 { sigma1, mean1, sigma2, mean2 } => ([sigma1, mean1, sigma2, mean2], 4),
+            Mf::Gaussian2 {
+                sigma1,
+                mean1,
+                sigma2,
+                mean2,
+            } => ([sigma1, mean1, sigma2, mean2], 4),
             Mf::Sigmoid { a, c } | Mf::S { a, b: c } | Mf::Z { a, b: c } => ([a, c, z, z], 2),
             Mf::SigmoidDifference { a1, c1, a2, c2 } | Mf::SigmoidProduct { a1, c1, a2, c2 } => {
                 ([a1, c1, a2, c2], 4)
@@ -213,14 +218,29 @@ impl<T: Real> Mf<T> {
                 }
             }
             Mf::Gaussian { sigma, mean } => gauss(x, sigma, mean),
-            Mf::Gaussian2 { sigma1, mean1, sigma2, mean2 } => {
-                let left = if x < mean1 { gauss(x, sigma1, mean1) } else { one };
-                let right = if x > mean2 { gauss(x, sigma2, mean2) } else { one };
+            Mf::Gaussian2 {
+                sigma1,
+                mean1,
+                sigma2,
+                mean2,
+            } => {
+                let left = if x < mean1 {
+                    gauss(x, sigma1, mean1)
+                } else {
+                    one
+                };
+                let right = if x > mean2 {
+                    gauss(x, sigma2, mean2)
+                } else {
+                    one
+                };
                 left * right
             }
             Mf::Bell { a, b, c } => one / (one + ((x - c) / a).abs().powf(b + b)),
             Mf::Sigmoid { a, c } => sigmoid(x, a, c),
-            Mf::SigmoidDifference { a1, c1, a2, c2 } => (sigmoid(x, a1, c1) - sigmoid(x, a2, c2)).abs(),
+            Mf::SigmoidDifference { a1, c1, a2, c2 } => {
+                (sigmoid(x, a1, c1) - sigmoid(x, a2, c2)).abs()
+            }
             Mf::SigmoidProduct { a1, c1, a2, c2 } => sigmoid(x, a1, c1) * sigmoid(x, a2, c2),
             Mf::S { a, b } => s_shape(x, a, b),
             Mf::Z { a, b } => one - s_shape(x, a, b),
@@ -328,7 +348,11 @@ mod tests {
     #[test]
     fn degenerate_triangle_shoulders_are_one_at_the_peak() {
         // scikit-fuzzy's trimf [0, 5, 5]: a right shoulder.
-        let t = Mf::Triangle { a: 0.0, b: 5.0, c: 5.0 };
+        let t = Mf::Triangle {
+            a: 0.0,
+            b: 5.0,
+            c: 5.0,
+        };
         assert_eq!(t.membership(5.0), 1.0);
         assert_eq!(t.membership(2.5), 0.5);
         assert_eq!(t.membership(5.1), 0.0);
@@ -343,14 +367,24 @@ mod tests {
         let z = Mf::Z { a: 1.0, b: 3.0 };
         assert_eq!(z.membership(2.0), 0.5);
         assert_eq!(z.membership(0.0), 1.0);
-        let p = Mf::Pi { a: 0.0, b: 1.0, c: 2.0, d: 3.0 };
+        let p = Mf::Pi {
+            a: 0.0,
+            b: 1.0,
+            c: 2.0,
+            d: 3.0,
+        };
         assert_eq!(p.membership(1.5), 1.0);
         assert_eq!(p.membership(3.5), 0.0);
     }
 
     #[test]
     fn level_crossings_clip_both_edges() {
-        let t = Mf::Trapezoid { a: 0.0, b: 2.0, c: 4.0, d: 8.0 };
+        let t = Mf::Trapezoid {
+            a: 0.0,
+            b: 2.0,
+            c: 4.0,
+            d: 8.0,
+        };
         let (p, n) = t.level_crossings(0.5);
         assert_eq!(&p[..n], &[1.0, 6.0]);
         assert_eq!(t.level_crossings(1.0).1, 0);
@@ -360,9 +394,21 @@ mod tests {
     fn far_inputs_stay_in_unit_interval() {
         let shapes = [
             Mf::Sigmoid { a: 50.0, c: 0.0 },
-            Mf::Bell { a: 1.0, b: 200.0, c: 0.0 },
-            Mf::Gaussian { sigma: 1e-3, mean: 0.0 },
-            Mf::SigmoidDifference { a1: 9.0, c1: -1.0, a2: 9.0, c2: 1.0 },
+            Mf::Bell {
+                a: 1.0,
+                b: 200.0,
+                c: 0.0,
+            },
+            Mf::Gaussian {
+                sigma: 1e-3,
+                mean: 0.0,
+            },
+            Mf::SigmoidDifference {
+                a1: 9.0,
+                c1: -1.0,
+                a2: 9.0,
+                c2: 1.0,
+            },
         ];
         for s in shapes {
             for x in [-1e300, -1.0, 0.0, 1.0, 1e300] {

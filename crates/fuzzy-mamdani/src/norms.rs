@@ -122,7 +122,11 @@ impl SNorm {
             SNorm::EinsteinSum => (a + b) / (one + a * b),
             SNorm::HamacherSum => {
                 let ab = a * b;
-                if ab == one { one } else { (a + b - ab - ab) / (one - ab) }
+                if ab == one {
+                    one
+                } else {
+                    (a + b - ab - ab) / (one - ab)
+                }
             }
             SNorm::UnboundedSum => a + b,
         }

@@ -65,25 +65,43 @@ pub fn grasp_engine<T: Real>() -> Engine<T> {
     let input_terms = || {
         (0..9).map(move |i| {
             let mf = match i {
-                0 | 8 => Mf::Gaussian { sigma: edge_sigma, mean: centre(i) },
-                _ => Mf::Triangle { a: centre(i - 1), b: centre(i), c: centre(i + 1) },
+                0 | 8 => Mf::Gaussian {
+                    sigma: edge_sigma,
+                    mean: centre(i),
+                },
+                _ => Mf::Triangle {
+                    a: centre(i - 1),
+                    b: centre(i),
+                    c: centre(i + 1),
+                },
             };
             (TERM_NAMES[i], mf)
         })
     };
     let step = TORQUE_RAW_MAX / 8.0;
     let out_sigma = T::of(step / 2.0 / (2.0 * core::f64::consts::LN_2).sqrt());
-    let output_terms = (0..9).map(|k| (TERM_NAMES[k], Mf::Gaussian { sigma: out_sigma, mean: T::of(step * k as f64) }));
+    let output_terms = (0..9).map(|k| {
+        (
+            TERM_NAMES[k],
+            Mf::Gaussian {
+                sigma: out_sigma,
+                mean: T::of(step * k as f64),
+            },
+        )
+    });
     let mut b = EngineBuilder::new("grasp")
         .input("e", -T::one(), T::one(), input_terms())
         .input("de", -T::one(), T::one(), input_terms())
         .conjunction(TNorm::AlgebraicProduct)
         .defuzzifier(Defuzzifier::CenterAverage)
         .output("torque", T::zero(), T::of(TORQUE_RAW_MAX), output_terms);
-    for i in 0..9 {
-        for j in 0..9 {
-            let k = (i + 4usize).saturating_sub(j).min(8);
-            b = b.rule(format!("if e is {} and de is {} then torque is {}", TERM_NAMES[i], TERM_NAMES[j], TERM_NAMES[k]));
+    for (i, ei) in TERM_NAMES.iter().enumerate() {
+        for (j, dej) in TERM_NAMES.iter().enumerate() {
+            let k = (i + 4).saturating_sub(j).min(8);
+            b = b.rule(format!(
+                "if e is {ei} and de is {dej} then torque is {}",
+                TERM_NAMES[k]
+            ));
         }
     }
     // The preset is fixed data, tested to build; an error here is a bug caught by every test.
@@ -104,7 +122,10 @@ pub struct GraspScales {
 
 impl Default for GraspScales {
     fn default() -> Self {
-        GraspScales { error_pa: 2_000.0, rate_pa_per_s: 10_000.0 }
+        GraspScales {
+            error_pa: 2_000.0,
+            rate_pa_per_s: 10_000.0,
+        }
     }
 }
 
@@ -137,7 +158,12 @@ impl GraspController {
     pub fn new(scales: GraspScales) -> Self {
         let engine = grasp_engine::<f32>();
         let scratch = engine.scratch();
-        GraspController { engine, scratch, scales, torque_band: (0, 1023) }
+        GraspController {
+            engine,
+            scratch,
+            scales,
+            torque_band: (0, 1023),
+        }
     }
 
     /// Maps the engine's 0…1023 output into `min_raw..=max_raw`, an object's band from the

@@ -6,7 +6,9 @@ use num_traits::Float;
 ///
 /// Only `f32` and `f64` implement it; the conversions are exact for `f64` and round to nearest
 /// for `f32`, so a file or a builder written with `f64` literals builds either engine.
-pub trait Real: Float + core::fmt::Debug + core::fmt::Display + Default + Send + Sync + 'static {
+pub trait Real:
+    Float + core::fmt::Debug + core::fmt::Display + Default + Send + Sync + 'static
+{
     /// `x` converted (rounded to nearest for `f32`).
     fn of(x: f64) -> Self;
     /// The value as `f64` (exact).

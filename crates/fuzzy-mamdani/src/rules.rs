@@ -35,11 +35,19 @@ pub enum Expr {
 impl Expr {
     /// `input is term`.
     pub fn is(input: usize, term: usize) -> Self {
-        Expr::Is { input, term, negated: false }
+        Expr::Is {
+            input,
+            term,
+            negated: false,
+        }
     }
     /// `input is not term`.
     pub fn is_not(input: usize, term: usize) -> Self {
-        Expr::Is { input, term, negated: true }
+        Expr::Is {
+            input,
+            term,
+            negated: true,
+        }
     }
     /// `self and other`.
     pub fn and(self, other: Expr) -> Self {
@@ -87,14 +95,21 @@ pub(crate) const MAX_DEPTH: usize = 16;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Op {
     /// Push the membership at this flat input-term index (or its complement).
-    Term { mu: u32, negated: bool },
+    Term {
+        mu: u32,
+        negated: bool,
+    },
     And,
     Or,
 }
 
 pub(crate) fn compile(expr: &Expr, offsets: &[usize], out: &mut Vec<Op>) {
     match expr {
-        Expr::Is { input, term, negated } => out.push(Op::Term {
+        Expr::Is {
+            input,
+            term,
+            negated,
+        } => out.push(Op::Term {
             // Indices were validated before compiling; the total term count fits in u32.
             mu: (offsets[*input] + term) as u32,
             negated: *negated,
@@ -102,7 +117,11 @@ pub(crate) fn compile(expr: &Expr, offsets: &[usize], out: &mut Vec<Op>) {
         Expr::And(a, b) | Expr::Or(a, b) => {
             compile(a, offsets, out);
             compile(b, offsets, out);
-            out.push(if matches!(expr, Expr::And(..)) { Op::And } else { Op::Or });
+            out.push(if matches!(expr, Expr::And(..)) {
+                Op::And
+            } else {
+                Op::Or
+            });
         }
     }
 }
@@ -117,9 +136,17 @@ pub(crate) fn eval_ops<T: Real>(ops: &[Op], mu: &[T], and: TNorm, or: SNorm) -> 
     // The shapes of nearly every rule (one or two propositions) skip the stack.
     match *ops {
         [Op::Term { mu: a, negated }] => return term(a, negated),
-        [Op::Term { mu: a, negated: na }, Op::Term { mu: b, negated: nb }, op] => {
+        [
+            Op::Term { mu: a, negated: na },
+            Op::Term { mu: b, negated: nb },
+            op,
+        ] => {
             let (x, y) = (term(a, na), term(b, nb));
-            return if op == Op::And { and.apply(x, y) } else { or.apply(x, y) };
+            return if op == Op::And {
+                and.apply(x, y)
+            } else {
+                or.apply(x, y)
+            };
         }
         _ => {}
     }
@@ -135,7 +162,11 @@ pub(crate) fn eval_ops<T: Real>(ops: &[Op], mu: &[T], and: TNorm, or: SNorm) -> 
             }
             Op::And | Op::Or if top >= 2 => {
                 let (a, b) = (stack[top - 2], stack[top - 1]);
-                stack[top - 2] = if *op == Op::And { and.apply(a, b) } else { or.apply(a, b) };
+                stack[top - 2] = if *op == Op::And {
+                    and.apply(a, b)
+                } else {
+                    or.apply(a, b)
+                };
                 top -= 1;
             }
             // Unreachable for compiled expressions (always well formed); harmless otherwise.
@@ -157,14 +188,27 @@ pub fn parse_rule<T: Real>(
     inputs: &[InputVariable<T>],
     outputs: &[OutputVariable<T>],
 ) -> Result<Rule<T>, BuildError> {
-    let syntax = |reason| BuildError::RuleSyntax { rule: index, text: text.to_string(), reason };
+    let syntax = |reason| BuildError::RuleSyntax {
+        rule: index,
+        text: text.to_string(),
+        reason,
+    };
     let spaced = text.replace('(', " ( ").replace(')', " ) ");
     let tokens: Vec<&str> = spaced.split_whitespace().collect();
     if tokens.first() != Some(&"if") {
         return Err(syntax("a rule starts with `if`"));
     }
-    let then = tokens.iter().position(|t| *t == "then").ok_or_else(|| syntax("missing `then`"))?;
-    let mut p = Parser { tokens: &tokens[1..then], pos: 0, rule: index, text, inputs };
+    let then = tokens
+        .iter()
+        .position(|t| *t == "then")
+        .ok_or_else(|| syntax("missing `then`"))?;
+    let mut p = Parser {
+        tokens: &tokens[1..then],
+        pos: 0,
+        rule: index,
+        text,
+        inputs,
+    };
     let antecedent = p.disjunction()?;
     if p.pos != p.tokens.len() {
         return Err(syntax("unexpected token in the antecedent"));
@@ -172,8 +216,13 @@ pub fn parse_rule<T: Real>(
     let mut rest = &tokens[then + 1..];
     let mut weight = T::one();
     if let Some(w) = rest.iter().position(|t| *t == "with") {
-        let value = rest.get(w + 1).ok_or_else(|| syntax("missing weight after `with`"))?;
-        weight = value.parse::<f64>().map(T::of).map_err(|_| syntax("weight is not a number"))?;
+        let value = rest
+            .get(w + 1)
+            .ok_or_else(|| syntax("missing weight after `with`"))?;
+        weight = value
+            .parse::<f64>()
+            .map(T::of)
+            .map_err(|_| syntax("weight is not a number"))?;
         if rest.len() != w + 2 {
             return Err(syntax("unexpected token after the weight"));
         }
@@ -186,15 +235,34 @@ pub fn parse_rule<T: Real>(
             [v, "is", "not", t] => (*v, true, *t),
             _ => return Err(syntax("a consequent is `output is [not] term`")),
         };
-        let output = outputs.iter().position(|o| o.name == name).ok_or_else(|| unknown(index, "output", name))?;
-        let term = outputs[output].terms.iter().position(|t| t.name == term).ok_or_else(|| unknown(index, "term", term))?;
-        consequents.push(Consequent { output, term, negated });
+        let output = outputs
+            .iter()
+            .position(|o| o.name == name)
+            .ok_or_else(|| unknown(index, "output", name))?;
+        let term = outputs[output]
+            .terms
+            .iter()
+            .position(|t| t.name == term)
+            .ok_or_else(|| unknown(index, "term", term))?;
+        consequents.push(Consequent {
+            output,
+            term,
+            negated,
+        });
     }
-    Ok(Rule { antecedent, consequents, weight })
+    Ok(Rule {
+        antecedent,
+        consequents,
+        weight,
+    })
 }
 
 fn unknown(rule: usize, what: &'static str, name: &str) -> BuildError {
-    BuildError::Unknown { rule, what, name: name.to_string() }
+    BuildError::Unknown {
+        rule,
+        what,
+        name: name.to_string(),
+    }
 }
 
 struct Parser<'a, T> {
@@ -207,7 +275,11 @@ struct Parser<'a, T> {
 
 impl<'a, T> Parser<'a, T> {
     fn err(&self, reason: &'static str) -> BuildError {
-        BuildError::RuleSyntax { rule: self.rule, text: self.text.to_string(), reason }
+        BuildError::RuleSyntax {
+            rule: self.rule,
+            text: self.text.to_string(),
+            reason,
+        }
     }
     fn peek(&self) -> Option<&'a str> {
         self.tokens.get(self.pos).copied()
@@ -238,7 +310,9 @@ impl<'a, T> Parser<'a, T> {
             self.pos += 1;
             return Ok(e);
         }
-        let name = self.peek().ok_or_else(|| self.err("expected a proposition"))?;
+        let name = self
+            .peek()
+            .ok_or_else(|| self.err("expected a proposition"))?;
         if self.tokens.get(self.pos + 1) != Some(&"is") {
             return Err(self.err("a proposition is `input is [not] term`"));
         }
@@ -249,14 +323,30 @@ impl<'a, T> Parser<'a, T> {
         }
         let term = self.peek().ok_or_else(|| self.err("missing term"))?;
         self.pos += 1;
-        let input = self.inputs.iter().position(|v| v.name == name).ok_or_else(|| unknown(self.rule, "input", name))?;
-        let term = self.inputs[input].terms.iter().position(|t| t.name == term).ok_or_else(|| unknown(self.rule, "term", term))?;
-        Ok(Expr::Is { input, term, negated })
+        let input = self
+            .inputs
+            .iter()
+            .position(|v| v.name == name)
+            .ok_or_else(|| unknown(self.rule, "input", name))?;
+        let term = self.inputs[input]
+            .terms
+            .iter()
+            .position(|t| t.name == term)
+            .ok_or_else(|| unknown(self.rule, "term", term))?;
+        Ok(Expr::Is {
+            input,
+            term,
+            negated,
+        })
     }
 }
 
 /// Writes a rule in fuzzylite's syntax (the inverse of [`parse_rule`]).
-pub fn rule_text<T: Real>(rule: &Rule<T>, inputs: &[InputVariable<T>], outputs: &[OutputVariable<T>]) -> String {
+pub fn rule_text<T: Real>(
+    rule: &Rule<T>,
+    inputs: &[InputVariable<T>],
+    outputs: &[OutputVariable<T>],
+) -> String {
     let mut s = String::from("if ");
     write_expr(&mut s, &rule.antecedent, inputs, true);
     s.push_str(" then ");
@@ -276,7 +366,11 @@ pub fn rule_text<T: Real>(rule: &Rule<T>, inputs: &[InputVariable<T>], outputs: 
 
 fn write_expr<T>(s: &mut String, e: &Expr, inputs: &[InputVariable<T>], top: bool) {
     match e {
-        Expr::Is { input, term, negated } => {
+        Expr::Is {
+            input,
+            term,
+            negated,
+        } => {
             let v = &inputs[*input];
             let not = if *negated { "not " } else { "" };
             let _ = write!(s, "{} is {}{}", v.name, not, v.terms[*term].name);
@@ -287,7 +381,11 @@ fn write_expr<T>(s: &mut String, e: &Expr, inputs: &[InputVariable<T>], top: boo
                 s.push('(');
             }
             write_expr(s, a, inputs, false);
-            s.push_str(if matches!(e, Expr::And(..)) { " and " } else { " or " });
+            s.push_str(if matches!(e, Expr::And(..)) {
+                " and "
+            } else {
+                " or "
+            });
             write_expr(s, b, inputs, false);
             if !top {
                 s.push(')');

@@ -25,15 +25,30 @@ fn surface_is_monotone_in_error_and_in_rate() {
     for i in 0..g.len() {
         for j in 0..g.len() {
             if i + 1 < g.len() {
-                assert!(surface[i + 1][j] >= surface[i][j] - TOL, "torque fell with error at e={} de={}", g[i], g[j]);
+                assert!(
+                    surface[i + 1][j] >= surface[i][j] - TOL,
+                    "torque fell with error at e={} de={}",
+                    g[i],
+                    g[j]
+                );
             }
             if j + 1 < g.len() {
-                assert!(surface[i][j + 1] <= surface[i][j] + TOL, "torque rose with rate at e={} de={}", g[i], g[j]);
+                assert!(
+                    surface[i][j + 1] <= surface[i][j] + TOL,
+                    "torque rose with rate at e={} de={}",
+                    g[i],
+                    g[j]
+                );
             }
         }
     }
     // Corners reach the ends of the torque scale; the origin holds at mid-scale.
-    assert!(surface[80][0] > 1000.0 && surface[0][80] < 23.0, "{} {}", surface[80][0], surface[0][80]);
+    assert!(
+        surface[80][0] > 1000.0 && surface[0][80] < 23.0,
+        "{} {}",
+        surface[80][0],
+        surface[0][80]
+    );
     assert!((surface[40][40] - 511.5).abs() < 1e-9);
 }
 
@@ -50,7 +65,11 @@ fn surface_is_smooth_no_step_between_neighbouring_grid_points() {
         for &de in &g {
             let t = engine.evaluate(&mut s, &[e, de]).expect("fires")[0];
             if let Some(p) = prev {
-                assert!((t - p).abs() <= bound, "jump {} at e={e} de={de}", (t - p).abs());
+                assert!(
+                    (t - p).abs() <= bound,
+                    "jump {} at e={e} de={de}",
+                    (t - p).abs()
+                );
             }
             prev = Some(t);
         }
@@ -60,15 +79,30 @@ fn surface_is_smooth_no_step_between_neighbouring_grid_points() {
 #[test]
 fn policy_saturates_far_outside_and_respects_a_table_5_band() {
     let mut c = grasp_controller();
-    let huge = GraspObservation { pressure_error_pa: 1e30, pressure_rate_pa_per_s: -1e30 };
-    assert_eq!(c.effort(&huge).expect("clamped").to_torque_limit_raw(), 1023);
-    let none = GraspObservation { pressure_error_pa: -1e30, pressure_rate_pa_per_s: 1e30 };
+    let huge = GraspObservation {
+        pressure_error_pa: 1e30,
+        pressure_rate_pa_per_s: -1e30,
+    };
+    assert_eq!(
+        c.effort(&huge).expect("clamped").to_torque_limit_raw(),
+        1023
+    );
+    let none = GraspObservation {
+        pressure_error_pa: -1e30,
+        pressure_rate_pa_per_s: 1e30,
+    };
     assert!(c.effort(&none).expect("clamped").to_torque_limit_raw() <= 23);
-    let nan = GraspObservation { pressure_error_pa: f32::NAN, pressure_rate_pa_per_s: 0.0 };
+    let nan = GraspObservation {
+        pressure_error_pa: f32::NAN,
+        pressure_rate_pa_per_s: 0.0,
+    };
     assert!(c.effort(&nan).is_err());
     // Paper cup (Table 5): 50…1023.
     let mut cup = grasp_controller().with_torque_band(50, 1023);
     assert!(cup.effort(&none).expect("clamped").to_torque_limit_raw() >= 50);
     let mut tissue = grasp_controller().with_torque_band(160, 370);
-    assert_eq!(tissue.effort(&huge).expect("clamped").to_torque_limit_raw(), 370);
+    assert_eq!(
+        tissue.effort(&huge).expect("clamped").to_torque_limit_raw(),
+        370
+    );
 }

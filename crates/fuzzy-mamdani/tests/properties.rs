@@ -3,18 +3,34 @@
 
 mod common;
 
-use fuzzy_mamdani::{Defuzzifier, Engine, EngineBuilder, EvalError, Mf, OutOfRange, Real, Resolution};
+use fuzzy_mamdani::{
+    Defuzzifier, Engine, EngineBuilder, EvalError, Mf, OutOfRange, Real, Resolution,
+};
 use proptest::prelude::*;
 
 /// A small engine whose rules can all stay silent (compact supports), with a declared default.
 fn sparse<T: Real>(defuzz: Defuzzifier, policy: OutOfRange) -> Engine<T> {
-    let tri = |a: f64, b: f64, c: f64| Mf::Triangle { a: T::of(a), b: T::of(b), c: T::of(c) };
+    let tri = |a: f64, b: f64, c: f64| Mf::Triangle {
+        a: T::of(a),
+        b: T::of(b),
+        c: T::of(c),
+    };
     EngineBuilder::new("sparse")
         .out_of_range(policy)
-        .input("x", T::of(-1.0), T::one(), [("lo", tri(-1.0, -0.6, -0.2)), ("hi", tri(0.2, 0.6, 1.0))])
+        .input(
+            "x",
+            T::of(-1.0),
+            T::one(),
+            [("lo", tri(-1.0, -0.6, -0.2)), ("hi", tri(0.2, 0.6, 1.0))],
+        )
         .defuzzifier(defuzz)
         .default_value(T::of(0.5))
-        .output("y", T::zero(), T::one(), [("a", tri(0.0, 0.2, 0.4)), ("b", tri(0.6, 0.8, 1.0))])
+        .output(
+            "y",
+            T::zero(),
+            T::one(),
+            [("a", tri(0.0, 0.2, 0.4)), ("b", tri(0.6, 0.8, 1.0))],
+        )
         .rule("if x is lo then y is a")
         .rule("if x is hi then y is b")
         .build()
@@ -80,11 +96,26 @@ proptest! {
 
 #[test]
 fn non_finite_inputs_are_errors_unless_clamped() {
-    let e = sparse::<f64>(Defuzzifier::Centroid(Resolution::Exact), OutOfRange::Evaluate);
+    let e = sparse::<f64>(
+        Defuzzifier::Centroid(Resolution::Exact),
+        OutOfRange::Evaluate,
+    );
     let mut s = e.scratch();
-    assert_eq!(e.evaluate(&mut s, &[f64::NAN]), Err(EvalError::NonFiniteInput { input: 0 }));
-    assert_eq!(e.evaluate(&mut s, &[f64::INFINITY]), Err(EvalError::NonFiniteInput { input: 0 }));
-    assert_eq!(e.evaluate(&mut s, &[0.0, 1.0]), Err(EvalError::InputCount { expected: 1, got: 2 }));
+    assert_eq!(
+        e.evaluate(&mut s, &[f64::NAN]),
+        Err(EvalError::NonFiniteInput { input: 0 })
+    );
+    assert_eq!(
+        e.evaluate(&mut s, &[f64::INFINITY]),
+        Err(EvalError::NonFiniteInput { input: 0 })
+    );
+    assert_eq!(
+        e.evaluate(&mut s, &[0.0, 1.0]),
+        Err(EvalError::InputCount {
+            expected: 1,
+            got: 2
+        })
+    );
     let clamped = sparse::<f64>(Defuzzifier::Centroid(Resolution::Exact), OutOfRange::Clamp);
     let mut s = clamped.scratch();
     assert!(clamped.evaluate(&mut s, &[f64::NEG_INFINITY]).is_ok());
@@ -100,7 +131,13 @@ fn no_firing_without_default_is_an_error_not_nan() {
         .build()
         .expect("builds");
     let mut s = e.scratch();
-    assert_eq!(e.evaluate(&mut s, &[0.0]), Err(EvalError::NoRuleFired { output: 0 }));
+    assert_eq!(
+        e.evaluate(&mut s, &[0.0]),
+        Err(EvalError::NoRuleFired { output: 0 })
+    );
     let other = common::reference_201::<f64>();
-    assert_eq!(other.evaluate(&mut s, &[0.0, 0.0]), Err(EvalError::ScratchMismatch));
+    assert_eq!(
+        other.evaluate(&mut s, &[0.0, 0.0]),
+        Err(EvalError::ScratchMismatch)
+    );
 }

@@ -45,11 +45,34 @@ fn no_evaluation_allocates() {
     ];
     // The exact path, with both aggregations that support it.
     for agg in [SNorm::Maximum, SNorm::UnboundedSum] {
-        for d in [Defuzzifier::Centroid(Resolution::Exact), Defuzzifier::Bisector(Resolution::Exact)] {
-            let tri = |b: f64| Mf::Triangle { a: b - 0.5, b, c: b + 0.5 };
+        for d in [
+            Defuzzifier::Centroid(Resolution::Exact),
+            Defuzzifier::Bisector(Resolution::Exact),
+        ] {
+            let tri = |b: f64| Mf::Triangle {
+                a: b - 0.5,
+                b,
+                c: b + 0.5,
+            };
             engines.push(
                 EngineBuilder::new("exact")
-                    .input("x", 0.0, 1.0, [("lo", Mf::Trapezoid { a: 0.0, b: 0.0, c: 0.2, d: 0.8 }), ("hi", tri(1.0))])
+                    .input(
+                        "x",
+                        0.0,
+                        1.0,
+                        [
+                            (
+                                "lo",
+                                Mf::Trapezoid {
+                                    a: 0.0,
+                                    b: 0.0,
+                                    c: 0.2,
+                                    d: 0.8,
+                                },
+                            ),
+                            ("hi", tri(1.0)),
+                        ],
+                    )
                     .aggregation(agg)
                     .defuzzifier(d)
                     .output("y", 0.0, 1.0, [("a", tri(0.25)), ("b", tri(0.75))])
@@ -63,7 +86,9 @@ fn no_evaluation_allocates() {
     let preset = fuzzy_mamdani::grasp_engine::<f64>();
     for engine in engines.iter().chain([&preset]) {
         let mut scratch = engine.scratch();
-        let inputs: Vec<Vec<f64>> = (0..50).map(|k| vec![-1.2 + 0.05 * k as f64; engine.inputs().len()]).collect();
+        let inputs: Vec<Vec<f64>> = (0..50)
+            .map(|k| vec![-1.2 + 0.05 * k as f64; engine.inputs().len()])
+            .collect();
         let before = ALLOCATIONS.load(Ordering::SeqCst);
         let mut sum = 0.0;
         for x in &inputs {
@@ -73,6 +98,12 @@ fn no_evaluation_allocates() {
         }
         let after = ALLOCATIONS.load(Ordering::SeqCst);
         assert!(sum.is_finite());
-        assert_eq!(after - before, 0, "{}: {} allocations in 50 evaluations", engine.name(), after - before);
+        assert_eq!(
+            after - before,
+            0,
+            "{}: {} allocations in 50 evaluations",
+            engine.name(),
+            after - before
+        );
     }
 }

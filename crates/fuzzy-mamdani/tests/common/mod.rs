@@ -13,9 +13,16 @@ pub fn reference_engine<T: Real>(defuzz: Defuzzifier) -> Engine<T> {
     let input_terms = || {
         (0..9).map(move |i| {
             let mf = if i == 0 || i == 8 {
-                Mf::Gaussian { sigma: T::of(0.1667), mean: c(i) }
+                Mf::Gaussian {
+                    sigma: T::of(0.1667),
+                    mean: c(i),
+                }
             } else {
-                Mf::Triangle { a: c(i) - T::of(0.25), b: c(i), c: c(i) + T::of(0.25) }
+                Mf::Triangle {
+                    a: c(i) - T::of(0.25),
+                    b: c(i),
+                    c: c(i) + T::of(0.25),
+                }
             };
             (NAMES[i], mf)
         })
@@ -24,11 +31,27 @@ pub fn reference_engine<T: Real>(defuzz: Defuzzifier) -> Engine<T> {
         .input("e", T::of(-1.0), T::one(), input_terms())
         .input("de", T::of(-1.0), T::one(), input_terms())
         .defuzzifier(defuzz)
-        .output("tau", T::of(-1.0), T::one(), (0..9).map(|i| (NAMES[i], Mf::Gaussian { sigma: T::of(0.125), mean: c(i) })));
-    for i in 0..9 {
-        for j in 0..9 {
-            let k = (i + j as usize).saturating_sub(4).min(8);
-            b = b.rule(format!("if e is {} and de is {} then tau is {}", NAMES[i], NAMES[j], NAMES[k]));
+        .output(
+            "tau",
+            T::of(-1.0),
+            T::one(),
+            (0..9).map(|i| {
+                (
+                    NAMES[i],
+                    Mf::Gaussian {
+                        sigma: T::of(0.125),
+                        mean: c(i),
+                    },
+                )
+            }),
+        );
+    for (i, ei) in NAMES.iter().enumerate() {
+        for (j, dej) in NAMES.iter().enumerate() {
+            let k = (i + j).saturating_sub(4).min(8);
+            b = b.rule(format!(
+                "if e is {ei} and de is {dej} then tau is {}",
+                NAMES[k]
+            ));
         }
     }
     b.build().expect("the reference engine builds")
