@@ -1,2 +1,41 @@
-//! placeholder
-fn main() {}
+//! `cargo xtask`: the handstack workspace's developer commands (see the `xtask` library docs).
+
+use std::process::ExitCode;
+use xtask::{bench, fixtures, test, workspace_root};
+
+const USAGE: &str = "usage: cargo xtask <command>
+
+commands:
+  test                      set up .venv, then fmt, clippy, every test, docs, fixtures --check
+  fixtures [--check]        regenerate the generated fixtures, or check the committed ones
+  bench [FILTER] [-- ARGS]  run the criterion benches (names containing FILTER), print a summary";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let root = workspace_root();
+    let result = match args.first().map(String::as_str) {
+        Some("test") if args.len() == 1 => test::run(&root),
+        Some("fixtures") => match &args[1..] {
+            [] => fixtures::run(&root, fixtures::Mode::Write),
+            [flag] if flag == "--check" => fixtures::run(&root, fixtures::Mode::Check),
+            _ => usage_error(),
+        },
+        Some("bench") => bench::run(&root, &args[1..]),
+        Some("help" | "-h" | "--help") => {
+            println!("{USAGE}");
+            Ok(())
+        }
+        _ => usage_error(),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("xtask: error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn usage_error() -> anyhow::Result<()> {
+    anyhow::bail!("unknown command\n\n{USAGE}")
+}

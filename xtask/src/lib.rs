@@ -1,0 +1,22 @@
+//! Developer workflows for the handstack workspace, run as `cargo xtask <command>`.
+//!
+//! - `test`: sets up `.venv`, then fmt check, clippy `-D warnings`, every test, docs, and
+//!   `fixtures --check`: the one command CI runs.
+//! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
+//! - `bench [FILTER] [-- CRITERION ARGS]`: runs the criterion benches and prints a summary table.
+
+pub mod bench;
+pub mod fixtures;
+pub mod run;
+pub mod test;
+pub mod venv;
+
+use std::path::{Path, PathBuf};
+
+/// The workspace root (the parent of `xtask/`).
+pub fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives one level below the workspace root")
+        .to_path_buf()
+}

@@ -1,0 +1,39 @@
+//! `cargo xtask test`: everything CI checks, in the order that fails fastest.
+
+use crate::run::{cargo, step};
+use crate::{fixtures, venv};
+use anyhow::Result;
+use std::path::Path;
+
+/// Sets up `.venv`, then runs fmt check, clippy `-D warnings`, every test with every feature,
+/// the docs with warnings denied, and `fixtures --check`.
+pub fn run(root: &Path) -> Result<()> {
+    let python = venv::ensure(root)?;
+    step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
+    step(
+        "clippy",
+        cargo(root).args([
+            "clippy",
+            "--workspace",
+            "--all-targets",
+            "--all-features",
+            "--",
+            "-D",
+            "warnings",
+        ]),
+    )?;
+    step(
+        "test",
+        cargo(root)
+            .args(["test", "--workspace", "--all-features"])
+            .env("HANDSTACK_PYTHON", &python),
+    )?;
+    step(
+        "doc",
+        cargo(root)
+            .args(["doc", "--workspace", "--no-deps", "--all-features"])
+            .env("RUSTDOCFLAGS", "-D warnings"),
+    )?;
+    println!("==> fixtures --check");
+    fixtures::run(root, fixtures::Mode::Check)
+}
