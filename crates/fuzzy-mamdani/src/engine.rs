@@ -282,19 +282,12 @@ impl<T: Real> Engine<T> {
             accumulate(agg, acts, &plan.table, self.implication, var.aggregation);
             return defuzz::sampled(stat, agg, var.min, plan.dx);
         }
+        let (imp, aggr, range) = (self.implication, var.aggregation, (var.min, var.max));
+        let mut walk = |visit: &mut dyn FnMut(T, T, T, T)| {
+            exact::for_each_piece(acts, &plan.mfs, imp, aggr, range, points, lines, visit);
+        };
         let mut stats = PieceStats::new();
-        let range = (var.min, var.max);
-        let (imp, aggr) = (self.implication, var.aggregation);
-        exact::for_each_piece(
-            acts,
-            &plan.mfs,
-            imp,
-            aggr,
-            range,
-            points,
-            lines,
-            |a, b, c, d| stats.add(a, b, c, d),
-        );
+        walk(&mut |a, b, c, d| stats.add(a, b, c, d));
         if stat != Statistic::Bisector {
             return stats.finish(stat);
         }
@@ -303,22 +296,13 @@ impl<T: Real> Engine<T> {
         }
         let half = stats.area / (T::one() + T::one());
         let (mut run, mut found) = (T::zero(), None);
-        exact::for_each_piece(
-            acts,
-            &plan.mfs,
-            imp,
-            aggr,
-            range,
-            points,
-            lines,
-            |x0, y0, x1, y1| {
-                let piece = (y0 + y1) / (T::one() + T::one()) * (x1 - x0);
-                if found.is_none() && run + piece >= half {
-                    found = Some(defuzz::bisector_in_piece(x0, y0, x1, y1, half - run));
-                }
-                run = run + piece;
-            },
-        );
+        walk(&mut |x0, y0, x1, y1| {
+            let piece = (y0 + y1) / (T::one() + T::one()) * (x1 - x0);
+            if found.is_none() && run + piece >= half {
+                found = Some(defuzz::bisector_in_piece(x0, y0, x1, y1, half - run));
+            }
+            run = run + piece;
+        });
         // Rounding can leave the running sum a hair under `half` at the end: the right end.
         found.or(Some(var.max))
     }

@@ -36,7 +36,7 @@ pub(crate) fn for_each_piece<T: Real>(
     (min, max): (T, T),
     points: &mut Vec<T>,
     lines: &mut Vec<(T, T)>,
-    mut visit: impl FnMut(T, T, T, T),
+    visit: &mut dyn FnMut(T, T, T, T),
 ) {
     points.clear();
     points.push(min);
@@ -89,13 +89,13 @@ pub(crate) fn for_each_piece<T: Real>(
                 .fold((T::zero(), T::zero()), |s, l| (s.0 + l.0, s.1 + l.1));
             visit(x0, y0, x1, y1);
         } else {
-            upper_envelope(lines, x0, x1, &mut visit);
+            upper_envelope(lines, x0, x1, visit);
         }
     }
 }
 
 /// The upper envelope of lines given by their values at `x0` and `x1` (and of 0).
-fn upper_envelope<T: Real>(lines: &[(T, T)], x0: T, x1: T, visit: &mut impl FnMut(T, T, T, T)) {
+fn upper_envelope<T: Real>(lines: &[(T, T)], x0: T, x1: T, visit: &mut dyn FnMut(T, T, T, T)) {
     let h = x1 - x0;
     let slope = |l: &(T, T)| l.1 - l.0;
     let at = |l: &(T, T), t: T| l.0 + slope(l) * t;
@@ -177,7 +177,7 @@ mod tests {
             (0.0, 2.0),
             &mut pts,
             &mut lines,
-            |a, b, c, d| pieces.push((a, b, c, d)),
+            &mut |a, b, c, d| pieces.push((a, b, c, d)),
         );
         assert_eq!(pieces.len(), 4);
         assert_eq!(pieces[1], (0.5, 0.5, 1.0, 0.5));

@@ -1,5 +1,6 @@
 #![doc = include_str!("../README.md")]
 #![no_std]
+#![forbid(unsafe_code)]
 // `!(x > 0)` is deliberate throughout: NaN must take the empty / degenerate branch.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
