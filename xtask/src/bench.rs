@@ -65,6 +65,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     let out = target_dir.join("bench-summary.md");
     std::fs::write(&out, &table).with_context(|| format!("writing {}", out.display()))?;
     println!("bench: summary written to {}", out.display());
+    crate::fuzzy_peers::write_report(root, &measurements)?;
     Ok(())
 }
 

@@ -7,6 +7,7 @@
 
 pub mod bench;
 pub mod fixtures;
+pub mod fuzzy_peers;
 pub mod run;
 pub mod test;
 pub mod venv;

@@ -1,0 +1,548 @@
+//! Building an engine in Rust: variables, terms, operators, rules; checked once at `build`.
+
+use alloc::string::{String, ToString};
+use alloc::vec::Vec;
+
+use crate::defuzz::{self, Statistic};
+use crate::engine::{Compiled, OutputPlan, ScratchShape};
+use crate::rules::{self, MAX_DEPTH, Op};
+use crate::{
+    BuildError, Defuzzifier, Engine, InputVariable, Mf, OutOfRange, OutputVariable, Real,
+    Resolution, Rule, SNorm, TNorm, Term,
+};
+
+/// The most samples a sampled defuzzifier may ask for (the table is terms × samples values).
+pub const MAX_SAMPLES: usize = 1 << 20;
+
+/// Builds an [`Engine`]. Operators default to MATLAB's Mamdani defaults: `min` AND, `max` OR,
+/// `min` implication, `max` aggregation, centroid over 101 samples, inputs clamped to their range,
+/// no default output (no rule firing is an error).
+///
+/// Settings made on the builder (`aggregation`, `defuzzifier`, `default_value`,
+/// `out_of_range`) apply to the variables added with [`input`](Self::input) /
+/// [`output`](Self::output); variables added whole with [`input_variable`](Self::input_variable) /
+/// [`output_variable`](Self::output_variable) keep their own.
+#[derive(Debug, Clone)]
+pub struct EngineBuilder<T> {
+    name: String,
+    inputs: Vec<(InputVariable<T>, bool)>,
+    outputs: Vec<(OutputVariable<T>, bool)>,
+    rules: Vec<RuleSource<T>>,
+    conjunction: TNorm,
+    disjunction: SNorm,
+    implication: TNorm,
+    aggregation: SNorm,
+    defuzzifier: Defuzzifier,
+    default: Option<T>,
+    out_of_range: OutOfRange,
+}
+
+#[derive(Debug, Clone)]
+enum RuleSource<T> {
+    Text(String),
+    Built(Rule<T>),
+}
+
+fn terms<T, S: Into<String>>(terms: impl IntoIterator<Item = (S, Mf<T>)>) -> Vec<Term<T>> {
+    terms
+        .into_iter()
+        .map(|(name, mf)| Term {
+            name: name.into(),
+            mf,
+        })
+        .collect()
+}
+
+impl<T: Real> EngineBuilder<T> {
+    /// An empty engine called `name`.
+    pub fn new(name: impl Into<String>) -> Self {
+        EngineBuilder {
+            name: name.into(),
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            rules: Vec::new(),
+            conjunction: TNorm::Minimum,
+            disjunction: SNorm::Maximum,
+            implication: TNorm::Minimum,
+            aggregation: SNorm::Maximum,
+            defuzzifier: Defuzzifier::Centroid(Resolution::Samples(101)),
+            default: None,
+            out_of_range: OutOfRange::Clamp,
+        }
+    }
+
+    /// Adds an input over `[min, max]` with named terms.
+    pub fn input<S: Into<String>>(
+        mut self,
+        name: impl Into<String>,
+        min: T,
+        max: T,
+        terms_: impl IntoIterator<Item = (S, Mf<T>)>,
+    ) -> Self {
+        let var = InputVariable {
+            name: name.into(),
+            min,
+            max,
+            terms: terms(terms_),
+            out_of_range: self.out_of_range,
+        };
+        self.inputs.push((var, false));
+        self
+    }
+
+    /// Adds an output over `[min, max]` with named terms.
+    pub fn output<S: Into<String>>(
+        mut self,
+        name: impl Into<String>,
+        min: T,
+        max: T,
+        terms_: impl IntoIterator<Item = (S, Mf<T>)>,
+    ) -> Self {
+        let var = OutputVariable {
+            name: name.into(),
+            min,
+            max,
+            terms: terms(terms_),
+            aggregation: self.aggregation,
+            defuzzifier: self.defuzzifier,
+            default: self.default,
+        };
+        self.outputs.push((var, false));
+        self
+    }
+
+    /// Adds a fully specified input, which keeps its own out-of-range policy.
+    pub fn input_variable(mut self, var: InputVariable<T>) -> Self {
+        self.inputs.push((var, true));
+        self
+    }
+
+    /// Adds a fully specified output, which keeps its own aggregation, defuzzifier and default.
+    pub fn output_variable(mut self, var: OutputVariable<T>) -> Self {
+        self.outputs.push((var, true));
+        self
+    }
+
+    /// Adds a rule in fuzzylite's syntax (see [`crate::parse_rule`]), parsed at `build`.
+    pub fn rule(mut self, text: impl Into<String>) -> Self {
+        self.rules.push(RuleSource::Text(text.into()));
+        self
+    }
+
+    /// Adds a rule given by indices.
+    pub fn rule_struct(mut self, rule: Rule<T>) -> Self {
+        self.rules.push(RuleSource::Built(rule));
+        self
+    }
+
+    /// The T-norm for `and`.
+    pub fn conjunction(mut self, t: TNorm) -> Self {
+        self.conjunction = t;
+        self
+    }
+    /// The S-norm for `or`.
+    pub fn disjunction(mut self, s: SNorm) -> Self {
+        self.disjunction = s;
+        self
+    }
+    /// The implication T-norm (min clips, product scales).
+    pub fn implication(mut self, t: TNorm) -> Self {
+        self.implication = t;
+        self
+    }
+    /// The aggregation S-norm of the outputs added with [`output`](Self::output).
+    pub fn aggregation(mut self, s: SNorm) -> Self {
+        self.aggregation = s;
+        self
+    }
+    /// The defuzzifier of the outputs added with [`output`](Self::output).
+    pub fn defuzzifier(mut self, d: Defuzzifier) -> Self {
+        self.defuzzifier = d;
+        self
+    }
+    /// The value the outputs added with [`output`](Self::output) take when no rule fires.
+    pub fn default_value(mut self, v: T) -> Self {
+        self.default = Some(v);
+        self
+    }
+    /// The out-of-range policy of the inputs added with [`input`](Self::input).
+    pub fn out_of_range(mut self, p: OutOfRange) -> Self {
+        self.out_of_range = p;
+        self
+    }
+
+    /// Checks everything and precomputes what evaluation needs.
+    pub fn build(self) -> Result<Engine<T>, BuildError> {
+        let b = &self;
+        let inputs: Vec<InputVariable<T>> = b
+            .inputs
+            .iter()
+            .map(|(v, own)| InputVariable {
+                out_of_range: if *own { v.out_of_range } else { b.out_of_range },
+                ..v.clone()
+            })
+            .collect();
+        let outputs: Vec<OutputVariable<T>> = b
+            .outputs
+            .iter()
+            .map(|(v, own)| match own {
+                true => v.clone(),
+                false => OutputVariable {
+                    aggregation: b.aggregation,
+                    defuzzifier: b.defuzzifier,
+                    default: b.default,
+                    ..v.clone()
+                },
+            })
+            .collect();
+        if inputs.is_empty() || outputs.is_empty() {
+            return Err(BuildError::Empty);
+        }
+        let mut names: Vec<&str> = Vec::new();
+        for (name, min, max, terms) in inputs
+            .iter()
+            .map(|v| (&v.name, v.min, v.max, &v.terms))
+            .chain(outputs.iter().map(|v| (&v.name, v.min, v.max, &v.terms)))
+        {
+            check_variable(name, min, max, terms)?;
+            if names.contains(&name.as_str()) {
+                return Err(BuildError::DuplicateName { name: name.clone() });
+            }
+            names.push(name);
+        }
+        let mut rules_ = Vec::with_capacity(b.rules.len());
+        for (i, src) in b.rules.iter().enumerate() {
+            let rule = match src {
+                RuleSource::Text(t) => rules::parse_rule(t, i, &inputs, &outputs)?,
+                RuleSource::Built(r) => r.clone(),
+            };
+            check_rule(&rule, i, &inputs, &outputs)?;
+            rules_.push(rule);
+        }
+        for (o, var) in outputs.iter().enumerate() {
+            let negated = rules_
+                .iter()
+                .flat_map(|r| &r.consequents)
+                .any(|c| c.output == o && c.negated);
+            check_defuzzifier(var, b.implication, negated)?;
+        }
+        let compiled = compile(&inputs, &outputs, &rules_);
+        Ok(Engine {
+            name: self.name,
+            inputs,
+            outputs,
+            rules: rules_,
+            conjunction: self.conjunction,
+            disjunction: self.disjunction,
+            implication: self.implication,
+            compiled,
+        })
+    }
+}
+
+fn check_variable<T: Real>(
+    name: &str,
+    min: T,
+    max: T,
+    terms: &[Term<T>],
+) -> Result<(), BuildError> {
+    if !(min.is_finite() && max.is_finite() && min < max) {
+        return Err(BuildError::BadRange {
+            variable: name.to_string(),
+        });
+    }
+    if terms.is_empty() {
+        return Err(BuildError::NoTerms {
+            variable: name.to_string(),
+        });
+    }
+    for (i, t) in terms.iter().enumerate() {
+        t.mf.validate().map_err(|source| BuildError::BadTerm {
+            variable: name.to_string(),
+            term: t.name.clone(),
+            source,
+        })?;
+        if terms[..i].iter().any(|u| u.name == t.name) {
+            return Err(BuildError::DuplicateName {
+                name: t.name.clone(),
+            });
+        }
+    }
+    Ok(())
+}
+
+fn check_rule<T: Real>(
+    rule: &Rule<T>,
+    i: usize,
+    inputs: &[InputVariable<T>],
+    outputs: &[OutputVariable<T>],
+) -> Result<(), BuildError> {
+    fn check_expr<T>(
+        e: &crate::Expr,
+        i: usize,
+        inputs: &[InputVariable<T>],
+    ) -> Result<(), BuildError> {
+        match e {
+            crate::Expr::Is { input, term, .. } => match inputs.get(*input) {
+                None => Err(BuildError::Unknown {
+                    rule: i,
+                    what: "input",
+                    name: input.to_string(),
+                }),
+                Some(v) if *term >= v.terms.len() => Err(BuildError::Unknown {
+                    rule: i,
+                    what: "term",
+                    name: term.to_string(),
+                }),
+                Some(_) => Ok(()),
+            },
+            crate::Expr::And(a, b) | crate::Expr::Or(a, b) => {
+                check_expr(a, i, inputs)?;
+                check_expr(b, i, inputs)
+            }
+        }
+    }
+    check_expr(&rule.antecedent, i, inputs)?;
+    if rule.antecedent.depth() > MAX_DEPTH {
+        return Err(BuildError::BadRule {
+            rule: i,
+            reason: "antecedent nests deeper than 16",
+        });
+    }
+    if rule.consequents.is_empty() {
+        return Err(BuildError::BadRule {
+            rule: i,
+            reason: "no consequent",
+        });
+    }
+    if !(rule.weight >= T::zero() && rule.weight <= T::one()) {
+        return Err(BuildError::BadRule {
+            rule: i,
+            reason: "weight must be in [0, 1]",
+        });
+    }
+    for c in &rule.consequents {
+        match outputs.get(c.output) {
+            None => {
+                return Err(BuildError::Unknown {
+                    rule: i,
+                    what: "output",
+                    name: c.output.to_string(),
+                });
+            }
+            Some(v) if c.term >= v.terms.len() => {
+                return Err(BuildError::Unknown {
+                    rule: i,
+                    what: "term",
+                    name: c.term.to_string(),
+                });
+            }
+            Some(_) => {}
+        }
+    }
+    Ok(())
+}
+
+fn check_defuzzifier<T: Real>(
+    var: &OutputVariable<T>,
+    implication: TNorm,
+    negated: bool,
+) -> Result<(), BuildError> {
+    let fail = |reason| {
+        Err(BuildError::Defuzzifier {
+            output: var.name.clone(),
+            reason,
+        })
+    };
+    if var.default.is_some_and(|d| !d.is_finite()) {
+        return fail("the default value must be finite");
+    }
+    let singleton = var
+        .terms
+        .iter()
+        .any(|t| matches!(t.mf, Mf::Singleton { .. }));
+    match var.defuzzifier.resolution() {
+        None if negated => {
+            fail("the averaging defuzzifiers need terms with a centre, not their complements")
+        }
+        None => Ok(()),
+        Some(_) if singleton => fail("a singleton term has no area: use an averaging defuzzifier"),
+        Some(Resolution::Samples(n)) if !(2..=MAX_SAMPLES).contains(&n) => {
+            fail("samples must be in 2..=2^20")
+        }
+        Some(Resolution::Samples(_)) => Ok(()),
+        Some(Resolution::Exact)
+            if var
+                .terms
+                .iter()
+                .any(|t| t.mf.linear_breakpoints().is_none()) =>
+        {
+            fail("the exact path needs triangle / trapezoid terms")
+        }
+        Some(Resolution::Exact)
+            if !matches!(implication, TNorm::Minimum | TNorm::AlgebraicProduct) =>
+        {
+            fail("the exact path needs min or product implication")
+        }
+        Some(Resolution::Exact)
+            if !matches!(var.aggregation, SNorm::Maximum | SNorm::UnboundedSum) =>
+        {
+            fail("the exact path needs max or unbounded-sum aggregation")
+        }
+        Some(Resolution::Exact) => Ok(()),
+    }
+}
+
+fn compile<T: Real>(
+    inputs: &[InputVariable<T>],
+    outputs: &[OutputVariable<T>],
+    rules_: &[Rule<T>],
+) -> Compiled<T> {
+    let mut input_offsets = Vec::with_capacity(inputs.len() + 1);
+    let mut input_mfs = Vec::new();
+    for v in inputs {
+        input_offsets.push(input_mfs.len());
+        input_mfs.extend(v.terms.iter().map(|t| t.mf));
+    }
+    input_offsets.push(input_mfs.len());
+    let (mut ops, mut rule_ops, mut weights) = (Vec::new(), Vec::new(), Vec::new());
+    for r in rules_ {
+        let start = ops.len() as u32;
+        rules::compile(&r.antecedent, &input_offsets, &mut ops);
+        rule_ops.push((start, ops.len() as u32));
+        weights.push(r.weight);
+    }
+    let and_pairs = rule_ops
+        .iter()
+        .map(|&(lo, hi)| match ops[lo as usize..hi as usize] {
+            [
+                Op::Term {
+                    mu: a,
+                    negated: false,
+                },
+                Op::Term {
+                    mu: b,
+                    negated: false,
+                },
+                Op::And,
+            ] => Some([a, b]),
+            _ => None,
+        })
+        .collect::<Option<Vec<_>>>();
+    let plans: Vec<OutputPlan<T>> = outputs
+        .iter()
+        .enumerate()
+        .map(|(o, v)| plan(o, v, rules_))
+        .collect();
+    let shape = ScratchShape {
+        input_terms: input_mfs.len(),
+        rules: rules_.len(),
+        acts: plans
+            .iter()
+            .map(|p| p.consequents.len().max(2 * p.mfs.len()))
+            .max()
+            .unwrap_or(0),
+        levels: 2 * outputs.iter().map(|v| v.terms.len()).max().unwrap_or(0),
+        samples: plans.iter().map(|p| p.samples).max().unwrap_or(0),
+        outputs: outputs.len(),
+    };
+    Compiled {
+        input_offsets,
+        input_mfs,
+        ops,
+        rule_ops,
+        and_pairs,
+        weights,
+        plans,
+        shape,
+    }
+}
+
+fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputPlan<T> {
+    let mfs: Vec<Mf<T>> = v.terms.iter().map(|t| t.mf).collect();
+    let consequents = rules_
+        .iter()
+        .enumerate()
+        .flat_map(|(r, rule)| rule.consequents.iter().map(move |c| (r, c)))
+        .filter(|(_, c)| c.output == o)
+        .map(|(r, c)| (r as u32, c.term as u32, c.negated))
+        .collect();
+    let samples = match v.defuzzifier.resolution() {
+        Some(Resolution::Samples(n)) => n,
+        _ => 0,
+    };
+    let span = v.max - v.min;
+    let dx = if samples > 1 {
+        span / T::of((samples - 1) as f64)
+    } else {
+        span
+    };
+    let mut table = Vec::with_capacity(samples * mfs.len());
+    for mf in &mfs {
+        table.extend((0..samples).map(|k| mf.membership(v.min + T::of(k as f64) * dx)));
+    }
+    let centers = mfs
+        .iter()
+        .map(|mf| {
+            mf.center()
+                .unwrap_or_else(|| term_centroid(mf, v.min, v.max))
+        })
+        .collect();
+    OutputPlan {
+        mfs,
+        centers,
+        consequents,
+        stat: Statistic::of(v.defuzzifier),
+        samples,
+        dx,
+        table,
+    }
+}
+
+/// The centroid of a term without a natural centre, over 1001 samples of the universe.
+fn term_centroid<T: Real>(mf: &Mf<T>, min: T, max: T) -> T {
+    let n = 1001;
+    let dx = (max - min) / T::of((n - 1) as f64);
+    let mu: Vec<T> = (0..n)
+        .map(|k| mf.membership(min + T::of(k as f64) * dx))
+        .collect();
+    defuzz::sampled(Statistic::Centroid, &mu, min, dx)
+        .unwrap_or((min + max) / (T::one() + T::one()))
+}
+
+impl<T: Real> From<&Engine<T>> for EngineBuilder<T> {
+    /// A builder holding the engine's variables (with their own settings) and rules, to edit.
+    fn from(engine: &Engine<T>) -> Self {
+        let mut b = EngineBuilder::new(engine.name.clone())
+            .conjunction(engine.conjunction)
+            .disjunction(engine.disjunction)
+            .implication(engine.implication);
+        b.inputs = engine.inputs.iter().map(|v| (v.clone(), true)).collect();
+        b.outputs = engine.outputs.iter().map(|v| (v.clone(), true)).collect();
+        b.rules = engine
+            .rules
+            .iter()
+            .map(|r| RuleSource::Built(r.clone()))
+            .collect();
+        b
+    }
+}
+
+impl<T: Real> Engine<T> {
+    /// The same engine with every integral / maximum defuzzifier at `resolution` (e.g. an
+    /// imported 101-sample MATLAB engine switched to [`Resolution::Exact`]).
+    pub fn with_resolution(&self, resolution: Resolution) -> Result<Engine<T>, BuildError> {
+        let mut b = EngineBuilder::from(self);
+        for (v, _) in &mut b.outputs {
+            v.defuzzifier = match v.defuzzifier {
+                Defuzzifier::Centroid(_) => Defuzzifier::Centroid(resolution),
+                Defuzzifier::Bisector(_) => Defuzzifier::Bisector(resolution),
+                Defuzzifier::MeanOfMaximum(_) => Defuzzifier::MeanOfMaximum(resolution),
+                Defuzzifier::SmallestOfMaximum(_) => Defuzzifier::SmallestOfMaximum(resolution),
+                Defuzzifier::LargestOfMaximum(_) => Defuzzifier::LargestOfMaximum(resolution),
+                d @ (Defuzzifier::CenterAverage | Defuzzifier::WeightedAverage) => d,
+            };
+        }
+        b.build()
+    }
+}

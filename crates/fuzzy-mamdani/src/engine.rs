@@ -1,0 +1,362 @@
+//! The built engine: immutable, evaluated with caller-owned scratch space.
+
+use alloc::string::String;
+use alloc::vec::Vec;
+
+use crate::defuzz::{self, PieceStats, Statistic};
+use crate::exact::{self, Act};
+use crate::rules::{self, Op};
+use crate::{
+    Defuzzifier, EvalError, InputVariable, Mf, OutOfRange, OutputVariable, Real, Rule, SNorm, TNorm,
+};
+
+/// A Mamdani fuzzy inference engine, built by [`crate::EngineBuilder`] or imported from a
+/// `.fis` / `.fll` file.
+///
+/// Evaluation takes `&self` and a [`Scratch`] made once by [`Engine::scratch`]: one engine can be
+/// shared by threads each holding its own scratch, and no evaluation allocates.
+///
+/// ```
+/// use fuzzy_mamdani::{Defuzzifier, EngineBuilder, Mf, Resolution};
+///
+/// let engine = EngineBuilder::<f64>::new("heater")
+///     .input("temp", 0.0, 40.0, [("cold", Mf::Trapezoid { a: 0.0, b: 0.0, c: 10.0, d: 20.0 }),
+///                                 ("hot", Mf::Trapezoid { a: 15.0, b: 30.0, c: 40.0, d: 40.0 })])
+///     .output("power", 0.0, 1.0, [("low", Mf::Triangle { a: 0.0, b: 0.0, c: 0.5 }),
+///                                  ("high", Mf::Triangle { a: 0.5, b: 1.0, c: 1.0 })])
+///     .defuzzifier(Defuzzifier::Centroid(Resolution::Exact))
+///     .rule("if temp is cold then power is high")
+///     .rule("if temp is hot then power is low")
+///     .build()?;
+/// let mut scratch = engine.scratch();
+/// let cold = engine.evaluate(&mut scratch, &[5.0])?[0];
+/// let hot = engine.evaluate(&mut scratch, &[35.0])?[0];
+/// assert!(cold > 0.8 && hot < 0.2);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct Engine<T> {
+    pub(crate) name: String,
+    pub(crate) inputs: Vec<InputVariable<T>>,
+    pub(crate) outputs: Vec<OutputVariable<T>>,
+    pub(crate) rules: Vec<Rule<T>>,
+    pub(crate) conjunction: TNorm,
+    pub(crate) disjunction: SNorm,
+    pub(crate) implication: TNorm,
+    pub(crate) compiled: Compiled<T>,
+}
+
+/// What [`crate::EngineBuilder::build`] precomputes for evaluation.
+#[derive(Debug, Clone)]
+pub(crate) struct Compiled<T> {
+    /// Flat input-term index where each input's terms start; one extra entry at the end.
+    pub(crate) input_offsets: Vec<usize>,
+    /// All input membership functions, flat.
+    pub(crate) input_mfs: Vec<Mf<T>>,
+    pub(crate) ops: Vec<Op>,
+    /// `ops[start..end]` of each rule.
+    pub(crate) rule_ops: Vec<(u32, u32)>,
+    /// When every rule is `a and b` (no NOT): the two flat membership indices of each rule.
+    pub(crate) and_pairs: Option<Vec<[u32; 2]>>,
+    pub(crate) weights: Vec<T>,
+    pub(crate) plans: Vec<OutputPlan<T>>,
+    pub(crate) shape: ScratchShape,
+}
+
+/// Per output: its consequents and what its defuzzifier precomputes.
+#[derive(Debug, Clone)]
+pub(crate) struct OutputPlan<T> {
+    pub(crate) mfs: Vec<Mf<T>>,
+    /// Centre of each term for the averaging defuzzifiers.
+    pub(crate) centers: Vec<T>,
+    /// `(rule, term, negated)` of every consequent on this output.
+    pub(crate) consequents: Vec<(u32, u32, bool)>,
+    pub(crate) stat: Option<Statistic>,
+    /// Sample count of the sampled path, 0 otherwise.
+    pub(crate) samples: usize,
+    pub(crate) dx: T,
+    /// μ of each term at each sample, term-major: input independent, so computed once.
+    pub(crate) table: Vec<T>,
+}
+
+/// The buffer sizes an engine needs; a [`Scratch`] remembers the shape it was made for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct ScratchShape {
+    pub(crate) input_terms: usize,
+    pub(crate) rules: usize,
+    pub(crate) acts: usize,
+    pub(crate) levels: usize,
+    pub(crate) samples: usize,
+    pub(crate) outputs: usize,
+}
+
+/// Working memory for one evaluation at a time, made by [`Engine::scratch`].
+///
+/// Its buffers are sized for the engine once, so evaluating never allocates.
+#[derive(Debug, Clone)]
+pub struct Scratch<T> {
+    shape: ScratchShape,
+    mu: Vec<T>,
+    strength: Vec<T>,
+    acts: Vec<Act<T>>,
+    levels: Vec<T>,
+    agg: Vec<T>,
+    points: Vec<T>,
+    lines: Vec<(T, T)>,
+    out: Vec<T>,
+}
+
+impl<T: Real> Engine<T> {
+    /// The engine's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+    /// The input variables, in order.
+    pub fn inputs(&self) -> &[InputVariable<T>] {
+        &self.inputs
+    }
+    /// The output variables, in order.
+    pub fn outputs(&self) -> &[OutputVariable<T>] {
+        &self.outputs
+    }
+    /// The rules, in order.
+    pub fn rules(&self) -> &[Rule<T>] {
+        &self.rules
+    }
+    /// The T-norm joining `and`ed propositions.
+    pub fn conjunction(&self) -> TNorm {
+        self.conjunction
+    }
+    /// The S-norm joining `or`ed propositions.
+    pub fn disjunction(&self) -> SNorm {
+        self.disjunction
+    }
+    /// The T-norm shaping a consequent term by its rule's strength.
+    pub fn implication(&self) -> TNorm {
+        self.implication
+    }
+
+    /// Scratch space sized for this engine (the only allocation evaluation needs).
+    pub fn scratch(&self) -> Scratch<T> {
+        let s = self.compiled.shape;
+        Scratch {
+            shape: s,
+            mu: alloc::vec![T::zero(); s.input_terms],
+            strength: alloc::vec![T::zero(); s.rules],
+            acts: Vec::with_capacity(s.acts),
+            levels: alloc::vec![T::zero(); s.levels],
+            agg: alloc::vec![T::zero(); s.samples],
+            points: Vec::with_capacity(s.acts * exact::POINTS_PER_ACT + 2),
+            lines: Vec::with_capacity(s.acts),
+            out: alloc::vec![T::zero(); s.outputs],
+        }
+    }
+
+    /// Evaluates the engine: one crisp value per output, in output order.
+    ///
+    /// Inputs outside their universe follow each input's [`OutOfRange`] policy; a NaN or
+    /// infinite input is an error (except ±∞ under [`OutOfRange::Clamp`], which saturates).
+    /// An output for which no rule fires takes its declared default, or is
+    /// [`EvalError::NoRuleFired`]: never a silent NaN.
+    pub fn evaluate<'s>(
+        &self,
+        scratch: &'s mut Scratch<T>,
+        inputs: &[T],
+    ) -> Result<&'s [T], EvalError> {
+        let c = &self.compiled;
+        if scratch.shape != c.shape {
+            return Err(EvalError::ScratchMismatch);
+        }
+        if inputs.len() != self.inputs.len() {
+            return Err(EvalError::InputCount {
+                expected: self.inputs.len(),
+                got: inputs.len(),
+            });
+        }
+        for (i, (var, &x)) in self.inputs.iter().zip(inputs).enumerate() {
+            let x = admit(var, x, i)?;
+            let (lo, hi) = (c.input_offsets[i], c.input_offsets[i + 1]);
+            for (m, mf) in scratch.mu[lo..hi].iter_mut().zip(&c.input_mfs[lo..hi]) {
+                *m = mf.membership(x);
+            }
+        }
+        self.fire(scratch);
+        for (o, plan) in c.plans.iter().enumerate() {
+            let var = &self.outputs[o];
+            let value = self.defuzzify(var, plan, scratch);
+            scratch.out[o] = match value.or(var.default) {
+                Some(v) => v,
+                None => return Err(EvalError::NoRuleFired { output: o }),
+            };
+        }
+        Ok(&scratch.out)
+    }
+
+    /// Every rule's weighted firing strength into `scratch.strength`.
+    fn fire(&self, scratch: &mut Scratch<T>) {
+        let c = &self.compiled;
+        let (mu, strength) = (&scratch.mu, &mut scratch.strength);
+        if let Some(pairs) = &c.and_pairs {
+            // All rules are `a and b`: a tight gather loop, monomorphic for the common T-norms.
+            let get = |i: u32| mu.get(i as usize).copied().unwrap_or_else(T::zero);
+            let it = strength.iter_mut().zip(pairs).zip(&c.weights);
+            match self.conjunction {
+                TNorm::Minimum => it.for_each(|((s, p), &w)| *s = w * get(p[0]).min(get(p[1]))),
+                TNorm::AlgebraicProduct => {
+                    it.for_each(|((s, p), &w)| *s = w * get(p[0]) * get(p[1]))
+                }
+                t => it.for_each(|((s, p), &w)| *s = w * t.apply(get(p[0]), get(p[1]))),
+            }
+            return;
+        }
+        for (r, s) in strength.iter_mut().enumerate() {
+            let (lo, hi) = c.rule_ops[r];
+            let ops = &c.ops[lo as usize..hi as usize];
+            *s = c.weights[r] * rules::eval_ops(ops, mu, self.conjunction, self.disjunction);
+        }
+    }
+
+    fn defuzzify(
+        &self,
+        var: &OutputVariable<T>,
+        plan: &OutputPlan<T>,
+        s: &mut Scratch<T>,
+    ) -> Option<T> {
+        let Scratch {
+            strength,
+            acts,
+            levels,
+            agg,
+            points,
+            lines,
+            ..
+        } = s;
+        let fired = plan
+            .consequents
+            .iter()
+            .filter(|c| strength[c.0 as usize] > T::zero());
+        if var.defuzzifier == Defuzzifier::CenterAverage {
+            // Silent rules add 0 to both sums: no branch needed.
+            let (mut num, mut den) = (T::zero(), T::zero());
+            for &(r, t, _) in &plan.consequents {
+                let w = strength[r as usize];
+                num = num + w * plan.centers[t as usize];
+                den = den + w;
+            }
+            return ratio(num, den);
+        }
+        // Per term (and its complement) the aggregation of its rules' strengths.
+        let levels = &mut levels[..2 * plan.mfs.len()];
+        levels.fill(T::zero());
+        for &(r, t, neg) in fired.clone() {
+            let slot = &mut levels[2 * t as usize + usize::from(neg)];
+            *slot = var.aggregation.apply(*slot, strength[r as usize]);
+        }
+        if var.defuzzifier == Defuzzifier::WeightedAverage {
+            let (mut num, mut den) = (T::zero(), T::zero());
+            for (t, h) in levels.chunks_exact(2).enumerate() {
+                num = num + h[0] * plan.centers[t];
+                den = den + h[0];
+            }
+            return ratio(num, den);
+        }
+        acts.clear();
+        if var.aggregation == SNorm::Maximum {
+            // max_r I(w_r, μ) = I(max_r w_r, μ) for any T-norm I: one activation per term.
+            let nonzero = levels.iter().enumerate().filter(|(_, w)| **w > T::zero());
+            acts.extend(nonzero.map(|(k, &w)| Act {
+                term: (k / 2) as u32,
+                negated: k % 2 == 1,
+                w,
+            }));
+        } else {
+            acts.extend(fired.map(|&(r, term, negated)| Act {
+                term,
+                negated,
+                w: strength[r as usize],
+            }));
+        }
+        let stat = plan.stat?;
+        if plan.samples > 0 {
+            let agg = &mut agg[..plan.samples];
+            accumulate(agg, acts, &plan.table, self.implication, var.aggregation);
+            return defuzz::sampled(stat, agg, var.min, plan.dx);
+        }
+        let (imp, aggr, range) = (self.implication, var.aggregation, (var.min, var.max));
+        let mut walk = |visit: &mut dyn FnMut(T, T, T, T)| {
+            exact::for_each_piece(acts, &plan.mfs, imp, aggr, range, points, lines, visit);
+        };
+        let mut stats = PieceStats::new();
+        walk(&mut |a, b, c, d| stats.add(a, b, c, d));
+        if stat != Statistic::Bisector {
+            return stats.finish(stat);
+        }
+        if !(stats.area > T::zero()) {
+            return None;
+        }
+        let half = stats.area / (T::one() + T::one());
+        let (mut run, mut found) = (T::zero(), None);
+        walk(&mut |x0, y0, x1, y1| {
+            let piece = (y0 + y1) / (T::one() + T::one()) * (x1 - x0);
+            if found.is_none() && run + piece >= half {
+                found = Some(defuzz::bisector_in_piece(x0, y0, x1, y1, half - run));
+            }
+            run = run + piece;
+        });
+        // Rounding can leave the running sum a hair under `half` at the end: the right end.
+        found.or(Some(var.max))
+    }
+}
+
+fn admit<T: Real>(var: &InputVariable<T>, x: T, input: usize) -> Result<T, EvalError> {
+    if x.is_nan() || (x.is_infinite() && var.out_of_range != OutOfRange::Clamp) {
+        return Err(EvalError::NonFiniteInput { input });
+    }
+    if x >= var.min && x <= var.max {
+        return Ok(x);
+    }
+    match var.out_of_range {
+        OutOfRange::Clamp => Ok(x.max(var.min).min(var.max)),
+        OutOfRange::Evaluate => Ok(x),
+        OutOfRange::Error => Err(EvalError::OutOfRange { input }),
+    }
+}
+
+fn ratio<T: Real>(num: T, den: T) -> Option<T> {
+    (den > T::zero()).then(|| num / den)
+}
+
+/// `agg[k] = S_a I(w_a, μ_a(x_k))` over the activations, from the precomputed term table.
+fn accumulate<T: Real>(agg: &mut [T], acts: &[Act<T>], table: &[T], imp: TNorm, aggr: SNorm) {
+    agg.fill(T::zero());
+    let n = agg.len();
+    for a in acts {
+        let Some(row) = table.get(a.term as usize * n..(a.term as usize + 1) * n) else {
+            continue;
+        };
+        let w = a.w;
+        // The common pairs get their own monomorphic loop so the compiler can vectorise it.
+        match (imp, aggr, a.negated) {
+            (TNorm::Minimum, SNorm::Maximum, false) => {
+                fold(agg, row, |m| w.min(m), |x, y| x.max(y))
+            }
+            (TNorm::AlgebraicProduct, SNorm::Maximum, false) => {
+                fold(agg, row, |m| w * m, |x, y| x.max(y))
+            }
+            (TNorm::Minimum, SNorm::UnboundedSum, false) => {
+                fold(agg, row, |m| w.min(m), |x, y| x + y)
+            }
+            (_, _, neg) => {
+                let m = |m: T| if neg { T::one() - m } else { m };
+                fold(agg, row, |v| imp.apply(w, m(v)), |x, y| aggr.apply(x, y));
+            }
+        }
+    }
+}
+
+#[inline(always)]
+fn fold<T: Copy>(agg: &mut [T], row: &[T], imp: impl Fn(T) -> T, aggr: impl Fn(T, T) -> T) {
+    for (g, &m) in agg.iter_mut().zip(row) {
+        *g = aggr(*g, imp(m));
+    }
+}

@@ -1,0 +1,506 @@
+//! MATLAB Fuzzy Logic Toolbox `.fis` files (Mamdani), read and written.
+//!
+//! Mapping notes: inputs are clamped to their range and an output for which no rule fires takes
+//! the middle of its range, as MATLAB's `evalfis` does; the integral defuzzifiers use MATLAB's
+//! default 101 samples (switch to the exact path with [`Engine::with_resolution`]).
+
+use std::format;
+use std::string::{String, ToString};
+use std::vec::Vec;
+
+use crate::format::{FileError, numbers, syntax};
+use crate::{
+    Consequent, Defuzzifier, Engine, EngineBuilder, Expr, InputVariable, Mf, OutOfRange,
+    OutputVariable, Real, Resolution, Rule, SNorm, TNorm, Term,
+};
+
+const MF_NAMES: [&str; 12] = [
+    "trimf",
+    "trapmf",
+    "gaussmf",
+    "gauss2mf",
+    "gbellmf",
+    "sigmf",
+    "dsigmf",
+    "psigmf",
+    "smf",
+    "zmf",
+    "pimf",
+    "singleton",
+];
+
+fn mf_from<T: Real>(kind: &str, p: &[f64], line: usize) -> Result<Mf<T>, FileError> {
+    let p: Vec<T> = p.iter().map(|v| T::of(*v)).collect();
+    Ok(match (kind, &p[..]) {
+        ("trimf", &[a, b, c]) => Mf::Triangle { a, b, c },
+        ("trapmf", &[a, b, c, d]) => Mf::Trapezoid { a, b, c, d },
+        ("gaussmf", &[sigma, mean]) => Mf::Gaussian { sigma, mean },
+        ("gauss2mf", &[sigma1, mean1, sigma2, mean2]) => Mf::Gaussian2 {
+            sigma1,
+            mean1,
+            sigma2,
+            mean2,
+        },
+        ("gbellmf", &[a, b, c]) => Mf::Bell { a, b, c },
+        ("sigmf", &[a, c]) => Mf::Sigmoid { a, c },
+        ("dsigmf", &[a1, c1, a2, c2]) => Mf::SigmoidDifference { a1, c1, a2, c2 },
+        ("psigmf", &[a1, c1, a2, c2]) => Mf::SigmoidProduct { a1, c1, a2, c2 },
+        ("smf", &[a, b]) => Mf::S { a, b },
+        ("zmf", &[a, b]) => Mf::Z { a, b },
+        ("pimf", &[a, b, c, d]) => Mf::Pi { a, b, c, d },
+        ("singleton", &[x]) => Mf::Singleton { x },
+        _ => {
+            return Err(syntax(
+                line,
+                format!("`{kind}` with {} parameters is not a supported MF", p.len()),
+            ));
+        }
+    })
+}
+
+fn mf_name<T>(mf: &Mf<T>) -> &'static str {
+    let i = match mf {
+        Mf::Triangle { .. } => 0,
+        Mf::Trapezoid { .. } => 1,
+        Mf::Gaussian { .. } => 2,
+        Mf::Gaussian2 { .. } => 3,
+        Mf::Bell { .. } => 4,
+        Mf::Sigmoid { .. } => 5,
+        Mf::SigmoidDifference { .. } => 6,
+        Mf::SigmoidProduct { .. } => 7,
+        Mf::S { .. } => 8,
+        Mf::Z { .. } => 9,
+        Mf::Pi { .. } => 10,
+        Mf::Singleton { .. } => 11,
+    };
+    MF_NAMES[i]
+}
+
+const DEFUZZ: [&str; 6] = ["centroid", "bisector", "mom", "som", "lom", "wtaver"];
+
+fn defuzz_from(name: &str, line: usize) -> Result<Defuzzifier, FileError> {
+    let r = Resolution::Samples(101);
+    Ok(match name {
+        "centroid" => Defuzzifier::Centroid(r),
+        "bisector" => Defuzzifier::Bisector(r),
+        "mom" => Defuzzifier::MeanOfMaximum(r),
+        "som" => Defuzzifier::SmallestOfMaximum(r),
+        "lom" => Defuzzifier::LargestOfMaximum(r),
+        "wtaver" => Defuzzifier::CenterAverage,
+        _ => return Err(syntax(line, format!("unsupported DefuzzMethod `{name}`"))),
+    })
+}
+
+/// An output section as read: name, min, max, terms.
+type OutputSection<T> = (String, T, T, Vec<Term<T>>);
+
+enum Block {
+    System,
+    Input(usize),
+    Output(usize),
+    Rules,
+}
+
+/// Reads a Mamdani engine from `.fis` text.
+///
+/// ```
+/// let fis = "[System]\nName='t'\nType='mamdani'\nAndMethod='min'\n\n[Input1]\nName='x'\nRange=[0 1]\n\
+///            MF1='lo':'trimf',[0 0 1]\n\n[Output1]\nName='y'\nRange=[0 1]\nMF1='t':'trimf',[0 1 1]\n\n\
+///            [Rules]\n1, 1 (1) : 1\n";
+/// let engine = fuzzy_mamdani::from_fis::<f64>(fis)?;
+/// assert_eq!(engine.outputs()[0].name, "y");
+/// let bad = fis.replace("trimf',[0 0 1]", "trimf',[0 0]");
+/// assert!(fuzzy_mamdani::from_fis::<f64>(&bad).unwrap_err().to_string().starts_with("line 9:"));
+/// # Ok::<(), fuzzy_mamdani::FileError>(())
+/// ```
+pub fn from_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
+    let mut name = String::new();
+    let (mut and, mut or, mut imp, mut agg) = (
+        TNorm::Minimum,
+        SNorm::Maximum,
+        TNorm::Minimum,
+        SNorm::Maximum,
+    );
+    let mut defuzz = Defuzzifier::Centroid(Resolution::Samples(101));
+    let (mut inputs, mut outputs): (Vec<InputVariable<T>>, Vec<OutputSection<T>>) =
+        (Vec::new(), Vec::new());
+    let mut rules = Vec::new();
+    let mut block = Block::System;
+    for (i, raw) in text.lines().enumerate() {
+        let line = i + 1;
+        let content = raw.split('%').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        if let Some(section) = content.strip_prefix('[').and_then(|s| s.strip_suffix(']')) {
+            block = section_of(section, line)?;
+            match block {
+                Block::Input(k) if k == inputs.len() => inputs.push(InputVariable {
+                    name: String::new(),
+                    min: T::zero(),
+                    max: T::one(),
+                    terms: Vec::new(),
+                    out_of_range: OutOfRange::Clamp,
+                }),
+                Block::Output(k) if k == outputs.len() => {
+                    outputs.push((String::new(), T::zero(), T::one(), Vec::new()))
+                }
+                Block::Input(_) | Block::Output(_) => {
+                    return Err(syntax(line, "sections must be numbered 1, 2, … in order"));
+                }
+                _ => {}
+            }
+            continue;
+        }
+        if let Block::Rules = block {
+            rules.push(fis_rule(content, line, &inputs, outputs.len())?);
+            continue;
+        }
+        let (key, value) = content
+            .split_once('=')
+            .ok_or_else(|| syntax(line, "expected `Key=value`"))?;
+        let (key, value) = (key.trim(), value.trim());
+        let unquoted = value.trim_matches('\'');
+        let (vname, vmin, vmax, vterms) = match block {
+            Block::Input(k) => {
+                let v = &mut inputs[k];
+                (&mut v.name, &mut v.min, &mut v.max, &mut v.terms)
+            }
+            Block::Output(k) => {
+                let v = &mut outputs[k];
+                (&mut v.0, &mut v.1, &mut v.2, &mut v.3)
+            }
+            _ => {
+                match key {
+                    "Name" => name = unquoted.to_string(),
+                    "Type" if unquoted == "mamdani" => {}
+                    "Type" => {
+                        return Err(syntax(
+                            line,
+                            format!("only Mamdani systems are supported, not `{unquoted}`"),
+                        ));
+                    }
+                    "AndMethod" => {
+                        and = pick(
+                            unquoted,
+                            &[("min", TNorm::Minimum), ("prod", TNorm::AlgebraicProduct)],
+                            line,
+                        )?
+                    }
+                    "OrMethod" => {
+                        or = pick(
+                            unquoted,
+                            &[("max", SNorm::Maximum), ("probor", SNorm::AlgebraicSum)],
+                            line,
+                        )?
+                    }
+                    "ImpMethod" => {
+                        imp = pick(
+                            unquoted,
+                            &[("min", TNorm::Minimum), ("prod", TNorm::AlgebraicProduct)],
+                            line,
+                        )?
+                    }
+                    "AggMethod" => {
+                        let table = [
+                            ("max", SNorm::Maximum),
+                            ("sum", SNorm::UnboundedSum),
+                            ("probor", SNorm::AlgebraicSum),
+                        ];
+                        agg = pick(unquoted, &table, line)?;
+                    }
+                    "DefuzzMethod" => defuzz = defuzz_from(unquoted, line)?,
+                    _ => {} // Version, NumInputs, …: implied by the sections.
+                }
+                continue;
+            }
+        };
+        match key {
+            "Name" => *vname = unquoted.to_string(),
+            "Range" => match numbers(value.trim_matches(|c| c == '[' || c == ']'), line)?[..] {
+                [a, b] => (*vmin, *vmax) = (T::of(a), T::of(b)),
+                _ => return Err(syntax(line, "a range is `[min max]`")),
+            },
+            "NumMFs" => {}
+            k if k.starts_with("MF") => vterms.push(fis_mf(value, line)?),
+            _ => return Err(syntax(line, format!("unexpected key `{key}`"))),
+        }
+    }
+    let mut b = EngineBuilder::new(name)
+        .conjunction(and)
+        .disjunction(or)
+        .implication(imp);
+    for v in inputs {
+        b = b.input_variable(v);
+    }
+    for (name, min, max, terms) in outputs {
+        let default = Some((min + max) / (T::one() + T::one()));
+        b = b.output_variable(OutputVariable {
+            name,
+            min,
+            max,
+            terms,
+            aggregation: agg,
+            defuzzifier: defuzz,
+            default,
+        });
+    }
+    for r in rules {
+        b = b.rule_struct(r);
+    }
+    Ok(b.build()?)
+}
+
+fn section_of(s: &str, line: usize) -> Result<Block, FileError> {
+    let index = |rest: &str| {
+        rest.parse::<usize>()
+            .ok()
+            .filter(|k| *k >= 1)
+            .map(|k| k - 1)
+    };
+    if s == "System" {
+        Ok(Block::System)
+    } else if s == "Rules" {
+        Ok(Block::Rules)
+    } else if let Some(k) = s.strip_prefix("Input").and_then(index) {
+        Ok(Block::Input(k))
+    } else if let Some(k) = s.strip_prefix("Output").and_then(index) {
+        Ok(Block::Output(k))
+    } else {
+        Err(syntax(line, format!("unknown section `[{s}]`")))
+    }
+}
+
+fn pick<N: Copy>(value: &str, table: &[(&str, N)], line: usize) -> Result<N, FileError> {
+    table
+        .iter()
+        .find(|(n, _)| *n == value)
+        .map(|(_, v)| *v)
+        .ok_or_else(|| syntax(line, format!("unsupported method `{value}`")))
+}
+
+/// `'name':'type',[p1 p2 …]`
+fn fis_mf<T: Real>(value: &str, line: usize) -> Result<Term<T>, FileError> {
+    let bad = || syntax(line, "an MF is `'name':'type',[parameters]`");
+    let (name, rest) = value.split_once(':').ok_or_else(bad)?;
+    let (kind, params) = rest.split_once(',').ok_or_else(bad)?;
+    let params = params
+        .trim()
+        .strip_prefix('[')
+        .and_then(|p| p.strip_suffix(']'))
+        .ok_or_else(bad)?;
+    let mf = mf_from(
+        kind.trim().trim_matches('\''),
+        &numbers(params, line)?,
+        line,
+    )?;
+    let name = name.trim().trim_matches('\'').to_string();
+    mf.validate()
+        .map_err(|e| syntax(line, format!("MF `{name}`: {e}")))?;
+    Ok(Term { name, mf })
+}
+
+/// `i1 i2 …, o1 … (weight) : connection` with 1-based term indices, 0 absent, negative NOT.
+fn fis_rule<T: Real>(
+    text: &str,
+    line: usize,
+    inputs: &[InputVariable<T>],
+    outputs: usize,
+) -> Result<Rule<T>, FileError> {
+    let bad = |m: &str| syntax(line, format!("rule: {m}"));
+    let (body, conn) = text
+        .rsplit_once(':')
+        .ok_or_else(|| bad("missing `: connection`"))?;
+    let (ante, rest) = body
+        .split_once(',')
+        .ok_or_else(|| bad("missing `,` between inputs and outputs"))?;
+    let (outs, weight) = rest
+        .split_once('(')
+        .ok_or_else(|| bad("missing `(weight)`"))?;
+    let weight = numbers(weight.trim().trim_end_matches(')'), line)?;
+    let (ante, outs) = (numbers(ante, line)?, numbers(outs, line)?);
+    if ante.len() != inputs.len() || outs.len() != outputs || weight.len() != 1 {
+        return Err(bad(
+            "needs one index per input, one per output and one weight",
+        ));
+    }
+    let or = match numbers(conn, line)?[..] {
+        [1.0] => false,
+        [2.0] => true,
+        _ => return Err(bad("connection is 1 (AND) or 2 (OR)")),
+    };
+    let mut antecedent: Option<Expr> = None;
+    for (input, &k) in ante.iter().enumerate() {
+        if k == 0.0 {
+            continue;
+        }
+        let term = k.abs() as usize - 1;
+        let e = Expr::Is {
+            input,
+            term,
+            negated: k < 0.0,
+        };
+        antecedent = Some(match antecedent {
+            None => e,
+            Some(a) if or => a.or(e),
+            Some(a) => a.and(e),
+        });
+    }
+    let consequents = outs
+        .iter()
+        .enumerate()
+        .filter(|(_, k)| **k != 0.0)
+        .map(|(output, &k)| Consequent {
+            output,
+            term: k.abs() as usize - 1,
+            negated: k < 0.0,
+        })
+        .collect();
+    let antecedent = antecedent.ok_or_else(|| bad("no input is used"))?;
+    Ok(Rule {
+        antecedent,
+        consequents,
+        weight: T::of(weight[0]),
+    })
+}
+
+/// Writes a single-rule-block engine as MATLAB `.fis` text.
+///
+/// Fails with [`FileError::Unsupported`] for what MATLAB cannot express: nested AND / OR,
+/// an input used twice in a rule, per-output operators that differ, norms other than MATLAB's.
+pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
+    let unsupported = |what: &str| FileError::Unsupported(what.to_string());
+    let first = &engine.outputs()[0];
+    if engine
+        .outputs()
+        .iter()
+        .any(|o| o.aggregation != first.aggregation || o.defuzzifier != first.defuzzifier)
+    {
+        return Err(unsupported(
+            "outputs with different aggregation or defuzzifier",
+        ));
+    }
+    let t = |n: TNorm| match n {
+        TNorm::Minimum => Ok("min"),
+        TNorm::AlgebraicProduct => Ok("prod"),
+        _ => Err(unsupported("a T-norm other than min / prod")),
+    };
+    let agg = match first.aggregation {
+        SNorm::Maximum => "max",
+        SNorm::UnboundedSum => "sum",
+        SNorm::AlgebraicSum => "probor",
+        _ => return Err(unsupported("an aggregation other than max / sum / probor")),
+    };
+    let or = match engine.disjunction() {
+        SNorm::Maximum => "max",
+        SNorm::AlgebraicSum => "probor",
+        _ => return Err(unsupported("an OR other than max / probor")),
+    };
+    let defuzz = match first.defuzzifier {
+        Defuzzifier::Centroid(_) => DEFUZZ[0],
+        Defuzzifier::Bisector(_) => DEFUZZ[1],
+        Defuzzifier::MeanOfMaximum(_) => DEFUZZ[2],
+        Defuzzifier::SmallestOfMaximum(_) => DEFUZZ[3],
+        Defuzzifier::LargestOfMaximum(_) => DEFUZZ[4],
+        Defuzzifier::CenterAverage => DEFUZZ[5],
+        Defuzzifier::WeightedAverage => {
+            return Err(unsupported("the weighted-average defuzzifier"));
+        }
+    };
+    let mut s = format!(
+        "[System]\nName='{}'\nType='mamdani'\nVersion=2.0\nNumInputs={}\nNumOutputs={}\nNumRules={}\n\
+         AndMethod='{}'\nOrMethod='{or}'\nImpMethod='{}'\nAggMethod='{agg}'\nDefuzzMethod='{defuzz}'\n",
+        engine.name(),
+        engine.inputs().len(),
+        engine.outputs().len(),
+        engine.rules().len(),
+        t(engine.conjunction())?,
+        t(engine.implication())?,
+    );
+    let vars = engine
+        .inputs()
+        .iter()
+        .map(|v| ("Input", &v.name, v.min, v.max, &v.terms));
+    let outs = engine
+        .outputs()
+        .iter()
+        .map(|v| ("Output", &v.name, v.min, v.max, &v.terms));
+    let (mut ni, mut no) = (0, 0);
+    for (kind, name, min, max, terms) in vars.chain(outs) {
+        let k = if kind == "Input" { &mut ni } else { &mut no };
+        *k += 1;
+        s += &format!(
+            "\n[{kind}{k}]\nName='{name}'\nRange=[{min} {max}]\nNumMFs={}\n",
+            terms.len()
+        );
+        for (j, term) in terms.iter().enumerate() {
+            let (p, n) = term.mf.params();
+            let p: Vec<String> = p[..n].iter().map(|v| v.to_string()).collect();
+            s += &format!(
+                "MF{}='{}':'{}',[{}]\n",
+                j + 1,
+                term.name,
+                mf_name(&term.mf),
+                p.join(" ")
+            );
+        }
+    }
+    s += "\n[Rules]\n";
+    for r in engine.rules() {
+        let mut ante = std::vec![0i64; engine.inputs().len()];
+        let or = flatten(&r.antecedent, &mut ante, None)
+            .ok_or_else(|| unsupported("a nested or repeated antecedent"))?;
+        let mut outs = std::vec![0i64; engine.outputs().len()];
+        for c in &r.consequents {
+            outs[c.output] = if c.negated {
+                -(c.term as i64 + 1)
+            } else {
+                c.term as i64 + 1
+            };
+        }
+        let join = |v: &[i64]| {
+            v.iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        s += &format!(
+            "{}, {} ({}) : {}\n",
+            join(&ante),
+            join(&outs),
+            r.weight,
+            if or == Some(true) { 2 } else { 1 }
+        );
+    }
+    Ok(s)
+}
+
+/// Fills MATLAB's index row for a flat AND-chain or OR-chain; `Some(is_or)` (None: single term).
+fn flatten(e: &Expr, row: &mut [i64], conn: Option<bool>) -> Option<Option<bool>> {
+    match e {
+        Expr::Is {
+            input,
+            term,
+            negated,
+        } => {
+            let slot = row.get_mut(*input)?;
+            if *slot != 0 {
+                return None;
+            }
+            *slot = if *negated {
+                -(*term as i64 + 1)
+            } else {
+                *term as i64 + 1
+            };
+            Some(conn)
+        }
+        Expr::And(a, b) | Expr::Or(a, b) => {
+            let is_or = matches!(e, Expr::Or(..));
+            if conn.is_some_and(|c| c != is_or) {
+                return None;
+            }
+            flatten(a, row, Some(is_or))?;
+            flatten(b, row, Some(is_or))
+        }
+    }
+}

@@ -1,0 +1,200 @@
+//! The grasp controller of the barometric-fingertip paper (seed `000`, §5), as a preset.
+//!
+//! The paper fixes the structure: a Mamdani controller whose inputs are the contact-pressure
+//! error and its derivative, 9 terms each (NH NB NM NS ZO PS PM PB PH), Gaussian (eq. 5) for NH
+//! and PH and triangles (eq. 6) between, Gaussian output terms, center-average defuzzification,
+//! and a torque limit on the MX-28's 0…1023 scale. Its MF plots and rule table (Figures 15–17)
+//! are lost, so the numbers below are chosen, and why:
+//!
+//! * **Universes.** Both inputs are normalised to `[-1, 1]` (the paper normalises crisp inputs
+//!   before fuzzification): error `e = (target − measured pressure) / error_scale`, rate
+//!   `de = (d measured / dt) / rate_scale`, clamped at the ends. The scales default to
+//!   2 kPa and 10 kPa/s ([`GraspScales`]), the order of a fingertip's contact-pressure rise
+//!   under silicone; tune them per hand.
+//! * **Input terms.** Centres evenly spaced at −1, −0.75 … 1. The seven inner triangles have
+//!   their feet on the neighbouring centres (a Ruspini partition: memberships sum to 1, so no
+//!   input is "unknown" and the surface has no flat holes). NH / PH are Gaussians at ±1 with
+//!   σ = 0.125 / √(2 ln 2) ≈ 0.1062, so that they cross NB / PB at 0.5 halfway between centres
+//!   exactly like neighbouring triangles do.
+//! * **Output terms.** Gaussians centred evenly over the torque scale, `k · 1023 / 8`
+//!   (NH = 0 … ZO = 511.5 … PH = 1023), σ = 54.3 so neighbours cross at 0.5. Center average only
+//!   uses the centres; σ matters if the defuzzifier is switched to an integral one.
+//! * **Rules** (9 × 9): `tau = T[clamp(i − j + 4)]` for `e is T[i]` and `de is T[j]`. The error
+//!   term pushes torque up when pressure is below target (PD's proportional part); a rising
+//!   pressure (positive `de`) means the contact is already closing, so it pulls torque down (the
+//!   derivative part damps overshoot that would crush a paper cup). Every anti-diagonal has one
+//!   output, so the table is monotone: more error never lowers torque, a faster rise never raises
+//!   it. With the partition above, center-average interpolates the table bilinearly-like between
+//!   centres: the surface is smooth and monotone, like the paper's Figure 18
+//!   (`tests/preset.rs` checks both on a grid).
+//! * **Operators.** Product AND, max aggregation, min implication, center average. With center
+//!   average the AND decides monotonicity: under min, a rule cell already clamped to NH keeps
+//!   gaining weight as `e` grows and the torque can *fall* (0.8 units at e = −0.975,
+//!   de = 0.225). Product makes the weights separable, μᵢ(e)·νⱼ(de), so the output is a weighted
+//!   mean of row averages that grow with `i`, with weights shifting right as `e` grows.
+//!
+//! [`GraspController`] maps the torque to an [`Effort`], optionally inside an object's Table 5
+//! torque band (e.g. paper cup 50…1023, cube 80…400).
+
+use alloc::format;
+
+use hand_traits::{Effort, GraspObservation, GraspPolicy};
+
+use crate::{Defuzzifier, Engine, EngineBuilder, EvalError, Mf, Real, Scratch, TNorm};
+
+/// The paper's term names, most negative first (Table 3).
+pub const TERM_NAMES: [&str; 9] = ["NH", "NB", "NM", "NS", "ZO", "PS", "PM", "PB", "PH"];
+
+/// The top of the MX-28 torque-limit scale.
+pub const TORQUE_RAW_MAX: f64 = 1023.0;
+
+/// The paper's controller as an engine: inputs `e`, `de` on `[-1, 1]`, output `torque` on
+/// `[0, 1023]`, center-average defuzzification (see the module documentation for the numbers).
+///
+/// ```
+/// let engine = fuzzy_mamdani::grasp_engine::<f64>();
+/// let mut s = engine.scratch();
+/// let hold = engine.evaluate(&mut s, &[0.0, 0.0])?[0];
+/// let squeeze = engine.evaluate(&mut s, &[0.8, 0.0])?[0];
+/// assert!((hold - 511.5).abs() < 1e-9 && squeeze > hold);
+/// # Ok::<(), fuzzy_mamdani::EvalError>(())
+/// ```
+pub fn grasp_engine<T: Real>() -> Engine<T> {
+    let centre = |i: usize| T::of(-1.0 + 0.25 * i as f64);
+    let edge_sigma = T::of(0.125 / (2.0 * core::f64::consts::LN_2).sqrt());
+    let input_terms = || {
+        (0..9).map(move |i| {
+            let mf = match i {
+                0 | 8 => Mf::Gaussian {
+                    sigma: edge_sigma,
+                    mean: centre(i),
+                },
+                _ => Mf::Triangle {
+                    a: centre(i - 1),
+                    b: centre(i),
+                    c: centre(i + 1),
+                },
+            };
+            (TERM_NAMES[i], mf)
+        })
+    };
+    let step = TORQUE_RAW_MAX / 8.0;
+    let out_sigma = T::of(step / 2.0 / (2.0 * core::f64::consts::LN_2).sqrt());
+    let output_terms = (0..9).map(|k| {
+        (
+            TERM_NAMES[k],
+            Mf::Gaussian {
+                sigma: out_sigma,
+                mean: T::of(step * k as f64),
+            },
+        )
+    });
+    let mut b = EngineBuilder::new("grasp")
+        .input("e", -T::one(), T::one(), input_terms())
+        .input("de", -T::one(), T::one(), input_terms())
+        .conjunction(TNorm::AlgebraicProduct)
+        .defuzzifier(Defuzzifier::CenterAverage)
+        .output("torque", T::zero(), T::of(TORQUE_RAW_MAX), output_terms);
+    for (i, ei) in TERM_NAMES.iter().enumerate() {
+        for (j, dej) in TERM_NAMES.iter().enumerate() {
+            let k = (i + 4).saturating_sub(j).min(8);
+            b = b.rule(format!(
+                "if e is {ei} and de is {dej} then torque is {}",
+                TERM_NAMES[k]
+            ));
+        }
+    }
+    // The preset is fixed data, tested to build; an error here is a bug caught by every test.
+    match b.build() {
+        Ok(e) => e,
+        Err(e) => unreachable!("the grasp preset is valid: {e}"),
+    }
+}
+
+/// Physical full-scale values that map onto the normalised universes' ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GraspScales {
+    /// Pressure error (target − measured), in pascal, that counts as "huge" (`e = ±1`).
+    pub error_pa: f32,
+    /// Pressure rate, in pascal per second, that counts as "huge" (`de = ±1`).
+    pub rate_pa_per_s: f32,
+}
+
+impl Default for GraspScales {
+    fn default() -> Self {
+        GraspScales {
+            error_pa: 2_000.0,
+            rate_pa_per_s: 10_000.0,
+        }
+    }
+}
+
+/// The paper's grasp controller as a [`GraspPolicy`]: owns its engine and scratch.
+#[derive(Debug, Clone)]
+pub struct GraspController {
+    engine: Engine<f32>,
+    scratch: Scratch<f32>,
+    scales: GraspScales,
+    torque_band: (u16, u16),
+}
+
+/// The paper's grasp controller with the default scales and the full 0…1023 torque band.
+///
+/// ```
+/// use hand_traits::{GraspObservation, GraspPolicy};
+/// let mut c = fuzzy_mamdani::grasp_controller();
+/// let far_below = c.effort(&GraspObservation { pressure_error_pa: 5_000.0, pressure_rate_pa_per_s: 0.0 })?;
+/// let at_target = c.effort(&GraspObservation { pressure_error_pa: 0.0, pressure_rate_pa_per_s: 0.0 })?;
+/// assert_eq!(far_below.to_torque_limit_raw(), 1023);
+/// assert!(at_target < far_below);
+/// # Ok::<(), fuzzy_mamdani::EvalError>(())
+/// ```
+pub fn grasp_controller() -> GraspController {
+    GraspController::new(GraspScales::default())
+}
+
+impl GraspController {
+    /// A controller with the given scales and the full torque band.
+    pub fn new(scales: GraspScales) -> Self {
+        let engine = grasp_engine::<f32>();
+        let scratch = engine.scratch();
+        GraspController {
+            engine,
+            scratch,
+            scales,
+            torque_band: (0, 1023),
+        }
+    }
+
+    /// Maps the engine's 0…1023 output into `min_raw..=max_raw`, an object's band from the
+    /// paper's Table 5 (e.g. `(50, 1023)` for a paper cup, `(160, 370)` for a scroll tissue).
+    /// Values above 1023 saturate; a reversed band is put in order.
+    pub fn with_torque_band(mut self, min_raw: u16, max_raw: u16) -> Self {
+        let (lo, hi) = (min_raw.min(1023), max_raw.min(1023));
+        self.torque_band = (lo.min(hi), lo.max(hi));
+        self
+    }
+
+    /// The underlying engine (for surfaces, export, inspection).
+    pub fn engine(&self) -> &Engine<f32> {
+        &self.engine
+    }
+
+    /// The engine's torque (0…1023) for one observation, before the torque band.
+    pub fn torque_raw(&mut self, obs: &GraspObservation) -> Result<f32, EvalError> {
+        let e = obs.pressure_error_pa / self.scales.error_pa;
+        let de = obs.pressure_rate_pa_per_s / self.scales.rate_pa_per_s;
+        Ok(self.engine.evaluate(&mut self.scratch, &[e, de])?[0])
+    }
+}
+
+impl GraspPolicy for GraspController {
+    type Error = EvalError;
+
+    fn effort(&mut self, obs: &GraspObservation) -> Result<Effort, EvalError> {
+        let raw = self.torque_raw(obs)?;
+        let (lo, hi) = (f32::from(self.torque_band.0), f32::from(self.torque_band.1));
+        let banded = lo + raw / TORQUE_RAW_MAX as f32 * (hi - lo);
+        Ok(Effort::saturating(banded / TORQUE_RAW_MAX as f32))
+    }
+}

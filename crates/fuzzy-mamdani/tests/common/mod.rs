@@ -1,0 +1,63 @@
+//! Engines shared by the integration tests and the benchmark.
+#![allow(dead_code, unreachable_pub)] // each test binary uses a subset
+
+use fuzzy_mamdani::{Defuzzifier, Engine, EngineBuilder, Mf, Real, Resolution};
+
+const NAMES: [&str; 9] = ["NH", "NB", "NM", "NS", "ZO", "PS", "PM", "PB", "PH"];
+
+/// The benchmark's reference engine (issue 5): e, de on [-1, 1], 9 terms centred at −1, −0.75 … 1
+/// (NH / PH Gaussian σ = 0.1667, the rest triangles of half-width 0.25), output on [-1, 1] with
+/// 9 Gaussians σ = 0.125, rules `e is T_i and de is T_j → tau is T_clamp(i+j−4)`, min / max / min.
+pub fn reference_engine<T: Real>(defuzz: Defuzzifier) -> Engine<T> {
+    let c = |i: usize| T::of(-1.0 + 0.25 * i as f64);
+    let input_terms = || {
+        (0..9).map(move |i| {
+            let mf = if i == 0 || i == 8 {
+                Mf::Gaussian {
+                    sigma: T::of(0.1667),
+                    mean: c(i),
+                }
+            } else {
+                Mf::Triangle {
+                    a: c(i) - T::of(0.25),
+                    b: c(i),
+                    c: c(i) + T::of(0.25),
+                }
+            };
+            (NAMES[i], mf)
+        })
+    };
+    let mut b = EngineBuilder::new("reference")
+        .input("e", T::of(-1.0), T::one(), input_terms())
+        .input("de", T::of(-1.0), T::one(), input_terms())
+        .defuzzifier(defuzz)
+        .output(
+            "tau",
+            T::of(-1.0),
+            T::one(),
+            (0..9).map(|i| {
+                (
+                    NAMES[i],
+                    Mf::Gaussian {
+                        sigma: T::of(0.125),
+                        mean: c(i),
+                    },
+                )
+            }),
+        );
+    for (i, ei) in NAMES.iter().enumerate() {
+        for (j, dej) in NAMES.iter().enumerate() {
+            let k = (i + j).saturating_sub(4).min(8);
+            b = b.rule(format!(
+                "if e is {ei} and de is {dej} then tau is {}",
+                NAMES[k]
+            ));
+        }
+    }
+    b.build().expect("the reference engine builds")
+}
+
+/// The reference engine with its benchmark defuzzifier: centroid over 201 samples.
+pub fn reference_201<T: Real>() -> Engine<T> {
+    reference_engine(Defuzzifier::Centroid(Resolution::Samples(201)))
+}

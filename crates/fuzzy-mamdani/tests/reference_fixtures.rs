@@ -1,0 +1,149 @@
+//! Replays the scikit-fuzzy / pyfuzzylite rows of `fixtures/fuzzy/` (written by
+//! `python/fixtures/fuzzy_reference.py`) on the exact path.
+#![cfg(feature = "std")]
+
+use std::path::{Path, PathBuf};
+
+use fuzzy_mamdani::{Engine, Resolution, from_fis, from_fll};
+
+/// Relative tolerance of the exact path against the references (scale: max(|reference|, 1)).
+const TOLERANCE: f64 = 1e-6;
+
+/// scikit-fuzzy's mean of maximum is the mean of its *grid points* at the maximum, so it is
+/// only as exact as its output grid (step 0.005): the exact path must agree within one step.
+const MOM_GRID_STEP: f64 = 0.005;
+
+/// Rows where two clipped terms share the maximum level up to rounding (e.g. tipping's
+/// 7.517 / 7.483, where both memberships are 0.5034): scikit-fuzzy's exact `==` keeps whichever
+/// plateau is an ulp higher, the exact path keeps both. At most this share of rows may differ so.
+const MOM_TIE_SHARE: f64 = 0.02;
+
+fn dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/fuzzy")
+}
+
+struct Dataset {
+    names: Vec<String>,
+    rows: Vec<Vec<f64>>,
+}
+
+fn read_fld(path: &Path) -> Dataset {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty());
+    let names = lines
+        .next()
+        .unwrap_or_default()
+        .split_whitespace()
+        .map(String::from)
+        .collect();
+    let rows = lines
+        .map(|l| {
+            l.split_whitespace()
+                .map(|v| v.parse::<f64>().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    Dataset { names, rows }
+}
+
+/// The worst relative error per output column of `engine` on the dataset.
+fn replay(engine: &Engine<f64>, data: &Dataset) -> Vec<(String, f64)> {
+    let n_in = engine.inputs().len();
+    let mut scratch = engine.scratch();
+    let mut worst: Vec<(String, f64)> = engine
+        .outputs()
+        .iter()
+        .map(|o| (o.name.clone(), 0.0))
+        .collect();
+    let columns: Vec<usize> = engine
+        .outputs()
+        .iter()
+        .map(|o| {
+            data.names
+                .iter()
+                .position(|n| *n == o.name)
+                .unwrap_or_else(|| panic!("no column {}", o.name))
+        })
+        .collect();
+    let mut ties = vec![0usize; columns.len()];
+    for row in &data.rows {
+        let out = engine
+            .evaluate(&mut scratch, &row[..n_in])
+            .unwrap_or_else(|e| panic!("{row:?}: {e}"));
+        for (k, &col) in columns.iter().enumerate() {
+            let want = row[col];
+            let mut err = (out[k] - want).abs() / want.abs().max(1.0);
+            assert!(err.is_finite(), "{row:?}: {} gave {}", worst[k].0, out[k]);
+            if worst[k].0.ends_with("_mom") {
+                // Judged in grid steps: 1.0 means one step of the reference's grid.
+                err = (out[k] - want).abs() / MOM_GRID_STEP * TOLERANCE;
+                if err > TOLERANCE {
+                    ties[k] += 1;
+                    continue;
+                }
+            }
+            worst[k].1 = worst[k].1.max(err);
+        }
+    }
+    for (k, &t) in ties.iter().enumerate() {
+        println!("{}: {t} tie rows", worst[k].0);
+        assert!(
+            t as f64 <= MOM_TIE_SHARE * data.rows.len() as f64,
+            "{}: {t} rows beyond a grid step",
+            worst[k].0
+        );
+    }
+    worst
+}
+
+#[test]
+fn every_fixture_engine_agrees_on_the_exact_path() {
+    let (mut engines, mut failures) = (0, Vec::new());
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir())
+        .expect("fixtures/fuzzy exists")
+        .flatten()
+        .map(|e| e.path())
+        .collect();
+    entries.sort();
+    for fld in entries
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "fld"))
+    {
+        let data = read_fld(fld);
+        assert!(
+            data.rows.len() >= 1000,
+            "{}: {} rows",
+            fld.display(),
+            data.rows.len()
+        );
+        let fll =
+            std::fs::read_to_string(fld.with_extension("fll")).expect("an .fll beside each .fld");
+        let engine = from_fll::<f64>(&fll).and_then(|e| Ok(e.with_resolution(Resolution::Exact)?));
+        let engine = engine.unwrap_or_else(|e| panic!("{}: {e}", fld.display()));
+        for (name, err) in replay(&engine, &data) {
+            println!(
+                "{:<22} {name:<14} worst relative error {err:.2e}",
+                engine.name()
+            );
+            if err > TOLERANCE {
+                failures.push(format!("{} {name}: {err:e}", engine.name()));
+            }
+        }
+        engines += 1;
+    }
+    assert!(engines >= 5, "only {engines} fixture engines");
+    assert!(failures.is_empty(), "beyond {TOLERANCE:e}: {failures:?}");
+}
+
+/// MATLAB's tipper as a `.fis` file gives the same rows as its `.fll` twin.
+#[test]
+fn tipper_fis_replays_like_its_fll_twin() {
+    let fis = std::fs::read_to_string(dir().join("tipper.fis")).expect("tipper.fis");
+    let engine = from_fis::<f64>(&fis)
+        .and_then(|e| Ok(e.with_resolution(Resolution::Exact)?))
+        .expect("imports");
+    let worst = replay(&engine, &read_fld(&dir().join("tipper.fld")));
+    assert!(worst[0].1 <= TOLERANCE, "{worst:?}");
+}

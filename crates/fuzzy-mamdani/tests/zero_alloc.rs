@@ -1,0 +1,87 @@
+//! Evaluation allocates nothing once the engine and its scratch exist: dhat's counting global
+//! allocator proves it for every defuzzifier path.
+
+mod common;
+
+use fuzzy_mamdani::{Defuzzifier, EngineBuilder, Mf, Resolution, SNorm};
+
+// dhat's allocator counts every heap block; its testing mode makes the counts readable.
+#[global_allocator]
+static ALLOC: dhat::Alloc = dhat::Alloc;
+
+#[test]
+fn no_evaluation_allocates() {
+    let r = Resolution::Samples(201);
+    let mut engines = vec![
+        common::reference_201::<f64>(),
+        common::reference_engine::<f64>(Defuzzifier::CenterAverage),
+        common::reference_engine::<f64>(Defuzzifier::WeightedAverage),
+        common::reference_engine::<f64>(Defuzzifier::Bisector(r)),
+        common::reference_engine::<f64>(Defuzzifier::MeanOfMaximum(r)),
+    ];
+    // The exact path, with both aggregations that support it.
+    for agg in [SNorm::Maximum, SNorm::UnboundedSum] {
+        for d in [
+            Defuzzifier::Centroid(Resolution::Exact),
+            Defuzzifier::Bisector(Resolution::Exact),
+        ] {
+            let tri = |b: f64| Mf::Triangle {
+                a: b - 0.5,
+                b,
+                c: b + 0.5,
+            };
+            engines.push(
+                EngineBuilder::new("exact")
+                    .input(
+                        "x",
+                        0.0,
+                        1.0,
+                        [
+                            (
+                                "lo",
+                                Mf::Trapezoid {
+                                    a: 0.0,
+                                    b: 0.0,
+                                    c: 0.2,
+                                    d: 0.8,
+                                },
+                            ),
+                            ("hi", tri(1.0)),
+                        ],
+                    )
+                    .aggregation(agg)
+                    .defuzzifier(d)
+                    .output("y", 0.0, 1.0, [("a", tri(0.25)), ("b", tri(0.75))])
+                    .rule("if x is lo then y is a")
+                    .rule("if x is hi or x is not lo then y is b")
+                    .build()
+                    .expect("builds"),
+            );
+        }
+    }
+    let _profiler = dhat::Profiler::builder().testing().build();
+    let preset = fuzzy_mamdani::grasp_engine::<f64>();
+    for engine in engines.iter().chain([&preset]) {
+        let mut scratch = engine.scratch();
+        let inputs: Vec<Vec<f64>> = (0..50)
+            .map(|k| vec![-1.2 + 0.05 * k as f64; engine.inputs().len()])
+            .collect();
+        let before = dhat::HeapStats::get().total_blocks;
+        let mut sum = 0.0;
+        for x in &inputs {
+            // Inputs reach past the universe: the default clamp policy still answers.
+            sum += engine
+                .evaluate(&mut scratch, x)
+                .expect("clamped inputs evaluate")[0];
+        }
+        let after = dhat::HeapStats::get().total_blocks;
+        assert!(sum.is_finite());
+        assert_eq!(
+            after - before,
+            0,
+            "{}: {} allocations in 50 evaluations",
+            engine.name(),
+            after - before
+        );
+    }
+}
