@@ -5,6 +5,8 @@
 //! - [`fingertip`]: the barometric fingertip of seed 000 — a silicone pad over three MS5611 in
 //!   an inverted triangle, a 4 × 6 cell grid (3 × 3 for Arrival-of-Time), pressure rises that
 //!   decay with distance, saturate with force and arrive later the farther the sensor.
+//! - [`imu_pad`]: the ICM-20789 pad of seed 002 — taps on a 3 × 24 grid under Ecoflex, force by
+//!   the Yeoh law, pressure by the inverse of eq. 1, IMU patterns of Fig. 5, read at 30 Hz.
 //!
 //! A [`Scene`](scene::Scene) builds only the models its [`SceneConfig`](scene::SceneConfig)
 //! names, and steps only those. Every random source is seeded from the scene
@@ -17,6 +19,7 @@
 
 pub mod error;
 pub mod fingertip;
+pub mod imu_pad;
 pub mod scene;
 pub mod seed;
 
