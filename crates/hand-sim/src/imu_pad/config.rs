@@ -209,7 +209,9 @@ impl Default for PressureCoupling {
     /// With the 2 mm plateau, the reach midpoints towards row 1 (6.0 mm at 0.8, 10.0 mm at
     /// 1.6) fix `gap = exp((4 ln 0.8 − ln 1.6) / 3) = 0.635 mm` and `L_low = 4 / √ln(0.8 /
     /// gap) = 8.32 mm`; towards row 24, row 20 out at 0.8 and row 24 in at 1.6 bracket `L_high`
-    /// in (8.84, 9.36) mm, and 8.95 mm gives both the same log margin.
+    /// in (8.84, 9.36) mm. Both edges of that bracket sit on the contact contour, so with the
+    /// repeat jitter the driver-read peaks are small there; 9.05 mm puts row 24 at 1.6 mm at
+    /// ~20 counts and row 20 at 0.8 mm at the ~2-count noise floor.
     fn default() -> Self {
         PressureCoupling {
             eq1: ForceCounts::default(),
@@ -217,7 +219,7 @@ impl Default for PressureCoupling {
             gap_mm: 0.635,
             plateau_mm: 2.0,
             spread_low_mm: 8.32,
-            spread_high_mm: 8.95,
+            spread_high_mm: 9.05,
             chip_row: 13.5,
         }
     }
@@ -232,10 +234,11 @@ impl PressureCoupling {
             self.spread_low_mm,
             self.spread_high_mm,
         ];
-        if !positive.iter().all(|v| v.is_finite() && *v > 0.0)
-            || !(self.plateau_mm.is_finite() && self.plateau_mm >= 0.0)
-            || !self.chip_row.is_finite()
-        {
+        let ok = positive.iter().all(|v| v.is_finite() && *v > 0.0)
+            && self.plateau_mm.is_finite()
+            && self.plateau_mm >= 0.0
+            && self.chip_row.is_finite();
+        if !ok {
             return Err(SimError::config(
                 "pressure",
                 "pa_per_count, gap_mm, spreads > 0; plateau_mm ≥ 0; all finite",

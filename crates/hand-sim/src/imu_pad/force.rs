@@ -125,7 +125,8 @@ impl ForceDepthCurve {
     /// Force, N, at contact depth `depth_mm`: 0 for no contact (≤ 0 or NaN), saturating at
     /// the largest strain the law is evaluated at.
     pub fn force_n(&self, depth_mm: f64) -> f64 {
-        if !(depth_mm > 0.0) {
+        // NaN and no contact alike: no force.
+        if depth_mm.is_nan() || depth_mm <= 0.0 {
             return 0.0;
         }
         let strain = (depth_mm / self.h_eff_mm).min(MAX_STRAIN);
@@ -188,7 +189,7 @@ impl ForceCounts {
     /// ```
     pub fn counts(&self, force_n: f64) -> f64 {
         let excess = force_n - self.a0;
-        if !(excess > 0.0) {
+        if excess.is_nan() || excess <= 0.0 {
             return 0.0;
         }
         let p = if self.a2 > 0.0 {

@@ -59,7 +59,7 @@ impl Profile {
         let press_end = self.lead_s + self.press_s;
         let hold_end = press_end + self.hold_s;
         let release_end = hold_end + self.release_s;
-        if !(t >= self.lead_s) || t >= release_end {
+        if t.is_nan() || t < self.lead_s || t >= release_end {
             (0.0, 0.0)
         } else if t < press_end {
             ramp((t - self.lead_s) / self.press_s)
@@ -196,7 +196,7 @@ impl PadTruth {
             pressure_pa: self.ambient_pa,
             temperature_c: self.temperature_c,
         };
-        if !(self.tap_s > 0.0) || t < self.start_s {
+        if self.tap_s <= 0.0 || t < self.start_s {
             return state;
         }
         // Only the slot's tap can be active: taps never overlap (validated timing).
