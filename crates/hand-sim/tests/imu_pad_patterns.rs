@@ -81,26 +81,15 @@ fn gyroscope_amplitude_follows_fig_5_in_every_column() {
     for depth in [0.8, 1.6] {
         let gx = ends(depth, |r| window_peak_abs(r, GX));
         let gy = ends(depth, |r| window_peak_abs(r, GY));
-        assert!(
-            gx[0][0] < gx[0][1] / 3.0,
-            "{depth} col 1 gyro x {:?}",
-            gx[0]
-        );
-        assert!(
-            gx[2][1] < gx[2][0] / 3.0,
-            "{depth} col 3 gyro x {:?}",
-            gx[2]
-        );
-        assert!(
-            gy[0][1] < gy[0][0] / 3.0,
-            "{depth} col 1 gyro y {:?}",
-            gy[0]
-        );
-        assert!(
-            gy[2][0] < gy[2][1] / 3.0,
-            "{depth} col 3 gyro y {:?}",
-            gy[2]
-        );
+        // From zero at the first end to at least 3× that at the second.
+        let from_zero = |what: &str, [zero, full]: [f64; 2]| {
+            assert!(zero < full / 3.0, "{depth} {what}: {zero} then {full}");
+        };
+        let reversed = |[a, b]: [f64; 2]| [b, a];
+        from_zero("col 1 gyro x, row 1 → 24", gx[0]);
+        from_zero("col 3 gyro x, row 24 → 1", reversed(gx[2]));
+        from_zero("col 1 gyro y, row 24 → 1", reversed(gy[0]));
+        from_zero("col 3 gyro y, row 1 → 24", gy[2]);
         for g in [gx[1], gy[1]] {
             assert!((g[0] - g[1]).abs() < 0.25 * g[0], "{depth} col 2 {g:?}");
         }
