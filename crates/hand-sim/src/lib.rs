@@ -8,6 +8,8 @@
 //!   read through three MS5611 chip models by the real driver.
 //! - [`grasp`]: the Table 5 objects between two MX-28 fingers (position control under a torque
 //!   limit, load / current, overload shutdown, slip, crushing, the fingertip contact patch).
+//! - [`imu_pad`]: the ICM-20789 pad of seed 002 — taps on a 3 × 24 grid under Ecoflex, force by
+//!   the Yeoh law, pressure by the inverse of eq. 1, IMU patterns of Fig. 5, read at 30 Hz.
 //!
 //! A [`Scene`](scene::Scene) builds only the models its [`SceneConfig`](scene::SceneConfig)
 //! names, and steps only those. Every random source is seeded from the scene
@@ -21,6 +23,7 @@
 pub mod error;
 pub mod fingertip;
 pub mod grasp;
+pub mod imu_pad;
 pub mod scene;
 pub mod seed;
 

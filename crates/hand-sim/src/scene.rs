@@ -34,6 +34,8 @@ pub struct SceneConfig {
     pub fingertip: Option<FingertipConfig>,
     /// `[grasp]`: Table 5 objects between two MX-28 fingers.
     pub grasp: Option<crate::grasp::GraspConfig>,
+    /// The ICM-20789 pad (seed 002), if the scene needs it.
+    pub imu_pad: Option<crate::imu_pad::ImuPadConfig>,
 }
 
 impl SceneConfig {
@@ -51,6 +53,8 @@ pub struct Scene {
     pub fingertip: Option<Fingertip>,
     /// The grasp model, if the scene names it.
     pub grasp: Option<crate::grasp::GraspSim>,
+    /// The ICM-20789 pad, if built.
+    pub imu_pad: Option<crate::imu_pad::ImuPad>,
     now_ns: u64,
 }
 
@@ -70,6 +74,11 @@ impl Scene {
                 .as_ref()
                 .map(|c| crate::grasp::GraspSim::new(c, seed))
                 .transpose()?,
+            imu_pad: config
+                .imu_pad
+                .as_ref()
+                .map(|c| crate::imu_pad::ImuPad::new(c, seed))
+                .transpose()?,
             now_ns: 0,
         })
     }
@@ -83,6 +92,7 @@ impl Scene {
     pub fn step_to(&mut self, t_ns: u64) -> Result<(), SimError> {
         step(&mut self.fingertip, t_ns)?;
         step(&mut self.grasp, t_ns)?;
+        step(&mut self.imu_pad, t_ns)?;
         self.now_ns = self.now_ns.max(t_ns);
         Ok(())
     }
@@ -92,6 +102,7 @@ impl Scene {
         let mut built = Vec::new();
         name_if_built(&self.fingertip, &mut built);
         name_if_built(&self.grasp, &mut built);
+        name_if_built(&self.imu_pad, &mut built);
         built
     }
 }
