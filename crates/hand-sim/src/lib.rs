@@ -5,6 +5,9 @@
 //! - [`fingertip`]: the barometric fingertip of seed 000 — a silicone pad over three MS5611 in
 //!   an inverted triangle, a 4 × 6 cell grid (3 × 3 for Arrival-of-Time), pressure rises that
 //!   decay with distance, saturate with force and arrive later the farther the sensor.
+//! - [`underactuated`]: the four-finger underactuated hand of seed 001 — stepper, seesaw
+//!   differentials, FSR and distal potentiometer per finger through a 10-bit ADC, objects of
+//!   graded softness, and the seeded softness grasps.
 //!
 //! A [`Scene`](scene::Scene) builds only the models its [`SceneConfig`](scene::SceneConfig)
 //! names, and steps only those. Every random source is seeded from the scene
@@ -19,5 +22,6 @@ pub mod error;
 pub mod fingertip;
 pub mod scene;
 pub mod seed;
+pub mod underactuated;
 
 pub use error::SimError;

@@ -29,6 +29,8 @@ pub trait Model {
 pub struct SceneConfig {
     /// Root of every random stream in the scene.
     pub seed: u64,
+    /// The underactuated hand of seed 001.
+    pub underactuated: Option<crate::underactuated::UnderactuatedConfig>,
 }
 
 impl SceneConfig {
@@ -43,6 +45,8 @@ impl SceneConfig {
 pub struct Scene {
     /// The scene seed.
     pub seed: u64,
+    /// The underactuated hand, if the scene names it.
+    pub underactuated: Option<crate::underactuated::Underactuated>,
     now_ns: u64,
 }
 
@@ -51,6 +55,9 @@ impl Scene {
     pub fn build(config: &SceneConfig) -> Result<Scene, SimError> {
         Ok(Scene {
             seed: config.seed,
+            underactuated: (config.underactuated.as_ref())
+                .map(|c| crate::underactuated::Underactuated::new(c, config.seed))
+                .transpose()?,
             now_ns: 0,
         })
     }
@@ -62,12 +69,19 @@ impl Scene {
 
     /// Steps every built model to `t_ns`; the models that were not built are not touched.
     pub fn step_to(&mut self, t_ns: u64) -> Result<(), SimError> {
+        if let Some(m) = &mut self.underactuated {
+            m.step_to(t_ns)?;
+        }
         self.now_ns = self.now_ns.max(t_ns);
         Ok(())
     }
 
     /// The names of the models this scene built.
     pub fn models(&self) -> Vec<&'static str> {
-        Vec::new()
+        let mut names = Vec::new();
+        if self.underactuated.is_some() {
+            names.push(<crate::underactuated::Underactuated as Model>::NAME);
+        }
+        names
     }
 }
