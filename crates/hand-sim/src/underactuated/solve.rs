@@ -11,8 +11,11 @@ pub(crate) fn increasing_root(mut g: impl FnMut(f64) -> f64, lo: f64, hi: f64, t
     if ga.is_nan() || ga >= 0.0 {
         return a;
     }
-    if gb.is_nan() || gb <= 0.0 {
+    if gb <= 0.0 {
         return b;
+    }
+    if gb.is_nan() {
+        gb = 1.0;
     }
     let mut last = 0i8;
     for _ in 0..80 {
