@@ -188,47 +188,40 @@ pub fn specs(seed: u64) -> Vec<GraspSpec> {
             }
         }
     }
-    for i in 0..HOUSEHOLD_TRAINING {
-        let class = Softness::ALL[i % 3];
-        let object = household(&mut rng, class);
-        push(
+    let rest = [
+        (
             Set::Train,
-            format!("household-train-{i:02}"),
+            HOUSEHOLD_TRAINING,
+            "household-train",
             "household",
-            Some(class),
-            object,
-        );
-    }
-    for i in 0..EMPTY_GRASPS {
-        let object = ObjectConfig {
-            size_mm: 0.0,
-            ..ObjectConfig::default()
-        };
-        push(Set::Train, format!("empty-{i}"), "empty", None, object);
-    }
-    for i in 0..REGULAR_TESTS {
-        let class = Softness::ALL[i % 3];
-        let shape = Shape::ALL[(i / 3) % 3];
-        let size_mm = rng.random_range(60.0..95.0);
-        let object = regular(&mut rng, shape, size_mm, class, 0.3, 0.1);
-        push(
-            Set::TestRegular,
-            format!("regular-{i:02}"),
-            "regular",
-            Some(class),
-            object,
-        );
-    }
-    for i in 0..IRREGULAR_TESTS {
-        let class = Softness::ALL[i % 3];
-        let object = household(&mut rng, class);
-        push(
+        ),
+        (Set::Train, EMPTY_GRASPS, "empty", "empty"),
+        (Set::TestRegular, REGULAR_TESTS, "regular", "regular"),
+        (
             Set::TestIrregular,
-            format!("irregular-{i:02}"),
+            IRREGULAR_TESTS,
+            "irregular",
             "household",
-            Some(class),
-            object,
-        );
+        ),
+    ];
+    for (set, count, prefix, kind) in rest {
+        for i in 0..count {
+            let class = Softness::ALL[i % 3];
+            let object = match kind {
+                "household" => household(&mut rng, class),
+                "regular" => {
+                    let shape = Shape::ALL[(i / 3) % 3];
+                    let size_mm = rng.random_range(60.0..95.0);
+                    regular(&mut rng, shape, size_mm, class, 0.3, 0.1)
+                }
+                _ => ObjectConfig {
+                    size_mm: 0.0,
+                    ..ObjectConfig::default()
+                },
+            };
+            let label = (kind != "empty").then_some(class);
+            push(set, format!("{prefix}-{i:02}"), kind, label, object);
+        }
     }
     out
 }
