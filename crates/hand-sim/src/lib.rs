@@ -10,6 +10,9 @@
 //!   limit, load / current, overload shutdown, slip, crushing, the fingertip contact patch).
 //! - [`imu_pad`]: the ICM-20789 pad of seed 002 — taps on a 3 × 24 grid under Ecoflex, force by
 //!   the Yeoh law, pressure by the inverse of eq. 1, IMU patterns of Fig. 5, read at 30 Hz.
+//! - [`underactuated`]: the four-finger underactuated hand of seed 001 — stepper, seesaw
+//!   differentials, FSR and distal potentiometer per finger through a 10-bit ADC, objects of
+//!   graded softness, and the seeded softness grasps.
 //!
 //! A [`Scene`](scene::Scene) builds only the models its [`SceneConfig`](scene::SceneConfig)
 //! names, and steps only those. Every random source is seeded from the scene
@@ -26,5 +29,6 @@ pub mod grasp;
 pub mod imu_pad;
 pub mod scene;
 pub mod seed;
+pub mod underactuated;
 
 pub use error::SimError;

@@ -36,6 +36,8 @@ pub struct SceneConfig {
     pub grasp: Option<crate::grasp::GraspConfig>,
     /// The ICM-20789 pad (seed 002), if the scene needs it.
     pub imu_pad: Option<crate::imu_pad::ImuPadConfig>,
+    /// The underactuated hand of seed 001.
+    pub underactuated: Option<crate::underactuated::UnderactuatedConfig>,
 }
 
 impl SceneConfig {
@@ -55,6 +57,8 @@ pub struct Scene {
     pub grasp: Option<crate::grasp::GraspSim>,
     /// The ICM-20789 pad, if built.
     pub imu_pad: Option<crate::imu_pad::ImuPad>,
+    /// The underactuated hand, if the scene names it.
+    pub underactuated: Option<crate::underactuated::Underactuated>,
     now_ns: u64,
 }
 
@@ -79,6 +83,11 @@ impl Scene {
                 .as_ref()
                 .map(|c| crate::imu_pad::ImuPad::new(c, seed))
                 .transpose()?,
+            underactuated: config
+                .underactuated
+                .as_ref()
+                .map(|c| crate::underactuated::Underactuated::new(c, seed))
+                .transpose()?,
             now_ns: 0,
         })
     }
@@ -93,6 +102,7 @@ impl Scene {
         step(&mut self.fingertip, t_ns)?;
         step(&mut self.grasp, t_ns)?;
         step(&mut self.imu_pad, t_ns)?;
+        step(&mut self.underactuated, t_ns)?;
         self.now_ns = self.now_ns.max(t_ns);
         Ok(())
     }
@@ -103,6 +113,7 @@ impl Scene {
         name_if_built(&self.fingertip, &mut built);
         name_if_built(&self.grasp, &mut built);
         name_if_built(&self.imu_pad, &mut built);
+        name_if_built(&self.underactuated, &mut built);
         built
     }
 }

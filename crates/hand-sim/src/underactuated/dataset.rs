@@ -1,0 +1,327 @@
+//! The seeded softness grasps issue 8 trains and tests on, following seed 001's protocol
+//! (§3.1, §3.3, §4): training = the 27 model objects × [`REPEATS`] poses, 18 household objects
+//! and 6 empty grasps; tests = 24 regular-shape objects (new instances of the model shapes, new
+//! poses) and 30 irregular household objects.
+//!
+//! Household objects have one overall modulus (their label's class) but each finger meets a
+//! different local stiffness (log-normal spread, and with probability [`FEATURE_PROBABILITY`]
+//! a feature — a cap, a rib, a hollow — of the adjacent class) and a different local width:
+//! the paper's explanation of its irregular-set errors, "lack of similarity softness between
+//! certain sides" (§4).
+
+use super::UnderactuatedConfig;
+use super::grasp::{GraspSeries, record_grasp};
+use super::object::{MODEL_SIZES_MM, Material, ObjectConfig, Shape};
+use crate::SimError;
+use hand_traits::Softness;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::StandardNormal;
+use std::fmt::Write;
+
+/// Poses per model object in the training set.
+pub const REPEATS: usize = 5;
+/// Household objects in the training set (seed 001 §3.3: 18).
+pub const HOUSEHOLD_TRAINING: usize = 18;
+/// Empty grasps in the training set (seed 001 §3.1: six).
+pub const EMPTY_GRASPS: usize = 6;
+/// Regular-shape test objects (seed 001 §4: 24).
+pub const REGULAR_TESTS: usize = 24;
+/// Irregular-shape test objects (seed 001 §4: 30).
+pub const IRREGULAR_TESTS: usize = 30;
+/// Sampling rate of the series, Hz.
+pub const SAMPLE_HZ: f64 = 10.0;
+/// Chance that a finger of a household object meets a feature of the adjacent class.
+pub const FEATURE_PROBABILITY: f64 = 0.3;
+
+/// Which part of the protocol a grasp belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Set {
+    /// Model objects, household objects and empty grasps.
+    Train,
+    /// New instances of the model shapes.
+    TestRegular,
+    /// Irregular household objects.
+    TestIrregular,
+}
+
+impl Set {
+    /// Every set, in file order.
+    pub const ALL: [Set; 3] = [Set::Train, Set::TestRegular, Set::TestIrregular];
+
+    /// The name used in the CSV files (also the series file's stem).
+    pub fn name(self) -> &'static str {
+        match self {
+            Set::Train => "train",
+            Set::TestRegular => "test_regular",
+            Set::TestIrregular => "test_irregular",
+        }
+    }
+}
+
+/// One grasp to run: what is grasped, its label and its seed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GraspSpec {
+    /// Index over the whole dataset.
+    pub id: usize,
+    /// Protocol set.
+    pub set: Set,
+    /// The object's name; repeats of one model object share it.
+    pub object_id: String,
+    /// `model`, `regular`, `household` or `empty`.
+    pub kind: &'static str,
+    /// The class label: the object's overall softness; `None` for an empty grasp.
+    pub label: Option<Softness>,
+    /// The object.
+    pub object: ObjectConfig,
+    /// The grasp's scene seed (pose, sensor spread and noise).
+    pub seed: u64,
+}
+
+/// A grasp that was run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grasp {
+    /// What was run.
+    pub spec: GraspSpec,
+    /// What the sensors read.
+    pub series: GraspSeries,
+}
+
+/// Overall moduli, Pa, household objects of each class are drawn from (log-uniform); gaps
+/// between the bands keep every overall label unambiguous.
+fn household_band(class: Softness) -> (f64, f64) {
+    match class {
+        Softness::Soft => (8e3, 45e3),
+        Softness::Moderate => (60e3, 0.5e6),
+        Softness::Hard => (20e6, 10e9),
+    }
+}
+
+fn normal(rng: &mut ChaCha8Rng) -> f64 {
+    rng.sample(StandardNormal)
+}
+
+fn log_uniform(rng: &mut ChaCha8Rng, (lo, hi): (f64, f64)) -> f64 {
+    (lo.ln() + rng.random::<f64>() * (hi.ln() - lo.ln())).exp()
+}
+
+/// A model-like object: a model shape of `size_mm`, the class's material with its modulus
+/// spread by `sd` (log) overall and `local_sd` per finger.
+fn regular(
+    rng: &mut ChaCha8Rng,
+    shape: Shape,
+    size_mm: f64,
+    class: Softness,
+    sd: f64,
+    local_sd: f64,
+) -> ObjectConfig {
+    let material = Material::of(class);
+    ObjectConfig {
+        shape,
+        size_mm,
+        material,
+        modulus_pa: Some(material.nominal_modulus_pa() * (sd * normal(rng)).exp()),
+        local_modulus_factor: std::array::from_fn(|_| (local_sd * normal(rng)).exp()),
+        local_width_factor: [1.0; 4],
+    }
+}
+
+/// A household object of overall class `class`.
+fn household(rng: &mut ChaCha8Rng, class: Softness) -> ObjectConfig {
+    let shape = Shape::ALL[rng.random_range(0..Shape::ALL.len())];
+    let size_mm = rng.random_range(55.0..110.0);
+    let overall = log_uniform(rng, household_band(class));
+    let adjacent = match class {
+        Softness::Soft => [Softness::Moderate; 2],
+        Softness::Moderate => [Softness::Soft, Softness::Hard],
+        Softness::Hard => [Softness::Moderate; 2],
+    };
+    let local_modulus_factor = std::array::from_fn(|_| {
+        if rng.random::<f64>() < FEATURE_PROBABILITY {
+            let other = adjacent[rng.random_range(0..2)];
+            log_uniform(rng, household_band(other)) / overall
+        } else {
+            (0.5 * normal(rng)).exp()
+        }
+    });
+    ObjectConfig {
+        shape,
+        size_mm,
+        material: Material::of(class),
+        modulus_pa: Some(overall),
+        local_modulus_factor,
+        local_width_factor: std::array::from_fn(|_| (0.15 * normal(rng)).exp()),
+    }
+}
+
+/// Every grasp of the dataset seeded with `seed`, in file order.
+pub fn specs(seed: u64) -> Vec<GraspSpec> {
+    let mut rng = crate::seed::stream(seed, "underactuated/dataset");
+    let mut out: Vec<GraspSpec> = Vec::new();
+    let mut push = |set, object_id: String, kind, label, object| {
+        let id = out.len();
+        let seed = crate::seed::derive(seed, &format!("underactuated/grasp/{id}"));
+        out.push(GraspSpec {
+            id,
+            set,
+            object_id,
+            kind,
+            label,
+            object,
+            seed,
+        });
+    };
+    for shape in Shape::ALL {
+        for (size_name, size_mm) in ["small", "medium", "big"].into_iter().zip(MODEL_SIZES_MM) {
+            for material in Material::ALL {
+                let class = material.softness();
+                // One physical object per cell, its batch modulus within ±10 % (log σ 0.1).
+                let object = regular(&mut rng, shape, size_mm, class, 0.1, 0.0);
+                let name = format!(
+                    "model-{}-{size_name}-{}",
+                    shape.name(),
+                    class_name(Some(class))
+                );
+                for _ in 0..REPEATS {
+                    push(Set::Train, name.clone(), "model", Some(class), object);
+                }
+            }
+        }
+    }
+    let rest = [
+        (
+            Set::Train,
+            HOUSEHOLD_TRAINING,
+            "household-train",
+            "household",
+        ),
+        (Set::Train, EMPTY_GRASPS, "empty", "empty"),
+        (Set::TestRegular, REGULAR_TESTS, "regular", "regular"),
+        (
+            Set::TestIrregular,
+            IRREGULAR_TESTS,
+            "irregular",
+            "household",
+        ),
+    ];
+    for (set, count, prefix, kind) in rest {
+        for i in 0..count {
+            let class = Softness::ALL[i % 3];
+            let object = match kind {
+                "household" => household(&mut rng, class),
+                "regular" => {
+                    let shape = Shape::ALL[(i / 3) % 3];
+                    let size_mm = rng.random_range(60.0..95.0);
+                    regular(&mut rng, shape, size_mm, class, 0.3, 0.1)
+                }
+                _ => ObjectConfig {
+                    size_mm: 0.0,
+                    ..ObjectConfig::default()
+                },
+            };
+            let label = (kind != "empty").then_some(class);
+            push(set, format!("{prefix}-{i:02}"), kind, label, object);
+        }
+    }
+    out
+}
+
+/// Runs one spec with the default hand.
+pub fn run(spec: &GraspSpec) -> Result<Grasp, SimError> {
+    let config = UnderactuatedConfig {
+        object: spec.object,
+        ..UnderactuatedConfig::default()
+    };
+    Ok(Grasp {
+        spec: spec.clone(),
+        series: record_grasp(&config, spec.seed, SAMPLE_HZ)?,
+    })
+}
+
+/// Runs every grasp of the dataset seeded with `seed`, on up to two threads (grasps are
+/// independent, so the result does not depend on the scheduling).
+pub fn generate(seed: u64) -> Result<Vec<Grasp>, SimError> {
+    let specs = specs(seed);
+    let (first, second) = specs.split_at(specs.len() / 2);
+    let (a, b) = std::thread::scope(|s| {
+        let other = s.spawn(|| second.iter().map(run).collect::<Result<Vec<_>, _>>());
+        let mine = first.iter().map(run).collect::<Result<Vec<_>, _>>();
+        (mine, other.join())
+    });
+    let mut grasps = a?;
+    match b {
+        Ok(rest) => grasps.extend(rest?),
+        Err(_) => return Err(SimError::config("dataset", "a grasp thread panicked")),
+    }
+    Ok(grasps)
+}
+
+/// A label's name in the CSV files: `soft`, `moderate`, `hard`, or `none` (empty grasp).
+pub fn class_name(label: Option<Softness>) -> &'static str {
+    match label {
+        Some(Softness::Soft) => "soft",
+        Some(Softness::Moderate) => "moderate",
+        Some(Softness::Hard) => "hard",
+        None => "none",
+    }
+}
+
+/// The sanity features of a grasp: the 8 readings at the end of the series (4 forces in N, 4
+/// distal angles in degrees) — the paper's 8 variables at t₂.
+pub fn end_features(grasp: &Grasp) -> [f64; 8] {
+    let last = grasp.series.frames.last();
+    std::array::from_fn(|j| match last {
+        Some(f) if j < 4 => f64::from(f.force_n[j]),
+        Some(f) => f64::from(f.distal_angle_rad[j - 4]).to_degrees(),
+        None => 0.0,
+    })
+}
+
+/// `grasps.csv`: one row per grasp.
+pub fn grasps_csv(grasps: &[Grasp]) -> String {
+    let mut out =
+        String::from("grasp,set,object,kind,shape,size_mm,modulus_pa,label,t1_s,samples\n");
+    for g in grasps {
+        let s = &g.spec;
+        let t1 = g
+            .series
+            .first_contact_s
+            .map_or(String::new(), |t| format!("{t:.3}"));
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{:.1},{:.4e},{},{t1},{}",
+            s.id,
+            s.set.name(),
+            s.object_id,
+            s.kind,
+            if s.kind == "empty" {
+                "none"
+            } else {
+                s.object.shape.name()
+            },
+            s.object.size_mm,
+            s.object.modulus(),
+            class_name(s.label),
+            g.series.frames.len(),
+        );
+    }
+    out
+}
+
+/// `<set>.csv`: every sample of the set's grasps, time since first contact.
+pub fn series_csv(grasps: &[Grasp], set: Set) -> String {
+    let mut out = String::from("grasp,t_s,f1_n,f2_n,f3_n,f4_n,a1_deg,a2_deg,a3_deg,a4_deg\n");
+    for g in grasps.iter().filter(|g| g.spec.set == set) {
+        for (k, f) in g.series.frames.iter().enumerate() {
+            let _ = write!(out, "{},{:.1}", g.spec.id, k as f64 / SAMPLE_HZ);
+            for x in f.force_n {
+                let _ = write!(out, ",{x:.3}");
+            }
+            for a in f.distal_angle_rad {
+                let _ = write!(out, ",{:.2}", a.to_degrees());
+            }
+            out.push('\n');
+        }
+    }
+    out
+}
