@@ -42,6 +42,28 @@ fn every_paper_fixture_parses_cites_its_seed_and_is_known() {
 }
 
 #[test]
+fn every_constant_has_a_unit_and_cites_its_section() {
+    let files = [
+        paper_fixtures::seed000::constants().unwrap(),
+        paper_fixtures::seed001::constants().unwrap(),
+        paper_fixtures::seed002::constants().unwrap(),
+    ];
+    for constants in &files {
+        let mut count = 0;
+        for (name, constant) in constants.iter() {
+            let cites = constant
+                .source
+                .as_deref()
+                .is_some_and(|s| s.starts_with('§'));
+            assert!(cites, "{name} cites a section");
+            assert!(!constant.unit.is_empty(), "{name} has a unit");
+            count += 1;
+        }
+        assert!(count >= 15, "every row parsed: {count}");
+    }
+}
+
+#[test]
 fn errors_name_the_file_line_and_column() {
     let bad = Table::parse("t.csv".into(), "# src\nname,value\nx,1.5\ny,abc\n").unwrap();
     let err = bad.map(|r| r.f64("value")).unwrap_err();

@@ -69,13 +69,4 @@ fn constants_describe_an_8_4_4_3_network_over_4_fingers() {
         c.value("joint_limit", "deg").unwrap() < c.value("potentiometer_travel", "deg").unwrap()
     );
     assert_eq!(c.value("series_end", "s").unwrap(), 14.0);
-    for (name, constant) in c.iter() {
-        assert!(
-            constant
-                .source
-                .as_deref()
-                .is_some_and(|s| s.starts_with('§')),
-            "{name} cites a section"
-        );
-    }
 }
