@@ -43,7 +43,7 @@ impl AreaGrid {
         // A non-finite or non-positive span would divide by zero: treat it as one band.
         let band = |v: f32, span: f32| {
             let b = libm::floorf(v / (span / 3.0));
-            if b.is_nan() || !(span > 0.0) {
+            if b.is_nan() || span.is_nan() || span <= 0.0 {
                 1
             } else {
                 b.clamp(0.0, 2.0) as usize
@@ -104,7 +104,7 @@ impl Geometry {
         if !(grid.width_mm.is_finite() && grid.height_mm.is_finite()) {
             return Err(GeometryError::NonFinite);
         }
-        if !(grid.width_mm > 0.0 && grid.height_mm > 0.0) {
+        if grid.width_mm <= 0.0 || grid.height_mm <= 0.0 {
             return Err(GeometryError::EmptyGrid);
         }
         Geometry::from_centres(sensors_mm, grid.centres_mm())

@@ -204,7 +204,9 @@ impl Shape {
     /// Every placement on the grid, moved right one cell at a time, then down (§4), as
     /// top-left (row, col) and cell set.
     pub fn placements(self) -> impl Iterator<Item = CellSet> {
-        (1..=ROWS).flat_map(move |r| (1..=COLS).filter_map(move |c| CellSet::rect(r, c, self.rows, self.cols)))
+        (1..=ROWS).flat_map(move |r| {
+            (1..=COLS).filter_map(move |c| CellSet::rect(r, c, self.rows, self.cols))
+        })
     }
 }
 
@@ -282,7 +284,9 @@ pub fn decode_among(
     };
     for set in vocabulary {
         if (set.average_area().value() - value).abs() < tolerance {
-            *out.sets.get_mut(out.len).ok_or(LabelError::TooManyCandidates)? = set;
+            *out.sets
+                .get_mut(out.len)
+                .ok_or(LabelError::TooManyCandidates)? = set;
             out.len += 1;
         }
     }

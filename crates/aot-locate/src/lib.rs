@@ -11,7 +11,7 @@ mod score;
 pub use arrival::{ArrivalDetector, ChannelDetector, DetectorConfig};
 pub use geometry::{AREAS, AreaGrid, Geometry, GeometryError, SENSORS};
 pub use label::{
-    AverageArea, COLS, CELLS, Candidates, CellSet, DECODE_TOLERANCE, FIGURE7_SHAPES, LabelError,
+    AverageArea, CELLS, COLS, Candidates, CellSet, DECODE_TOLERANCE, FIGURE7_SHAPES, LabelError,
     MAX_CANDIDATES, ROWS, Shape, decode, decode_among, figure7_placements,
 };
 pub use locator::AotLocator;

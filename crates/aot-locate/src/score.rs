@@ -72,7 +72,11 @@ impl Scores {
         let (s1, s2) = (self.values[best], self.values[second]);
         let den = s1.abs() + s2.abs();
         let c = (s1 - s2) / den;
-        if c.is_finite() { c.clamp(0.0, 1.0) as f32 } else { 0.0 }
+        if c.is_finite() {
+            c.clamp(0.0, 1.0) as f32
+        } else {
+            0.0
+        }
     }
 
     fn top_two(&self) -> (usize, usize) {
@@ -232,7 +236,13 @@ mod tests {
             pressure_pa: [f32::MAX, f32::MAX, f32::MAX],
             arrival_us: [Some(0), Some(u32::MAX), Some(u32::MAX)],
         };
-        assert!(eq3(&hand_pad(), &e).unwrap().values().iter().all(|v| v.is_finite()));
+        assert!(
+            eq3(&hand_pad(), &e)
+                .unwrap()
+                .values()
+                .iter()
+                .all(|v| v.is_finite())
+        );
     }
 
     #[test]

@@ -7,7 +7,10 @@ use aot_locate::{AverageArea, CellSet, FIGURE7_SHAPES, decode, figure7_placement
 fn every_figure7_placement_round_trips() {
     // Figure 7 placements: 24 singles, 15 squares 2 × 2, 8 of 3 × 3, 3 of 4 × 4, 6 of 3 × 4,
     // 12 bars 1 × 4.
-    let counts: Vec<usize> = FIGURE7_SHAPES.iter().map(|s| s.placements().count()).collect();
+    let counts: Vec<usize> = FIGURE7_SHAPES
+        .iter()
+        .map(|s| s.placements().count())
+        .collect();
     assert_eq!(counts, [24, 15, 8, 3, 6, 12]);
     for shape in FIGURE7_SHAPES {
         for set in shape.placements() {
@@ -29,7 +32,10 @@ fn ambiguous_labels_are_exactly_the_shared_centroids() {
     let all: Vec<CellSet> = figure7_placements().collect();
     let mut ambiguous = 0;
     for set in &all {
-        let sharing: Vec<&CellSet> = all.iter().filter(|o| o.average_area() == set.average_area()).collect();
+        let sharing: Vec<&CellSet> = all
+            .iter()
+            .filter(|o| o.average_area() == set.average_area())
+            .collect();
         let cands = decode(set.average_area().value()).unwrap();
         assert_eq!(cands.as_slice().len(), sharing.len());
         assert_eq!(cands.unique().is_some(), sharing.len() == 1);

@@ -9,28 +9,28 @@ use std::path::Path;
 
 /// One row of `taps.csv`.
 #[derive(Debug, Clone)]
-pub struct Tap {
-    pub id: u32,
-    pub osr: u16,
-    pub shape: String,
-    pub mask: u32,
-    pub force_kgf: u32,
-    pub repeat: u32,
-    pub aot_region: usize,
-    pub held_pa: [f32; 3],
+pub(crate) struct Tap {
+    pub(crate) id: u32,
+    pub(crate) osr: u16,
+    pub(crate) shape: String,
+    pub(crate) mask: u32,
+    pub(crate) force_kgf: u32,
+    pub(crate) repeat: u32,
+    pub(crate) aot_region: usize,
+    pub(crate) held_pa: [f32; 3],
 }
 
 /// One frame of `series.csv`.
 #[derive(Debug, Clone, Copy)]
-pub struct Frame {
-    pub t_us: i64,
-    pub p_pa: [f32; 3],
+pub(crate) struct Frame {
+    pub(crate) t_us: i64,
+    pub(crate) p_pa: [f32; 3],
 }
 
 /// The tap table and each tap's frames.
-pub struct Dataset {
-    pub taps: Vec<Tap>,
-    pub series: BTreeMap<u32, Vec<Frame>>,
+pub(crate) struct Dataset {
+    pub(crate) taps: Vec<Tap>,
+    pub(crate) series: BTreeMap<u32, Vec<Frame>>,
 }
 
 fn rows(text: &str) -> impl Iterator<Item = Vec<&str>> {
@@ -50,7 +50,7 @@ fn field<T: std::str::FromStr>(row: &[&str], i: usize) -> Result<T, String> {
 
 impl Dataset {
     /// Reads `taps.csv` and `series.csv` from `dir`, keeping the taps `keep` accepts.
-    pub fn load(dir: &Path, keep: impl Fn(&Tap) -> bool) -> Result<Dataset, String> {
+    pub(crate) fn load(dir: &Path, keep: impl Fn(&Tap) -> bool) -> Result<Dataset, String> {
         let read = |f: &str| std::fs::read_to_string(dir.join(f)).map_err(|e| format!("{f}: {e}"));
         let mut taps = Vec::new();
         for r in rows(&read("taps.csv")?) {
@@ -86,7 +86,7 @@ impl Dataset {
 /// What one tap gives eq. 3: arrival times from the series (detected sample by sample, onset
 /// at t = 0 as the dataset defines it) and the held pressures read against the baseline the
 /// detector tracked before arrival (the steady rise, as Table 2 reports pressures while held).
-pub fn tap_event(tap: &Tap, frames: &[Frame], config: DetectorConfig) -> ArrivalEvent {
+pub(crate) fn tap_event(tap: &Tap, frames: &[Frame], config: DetectorConfig) -> ArrivalEvent {
     let mut d = ArrivalDetector::new(config);
     for f in frames {
         d.push(f.t_us, f.p_pa);
@@ -96,7 +96,7 @@ pub fn tap_event(tap: &Tap, frames: &[Frame], config: DetectorConfig) -> Arrival
 
 /// The scoring rules compared.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Rule {
+pub(crate) enum Rule {
     /// Eq. 3 as written, `P_k` = held rise above the tracked baseline.
     Eq3Rise,
     /// Eq. 3 as written, `P_k` = absolute held pressure (Table 2's columns are absolute hPa).
@@ -108,9 +108,9 @@ pub enum Rule {
 }
 
 impl Rule {
-    pub const ALL: [Rule; 3] = [Rule::Eq3Rise, Rule::Eq3Absolute, Rule::TimeOfFlight];
+    pub(crate) const ALL: [Rule; 3] = [Rule::Eq3Rise, Rule::Eq3Absolute, Rule::TimeOfFlight];
 
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Rule::Eq3Rise => "eq. 3, P = held rise",
             Rule::Eq3Absolute => "eq. 3, P = absolute held",
@@ -119,7 +119,7 @@ impl Rule {
     }
 
     /// The area this rule picks, `None` if eq. 3 refuses the input (no sensor arrived).
-    pub fn predict(
+    pub(crate) fn predict(
         self,
         geometry: &Geometry,
         tof: &TofFit,
@@ -143,19 +143,19 @@ impl Rule {
 
 /// Hits and trials.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Tally {
-    pub hits: u32,
-    pub n: u32,
+pub(crate) struct Tally {
+    pub(crate) hits: u32,
+    pub(crate) n: u32,
 }
 
 impl Tally {
-    pub fn add(&mut self, hit: bool) {
+    pub(crate) fn add(&mut self, hit: bool) {
         self.hits += u32::from(hit);
         self.n += 1;
     }
 
     /// Accuracy in percent (0 for no trials).
-    pub fn percent(&self) -> f64 {
+    pub(crate) fn percent(&self) -> f64 {
         if self.n == 0 {
             0.0
         } else {
@@ -167,37 +167,41 @@ impl Tally {
 /// Accuracy of each rule by OSR, by (OSR, shape) and by (OSR, force); plus how often a
 /// sensor never arrived.
 #[derive(Debug, Default)]
-pub struct Report {
-    pub by_osr: BTreeMap<(Rule, u16), Tally>,
-    pub by_shape: BTreeMap<(Rule, u16, String), Tally>,
-    pub by_force: BTreeMap<(Rule, u16, u32), Tally>,
-    pub missing_sensor: BTreeMap<u16, Tally>,
-    pub no_arrival: BTreeMap<u16, u32>,
-    pub fits: BTreeMap<u16, TofFit>,
+pub(crate) struct Report {
+    pub(crate) by_osr: BTreeMap<(Rule, u16), Tally>,
+    pub(crate) by_shape: BTreeMap<(Rule, u16, String), Tally>,
+    pub(crate) by_force: BTreeMap<(Rule, u16, u32), Tally>,
+    pub(crate) missing_sensor: BTreeMap<u16, Tally>,
+    pub(crate) no_arrival: BTreeMap<u16, u32>,
+    pub(crate) fits: BTreeMap<u16, TofFit>,
     /// How often each rule picked each area (all OSRs): which areas a rule can reach at all.
-    pub picked: BTreeMap<Rule, [u32; 9]>,
+    pub(crate) picked: BTreeMap<Rule, [u32; 9]>,
 }
 
 /// The repeat the time-of-flight variant is fitted on; the other is held out.
-pub const TRAIN_REPEAT: u32 = 0;
+pub(crate) const TRAIN_REPEAT: u32 = 0;
 
 /// `t = a + b·d`: arrival time against distance from the patch centroid, by least squares.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct TofFit {
-    pub a_us: f64,
-    pub b_us_per_mm: f64,
+pub(crate) struct TofFit {
+    pub(crate) a_us: f64,
+    pub(crate) b_us_per_mm: f64,
 }
 
 impl TofFit {
     /// Fits on the arrived sensors of `taps` (true centroid from the mask).
-    pub fn fit<'a>(taps: impl Iterator<Item = (&'a Tap, &'a ArrivalEvent)>) -> TofFit {
+    pub(crate) fn fit<'a>(taps: impl Iterator<Item = (&'a Tap, &'a ArrivalEvent)>) -> TofFit {
         let (mut n, mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let sensors = Geometry::SIMULATED_SENSORS_MM;
         for (tap, e) in taps {
-            let Some(c) = centroid_mm(tap.mask) else { continue };
+            let Some(c) = centroid_mm(tap.mask) else {
+                continue;
+            };
             for (k, t) in e.arrival_us.iter().enumerate() {
                 if let Some(t) = t {
-                    let d = f64::from(((c[0] - sensors[k][0]).powi(2) + (c[1] - sensors[k][1]).powi(2)).sqrt());
+                    let d = f64::from(
+                        ((c[0] - sensors[k][0]).powi(2) + (c[1] - sensors[k][1]).powi(2)).sqrt(),
+                    );
                     let t = f64::from(*t);
                     n += 1.0;
                     sx += d;
@@ -209,11 +213,18 @@ impl TofFit {
         }
         let b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
         let a = (sy - b * sx) / n;
-        if a.is_finite() && b.is_finite() { TofFit { a_us: a, b_us_per_mm: b } } else { TofFit::default() }
+        if a.is_finite() && b.is_finite() {
+            TofFit {
+                a_us: a,
+                b_us_per_mm: b,
+            }
+        } else {
+            TofFit::default()
+        }
     }
 
     /// Negative squared residual of the arrived sensors' times against each area's `a + b·r`.
-    pub fn scores(&self, geometry: &Geometry, e: &ArrivalEvent) -> Option<Scores> {
+    pub(crate) fn scores(&self, geometry: &Geometry, e: &ArrivalEvent) -> Option<Scores> {
         if e.arrival_us.iter().all(Option::is_none) {
             return None;
         }
@@ -232,7 +243,7 @@ impl TofFit {
 
 /// Runs every rule on the held-out taps of `data` (repeat 1), after fitting the
 /// time-of-flight variant on the training taps (repeat 0).
-pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> Report {
+pub(crate) fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> Report {
     let mut rep = Report::default();
     let events: Vec<(&Tap, ArrivalEvent)> = data
         .taps
@@ -245,7 +256,12 @@ pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> 
     let mut fits = BTreeMap::new();
     for (tap, _) in &events {
         fits.entry(tap.osr).or_insert_with(|| {
-            TofFit::fit(events.iter().filter(|(t, _)| t.osr == tap.osr && t.repeat == TRAIN_REPEAT).map(|(t, e)| (*t, e)))
+            TofFit::fit(
+                events
+                    .iter()
+                    .filter(|(t, _)| t.osr == tap.osr && t.repeat == TRAIN_REPEAT)
+                    .map(|(t, e)| (*t, e)),
+            )
         });
     }
     rep.fits = fits.clone();
@@ -277,7 +293,7 @@ pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> 
 }
 
 /// The patch centroid in pad millimetres (x right, y up, origin at the centre; 3 mm cells).
-pub fn centroid_mm(mask: u32) -> Option<[f32; 2]> {
+pub(crate) fn centroid_mm(mask: u32) -> Option<[f32; 2]> {
     let [r, c] = aot_locate::CellSet::from_bits(mask)?.centroid()?;
     Some([(c - 0.5) * 3.0 - 9.0, 6.0 - (r - 0.5) * 3.0])
 }

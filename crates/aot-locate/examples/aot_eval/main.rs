@@ -39,7 +39,9 @@ fn replace_section(doc: &str, section: &str) -> String {
         return format!("{}\n\n{section}", doc.trim_end());
     };
     let after = start + HEADING.len();
-    let end = doc[after..].find("\n## ").map_or(doc.len(), |i| after + i + 1);
+    let end = doc[after..]
+        .find("\n## ")
+        .map_or(doc.len(), |i| after + i + 1);
     format!("{}{section}{}", &doc[..start], &doc[end..])
 }
 
@@ -77,7 +79,10 @@ fn section(rep: &Report) -> Result<String, std::fmt::Error> {
     writeln!(s, "\n![AoT 3 × 3 accuracy vs OSR]({PLOT})\n")?;
     // Eq. 3 does not change with OSR here (see below), so one OSR's breakdown stands for all.
     let best = osrs[0];
-    writeln!(s, "Per shape and force at OSR {best} (eq. 3 with the held rise / time of flight):\n")?;
+    writeln!(
+        s,
+        "Per shape and force at OSR {best} (eq. 3 with the held rise / time of flight):\n"
+    )?;
     writeln!(s, "| shape | eq. 3 | time of flight |\n|---|---|---|")?;
     let shapes: Vec<String> = rep
         .by_shape
@@ -88,17 +93,38 @@ fn section(rep: &Report) -> Result<String, std::fmt::Error> {
     for sh in shapes {
         let p = |r| rep.by_shape[&(r, best, sh.clone())];
         let (a, b) = (p(Rule::Eq3Rise), p(Rule::TimeOfFlight));
-        writeln!(s, "| {sh} | {:.1} % ({}/{}) | {:.1} % |", a.percent(), a.hits, a.n, b.percent())?;
+        writeln!(
+            s,
+            "| {sh} | {:.1} % ({}/{}) | {:.1} % |",
+            a.percent(),
+            a.hits,
+            a.n,
+            b.percent()
+        )?;
     }
     writeln!(s, "\n| force | eq. 3 | time of flight |\n|---|---|---|")?;
     for f in [5, 7, 9] {
         let p = |r| rep.by_force.get(&(r, best, f)).copied().unwrap_or_default();
         let (a, b) = (p(Rule::Eq3Rise), p(Rule::TimeOfFlight));
-        writeln!(s, "| {f} kgf | {:.1} % ({}/{}) | {:.1} % |", a.percent(), a.hits, a.n, b.percent())?;
+        writeln!(
+            s,
+            "| {f} kgf | {:.1} % ({}/{}) | {:.1} % |",
+            a.percent(),
+            a.hits,
+            a.n,
+            b.percent()
+        )?;
     }
     let picked = rep.picked.get(&Rule::Eq3Rise).copied().unwrap_or_default();
-    let reached: Vec<String> = (0..9).filter(|&n| picked[n] > 0).map(|n| n.to_string()).collect();
-    writeln!(s, "\nAreas eq. 3 (held rise) ever picks, of 0–8: {}.\n", reached.join(", "))?;
+    let reached: Vec<String> = (0..9)
+        .filter(|&n| picked[n] > 0)
+        .map(|n| n.to_string())
+        .collect();
+    writeln!(
+        s,
+        "\nAreas eq. 3 (held rise) ever picks, of 0–8: {}.\n",
+        reached.join(", ")
+    )?;
     writeln!(
         s,
         "**Eq. 3 as written misses the issue's 90 % target by far, at every OSR.** Why: with \
@@ -143,7 +169,10 @@ fn plot(rep: &Report, path: &Path) -> Result<(), String> {
     let root = SVGBackend::new(path, (640, 400)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let mut chart = ChartBuilder::on(&root)
-        .caption("AoT 3 × 3 accuracy vs MS5611 OSR (held-out taps)", ("sans-serif", 18))
+        .caption(
+            "AoT 3 × 3 accuracy vs MS5611 OSR (held-out taps)",
+            ("sans-serif", 18),
+        )
         .margin(12)
         .x_label_area_size(36)
         .y_label_area_size(48)
@@ -170,10 +199,15 @@ fn plot(rep: &Report, path: &Path) -> Result<(), String> {
             .map_err(|e| e.to_string())?
             .label(r.name())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c));
-        chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, c.filled()))).map_err(|e| e.to_string())?;
+        chart
+            .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, c.filled())))
+            .map_err(|e| e.to_string())?;
     }
     chart
-        .draw_series(LineSeries::new(vec![(7.5, 90.0), (12.5, 90.0)], BLACK.mix(0.4)))
+        .draw_series(LineSeries::new(
+            vec![(7.5, 90.0), (12.5, 90.0)],
+            BLACK.mix(0.4),
+        ))
         .map_err(|e| e.to_string())?
         .label("issue 7 target (90 %)")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.mix(0.4)));
