@@ -1,0 +1,30 @@
+//! AoT per localisation: eq. 3 over the nine areas, argmax and confidence, through the
+//! `ContactLocator` trait (issue 7 target: under 100 ns).
+
+use aot_locate::{AotLocator, ArrivalEvent};
+use criterion::{Criterion, criterion_group, criterion_main};
+use hand_traits::ContactLocator;
+use std::hint::black_box;
+
+fn locate(c: &mut Criterion) {
+    let mut locator = AotLocator::default();
+    // A press near sensor 1 at 7 kgf as the simulator gives it: held rises (Pa) and arrival
+    // times from onset (µs); sensor 2 never arrived.
+    let event = ArrivalEvent {
+        pressure_pa: [4_200.0, 0.0, 1_900.0],
+        arrival_us: [Some(6_060), None, Some(30_300)],
+    };
+    c.bench_function("aot_locate", |b| {
+        b.iter(|| locator.locate(black_box(&event)))
+    });
+    let all = ArrivalEvent {
+        pressure_pa: [4_200.0, 800.0, 1_900.0],
+        arrival_us: [Some(6_060), Some(18_180), Some(30_300)],
+    };
+    c.bench_function("aot_locate_three_arrivals", |b| {
+        b.iter(|| locator.locate(black_box(&all)))
+    });
+}
+
+criterion_group!(benches, locate);
+criterion_main!(benches);

@@ -1,0 +1,358 @@
+//! Eq. 4's "average area" labels on the 4 × 6 grid (seed 000 §4, Table 2).
+//!
+//! Each cell has a unique number `row.col` (`Arr_1 = 1.1`, `Arr_6 = 1.6`, `Arr_24 = 4.6`); a
+//! contact's label is the mean of its cells' numbers, `Σ Arr_i / n` (eq. 4), 0 for no contact.
+//! Since a column never exceeds 6, the mean is `row̄ + col̄ / 10`: the label encodes the
+//! patch's centroid, so two patches with the same centroid share a label. Among Figure 7's
+//! shapes that happens (see [`FIGURE7_SHAPES`]); [`decode`] returns every candidate.
+
+/// Rows of the fine grid.
+pub const ROWS: u8 = 4;
+/// Columns of the fine grid.
+pub const COLS: u8 = 6;
+/// Cells of the fine grid.
+pub const CELLS: usize = ROWS as usize * COLS as usize;
+
+/// A set of cells of the 4 × 6 grid as a 24-bit mask: bit `i` is the cell of row-major index
+/// `i` (bit 0 is area 1.1, bit 23 area 4.6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct CellSet(u32);
+
+impl CellSet {
+    /// No cell (Table 2's size-0 rows).
+    pub const EMPTY: CellSet = CellSet(0);
+
+    /// The set of `mask`'s bits, `None` if a bit above 23 is set.
+    pub const fn from_bits(mask: u32) -> Option<CellSet> {
+        if mask >> CELLS == 0 {
+            Some(CellSet(mask))
+        } else {
+            None
+        }
+    }
+
+    /// A `rows` × `cols` rectangle with its top-left cell at 1-based (`row`, `col`), `None`
+    /// unless it fits on the grid and is non-empty.
+    pub const fn rect(row: u8, col: u8, rows: u8, cols: u8) -> Option<CellSet> {
+        if row == 0 || col == 0 || rows == 0 || cols == 0 {
+            return None;
+        }
+        if row as u16 + rows as u16 - 1 > ROWS as u16 || col as u16 + cols as u16 - 1 > COLS as u16
+        {
+            return None;
+        }
+        let line = ((1u32 << cols) - 1) << (col - 1);
+        let mut mask = 0;
+        let mut r = 0;
+        while r < rows {
+            mask |= line << ((row - 1 + r) as u32 * COLS as u32);
+            r += 1;
+        }
+        Some(CellSet(mask))
+    }
+
+    /// The raw mask.
+    pub const fn bits(self) -> u32 {
+        self.0
+    }
+
+    /// How many cells (the paper's contact "size").
+    pub const fn len(self) -> u32 {
+        self.0.count_ones()
+    }
+
+    /// Whether the set is empty.
+    pub const fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// Whether the cell at 1-based (`row`, `col`) is in the set.
+    pub const fn contains(self, row: u8, col: u8) -> bool {
+        row >= 1
+            && row <= ROWS
+            && col >= 1
+            && col <= COLS
+            && self.0 & (1 << ((row - 1) as u32 * COLS as u32 + (col - 1) as u32)) != 0
+    }
+
+    /// The mean 1-based (row, column) of the cells, `None` for the empty set.
+    pub fn centroid(self) -> Option<[f32; 2]> {
+        let n = self.len();
+        if n == 0 {
+            return None;
+        }
+        let (mut rs, mut cs) = (0u32, 0u32);
+        for i in 0..CELLS as u32 {
+            if self.0 & (1 << i) != 0 {
+                rs += i / COLS as u32 + 1;
+                cs += i % COLS as u32 + 1;
+            }
+        }
+        Some([rs as f32 / n as f32, cs as f32 / n as f32])
+    }
+
+    /// Eq. 4's label for this set.
+    pub const fn average_area(self) -> AverageArea {
+        AverageArea::of(self)
+    }
+}
+
+/// An eq. 4 value kept exact: the sum of the cells' numbers in tenths (`Σ (10·row + col)`)
+/// over the contact size. Equality compares the values, so `2.2 = (1.1 + … + 3.3) / 9`.
+#[derive(Debug, Clone, Copy)]
+pub struct AverageArea {
+    tenths_sum: u16,
+    size: u8,
+}
+
+impl AverageArea {
+    /// No contact: Table 2's label 0.
+    pub const NONE: AverageArea = AverageArea {
+        tenths_sum: 0,
+        size: 0,
+    };
+
+    /// Eq. 4 for `cells`.
+    pub const fn of(cells: CellSet) -> AverageArea {
+        let mut sum = 0u16;
+        let mut i = 0;
+        while i < CELLS as u32 {
+            if cells.0 & (1 << i) != 0 {
+                sum += (10 * (i / COLS as u32 + 1) + i % COLS as u32 + 1) as u16;
+            }
+            i += 1;
+        }
+        AverageArea {
+            tenths_sum: sum,
+            size: cells.len() as u8,
+        }
+    }
+
+    /// The label as the paper writes it (`1.1`, `2.35`…; 0 for no contact).
+    pub fn value(self) -> f32 {
+        if self.size == 0 {
+            0.0
+        } else {
+            f32::from(self.tenths_sum) / (10.0 * f32::from(self.size))
+        }
+    }
+
+    /// The contact size `n` of eq. 4.
+    pub const fn size(self) -> u8 {
+        self.size
+    }
+}
+
+impl PartialEq for AverageArea {
+    fn eq(&self, other: &AverageArea) -> bool {
+        // a/n = b/m ⇔ a·m = b·n; the empty label (0/0) equals only itself.
+        u32::from(self.tenths_sum) * u32::from(other.size)
+            == u32::from(other.tenths_sum) * u32::from(self.size)
+            && (self.size == 0) == (other.size == 0)
+    }
+}
+
+impl Eq for AverageArea {}
+
+/// A Figure 7 contact shape: its name and the rectangle it covers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shape {
+    /// Figure 7's name: `1`, `4-1`, `9`, `16`, `12`, `4-2`.
+    pub name: &'static str,
+    /// Rows it covers.
+    pub rows: u8,
+    /// Columns it covers.
+    pub cols: u8,
+}
+
+/// Figure 7's shapes (seed 000 §4). The figure is lost in the text we have; like `hand-sim`
+/// we take 4-1 as a 2 × 2 square, 4-2 as a 1 × 4 bar and 12 as 3 × 4.
+pub const FIGURE7_SHAPES: [Shape; 6] = [
+    Shape {
+        name: "1",
+        rows: 1,
+        cols: 1,
+    },
+    Shape {
+        name: "4-1",
+        rows: 2,
+        cols: 2,
+    },
+    Shape {
+        name: "9",
+        rows: 3,
+        cols: 3,
+    },
+    Shape {
+        name: "16",
+        rows: 4,
+        cols: 4,
+    },
+    Shape {
+        name: "12",
+        rows: 3,
+        cols: 4,
+    },
+    Shape {
+        name: "4-2",
+        rows: 1,
+        cols: 4,
+    },
+];
+
+impl Shape {
+    /// Every placement on the grid, moved right one cell at a time, then down (§4), as
+    /// top-left (row, col) and cell set.
+    pub fn placements(self) -> impl Iterator<Item = CellSet> {
+        (1..=ROWS).flat_map(move |r| {
+            (1..=COLS).filter_map(move |c| CellSet::rect(r, c, self.rows, self.cols))
+        })
+    }
+}
+
+/// Every Figure 7 placement plus the empty set: the label vocabulary [`decode`] searches.
+pub fn figure7_placements() -> impl Iterator<Item = CellSet> {
+    core::iter::once(CellSet::EMPTY).chain(FIGURE7_SHAPES.into_iter().flat_map(Shape::placements))
+}
+
+/// Most cell sets one Figure 7 label can stand for. Two is what the shapes give (a shape and
+/// a larger one around the same centroid); four leaves room for a custom vocabulary.
+pub const MAX_CANDIDATES: usize = 4;
+
+/// The cell sets a label decodes to, in vocabulary order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Candidates {
+    sets: [CellSet; MAX_CANDIDATES],
+    len: usize,
+}
+
+impl Candidates {
+    /// The candidates.
+    pub fn as_slice(&self) -> &[CellSet] {
+        &self.sets[..self.len]
+    }
+
+    /// The only candidate, `None` when the label is ambiguous.
+    pub fn unique(&self) -> Option<CellSet> {
+        (self.len == 1).then_some(self.sets[0])
+    }
+}
+
+/// Why a label did not decode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LabelError {
+    /// The label is NaN or infinite.
+    NonFinite,
+    /// No set of the vocabulary has this label.
+    NoMatch,
+    /// More than [`MAX_CANDIDATES`] sets share the label.
+    TooManyCandidates,
+}
+
+impl core::fmt::Display for LabelError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            LabelError::NonFinite => "label is not finite",
+            LabelError::NoMatch => "no contact shape has this label",
+            LabelError::TooManyCandidates => "more candidate shapes than fit",
+        })
+    }
+}
+
+/// Half the spacing of Figure 7 labels: their values are multiples of 0.05 (`row̄` and `col̄`
+/// are whole or half), so a value within 0.025 of a label is that label.
+pub const DECODE_TOLERANCE: f32 = 0.025;
+
+/// Every Figure 7 placement (or the empty set) whose eq. 4 label is within
+/// [`DECODE_TOLERANCE`] of `value`.
+pub fn decode(value: f32) -> Result<Candidates, LabelError> {
+    decode_among(value, DECODE_TOLERANCE, figure7_placements())
+}
+
+/// Every set of `vocabulary` whose eq. 4 label is strictly within `tolerance` of `value`.
+pub fn decode_among(
+    value: f32,
+    tolerance: f32,
+    vocabulary: impl IntoIterator<Item = CellSet>,
+) -> Result<Candidates, LabelError> {
+    if !value.is_finite() {
+        return Err(LabelError::NonFinite);
+    }
+    let mut out = Candidates {
+        sets: [CellSet::EMPTY; MAX_CANDIDATES],
+        len: 0,
+    };
+    for set in vocabulary {
+        if (set.average_area().value() - value).abs() < tolerance {
+            *out.sets
+                .get_mut(out.len)
+                .ok_or(LabelError::TooManyCandidates)? = set;
+            out.len += 1;
+        }
+    }
+    if out.len == 0 {
+        Err(LabelError::NoMatch)
+    } else {
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unique_numbers_match_the_paper() {
+        // §4: Arr_1 = 1.1, Arr_6 = 1.6, Arr_24 = 4.6.
+        let cell = |i: u32| CellSet::from_bits(1 << i).unwrap().average_area().value();
+        assert_eq!(cell(0), 1.1);
+        assert_eq!(cell(5), 1.6);
+        assert_eq!(cell(23), 4.6);
+        assert_eq!(CellSet::EMPTY.average_area().value(), 0.0);
+        assert_eq!(CellSet::from_bits(1 << 24), None);
+    }
+
+    #[test]
+    fn rect_masks() {
+        assert_eq!(CellSet::rect(1, 1, 2, 2).unwrap().bits(), 0b11 | 0b11 << 6);
+        assert_eq!(CellSet::rect(4, 3, 1, 4).unwrap().len(), 4);
+        assert!(CellSet::rect(4, 4, 1, 4).is_none());
+        assert!(CellSet::rect(0, 1, 1, 1).is_none());
+        assert!(CellSet::rect(2, 2, 3, 3).unwrap().contains(4, 4));
+        assert!(!CellSet::rect(2, 2, 3, 3).unwrap().contains(1, 2));
+    }
+
+    #[test]
+    fn eq4_by_hand() {
+        // A 2 × 2 square at 1.1: (1.1 + 1.2 + 2.1 + 2.2) / 4 = 1.65.
+        let sq = CellSet::rect(1, 1, 2, 2).unwrap().average_area();
+        assert!((sq.value() - 1.65).abs() < 1e-6);
+        assert_eq!(sq.size(), 4);
+        // A 1 × 4 bar at 3.2: (3.2 + 3.3 + 3.4 + 3.5) / 4 = 3.35.
+        let bar = CellSet::rect(3, 2, 1, 4).unwrap().average_area();
+        assert!((bar.value() - 3.35).abs() < 1e-6);
+    }
+
+    #[test]
+    fn labels_compare_by_value() {
+        let nine = CellSet::rect(1, 1, 3, 3).unwrap().average_area();
+        let one = CellSet::rect(2, 2, 1, 1).unwrap().average_area();
+        assert_eq!(nine, one);
+        assert_ne!(AverageArea::NONE, one);
+        assert_eq!(AverageArea::NONE, CellSet::EMPTY.average_area());
+    }
+
+    #[test]
+    fn decode_errors() {
+        assert_eq!(decode(f32::NAN), Err(LabelError::NonFinite));
+        // 1.15 would be row 1, column 1.5: no Figure 7 shape is centred there.
+        assert_eq!(decode(1.15), Err(LabelError::NoMatch));
+        assert_eq!(decode(-1.0), Err(LabelError::NoMatch));
+        assert_eq!(decode(0.0).unwrap().unique(), Some(CellSet::EMPTY));
+        let all = [CellSet::rect(2, 2, 1, 1).unwrap(); 5];
+        assert_eq!(
+            decode_among(2.2, 0.01, all),
+            Err(LabelError::TooManyCandidates)
+        );
+    }
+}

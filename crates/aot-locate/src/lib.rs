@@ -1,0 +1,18 @@
+#![doc = include_str!("../README.md")]
+#![no_std]
+#![forbid(unsafe_code)]
+
+mod arrival;
+mod geometry;
+mod label;
+mod locator;
+mod score;
+
+pub use arrival::{ArrivalDetector, ChannelDetector, DetectorConfig};
+pub use geometry::{AREAS, AreaGrid, Geometry, GeometryError, SENSORS};
+pub use label::{
+    AverageArea, CELLS, COLS, Candidates, CellSet, DECODE_TOLERANCE, FIGURE7_SHAPES, LabelError,
+    MAX_CANDIDATES, ROWS, Shape, decode, decode_among, figure7_placements,
+};
+pub use locator::AotLocator;
+pub use score::{AotError, ArrivalEvent, Scores, eq3};
