@@ -159,11 +159,23 @@ pub fn train_all(
     seed: u64,
     progress: bool,
 ) -> Result<Vec<Trained>, NetError> {
+    train_all_with(records, seed, progress, |_| {})
+}
+
+/// [`train_all`] with `adjust` applied to each [`recipe`] (shorter runs for tests).
+pub fn train_all_with(
+    records: &[TapRecord],
+    seed: u64,
+    progress: bool,
+    adjust: impl Fn(&mut TrainConfig),
+) -> Result<Vec<Trained>, NetError> {
     let mut out = Vec::new();
     for osr in osrs(records) {
         let (train, test) = split(records, osr);
         for head in Head::ALL {
-            let (model, log) = ContactMlp::train(&train, head, &recipe(head, osr, seed, progress))?;
+            let mut config = recipe(head, osr, seed, progress);
+            adjust(&mut config);
+            let (model, log) = ContactMlp::train(&train, head, &config)?;
             let evaluation = evaluate(&model, &test)?;
             out.push(Trained {
                 osr,
