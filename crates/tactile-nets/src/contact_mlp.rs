@@ -272,7 +272,8 @@ impl ContactMlp {
         check_input(input, N_FEATURES)?;
         let z: [f32; N_FEATURES] =
             core::array::from_fn(|j| (input[j] - self.mean[j]) / self.scale[j]);
-        check_input(&z, N_FEATURES)?;
+        // A finite input can still overflow the standardisation: report it as the overflow it is.
+        check_output(&z)?;
         let out = match &self.body {
             Body::Area(net) => run(net, &self.dev, z)?,
             Body::Cells(net) => run(net, &self.dev, z)?,

@@ -19,10 +19,11 @@ pub enum NetError {
         /// Position of the first non-finite value.
         index: usize,
     },
-    /// The model produced a NaN or infinite output (an input far outside the training range).
-    #[error("model output {index} is not finite (input far outside the training range?)")]
+    /// A finite input far outside the training range overflowed the model: its normalisation
+    /// or its outputs became NaN or infinite.
+    #[error("model value {index} is not finite (input far outside the training range?)")]
     NonFiniteOutput {
-        /// Position of the first non-finite output.
+        /// Position of the first non-finite value (normalised input or output).
         index: usize,
     },
     /// A safetensors file could not be parsed or written.
