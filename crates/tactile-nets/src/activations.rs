@@ -31,7 +31,7 @@ pub fn softmax_into(logits: &[f32], out: &mut [f32]) -> bool {
         return false;
     }
     let max = logits.iter().copied().fold(f32::NEG_INFINITY, f32::max);
-    if max == f32::INFINITY || max == f32::NEG_INFINITY {
+    if max.is_infinite() {
         let hits = logits.iter().filter(|&&v| v == max).count() as f32;
         for (o, &v) in out.iter_mut().zip(logits) {
             *o = if v == max { 1.0 / hits } else { 0.0 };
