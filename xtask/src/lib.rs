@@ -4,12 +4,14 @@
 //!   `fixtures --check`: the one command CI runs.
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
 //! - `bench [FILTER] [-- CRITERION ARGS]`: runs the criterion benches and prints a summary table.
+//! - `train contact-mlp`: trains the contact-area MLP, writes its weights, metrics and plot.
 
 pub mod bench;
 pub mod fixtures;
 pub mod fuzzy_peers;
 pub mod run;
 pub mod test;
+pub mod train;
 pub mod venv;
 
 use std::path::{Path, PathBuf};

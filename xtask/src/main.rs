@@ -1,14 +1,15 @@
 //! `cargo xtask`: the handstack workspace's developer commands (see the `xtask` library docs).
 
 use std::process::ExitCode;
-use xtask::{bench, fixtures, test, workspace_root};
+use xtask::{bench, fixtures, test, train, workspace_root};
 
 const USAGE: &str = "usage: cargo xtask <command>
 
 commands:
   test                      set up .venv, then fmt, clippy, every test, docs, fixtures --check
   fixtures [--check]        regenerate the generated fixtures, or check the committed ones
-  bench [FILTER] [-- ARGS]  run the criterion benches (names containing FILTER), print a summary";
+  bench [FILTER] [-- ARGS]  run the criterion benches (names containing FILTER), print a summary
+  train contact-mlp         train the contact-area MLP, write its weights, metrics and plot";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -21,6 +22,7 @@ fn main() -> ExitCode {
             _ => usage_error(),
         },
         Some("bench") => bench::run(&root, &args[1..]),
+        Some("train") => train::run(&root, &args[1..]),
         Some("help" | "-h" | "--help") => {
             println!("{USAGE}");
             Ok(())

@@ -1,0 +1,84 @@
+//! Output activations evaluated outside the graph, stable for any logit (huge, infinite).
+//!
+//! The networks end in a linear layer and are trained on logits (dfdx's
+//! `*_with_logits` losses); these turn logits into probabilities at inference time.
+
+/// The logistic function `1 / (1 + e^-x)`, in `0.0..=1.0` for every non-NaN `x`.
+///
+/// Never forms `e^x` for positive `x`, so it cannot overflow; NaN stays NaN.
+pub fn sigmoid(x: f32) -> f32 {
+    if x >= 0.0 {
+        1.0 / (1.0 + (-x).exp())
+    } else {
+        let e = x.exp();
+        e / (1.0 + e)
+    }
+}
+
+/// `ln(sigmoid(x))`, finite for every finite `x` (`-x` for very negative `x`).
+pub fn log_sigmoid(x: f32) -> f32 {
+    // ln σ(x) = -softplus(-x) = min(x, 0) - ln(1 + e^-|x|)
+    x.min(0.0) - (-x.abs()).exp().ln_1p()
+}
+
+/// Softmax of `logits` into `out` (same length), max-subtracted so it cannot overflow.
+///
+/// Infinite logits: the `+∞` entries share the mass equally; all `-∞` gives a uniform
+/// distribution. Returns `false` (and leaves `out` unspecified) when the lengths differ,
+/// `logits` is empty or holds a NaN.
+pub fn softmax_into(logits: &[f32], out: &mut [f32]) -> bool {
+    if logits.is_empty() || logits.len() != out.len() || logits.iter().any(|v| v.is_nan()) {
+        return false;
+    }
+    let max = logits.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+    if max.is_infinite() {
+        let hits = logits.iter().filter(|&&v| v == max).count() as f32;
+        for (o, &v) in out.iter_mut().zip(logits) {
+            *o = if v == max { 1.0 / hits } else { 0.0 };
+        }
+        return true;
+    }
+    let mut sum = 0.0f32;
+    for (o, &v) in out.iter_mut().zip(logits) {
+        // v - max ≤ 0 and the max term is exactly 1, so sum ∈ [1, n].
+        *o = (v - max).exp();
+        sum += *o;
+    }
+    for o in out.iter_mut() {
+        *o /= sum;
+    }
+    true
+}
+
+/// Softmax of `logits` as a new vector; `None` when empty or holding a NaN.
+pub fn softmax(logits: &[f32]) -> Option<Vec<f32>> {
+    let mut out = vec![0.0; logits.len()];
+    softmax_into(logits, &mut out).then_some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sigmoid_known_values() {
+        assert_eq!(sigmoid(0.0), 0.5);
+        assert_eq!(sigmoid(f32::INFINITY), 1.0);
+        assert_eq!(sigmoid(f32::NEG_INFINITY), 0.0);
+        assert!((sigmoid(2.0) - 0.880_797).abs() < 1e-6);
+        assert!((log_sigmoid(-100.0) + 100.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn softmax_known_values() {
+        let p = softmax(&[0.0, (2.0f32).ln()]).unwrap_or_default();
+        assert_eq!(p.len(), 2);
+        assert!((p[0] - 1.0 / 3.0).abs() < 1e-6 && (p[1] - 2.0 / 3.0).abs() < 1e-6);
+        assert_eq!(
+            softmax(&[f32::INFINITY, 1.0, f32::INFINITY]),
+            Some(vec![0.5, 0.0, 0.5])
+        );
+        assert_eq!(softmax(&[]), None);
+        assert_eq!(softmax(&[1.0, f32::NAN]), None);
+    }
+}

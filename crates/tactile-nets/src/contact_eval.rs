@@ -1,0 +1,246 @@
+//! Held-out evaluation of the contact-area MLP, the training recipe, and its committed
+//! weights and metrics (`fixtures/models/contact_mlp/`).
+//!
+//! # Split
+//! Per MS5611 OSR, one model per head: trained on repeat 0 of every tap (every Figure 7 shape,
+//! position and force), tested on repeat 1 (same contacts, fresh sensor noise and baseline).
+//!
+//! # Metrics ([`Evaluation`])
+//! - `area_accuracy`: over the held-out single-cell taps, the fraction whose region (the cell
+//!   nearest the decoded contact's centroid) is the touched cell — the paper's 24 areas;
+//! - `exact_accuracy`: over all held-out taps, the fraction whose decoded cell set equals the
+//!   touched one;
+//! - `mean_cell_error`: over all held-out taps, mean `|predicted ∆ touched|` cells;
+//! - `mean_centroid_error`: over all held-out taps, mean distance between the predicted and
+//!   touched centroids, cells.
+
+use crate::contact_mlp::{ContactMlp, Head, features};
+use crate::data::fingertip::TapRecord;
+use crate::error::NetError;
+use crate::metrics::{MetricsFile, MetricsRow};
+use crate::pad;
+use crate::train::{TrainConfig, TrainLog};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Where the committed weights and metrics live, below the workspace root.
+pub const MODEL_DIR: &str = "fixtures/models/contact_mlp";
+/// The committed metrics file inside [`MODEL_DIR`].
+pub const METRICS_FILE: &str = "metrics.json";
+/// Training seed of the committed models.
+pub const SEED: u64 = 7;
+/// Repeat used for training; every other repeat is held out.
+pub const TRAIN_REPEAT: u32 = 0;
+
+/// Held-out counts of one model.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Evaluation {
+    /// Held-out taps.
+    pub taps: usize,
+    /// Held-out single-cell taps.
+    pub single_cell_taps: usize,
+    /// Single-cell taps whose region is the touched cell.
+    pub area_hits: usize,
+    /// Taps whose decoded contact is exactly the touched cell set.
+    pub exact_hits: usize,
+    /// Sum over taps of `|predicted ∆ touched|`, cells.
+    pub cell_error_sum: u64,
+    /// Sum over taps of the centroid distance, cells.
+    pub centroid_error_sum: f64,
+}
+
+fn ratio(a: f64, b: usize) -> f64 {
+    if b == 0 { 0.0 } else { a / b as f64 }
+}
+
+impl Evaluation {
+    /// Fraction of single-cell taps located on the right one of the 24 areas.
+    pub fn area_accuracy(&self) -> f64 {
+        ratio(self.area_hits as f64, self.single_cell_taps)
+    }
+    /// Fraction of taps whose whole cell set was decoded exactly.
+    pub fn exact_accuracy(&self) -> f64 {
+        ratio(self.exact_hits as f64, self.taps)
+    }
+    /// Mean symmetric difference between decoded and touched cell sets, cells.
+    pub fn mean_cell_error(&self) -> f64 {
+        ratio(self.cell_error_sum as f64, self.taps)
+    }
+    /// Mean centroid distance, cells.
+    pub fn mean_centroid_error(&self) -> f64 {
+        ratio(self.centroid_error_sum, self.taps)
+    }
+
+    /// The metrics as a row's values (counts included).
+    pub fn values(&self) -> BTreeMap<String, f64> {
+        BTreeMap::from([
+            ("taps".to_owned(), self.taps as f64),
+            ("single_cell_taps".to_owned(), self.single_cell_taps as f64),
+            ("area_accuracy".to_owned(), self.area_accuracy()),
+            ("exact_accuracy".to_owned(), self.exact_accuracy()),
+            ("mean_cell_error".to_owned(), self.mean_cell_error()),
+            ("mean_centroid_error".to_owned(), self.mean_centroid_error()),
+        ])
+    }
+}
+
+/// Evaluates `model` on `records`.
+pub fn evaluate(model: &ContactMlp, records: &[&TapRecord]) -> Result<Evaluation, NetError> {
+    let mut e = Evaluation::default();
+    for r in records {
+        let p = model.predict(&features(&r.reading))?;
+        let truth = r.tap.mask;
+        e.taps += 1;
+        if truth.count_ones() == 1 {
+            e.single_cell_taps += 1;
+            e.area_hits += usize::from(1u32 << p.region == truth);
+        }
+        e.exact_hits += usize::from(p.contact == truth);
+        e.cell_error_sum += u64::from(pad::cell_difference(p.contact, truth));
+        e.centroid_error_sum += f64::from(pad::centroid_distance(p.contact, truth).unwrap_or(0.0));
+    }
+    Ok(e)
+}
+
+/// The OSRs present in `records`, ascending.
+pub fn osrs(records: &[TapRecord]) -> Vec<u16> {
+    let mut v: Vec<u16> = records.iter().map(|r| r.tap.osr).collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// (training, held-out) taps read at `osr`: repeat [`TRAIN_REPEAT`] vs the rest.
+pub fn split(records: &[TapRecord], osr: u16) -> (Vec<&TapRecord>, Vec<&TapRecord>) {
+    records
+        .iter()
+        .filter(|r| r.tap.osr == osr)
+        .partition(|r| r.tap.repeat == TRAIN_REPEAT)
+}
+
+/// The committed models' training recipe (the same for every OSR and head).
+pub fn recipe(head: Head, osr: u16, seed: u64, progress: bool) -> TrainConfig {
+    TrainConfig {
+        epochs: 1500,
+        batch_size: 16,
+        learning_rate: 3e-3,
+        l2: crate::contact_mlp::L2,
+        seed,
+        progress,
+        label: format!("osr {osr} {}", head.name()),
+    }
+}
+
+/// File name of the model for `osr` and `head` inside [`MODEL_DIR`].
+pub fn model_file(osr: u16, head: Head) -> String {
+    format!("osr{osr}-{}.safetensors", head.name())
+}
+
+/// Metrics row label of the model for `osr` and `head`.
+pub fn row_label(osr: u16, head: Head) -> String {
+    format!("osr{osr}/{}", head.name())
+}
+
+/// One trained model with its identity and held-out evaluation.
+pub struct Trained {
+    /// OSR of its data.
+    pub osr: u16,
+    /// The model.
+    pub model: ContactMlp,
+    /// Held-out metrics.
+    pub evaluation: Evaluation,
+    /// Training losses (empty for a loaded model).
+    pub log: TrainLog,
+}
+
+/// Trains one model per OSR and head with [`recipe`] and evaluates it on the held-out taps.
+pub fn train_all(
+    records: &[TapRecord],
+    seed: u64,
+    progress: bool,
+) -> Result<Vec<Trained>, NetError> {
+    train_all_with(records, seed, progress, |_| {})
+}
+
+/// [`train_all`] with `adjust` applied to each [`recipe`] (shorter runs for tests).
+pub fn train_all_with(
+    records: &[TapRecord],
+    seed: u64,
+    progress: bool,
+    adjust: impl Fn(&mut TrainConfig),
+) -> Result<Vec<Trained>, NetError> {
+    let mut out = Vec::new();
+    for osr in osrs(records) {
+        let (train, test) = split(records, osr);
+        for head in Head::ALL {
+            let mut config = recipe(head, osr, seed, progress);
+            adjust(&mut config);
+            let (model, log) = ContactMlp::train(&train, head, &config)?;
+            let evaluation = evaluate(&model, &test)?;
+            out.push(Trained {
+                osr,
+                model,
+                evaluation,
+                log,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// Loads every committed model below the workspace root `root` and evaluates it on the
+/// held-out taps of `records`.
+pub fn load_committed(root: &Path, records: &[TapRecord]) -> Result<Vec<Trained>, NetError> {
+    let dir = root.join(MODEL_DIR);
+    let mut out = Vec::new();
+    for osr in osrs(records) {
+        let (_, test) = split(records, osr);
+        for head in Head::ALL {
+            let model = ContactMlp::load(&dir.join(model_file(osr, head)))?;
+            let evaluation = evaluate(&model, &test)?;
+            out.push(Trained {
+                osr,
+                model,
+                evaluation,
+                log: TrainLog::default(),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The metrics file of a set of trained (or loaded) models.
+pub fn metrics_file(models: &[Trained], seed: u64) -> MetricsFile {
+    MetricsFile {
+        model: "contact_mlp".into(),
+        description:
+            "Contact-area MLP (seed 000 §4) on the hand-sim fingertip taps: one model per \
+                      OSR and head; held-out 24-area accuracy on single-cell taps, exact cell-set \
+                      accuracy, mean cell error and mean centroid error on all taps."
+                .into(),
+        split: format!("per OSR: train on repeat {TRAIN_REPEAT}, test on repeat 1"),
+        seed,
+        rows: models
+            .iter()
+            .map(|t| MetricsRow {
+                label: row_label(t.osr, t.model.head()),
+                values: t.evaluation.values(),
+            })
+            .collect(),
+    }
+}
+
+/// Saves every model and the metrics file into `dir`; returns the files written.
+pub fn save_all(dir: &Path, models: &[Trained], seed: u64) -> Result<Vec<PathBuf>, NetError> {
+    std::fs::create_dir_all(dir)?;
+    let mut written = Vec::new();
+    for t in models {
+        let path = dir.join(model_file(t.osr, t.model.head()));
+        t.model.save(&path)?;
+        written.push(path);
+    }
+    let path = dir.join(METRICS_FILE);
+    std::fs::write(&path, metrics_file(models, seed).to_json()?)?;
+    written.push(path);
+    Ok(written)
+}

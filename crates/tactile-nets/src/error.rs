@@ -1,0 +1,99 @@
+//! The crate's one error type.
+
+use thiserror::Error;
+
+/// Why a model could not be built, trained, saved, loaded or run.
+#[derive(Debug, Error)]
+pub enum NetError {
+    /// An input vector had the wrong number of values.
+    #[error("input has {got} values, the model reads {expected}")]
+    Shape {
+        /// Values the model reads.
+        expected: usize,
+        /// Values given.
+        got: usize,
+    },
+    /// An input value was NaN or infinite.
+    #[error("input value {index} is not finite")]
+    NonFinite {
+        /// Position of the first non-finite value.
+        index: usize,
+    },
+    /// A finite input far outside the training range overflowed the model: its normalisation
+    /// or its outputs became NaN or infinite.
+    #[error("model value {index} is not finite (input far outside the training range?)")]
+    NonFiniteOutput {
+        /// Position of the first non-finite value (normalised input or output).
+        index: usize,
+    },
+    /// A safetensors file could not be parsed or written.
+    #[error("safetensors: {0}")]
+    SafeTensors(String),
+    /// A tensor the model needs is missing from a weights file.
+    #[error("weights file has no tensor `{0}`")]
+    MissingTensor(String),
+    /// A stored tensor has another shape or dtype than the model expects.
+    #[error("tensor `{name}`: stored {stored:?}, model expects {expected:?}")]
+    TensorMismatch {
+        /// Tensor name.
+        name: String,
+        /// Shape (or dtype) in the file.
+        stored: String,
+        /// Shape (or dtype) the model has.
+        expected: String,
+    },
+    /// A dataset file did not parse.
+    #[error("dataset line {line}: {reason}")]
+    Data {
+        /// 1-based line number.
+        line: usize,
+        /// What was wrong.
+        reason: String,
+    },
+    /// A training set or configuration cannot train (no samples, zero batch size…).
+    #[error("training: {0}")]
+    Training(String),
+    /// A metrics file did not parse or write.
+    #[error("metrics: {0}")]
+    Metrics(String),
+    /// The compute device failed (out of memory).
+    #[error("device: {0}")]
+    Device(String),
+    /// Reading or writing a file failed.
+    #[error("io: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+impl From<dfdx::tensor::CpuError> for NetError {
+    fn from(e: dfdx::tensor::CpuError) -> Self {
+        NetError::Device(format!("{e:?}"))
+    }
+}
+
+impl From<safetensors::SafeTensorError> for NetError {
+    fn from(e: safetensors::SafeTensorError) -> Self {
+        NetError::SafeTensors(e.to_string())
+    }
+}
+
+/// Checks that `input` has `expected` values, all finite.
+pub fn check_input(input: &[f32], expected: usize) -> Result<(), NetError> {
+    if input.len() != expected {
+        return Err(NetError::Shape {
+            expected,
+            got: input.len(),
+        });
+    }
+    match input.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(NetError::NonFinite { index }),
+        None => Ok(()),
+    }
+}
+
+/// Checks that every model output is finite.
+pub fn check_output(output: &[f32]) -> Result<(), NetError> {
+    match output.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(NetError::NonFiniteOutput { index }),
+        None => Ok(()),
+    }
+}
