@@ -1,10 +1,11 @@
 //! Building an engine in Rust: variables, terms, operators, rules; checked once at `build`.
 
 use alloc::string::{String, ToString};
+use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::defuzz::{self, Statistic};
-use crate::engine::{Compiled, OutputPlan, ScratchShape};
+use crate::engine::{AndIndex, Compiled, OutputPlan, ScratchShape};
 use crate::rules::{self, MAX_DEPTH, Op};
 use crate::{
     BuildError, Defuzzifier, Engine, InputVariable, Mf, OutOfRange, OutputVariable, Real,
@@ -429,6 +430,7 @@ fn compile<T: Real>(
             _ => None,
         })
         .collect::<Option<Vec<_>>>();
+    let and_index = and_pairs.map(|pairs| and_index(&pairs, input_mfs.len()));
     let plans: Vec<OutputPlan<T>> = outputs
         .iter()
         .enumerate()
@@ -451,11 +453,30 @@ fn compile<T: Real>(
         input_mfs,
         ops,
         rule_ops,
-        and_pairs,
+        and_index,
         weights,
         plans,
         shape,
     }
+}
+
+/// CSR of `(b, rule)` by first membership `a`, rules in ascending order within each `a`.
+fn and_index(pairs: &[[u32; 2]], terms: usize) -> AndIndex {
+    let mut offsets = vec![0u32; terms + 1];
+    for p in pairs {
+        offsets[p[0] as usize + 1] += 1;
+    }
+    for a in 0..terms {
+        offsets[a + 1] += offsets[a];
+    }
+    let mut next = offsets.clone();
+    let mut entries = vec![(0, 0); pairs.len()];
+    for (r, p) in pairs.iter().enumerate() {
+        let slot = &mut next[p[0] as usize];
+        entries[*slot as usize] = (p[1], r as u32);
+        *slot += 1;
+    }
+    AndIndex { offsets, entries }
 }
 
 fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputPlan<T> {
@@ -466,7 +487,15 @@ fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputP
         .flat_map(|(r, rule)| rule.consequents.iter().map(move |c| (r, c)))
         .filter(|(_, c)| c.output == o)
         .map(|(r, c)| (r as u32, c.term as u32, c.negated))
-        .collect();
+        .collect::<Vec<_>>();
+    // Consequents come in rule order, so each rule's are one contiguous run.
+    let mut rule_offsets = vec![0u32; rules_.len() + 1];
+    for &(r, _, _) in &consequents {
+        rule_offsets[r as usize + 1] += 1;
+    }
+    for r in 0..rules_.len() {
+        rule_offsets[r + 1] += rule_offsets[r];
+    }
     let samples = match v.defuzzifier.resolution() {
         Some(Resolution::Samples(n)) => n,
         _ => 0,
@@ -492,6 +521,7 @@ fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputP
         mfs,
         centers,
         consequents,
+        rule_offsets,
         stat: Statistic::of(v.defuzzifier),
         samples,
         dx,

@@ -56,11 +56,21 @@ pub(crate) struct Compiled<T> {
     pub(crate) ops: Vec<Op>,
     /// `ops[start..end]` of each rule.
     pub(crate) rule_ops: Vec<(u32, u32)>,
-    /// When every rule is `a and b` (no NOT): the two flat membership indices of each rule.
-    pub(crate) and_pairs: Option<Vec<[u32; 2]>>,
+    /// When every rule is `a and b` (no NOT): the rules indexed by their first membership.
+    pub(crate) and_index: Option<AndIndex>,
     pub(crate) weights: Vec<T>,
     pub(crate) plans: Vec<OutputPlan<T>>,
     pub(crate) shape: ScratchShape,
+}
+
+/// Rules of the form `a and b`, grouped by `a`: `entries[offsets[a]..offsets[a + 1]]` holds
+/// `(b, rule)` for every rule whose first membership is `a`. Every T-norm gives 0 when either
+/// side is 0, so a rule with a zero membership on either side has zero strength exactly and is
+/// never visited: with triangles or trapezoids only a few terms per input are non-zero.
+#[derive(Debug, Clone)]
+pub(crate) struct AndIndex {
+    pub(crate) offsets: Vec<u32>,
+    pub(crate) entries: Vec<(u32, u32)>,
 }
 
 /// Per output: its consequents and what its defuzzifier precomputes.
@@ -69,8 +79,10 @@ pub(crate) struct OutputPlan<T> {
     pub(crate) mfs: Vec<Mf<T>>,
     /// Centre of each term for the averaging defuzzifiers.
     pub(crate) centers: Vec<T>,
-    /// `(rule, term, negated)` of every consequent on this output.
+    /// `(rule, term, negated)` of every consequent on this output, in rule order.
     pub(crate) consequents: Vec<(u32, u32, bool)>,
+    /// `consequents[rule_offsets[r]..rule_offsets[r + 1]]` are rule `r`'s.
+    pub(crate) rule_offsets: Vec<u32>,
     pub(crate) stat: Option<Statistic>,
     /// Sample count of the sampled path, 0 otherwise.
     pub(crate) samples: usize,
@@ -98,6 +110,8 @@ pub struct Scratch<T> {
     shape: ScratchShape,
     mu: Vec<T>,
     strength: Vec<T>,
+    /// Rules with non-zero strength, ascending (filled on the AND-pairs path only).
+    fired: Vec<u32>,
     acts: Vec<Act<T>>,
     levels: Vec<T>,
     agg: Vec<T>,
@@ -143,6 +157,7 @@ impl<T: Real> Engine<T> {
             shape: s,
             mu: alloc::vec![T::zero(); s.input_terms],
             strength: alloc::vec![T::zero(); s.rules],
+            fired: Vec::with_capacity(s.rules),
             acts: Vec::with_capacity(s.acts),
             levels: alloc::vec![T::zero(); s.levels],
             agg: alloc::vec![T::zero(); s.samples],
@@ -195,18 +210,37 @@ impl<T: Real> Engine<T> {
     /// Every rule's weighted firing strength into `scratch.strength`.
     fn fire(&self, scratch: &mut Scratch<T>) {
         let c = &self.compiled;
-        let (mu, strength) = (&scratch.mu, &mut scratch.strength);
-        if let Some(pairs) = &c.and_pairs {
-            // All rules are `a and b`: a tight gather loop, monomorphic for the common T-norms.
-            let get = |i: u32| mu.get(i as usize).copied().unwrap_or_else(T::zero);
-            let it = strength.iter_mut().zip(pairs).zip(&c.weights);
-            match self.conjunction {
-                TNorm::Minimum => it.for_each(|((s, p), &w)| *s = w * get(p[0]).min(get(p[1]))),
-                TNorm::AlgebraicProduct => {
-                    it.for_each(|((s, p), &w)| *s = w * get(p[0]) * get(p[1]))
+        let Scratch {
+            mu,
+            strength,
+            fired,
+            ..
+        } = scratch;
+        if let Some(index) = &c.and_index {
+            // All rules are `a and b`: visit only pairs whose memberships are both non-zero.
+            strength.fill(T::zero());
+            fired.clear();
+            for (a, &ma) in mu.iter().enumerate() {
+                if ma == T::zero() {
+                    continue;
                 }
-                t => it.for_each(|((s, p), &w)| *s = w * t.apply(get(p[0]), get(p[1]))),
+                let (lo, hi) = (index.offsets[a] as usize, index.offsets[a + 1] as usize);
+                for &(b, r) in &index.entries[lo..hi] {
+                    let mb = mu.get(b as usize).copied().unwrap_or_else(T::zero);
+                    if mb == T::zero() {
+                        continue;
+                    }
+                    let t = match self.conjunction {
+                        TNorm::Minimum => ma.min(mb),
+                        TNorm::AlgebraicProduct => ma * mb,
+                        t => t.apply(ma, mb),
+                    };
+                    strength[r as usize] = c.weights[r as usize] * t;
+                    fired.push(r);
+                }
             }
+            // Ascending, so sums over fired rules add in the same order as over all rules.
+            fired.sort_unstable();
             return;
         }
         for (r, s) in strength.iter_mut().enumerate() {
@@ -224,6 +258,7 @@ impl<T: Real> Engine<T> {
     ) -> Option<T> {
         let Scratch {
             strength,
+            fired: fired_rules,
             acts,
             levels,
             agg,
@@ -236,12 +271,26 @@ impl<T: Real> Engine<T> {
             .iter()
             .filter(|c| strength[c.0 as usize] > T::zero());
         if var.defuzzifier == Defuzzifier::CenterAverage {
-            // Silent rules add 0 to both sums: no branch needed.
+            // Silent rules add 0 to both sums, so only fired rules need visiting where they
+            // are known; elsewhere every consequent, without a branch.
             let (mut num, mut den) = (T::zero(), T::zero());
-            for &(r, t, _) in &plan.consequents {
+            let mut add = |&(r, t, _): &(u32, u32, bool)| {
                 let w = strength[r as usize];
                 num = num + w * plan.centers[t as usize];
                 den = den + w;
+            };
+            if self.compiled.and_index.is_some() {
+                for &r in fired_rules.iter() {
+                    let (lo, hi) = (
+                        plan.rule_offsets[r as usize],
+                        plan.rule_offsets[r as usize + 1],
+                    );
+                    plan.consequents[lo as usize..hi as usize]
+                        .iter()
+                        .for_each(&mut add);
+                }
+            } else {
+                plan.consequents.iter().for_each(&mut add);
             }
             return ratio(num, den);
         }
