@@ -1,6 +1,7 @@
 //! Seeded fingertip datasets for the learning issues, as CSV text.
 //!
-//! - [`taps`]: every contact shape of seed 000 Figure 7 at every position (moved right, then
+//! - [`taps`]: every contact shape of seed 000 Figure 7 ([`FIGURE7_SHAPES`], shared with
+//!   `aot-locate`) at every position (moved right, then
 //!   down, as §4 describes), at 5 / 7 / 9 kgf, two repeats, at every MS5611 OSR: the raw
 //!   driver readings around contact onset (for arrival times) and the held pressures (for the
 //!   contact-area MLP). Two files: `taps.csv` (one row per tap) and `series.csv` (one row per
@@ -8,68 +9,14 @@
 //! - [`weights`]: seed 000 Table 1's experiment — 0 → 200 gf in 10 gf steps on the whole pad,
 //!   one step every 2 s, read at OSR 4096 — three seeded runs, one row per frame.
 
-use super::geometry::{COLS, Cell, CellSet, ROWS};
+use super::geometry::{Cell, CellSet};
 use super::model::{Fingertip, FingertipConfig, TapConfig};
 use crate::SimError;
 use crate::scene::Model;
 use hand_traits::TactileSource;
 use std::fmt::Write;
 
-/// A contact shape of Figure 7: its name and its size in cells (rows × columns).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Shape {
-    /// Figure 7's name for it: `1`, `4-1`, `9`, `16`, `12`, `4-2`.
-    pub name: &'static str,
-    /// Rows it covers.
-    pub rows: u8,
-    /// Columns it covers.
-    pub cols: u8,
-}
-
-/// Figure 7's six shapes. The figure itself is lost in the text we have: sizes 4-1 and 4-2 are
-/// "the same size, different cases", taken as a 2 × 2 square and a 1 × 4 bar; size 12 as 3 × 4.
-pub const FIGURE7_SHAPES: [Shape; 6] = [
-    Shape {
-        name: "1",
-        rows: 1,
-        cols: 1,
-    },
-    Shape {
-        name: "4-1",
-        rows: 2,
-        cols: 2,
-    },
-    Shape {
-        name: "9",
-        rows: 3,
-        cols: 3,
-    },
-    Shape {
-        name: "16",
-        rows: 4,
-        cols: 4,
-    },
-    Shape {
-        name: "12",
-        rows: 3,
-        cols: 4,
-    },
-    Shape {
-        name: "4-2",
-        rows: 1,
-        cols: 4,
-    },
-];
-
-impl Shape {
-    /// Every placement on the pad, moved right one cell at a time, then down (§4).
-    pub fn placements(self) -> impl Iterator<Item = CellSet> {
-        (1..=ROWS.saturating_sub(self.rows) + 1).flat_map(move |r| {
-            (1..=COLS.saturating_sub(self.cols) + 1)
-                .filter_map(move |c| CellSet::rect(Cell::new(r, c)?, self.rows, self.cols))
-        })
-    }
-}
+pub use aot_locate::{FIGURE7_SHAPES, Shape};
 
 /// The forces of Figure 9 / Table 2, kgf.
 pub const TAP_FORCES_KGF: [f64; 3] = [5.0, 7.0, 9.0];
@@ -102,7 +49,7 @@ pub fn taps(seed: u64) -> Result<(String, String), SimError> {
     let mut id = 0u32;
     for osr in TAP_OSRS {
         for shape in FIGURE7_SHAPES {
-            for cells in shape.placements() {
+            for cells in shape.placements().map(CellSet::from) {
                 for force_kgf in TAP_FORCES_KGF {
                     for repeat in 0..TAP_REPEATS {
                         let corner = cells

@@ -162,6 +162,13 @@ impl CellSet {
     }
 }
 
+/// `aot-locate` numbers the same 4 × 6 cells the same way (row-major, bit 0 = area 1.1).
+impl From<aot_locate::CellSet> for CellSet {
+    fn from(cells: aot_locate::CellSet) -> CellSet {
+        CellSet(cells.bits())
+    }
+}
+
 /// The 3 × 3 Arrival-of-Time region (0-based, row-major) holding the pad point `p` (mm);
 /// points off the pad fall in the nearest edge region.
 pub fn aot_region_at(p: [f64; 2]) -> usize {
