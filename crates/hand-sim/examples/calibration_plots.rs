@@ -5,12 +5,45 @@ use hand_sim::fingertip::{Cell, CellSet, ContactPatch, LawParams};
 use hand_sim::imu_pad::ImuPadConfig;
 use hand_sim::underactuated::{Material, Shape, UnderactuatedConfig, record_grasp};
 use paper_fixtures::Table;
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::error::Error;
+use std::ops::Range;
 use std::path::Path;
 
 type Res = Result<(), Box<dyn Error>>;
 const SENSOR_COLOURS: [RGBColor; 3] = [RED, GREEN, BLUE];
+
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// A captioned chart on `area` with both axes' ranges and descriptions.
+fn chart<'a, 'b>(
+    area: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    caption: impl AsRef<str>,
+    x: (Range<f64>, &str),
+    y: (Range<f64>, &str),
+) -> Result<Chart<'a, 'b>, Box<dyn Error>> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption.as_ref(), ("sans-serif", 16))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(50)
+        .build_cartesian_2d(x.0, y.0)?;
+    chart.configure_mesh().x_desc(x.1).y_desc(y.1).draw()?;
+    Ok(chart)
+}
+
+/// The series legend at `position`.
+fn legend<'a, 'b: 'a>(chart: &mut Chart<'a, 'b>, position: SeriesLabelPosition) -> Res {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .border_style(BLACK)
+        .background_style(WHITE)
+        .draw()?;
+    Ok(())
+}
 
 fn derived(name: &str) -> Result<Table, Box<dyn Error>> {
     let file = paper_fixtures::fixtures_dir().join("derived").join(name);
@@ -26,20 +59,12 @@ fn cell_of_label(label: f64) -> Option<Cell> {
 fn fingertip_table2(out: &Path) -> Res {
     let root = SVGBackend::new(out, (640, 480)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Fingertip vs seed 000 Table 2 (single cell, 5/7/9 kgf)",
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(50)
-        .build_cartesian_2d(-5.0..75.0, -5.0..75.0)?;
-    chart
-        .configure_mesh()
-        .x_desc("paper rise, hPa")
-        .y_desc("simulated rise, hPa")
-        .draw()?;
+    let mut chart = chart(
+        &root,
+        "Fingertip vs seed 000 Table 2 (single cell, 5/7/9 kgf)",
+        (-5.0..75.0, "paper rise, hPa"),
+        (-5.0..75.0, "simulated rise, hPa"),
+    )?;
     chart
         .draw_series(LineSeries::new(
             [(-5.0, -5.0), (75.0, 75.0)],
@@ -67,11 +92,7 @@ fn fingertip_table2(out: &Path) -> Res {
             .label(format!("sensor {}", k + 1))
             .legend(move |(x, y)| Circle::new((x, y), 4, colour.filled()));
     }
-    chart
-        .configure_series_labels()
-        .border_style(BLACK)
-        .background_style(WHITE)
-        .draw()?;
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     root.present()?;
     Ok(())
 }
@@ -80,20 +101,12 @@ fn fingertip_table2(out: &Path) -> Res {
 fn fingertip_table1(out: &Path) -> Res {
     let root = SVGBackend::new(out, (640, 480)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Fingertip vs seed 000 Table 1 (whole pad, 0-200 gf)",
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(50)
-        .build_cartesian_2d(0.0..210.0, 0.0..1.4)?;
-    chart
-        .configure_mesh()
-        .x_desc("weight, gf")
-        .y_desc("rise, hPa")
-        .draw()?;
+    let mut chart = chart(
+        &root,
+        "Fingertip vs seed 000 Table 1 (whole pad, 0-200 gf)",
+        (0.0..210.0, "weight, gf"),
+        (0.0..1.4, "rise, hPa"),
+    )?;
     let law = LawParams::CALIBRATED;
     let all = Cell::all().fold(CellSet::EMPTY, CellSet::with);
     let table = derived("seed000_table1_rise.csv")?;
@@ -116,12 +129,7 @@ fn fingertip_table1(out: &Path) -> Res {
                 .map(|p| Circle::new(p, 4, colour.filled())),
         )?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .border_style(BLACK)
-        .background_style(WHITE)
-        .draw()?;
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     root.present()?;
     Ok(())
 }
@@ -131,20 +139,12 @@ fn imu_pad_force_depth(out: &Path) -> Res {
     let curve = ImuPadConfig::default().mechanics.curve()?;
     let root = SVGBackend::new(out, (640, 480)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "ICM-20789 pad: force vs contact depth (seed 002 Fig. 6B / 7B)",
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(50)
-        .build_cartesian_2d(0.6..1.8, 0.0..16.0)?;
-    chart
-        .configure_mesh()
-        .x_desc("contact depth, mm")
-        .y_desc("force, N")
-        .draw()?;
+    let mut chart = chart(
+        &root,
+        "ICM-20789 pad: force vs contact depth (seed 002 Fig. 6B / 7B)",
+        (0.6..1.8, "contact depth, mm"),
+        (0.0..16.0, "force, N"),
+    )?;
     let sim = (60..=180)
         .map(|d| f64::from(d) / 100.0)
         .map(|d| (d, curve.force_n(d)));
@@ -160,12 +160,7 @@ fn imu_pad_force_depth(out: &Path) -> Res {
         .draw_series(paper.into_iter().map(|p| Circle::new(p, 5, RED.filled())))?
         .label("paper (measured)")
         .legend(|(x, y)| Circle::new((x, y), 5, RED.filled()));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .border_style(BLACK)
-        .background_style(WHITE)
-        .draw()?;
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     root.present()?;
     Ok(())
 }
@@ -206,19 +201,12 @@ fn underactuated_fig9(out: &Path) -> Res {
         (&left, "finger 1 force, N", 45.0, 1usize),
         (&right, "finger 1 distal angle, deg", 95.0, 2),
     ] {
-        let mut chart = ChartBuilder::on(area)
-            .caption(
-                format!("Seed 001 Fig. 9, simulated: {title}"),
-                ("sans-serif", 15),
-            )
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(45)
-            .build_cartesian_2d(0.0..14.0, 0.0..y_max)?;
-        chart
-            .configure_mesh()
-            .x_desc("time since first contact, s")
-            .draw()?;
+        let mut chart = chart(
+            area,
+            format!("Seed 001 Fig. 9, simulated: {title}"),
+            (0.0..14.0, "time since first contact, s"),
+            (0.0..y_max, ""),
+        )?;
         for (name, colour, pts) in &series {
             let colour = *colour;
             let line = pts.iter().map(|p| (p.0, if pick == 1 { p.1 } else { p.2 }));
@@ -227,12 +215,7 @@ fn underactuated_fig9(out: &Path) -> Res {
                 .label(*name)
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .border_style(BLACK)
-            .background_style(WHITE)
-            .draw()?;
+        legend(&mut chart, SeriesLabelPosition::LowerRight)?;
     }
     root.present()?;
     Ok(())
