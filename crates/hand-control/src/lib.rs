@@ -7,3 +7,5 @@
 //! - the grasp loop: tactile source → estimates → grasp policy → actuator at a fixed rate, with
 //!   a defined safe state on every fault.
 #![deny(unsafe_code)]
+
+pub mod grasp_loop;

@@ -1,0 +1,111 @@
+//! The loop's time base and its fixed-rate scheduler.
+//!
+//! A clock is a trait so the same loop runs on wall time ([`StdClock`]) and on a simulator's
+//! clock, where "waiting" advances the simulated physics (tests: a 120 s hold in well under a
+//! second of CPU).
+
+/// A monotonic clock the loop can wait on.
+pub trait LoopClock {
+    /// Now, µs since the clock's epoch.
+    fn now_us(&mut self) -> u64;
+    /// Returns at `t_us` or later. A simulated clock advances its world to `t_us`.
+    fn wait_until_us(&mut self, t_us: u64);
+}
+
+/// Wall time from [`std::time::Instant`], waiting by sleeping.
+#[derive(Debug, Clone, Copy)]
+pub struct StdClock {
+    epoch: std::time::Instant,
+}
+
+impl StdClock {
+    /// A clock whose epoch is now.
+    pub fn new() -> StdClock {
+        StdClock {
+            epoch: std::time::Instant::now(),
+        }
+    }
+}
+
+impl Default for StdClock {
+    fn default() -> Self {
+        StdClock::new()
+    }
+}
+
+impl LoopClock for StdClock {
+    fn now_us(&mut self) -> u64 {
+        u64::try_from(self.epoch.elapsed().as_micros()).unwrap_or(u64::MAX)
+    }
+
+    fn wait_until_us(&mut self, t_us: u64) {
+        let now = self.now_us();
+        if t_us > now {
+            std::thread::sleep(std::time::Duration::from_micros(t_us - now));
+        }
+    }
+}
+
+/// Ticks every `period_us` on a fixed grid: a late cycle does not shift later ticks, and ticks
+/// missed while a cycle overran are skipped (and counted) rather than run back to back.
+///
+/// ```
+/// use hand_control::grasp_loop::{FixedRate, LoopClock};
+///
+/// /// A clock that jumps to wherever it is asked to wait.
+/// struct Jump(u64);
+/// impl LoopClock for Jump {
+///     fn now_us(&mut self) -> u64 { self.0 }
+///     fn wait_until_us(&mut self, t: u64) { self.0 = self.0.max(t); }
+/// }
+///
+/// let mut clock = Jump(0);
+/// let mut rate = FixedRate::new(10_000, 0);
+/// assert_eq!(rate.wait(&mut clock), 0);
+/// assert_eq!(rate.wait(&mut clock), 10_000);
+/// clock.0 = 35_000; // a cycle overran by 2.5 periods
+/// assert_eq!(rate.wait(&mut clock), 40_000);
+/// assert_eq!(rate.missed_ticks(), 2);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FixedRate {
+    period_us: u64,
+    next_us: u64,
+    missed: u64,
+}
+
+impl FixedRate {
+    /// Ticks at `start_us`, `start_us + period_us`, …; a zero period is taken as 1 µs.
+    pub fn new(period_us: u64, start_us: u64) -> FixedRate {
+        FixedRate {
+            period_us: period_us.max(1),
+            next_us: start_us,
+            missed: 0,
+        }
+    }
+
+    /// Waits for the next tick on the grid and returns its scheduled time, µs.
+    pub fn wait(&mut self, clock: &mut impl LoopClock) -> u64 {
+        let now = clock.now_us();
+        if now > self.next_us {
+            // Overran: skip to the first grid tick not in the past.
+            let behind = (now - self.next_us).div_ceil(self.period_us);
+            self.missed += behind;
+            self.next_us += behind * self.period_us;
+        }
+        let tick = self.next_us;
+        clock.wait_until_us(tick);
+        self.next_us = tick + self.period_us;
+        tick
+    }
+
+    /// Ticks skipped because a cycle overran.
+    pub fn missed_ticks(&self) -> u64 {
+        self.missed
+    }
+
+    /// The period, µs.
+    pub fn period_us(&self) -> u64 {
+        self.period_us
+    }
+}
