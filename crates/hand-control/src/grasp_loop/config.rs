@@ -108,14 +108,14 @@ pub struct LoopConfig {
 }
 
 impl LoopConfig {
-    /// 100 Hz, 1.5 kPa target, 50 Pa contact threshold, 10 Hz rate filter, 10 tare cycles,
+    /// 100 Hz, 500 Pa target (about the seed 000 fingertip's mean rise under a 5 N whole-pad grip), 50 Pa contact threshold, 2 Hz rate filter, 10 tare cycles,
     /// goal 0.2 rad within 0…0.5 rad, the full band, hold last safe effort, manual recovery.
     pub fn new() -> LoopConfig {
         LoopConfig {
             period_us: 10_000,
-            target_pressure_pa: 1_500.0,
+            target_pressure_pa: 500.0,
             contact_threshold_pa: 50.0,
-            rate_cutoff_hz: 10.0,
+            rate_cutoff_hz: 2.0,
             tare_cycles: 10,
             goal_rad: 0.2,
             goal_limits_rad: (0.0, 0.5),

@@ -211,6 +211,15 @@ impl Fingertip {
         self.clock.now_ns()
     }
 
+    /// Lets the bus idle until `t_ns` (no conversion, no frame): a control loop waiting for its
+    /// next tick. An earlier time changes nothing.
+    pub fn idle_until_ns(&mut self, t_ns: u64) {
+        let now = self.clock.now_ns();
+        if t_ns > now {
+            self.clock.advance_ns(t_ns - now);
+        }
+    }
+
     /// Every frame read so far.
     pub fn frames(&self) -> &[PressureFrame<SENSORS>] {
         &self.frames
