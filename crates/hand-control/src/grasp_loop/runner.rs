@@ -49,6 +49,7 @@ where
     last_state: Option<GripperState>,
     safe_since_us: u64,
     safe_confirmed: bool,
+    safe_stop_failing: bool,
     reboots: u32,
     log: Vec<Sample<N>>,
     events: Vec<FaultEvent<S::Error, P::Error, A::Error>>,
@@ -88,6 +89,7 @@ where
             last_state: None,
             safe_since_us: 0,
             safe_confirmed: false,
+            safe_stop_failing: false,
             reboots: 0,
             log: Vec::new(),
             events: Vec::new(),
@@ -156,13 +158,14 @@ where
             }
         }
         s.fault = faults.first().map(LoopFault::kind);
+        let clean = faults.is_empty();
+        self.report(t_us, faults);
         match self.mode {
-            Mode::Tare | Mode::Grasp if !faults.is_empty() => self.enter_safe(t_us, &mut s),
-            Mode::Safe | Mode::Halted => self.stay_safe(t_us, faults.is_empty(), &mut s),
+            Mode::Tare | Mode::Grasp if !clean => self.enter_safe(t_us, &mut s),
+            Mode::Safe | Mode::Halted => self.stay_safe(t_us, clean, &mut s),
             _ => {}
         }
         s.mode = self.mode;
-        self.report(t_us, faults);
         self.cycle += 1;
         self.log.push(s);
         // Just pushed, so the log is not empty.
@@ -211,10 +214,17 @@ where
     fn safe_stop(&mut self, t_us: u64, s: &mut Sample<N>) {
         s.safe_action = Some(self.config.safe_action);
         match self.actuator.safe_stop(self.config.safe_action) {
-            Ok(()) => self.safe_confirmed = true,
+            Ok(()) => {
+                self.safe_confirmed = true;
+                self.safe_stop_failing = false;
+            }
             Err(e) => {
                 self.safe_confirmed = false;
-                self.push_event(t_us, LoopFault::SafeStop(e));
+                // Retried every cycle; reported when it starts failing.
+                if !self.safe_stop_failing {
+                    self.safe_stop_failing = true;
+                    self.push_event(t_us, LoopFault::SafeStop(e));
+                }
             }
         }
     }

@@ -192,11 +192,7 @@ impl GripperActuator for Hand {
         rig.set_torque_limit(cmd.effort.to_torque_limit_raw())
             .map_err(HandError::Sim)?;
         rig.set_goal_rad(f64::from(cmd.position_rad))
-            .map_err(HandError::Sim)?;
-        if !rig.state().torque_enabled {
-            rig.set_torque_enabled(true).map_err(HandError::Sim)?;
-        }
-        Ok(())
+            .map_err(HandError::Sim)
     }
 
     fn state(&mut self) -> Result<GripperState, HandError> {
@@ -228,8 +224,11 @@ impl GripperActuator for Hand {
 impl RebootableActuator for Hand {
     fn reboot(&mut self) -> Result<(), HandError> {
         self.transport()?;
-        self.0.borrow_mut().rig.reboot();
-        Ok(())
+        // REBOOT clears the latched error with torque off; enable it again, as a driver's
+        // recovery does, so the next command moves the fingers.
+        let rig = &mut self.0.borrow_mut().rig;
+        rig.reboot();
+        rig.set_torque_enabled(true).map_err(HandError::Sim)
     }
 }
 
