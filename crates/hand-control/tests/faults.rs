@@ -64,12 +64,10 @@ fn overload_at_full_torque_goes_torque_off_in_the_same_cycle() {
         l.events()[0].fault,
         LoopFault::Hardware(f) if f.contains(Faults::OVERLOAD)
     ));
-    // Nothing is sent after the fault; every later cycle is still logged, in the safe state.
-    assert!(
-        l.log()[i..]
-            .iter()
-            .all(|s| s.torque_raw.is_none() && s.mode == Mode::Safe)
-    );
+    // The fault shows in the state read after that cycle's command; nothing is sent after it,
+    // and every later cycle is still logged, in the safe state.
+    assert!(l.log()[i..].iter().all(|s| s.mode == Mode::Safe));
+    assert!(l.log()[i + 1..].iter().all(|s| s.torque_raw.is_none()));
     assert!(!w.borrow().state().torque_enabled);
 }
 
