@@ -13,6 +13,8 @@ pub mod control_table;
 mod error;
 pub mod protocol;
 mod servo_hand;
+#[cfg(feature = "sim")]
+pub mod sim;
 
 pub use error::{Error, InstructionError, faults_from_hardware_error};
 pub use servo_hand::{RawGoals, RawServoState, ServoHand};
