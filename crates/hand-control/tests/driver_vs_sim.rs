@@ -15,7 +15,10 @@ fn hand(ids: &[u8]) -> (SimBus, ServoHand) {
 }
 
 fn cmd(position_rad: f32, raw: u16) -> GripperCommand {
-    GripperCommand { position_rad, effort: Effort::from_torque_limit_raw(raw) }
+    GripperCommand {
+        position_rad,
+        effort: Effort::from_torque_limit_raw(raw),
+    }
 }
 
 #[test]
@@ -39,7 +42,10 @@ fn sync_write_then_sync_read_moves_every_servo() {
     hand.command(&cmd(2.5, 1023)).unwrap();
     sim.advance(Duration::from_secs(2)).unwrap();
     let states = hand.read_states().unwrap();
-    assert_eq!(states.iter().map(|s| s.id).collect::<Vec<_>>(), [1, 2, 3, 4]);
+    assert_eq!(
+        states.iter().map(|s| s.id).collect::<Vec<_>>(),
+        [1, 2, 3, 4]
+    );
     let goal = (2.5f64 / (std::f64::consts::TAU / 4096.0)).round() as i32;
     for s in &states {
         assert!((s.position - goal).abs() <= 2, "{s:?} vs {goal}");
@@ -54,7 +60,10 @@ fn sync_write_then_sync_read_moves_every_servo() {
         assert_eq!(hand.read_register(id, 100).unwrap(), 346);
     }
     let st = hand.state().unwrap();
-    assert!((st.position_rad - 2.5).abs() < 0.01 && st.faults.is_empty(), "{st:?}");
+    assert!(
+        (st.position_rad - 2.5).abs() < 0.01 && st.faults.is_empty(),
+        "{st:?}"
+    );
 }
 
 #[test]
@@ -79,16 +88,52 @@ fn reg_write_waits_for_action() {
 fn refused_writes_are_status_errors_and_change_nothing() {
     let (_sim, mut hand) = hand(&[1]);
     let range = hand.write_register(1, 64, 2);
-    assert!(matches!(range, Err(Error::Status { id: 1, error: InstructionError::DataRange })), "{range:?}");
+    assert!(
+        matches!(
+            range,
+            Err(Error::Status {
+                id: 1,
+                error: InstructionError::DataRange
+            })
+        ),
+        "{range:?}"
+    );
     let ro = hand.write_register(1, 132, 0);
-    assert!(matches!(ro, Err(Error::Status { error: InstructionError::Access, .. })), "{ro:?}");
+    assert!(
+        matches!(
+            ro,
+            Err(Error::Status {
+                error: InstructionError::Access,
+                ..
+            })
+        ),
+        "{ro:?}"
+    );
     hand.write_register(1, 36, 500).unwrap();
     let limit = hand.write_register(1, 100, 600);
-    assert!(matches!(limit, Err(Error::Status { error: InstructionError::DataLimit, .. })), "{limit:?}");
+    assert!(
+        matches!(
+            limit,
+            Err(Error::Status {
+                error: InstructionError::DataLimit,
+                ..
+            })
+        ),
+        "{limit:?}"
+    );
     assert_eq!(hand.read_register(1, 36).unwrap(), 500);
     hand.set_torque(true).unwrap();
     let eeprom = hand.write_register(1, 36, 300);
-    assert!(matches!(eeprom, Err(Error::Status { error: InstructionError::Access, .. })), "{eeprom:?}");
+    assert!(
+        matches!(
+            eeprom,
+            Err(Error::Status {
+                error: InstructionError::Access,
+                ..
+            })
+        ),
+        "{eeprom:?}"
+    );
 }
 
 #[test]
@@ -106,7 +151,10 @@ fn out_of_range_command_is_rejected_before_the_bus() {
 fn dropped_status_corrupt_crc_and_silence_are_typed_errors() {
     let (sim, mut hand) = hand(&[1, 2]);
     sim.inject(2, Fault::DropNextStatus);
-    assert!(matches!(hand.read_states(), Err(Error::Timeout { id: Some(2) })));
+    assert!(matches!(
+        hand.read_states(),
+        Err(Error::Timeout { id: Some(2) })
+    ));
     // The next exchange works again.
     assert_eq!(hand.read_states().unwrap().len(), 2);
 
@@ -133,7 +181,10 @@ fn full_torque_stall_overloads_until_reboot() {
     hand.set_torque(true).unwrap();
     // An object 0.1 rad ahead, stiff enough to stall the finger.
     let wall = std::f64::consts::PI + 0.1;
-    sim.set_plant(1, move |th: f64, _w: f64, _t: Duration| if th > wall { 200.0 * (th - wall) } else { 0.0 });
+    sim.set_plant(
+        1,
+        move |th: f64, _w: f64, _t: Duration| if th > wall { 200.0 * (th - wall) } else { 0.0 },
+    );
     // Paper §7: at 100 % (1023) the servo overloads and lets go.
     hand.command(&cmd(4.0, 1023)).unwrap();
     let mut tripped_at = None;
@@ -150,7 +201,17 @@ fn full_torque_stall_overloads_until_reboot() {
     assert_eq!(sim.with_servo(1, |s| s.torque_enabled()), Some(false));
     // Torque cannot come back while the error is latched.
     let r = hand.set_torque(true);
-    assert!(matches!(r, Err(Error::Hardware { id: 1, faults: Faults::OVERLOAD, .. })), "{r:?}");
+    assert!(
+        matches!(
+            r,
+            Err(Error::Hardware {
+                id: 1,
+                faults: Faults::OVERLOAD,
+                ..
+            })
+        ),
+        "{r:?}"
+    );
     // Recovery: reboot clears it.
     assert_eq!(hand.recover().unwrap(), [1]);
     hand.set_torque(true).unwrap();
@@ -162,14 +223,20 @@ fn paper_torque_400_holds_without_overload() {
     let (mut sim, mut hand) = hand(&[1]);
     hand.set_torque(true).unwrap();
     let wall = std::f64::consts::PI + 0.1;
-    sim.set_plant(1, move |th: f64, _w: f64, _t: Duration| if th > wall { 200.0 * (th - wall) } else { 0.0 });
+    sim.set_plant(
+        1,
+        move |th: f64, _w: f64, _t: Duration| if th > wall { 200.0 * (th - wall) } else { 0.0 },
+    );
     hand.command(&cmd(4.0, 400)).unwrap();
     // Table 5 "torque max": held for more than 2 min without release.
     sim.advance(Duration::from_secs(130)).unwrap();
     let s = hand.state().unwrap();
     assert!(s.faults.is_empty(), "{s:?}");
     assert!((s.load_fraction - 400.0 / 1023.0).abs() < 0.01, "{s:?}");
-    assert!(s.position_rad > wall as f32, "holding against the object: {s:?}");
+    assert!(
+        s.position_rad > wall as f32,
+        "holding against the object: {s:?}"
+    );
 }
 
 #[test]
@@ -188,7 +255,9 @@ fn hold_last_safe_effort_resends_the_confirmed_command() {
 fn factory_reset_restores_eeprom_and_keeps_the_id() {
     let (_sim, mut hand) = hand(&[5]);
     hand.write_register(5, 36, 100).unwrap();
-    hand.bus_mut().factory_reset(5, dynamixel2::instructions::FactoryResetKind::KeepId).unwrap();
+    hand.bus_mut()
+        .factory_reset(5, dynamixel2::instructions::FactoryResetKind::KeepId)
+        .unwrap();
     assert_eq!(hand.read_register(5, 36).unwrap(), 885);
     assert_eq!(hand.read_register(5, 7).unwrap(), 5);
 }

@@ -176,7 +176,10 @@ impl World {
     fn answers(&self, i: usize, instruction: u8) -> bool {
         match self.servos[i].status_return_level() {
             0 => instruction == ins::PING,
-            1 => matches!(instruction, ins::PING | ins::READ | ins::SYNC_READ | ins::BULK_READ),
+            1 => matches!(
+                instruction,
+                ins::PING | ins::READ | ins::SYNC_READ | ins::BULK_READ
+            ),
             _ => true,
         }
     }
@@ -196,7 +199,9 @@ impl World {
         match p.instruction {
             ins::PING => {
                 let ids: Vec<usize> = if broadcast {
-                    let mut v: Vec<usize> = (0..self.servos.len()).filter(|&i| !self.faults[i].mute).collect();
+                    let mut v: Vec<usize> = (0..self.servos.len())
+                        .filter(|&i| !self.faults[i].mute)
+                        .collect();
                     v.sort_by_key(|&i| self.servos[i].id());
                     v
                 } else {
@@ -224,7 +229,9 @@ impl World {
             }
             ins::WRITE | ins::REG_WRITE => {
                 let targets: Vec<usize> = if broadcast {
-                    (0..self.servos.len()).filter(|&i| !self.faults[i].mute).collect()
+                    (0..self.servos.len())
+                        .filter(|&i| !self.faults[i].mute)
+                        .collect()
                 } else {
                     self.target(p.id).into_iter().collect()
                 };
@@ -316,7 +323,9 @@ impl World {
                 let mut rest = &prm[..];
                 while rest.len() >= 5 {
                     let (id, a, n) = (rest[0], u16_at(rest, 1), usize::from(u16_at(rest, 3)));
-                    let Some(data) = rest.get(5..5 + n) else { break };
+                    let Some(data) = rest.get(5..5 + n) else {
+                        break;
+                    };
                     if let Some(i) = self.target(id) {
                         let _ = self.servos[i].write(a, data);
                     }
@@ -347,7 +356,9 @@ pub struct SimBus {
 
 impl std::fmt::Debug for SimBus {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SimBus").field("client_path", &self.client_path).finish_non_exhaustive()
+        f.debug_struct("SimBus")
+            .field("client_path", &self.client_path)
+            .finish_non_exhaustive()
     }
 }
 
@@ -385,7 +396,18 @@ impl SimBus {
                 .name("dxl-sim".into())
                 .spawn(move || serve(&device, &world, &stop, &tx))?
         };
-        Ok((Self { world, clock, acks, seq: 0, stop, thread: Some(thread), client_path }, client))
+        Ok((
+            Self {
+                world,
+                clock,
+                acks,
+                seq: 0,
+                stop,
+                thread: Some(thread),
+                client_path,
+            },
+            client,
+        ))
     }
 
     /// The client end's device path (`/dev/pts/N`), for another process to open.
@@ -395,7 +417,9 @@ impl SimBus {
 
     fn world(&self) -> MutexGuard<'_, World> {
         // A panic in the simulator thread poisons the lock; the state is still usable to inspect.
-        self.world.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+        self.world
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 
     /// Advances simulated time by `dt` after every byte the client sent so far; returns once
@@ -434,7 +458,8 @@ impl SimBus {
 
     /// Couples an external load to servo `id` (replacing the previous one).
     pub fn set_plant(&self, id: u8, plant: impl Plant + 'static) -> bool {
-        self.with_servo(id, |s| s.set_plant(Some(Box::new(plant)))).is_some()
+        self.with_servo(id, |s| s.set_plant(Some(Box::new(plant))))
+            .is_some()
     }
 
     /// Injects a bus fault on servo `id`.
@@ -475,19 +500,35 @@ fn serve(device: &SerialPort, world: &Mutex<World>, stop: &AtomicBool, acks: &Se
     while !stop.load(Ordering::Relaxed) {
         let n = match device.read(&mut buf) {
             Ok(n) => n,
-            Err(e) if matches!(e.kind(), std::io::ErrorKind::TimedOut | std::io::ErrorKind::WouldBlock | std::io::ErrorKind::Interrupted) => continue,
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::TimedOut
+                        | std::io::ErrorKind::WouldBlock
+                        | std::io::ErrorKind::Interrupted
+                ) =>
+            {
+                continue;
+            }
             // The client side is gone for good.
             Err(_) => return,
         };
         parser.push(&buf[..n]);
         while let Some(frame) = parser.next_packet() {
-            let mut w = world.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            let mut w = world
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
             let out = match frame {
-                Ok(p) if p.id == CLOCK_ID && p.instruction == CLOCK_INSTRUCTION && p.params.len() == 12 => {
+                Ok(p)
+                    if p.id == CLOCK_ID
+                        && p.instruction == CLOCK_INSTRUCTION
+                        && p.params.len() == 12 =>
+                {
                     let mut ns = [0u8; 8];
                     ns.copy_from_slice(&p.params[..8]);
                     w.advance(Duration::from_nanos(u64::from_le_bytes(ns)));
-                    let seq = u32::from_le_bytes([p.params[8], p.params[9], p.params[10], p.params[11]]);
+                    let seq =
+                        u32::from_le_bytes([p.params[8], p.params[9], p.params[10], p.params[11]]);
                     let _ = acks.send(seq);
                     Vec::new()
                 }

@@ -167,7 +167,9 @@ impl SimServo {
 
     fn reg(&self, address: u16) -> &'static Register {
         // Only called with the MX-28 addresses of `addr`, all present in the table.
-        self.table.register_at(address).unwrap_or(&self.table.registers[0])
+        self.table
+            .register_at(address)
+            .unwrap_or(&self.table.registers[0])
     }
 
     /// A register's value.
@@ -179,7 +181,8 @@ impl SimServo {
     fn set(&mut self, address: u16, value: i32) {
         let r = *self.reg(address);
         let bytes = r.encode(value);
-        self.mem[usize::from(r.address)..usize::from(r.end())].copy_from_slice(&bytes[..usize::from(r.width)]);
+        self.mem[usize::from(r.address)..usize::from(r.end())]
+            .copy_from_slice(&bytes[..usize::from(r.width)]);
     }
 
     /// The servo's ID (register 7).
@@ -256,8 +259,14 @@ impl SimServo {
         let moving = vel.abs() > self.get(addr::MOVING_THRESHOLD);
         self.set(addr::MOVING, i32::from(moving));
         self.set(addr::REALTIME_TICK, (now.as_millis() % 32768) as i32);
-        self.set(addr::PRESENT_INPUT_VOLTAGE, i32::from(self.params.input_voltage_dv));
-        self.set(addr::PRESENT_TEMPERATURE, i32::from(self.params.temperature_c));
+        self.set(
+            addr::PRESENT_INPUT_VOLTAGE,
+            i32::from(self.params.input_voltage_dv),
+        );
+        self.set(
+            addr::PRESENT_TEMPERATURE,
+            i32::from(self.params.temperature_c),
+        );
     }
 
     /// Advances the motor by `dt` ending at simulated time `now`.
@@ -301,9 +310,18 @@ impl SimServo {
             None => 0.0,
         };
         // Semi-implicit Euler: the back-EMF term is stiff, so treat it implicitly.
-        let damping = if self.torque_enabled() { p.stall_torque_nm / p.no_load_speed_rad_s } else { 0.0 };
-        let drive = if self.torque_enabled() { p.stall_torque_nm * duty } else { 0.0 };
-        self.omega = (self.omega * p.inertia_kg_m2 + h * (drive - external)) / (p.inertia_kg_m2 + h * damping);
+        let damping = if self.torque_enabled() {
+            p.stall_torque_nm / p.no_load_speed_rad_s
+        } else {
+            0.0
+        };
+        let drive = if self.torque_enabled() {
+            p.stall_torque_nm * duty
+        } else {
+            0.0
+        };
+        self.omega = (self.omega * p.inertia_kg_m2 + h * (drive - external))
+            / (p.inertia_kg_m2 + h * damping);
         if !self.omega.is_finite() {
             self.omega = 0.0;
         }
@@ -330,7 +348,10 @@ impl SimServo {
         if n == 0 {
             return Err(InstructionError::DataLength);
         }
-        self.mem.get(a..a + n).map(<[u8]>::to_vec).ok_or(InstructionError::Access)
+        self.mem
+            .get(a..a + n)
+            .map(<[u8]>::to_vec)
+            .ok_or(InstructionError::Access)
     }
 
     /// Checks a WRITE of `data` at `address` without applying it.
@@ -362,7 +383,9 @@ impl SimServo {
             if r.access != Access::Rw || (r.area == Area::Eeprom && self.torque_enabled()) {
                 return Err(InstructionError::Access);
             }
-            let value = r.decode(&data[at - start..]).ok_or(InstructionError::DataLength)?;
+            let value = r
+                .decode(&data[at - start..])
+                .ok_or(InstructionError::DataLength)?;
             if !r.in_range(value) {
                 return Err(InstructionError::DataRange);
             }
@@ -371,13 +394,17 @@ impl SimServo {
                 LimitBy::Symmetric(l) => value.abs() <= self.get(l),
                 // Position limits bind in Position Control Mode (3) only (e-Manual, Goal Position).
                 LimitBy::Between { min, max } => {
-                    self.get(addr::OPERATING_MODE) != 3 || (self.get(min)..=self.get(max)).contains(&value)
+                    self.get(addr::OPERATING_MODE) != 3
+                        || (self.get(min)..=self.get(max)).contains(&value)
                 }
             };
             if !within {
                 return Err(InstructionError::DataLimit);
             }
-            if r.address == addr::TORQUE_ENABLE && value == 1 && self.hardware_error() & self.get(addr::SHUTDOWN) as u8 != 0 {
+            if r.address == addr::TORQUE_ENABLE
+                && value == 1
+                && self.hardware_error() & self.get(addr::SHUTDOWN) as u8 != 0
+            {
                 return Err(InstructionError::ResultFail);
             }
             at = usize::from(r.end());
@@ -412,7 +439,10 @@ impl SimServo {
     /// # Errors
     /// `Instruction` when nothing is registered (e-Manual, Protocol 2.0 error 0x02).
     pub fn action(&mut self) -> Result<(), InstructionError> {
-        let (a, data) = self.registered.take().ok_or(InstructionError::Instruction)?;
+        let (a, data) = self
+            .registered
+            .take()
+            .ok_or(InstructionError::Instruction)?;
         self.set(addr::REGISTERED, 0);
         self.write(a, &data)
     }
@@ -460,12 +490,24 @@ mod tests {
         assert_eq!(s.write(14, &[0]), Err(InstructionError::Access)); // gap
         assert_eq!(s.write(116, &[0, 0]), Err(InstructionError::DataLength)); // half a register
         assert_eq!(s.write(64, &[2]), Err(InstructionError::DataRange));
-        assert_eq!(s.write(100, &900i16.to_le_bytes()), Err(InstructionError::DataRange));
+        assert_eq!(
+            s.write(100, &900i16.to_le_bytes()),
+            Err(InstructionError::DataRange)
+        );
         s.write(36, &500u16.to_le_bytes()).unwrap();
-        assert_eq!(s.write(100, &600i16.to_le_bytes()), Err(InstructionError::DataLimit));
-        assert_eq!(s.write(116, &5000i32.to_le_bytes()), Err(InstructionError::DataLimit));
+        assert_eq!(
+            s.write(100, &600i16.to_le_bytes()),
+            Err(InstructionError::DataLimit)
+        );
+        assert_eq!(
+            s.write(116, &5000i32.to_le_bytes()),
+            Err(InstructionError::DataLimit)
+        );
         s.write(64, &[1]).unwrap();
-        assert_eq!(s.write(36, &100u16.to_le_bytes()), Err(InstructionError::Access)); // EEPROM locked
+        assert_eq!(
+            s.write(36, &100u16.to_le_bytes()),
+            Err(InstructionError::Access)
+        ); // EEPROM locked
     }
 
     #[test]
@@ -482,7 +524,9 @@ mod tests {
         assert!((s.get(132) - 2048).abs() <= 2, "position {}", s.get(132));
         // A wall just ahead: the motor stalls at full PWM and trips after overload_time.
         let wall = s.position_rad() + 0.05;
-        s.set_plant(Some(Box::new(move |th: f64, _w: f64, _t: Duration| if th > wall { 500.0 * (th - wall) } else { 0.0 })));
+        s.set_plant(Some(Box::new(move |th: f64, _w: f64, _t: Duration| {
+            if th > wall { 500.0 * (th - wall) } else { 0.0 }
+        })));
         s.write(116, &3000i32.to_le_bytes()).unwrap();
         for _ in 0..10_000 {
             now += dt;
