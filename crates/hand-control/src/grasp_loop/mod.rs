@@ -67,6 +67,7 @@ pub mod estimate;
 pub mod fault;
 pub mod log;
 pub mod runner;
+mod servo_hand;
 
 pub use clock::{FixedRate, LoopClock, StdClock};
 pub use config::{ConfigError, LoopConfig, Recovery, TorqueBand};

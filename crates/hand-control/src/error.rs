@@ -1,0 +1,223 @@
+//! The servo side's typed errors: every way a Dynamixel exchange can fail.
+
+use hand_traits::Faults;
+
+use crate::control_table::hardware_error;
+
+/// The instruction error a status packet reports in its error byte (Protocol 2.0, bits 0–6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InstructionError {
+    /// 0x01: the instruction failed.
+    ResultFail,
+    /// 0x02: undefined instruction, or ACTION without a registered instruction.
+    Instruction,
+    /// 0x03: the servo saw a CRC mismatch in our packet.
+    Crc,
+    /// 0x04: the value is outside the register's range.
+    DataRange,
+    /// 0x05: the data is shorter than the register.
+    DataLength,
+    /// 0x06: the value is outside a limit set by another register (e.g. Goal PWM > PWM Limit).
+    DataLimit,
+    /// 0x07: read-only / undefined address, or EEPROM written while torque is on.
+    Access,
+    /// Any other code.
+    Other(u8),
+}
+
+impl InstructionError {
+    /// The error from the low 7 bits of a status packet's error byte (`None` when zero).
+    ///
+    /// ```
+    /// use hand_control::InstructionError;
+    /// assert_eq!(InstructionError::from_code(0x86), Some(InstructionError::DataLimit));
+    /// assert_eq!(InstructionError::from_code(0x80), None); // alert bit only
+    /// ```
+    pub fn from_code(byte: u8) -> Option<Self> {
+        Some(match byte & 0x7F {
+            0 => return None,
+            1 => Self::ResultFail,
+            2 => Self::Instruction,
+            3 => Self::Crc,
+            4 => Self::DataRange,
+            5 => Self::DataLength,
+            6 => Self::DataLimit,
+            7 => Self::Access,
+            n => Self::Other(n),
+        })
+    }
+
+    /// The code on the wire.
+    pub fn code(self) -> u8 {
+        match self {
+            Self::ResultFail => 1,
+            Self::Instruction => 2,
+            Self::Crc => 3,
+            Self::DataRange => 4,
+            Self::DataLength => 5,
+            Self::DataLimit => 6,
+            Self::Access => 7,
+            Self::Other(n) => n & 0x7F,
+        }
+    }
+}
+
+/// Hardware Error Status bits mapped onto the actuator-independent [`Faults`].
+///
+/// ```
+/// use hand_control::faults_from_hardware_error;
+/// use hand_traits::Faults;
+/// assert_eq!(faults_from_hardware_error(0x20), Faults::OVERLOAD);
+/// assert!(faults_from_hardware_error(0x05).contains(Faults::OVERHEAT.union(Faults::VOLTAGE)));
+/// ```
+pub fn faults_from_hardware_error(bits: u8) -> Faults {
+    [
+        (hardware_error::INPUT_VOLTAGE, Faults::VOLTAGE),
+        (hardware_error::OVERHEATING, Faults::OVERHEAT),
+        (hardware_error::MOTOR_ENCODER, Faults::ENCODER),
+        (hardware_error::ELECTRICAL_SHOCK, Faults::ELECTRICAL),
+        (hardware_error::OVERLOAD, Faults::OVERLOAD),
+    ]
+    .into_iter()
+    .filter(|(bit, _)| bits & bit != 0)
+    .fold(Faults::NONE, |acc, (_, f)| acc.union(f))
+}
+
+/// What can go wrong talking to Dynamixel servos.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// No status packet arrived before the deadline.
+    #[error("servo {id:?}: no answer (timeout)")]
+    Timeout {
+        /// The servo asked (`None` for a broadcast exchange).
+        id: Option<u8>,
+    },
+    /// A status packet arrived with a wrong CRC-16.
+    #[error(
+        "servo {id:?}: status packet CRC mismatch (sent {message:#06x}, computed {computed:#06x})"
+    )]
+    Crc {
+        /// The servo asked.
+        id: Option<u8>,
+        /// CRC in the packet.
+        message: u16,
+        /// CRC of the bytes received.
+        computed: u16,
+    },
+    /// The servo refused the instruction (status packet error byte).
+    #[error("servo {id}: instruction refused: {error:?}")]
+    Status {
+        /// The servo.
+        id: u8,
+        /// The error it reported.
+        error: InstructionError,
+    },
+    /// The servo's Hardware Error Status is not zero (alert bit set).
+    #[error("servo {id}: hardware error status {bits:#04x} ({faults:?})")]
+    Hardware {
+        /// The servo.
+        id: u8,
+        /// The raw Hardware Error Status bits.
+        bits: u8,
+        /// The bits as actuator faults.
+        faults: Faults,
+    },
+    /// A command value outside what the model accepts; nothing was sent.
+    #[error("{what} = {value} is outside {min} ..= {max}")]
+    OutOfRange {
+        /// What was out of range.
+        what: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// Lowest accepted.
+        min: f64,
+        /// Highest accepted.
+        max: f64,
+    },
+    /// A servo answered PING with a model number no control table here describes.
+    #[error("servo {id}: unknown model number {model_number}")]
+    UnknownModel {
+        /// The servo.
+        id: u8,
+        /// Its model number.
+        model_number: u16,
+    },
+    /// The servos of one hand are of different models (one sync read needs one layout).
+    #[error("servo {id} is a {found}, the hand's first servo a {expected}")]
+    MixedModels {
+        /// The odd servo.
+        id: u8,
+        /// The first servo's model.
+        expected: &'static str,
+        /// This servo's model.
+        found: &'static str,
+    },
+    /// A hand needs at least one servo.
+    #[error("a servo hand needs at least one servo")]
+    NoServos,
+    /// A malformed or unexpected status packet (wrong ID, instruction or length).
+    #[error("servo {id:?}: invalid status packet: {detail}")]
+    Protocol {
+        /// The servo asked.
+        id: Option<u8>,
+        /// What was wrong.
+        detail: String,
+    },
+    /// The serial port failed.
+    #[error("serial port: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+impl Error {
+    /// Converts a `dynamixel2` read error for the exchange with `id`.
+    pub(crate) fn from_read(id: Option<u8>, e: dynamixel2::ReadError) -> Self {
+        use dynamixel2::{InvalidMessage as M, ReadError as R};
+        match e {
+            R::Io(io) if io.kind() == std::io::ErrorKind::TimedOut => Error::Timeout { id },
+            R::Io(io) => Error::Io(io),
+            R::MotorError(m) => match InstructionError::from_code(m.raw) {
+                Some(error) => Error::Status {
+                    id: id.unwrap_or(0xFE),
+                    error,
+                },
+                None => Error::Protocol {
+                    id,
+                    detail: format!("{m:?}"),
+                },
+            },
+            R::InvalidMessage(M::InvalidChecksum(c)) => Error::Crc {
+                id,
+                message: c.message,
+                computed: c.computed,
+            },
+            R::InvalidMessage(other) => Error::Protocol {
+                id,
+                detail: format!("{other:?}"),
+            },
+            R::BufferFull(b) => Error::Protocol {
+                id,
+                detail: format!("{b:?}"),
+            },
+        }
+    }
+
+    /// Converts a `dynamixel2` write error.
+    pub(crate) fn from_write(e: dynamixel2::WriteError) -> Self {
+        use dynamixel2::WriteError as W;
+        match e {
+            W::DiscardBuffer(io) | W::Write(io) => Error::Io(io),
+            W::BufferTooSmall(b) => Error::Protocol {
+                id: None,
+                detail: format!("{b:?}"),
+            },
+        }
+    }
+
+    /// Converts a `dynamixel2` transfer error for the exchange with `id`.
+    pub(crate) fn from_transfer(id: Option<u8>, e: dynamixel2::TransferError) -> Self {
+        match e {
+            dynamixel2::TransferError::WriteError(w) => Self::from_write(w),
+            dynamixel2::TransferError::ReadError(r) => Self::from_read(id, r),
+        }
+    }
+}

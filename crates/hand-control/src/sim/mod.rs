@@ -1,0 +1,551 @@
+//! A simulated Protocol 2.0 servo bus on a pseudo-terminal (feature `sim`).
+//!
+//! [`SimBus::spawn`] opens a pty pair (`serial2::SerialPort::pair`), runs the servos on one end
+//! in a thread and hands back the other end: give it to [`crate::ServoHand::new`], or open
+//! [`SimBus::client_path`] from another process (the ROBOTIS Python SDK does). The simulator
+//! answers PING, READ, WRITE, REG_WRITE, ACTION, FACTORY RESET, REBOOT, SYNC READ / WRITE and
+//! BULK READ / WRITE with real status packets (CRC-16, byte stuffing, error codes), keeps the
+//! MX-28(2.0) control table per servo, drives each motor (see [`SimServo::step`]) and latches
+//! the overload shutdown until REBOOT.
+//!
+//! # Simulated time
+//!
+//! Nothing here sleeps. The simulator's clock moves only when
+//! - a packet crosses the bus: the instruction's and each status packet's bytes at the bus baud
+//!   rate (10 bits a byte) plus each servo's Return Delay Time, and
+//! - the test calls [`SimBus::advance`].
+//!
+//! `advance` is *in band*: it writes a simulator-only clock packet (ID 0xFD, which no servo may
+//! use; instruction [`CLOCK_INSTRUCTION`]) through a clone of the client's port, so it is
+//! ordered after every byte the client sent before it — a broadcast sync write included — and
+//! it returns once the simulator has stepped. A test therefore steps a closed loop
+//! deterministically: `hand.command(..)`, `sim.advance(dt)`, `hand.state()`, repeat.
+//!
+//! ```
+//! use hand_control::ServoHand;
+//! use hand_control::sim::{SimBus, SimConfig};
+//! use hand_traits::{Effort, GripperActuator, GripperCommand};
+//! use std::time::Duration;
+//!
+//! let (mut sim, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2]))?;
+//! let mut hand = ServoHand::new(port, &[1, 2])?;
+//! assert_eq!(hand.table().name, "MX-28(2.0)");
+//! hand.set_torque(true)?;
+//! hand.command(&GripperCommand { position_rad: 2.0, effort: Effort::from_torque_limit_raw(400) })?;
+//! sim.advance(Duration::from_secs(2))?;
+//! let s = hand.state()?;
+//! assert!((s.position_rad - 2.0).abs() < 0.01, "{s:?}");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod servo;
+
+pub use servo::{Plant, ServoParams, SimServo};
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::thread::JoinHandle;
+use std::time::Duration;
+
+use dynamixel2::serial2::SerialPort;
+
+use crate::InstructionError;
+use crate::protocol::{FrameError, Packet, Parser, encode, instruction_id as ins, packet_id};
+
+/// The instruction of the simulator-only clock packet (undefined in Protocol 2.0).
+pub const CLOCK_INSTRUCTION: u8 = 0xF0;
+/// The ID the clock packet is addressed to (reserved in Protocol 2.0: never a servo).
+pub const CLOCK_ID: u8 = 0xFD;
+/// The status packet's instruction byte.
+const STATUS: u8 = 0x55;
+/// Longest an `advance` waits for the simulator thread (a bound, not a delay).
+const ACK_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// How to build a simulated bus.
+#[derive(Debug, Clone)]
+pub struct SimConfig {
+    /// Servo IDs on the bus (all MX-28(2.0)).
+    pub ids: Vec<u8>,
+    /// Bus baud rate for wire-time accounting.
+    pub baud: u32,
+    /// Motor parameters, the same for every servo.
+    pub params: ServoParams,
+    /// Physics step.
+    pub step: Duration,
+    /// Initial output angle of every servo, rad.
+    pub initial_position_rad: f64,
+}
+
+impl SimConfig {
+    /// MX-28s with these IDs at 1 Mbps (the paper's RS-485 hand), 0.25 ms physics steps,
+    /// starting at π rad (Present Position 2048, mid-range).
+    pub fn with_ids(ids: &[u8]) -> Self {
+        Self {
+            ids: ids.to_vec(),
+            baud: 1_000_000,
+            params: ServoParams::default(),
+            step: Duration::from_micros(250),
+            initial_position_rad: std::f64::consts::PI,
+        }
+    }
+}
+
+/// A one-shot or lasting fault a servo shows on the bus.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Fault {
+    /// Execute the next instruction but send no status packet.
+    DropNextStatus,
+    /// Send the next status packet with a corrupted CRC.
+    CorruptNextCrc,
+    /// Stop answering (and executing) until [`SimBus::clear_faults`].
+    Mute,
+}
+
+#[derive(Debug, Default, Clone, Copy)]
+struct FaultState {
+    drop_next: bool,
+    corrupt_next: bool,
+    mute: bool,
+}
+
+/// The servos and the clock, shared by the simulator thread and [`SimBus`].
+struct World {
+    servos: Vec<SimServo>,
+    faults: Vec<FaultState>,
+    now: Duration,
+    physics_now: Duration,
+    step: Duration,
+    baud: u32,
+}
+
+impl World {
+    fn index(&self, id: u8) -> Option<usize> {
+        self.servos.iter().position(|s| s.id() == id)
+    }
+
+    /// Moves simulated time forward by `dt`, stepping the physics in fixed steps.
+    fn advance(&mut self, dt: Duration) {
+        self.now += dt;
+        while self.physics_now + self.step <= self.now {
+            self.physics_now += self.step;
+            let (step, t) = (self.step, self.physics_now);
+            for s in &mut self.servos {
+                s.step(step, t);
+            }
+        }
+    }
+
+    /// Time `bytes` take on the wire.
+    fn wire(&self, bytes: usize) -> Duration {
+        Duration::from_nanos(bytes as u64 * 10 * 1_000_000_000 / u64::from(self.baud.max(1)))
+    }
+
+    /// Appends servo `i`'s status packet to `out` (unless a fault eats it) and accounts its time.
+    fn status(&mut self, out: &mut Vec<u8>, i: usize, result: Result<Vec<u8>, InstructionError>) {
+        let f = &mut self.faults[i];
+        if f.mute {
+            return;
+        }
+        if f.drop_next {
+            f.drop_next = false;
+            return;
+        }
+        let corrupt = std::mem::take(&mut f.corrupt_next);
+        let s = &self.servos[i];
+        let alert = if s.hardware_error() != 0 { 0x80 } else { 0 };
+        let (err, data) = match result {
+            Ok(d) => (0, d),
+            Err(e) => (e.code(), Vec::new()),
+        };
+        let mut params = Vec::with_capacity(1 + data.len());
+        params.push(err | alert);
+        params.extend_from_slice(&data);
+        let start = out.len();
+        encode(out, s.id(), STATUS, &params);
+        if corrupt {
+            let n = out.len();
+            out[n - 1] ^= 0x5A;
+        }
+        let dt = s.return_delay() + self.wire(out.len() - start);
+        self.advance(dt);
+    }
+
+    /// Whether servo `i` answers an instruction of this kind (Status Return Level, e-Manual).
+    fn answers(&self, i: usize, instruction: u8) -> bool {
+        match self.servos[i].status_return_level() {
+            0 => instruction == ins::PING,
+            1 => matches!(
+                instruction,
+                ins::PING | ins::READ | ins::SYNC_READ | ins::BULK_READ
+            ),
+            _ => true,
+        }
+    }
+
+    /// Unicast targets of a packet: the servos with that ID that are not muted.
+    fn target(&self, id: u8) -> Option<usize> {
+        self.index(id).filter(|&i| !self.faults[i].mute)
+    }
+
+    /// Executes one packet; returns the bytes to send back.
+    fn handle(&mut self, p: &Packet) -> Vec<u8> {
+        let mut out = Vec::new();
+        self.advance(self.wire(p.wire_len));
+        let broadcast = p.id == packet_id::BROADCAST;
+        let u16_at = |b: &[u8], i: usize| u16::from_le_bytes([b[i], b[i + 1]]);
+        let prm = &p.params;
+        match p.instruction {
+            ins::PING => {
+                let ids: Vec<usize> = if broadcast {
+                    let mut v: Vec<usize> = (0..self.servos.len())
+                        .filter(|&i| !self.faults[i].mute)
+                        .collect();
+                    v.sort_by_key(|&i| self.servos[i].id());
+                    v
+                } else {
+                    self.target(p.id).into_iter().collect()
+                };
+                for i in ids {
+                    let m = self.servos[i].model_number().to_le_bytes();
+                    // Firmware version 45 (a Protocol 2.0 MX firmware).
+                    self.status(&mut out, i, Ok(vec![m[0], m[1], 45]));
+                }
+            }
+            ins::READ if !broadcast => {
+                if let Some(i) = self.target(p.id) {
+                    let r = if prm.len() == 4 {
+                        let now = self.physics_now;
+                        self.servos[i].refresh(now);
+                        self.servos[i].read(u16_at(prm, 0), u16_at(prm, 2))
+                    } else {
+                        Err(InstructionError::DataLength)
+                    };
+                    if self.answers(i, ins::READ) {
+                        self.status(&mut out, i, r);
+                    }
+                }
+            }
+            ins::WRITE | ins::REG_WRITE => {
+                let targets: Vec<usize> = if broadcast {
+                    (0..self.servos.len())
+                        .filter(|&i| !self.faults[i].mute)
+                        .collect()
+                } else {
+                    self.target(p.id).into_iter().collect()
+                };
+                for i in targets {
+                    let r = if prm.len() < 3 {
+                        Err(InstructionError::DataLength)
+                    } else if p.instruction == ins::WRITE {
+                        self.servos[i].write(u16_at(prm, 0), &prm[2..])
+                    } else {
+                        self.servos[i].reg_write(u16_at(prm, 0), &prm[2..])
+                    };
+                    if !broadcast && self.answers(i, p.instruction) {
+                        self.status(&mut out, i, r.map(|()| Vec::new()));
+                    }
+                }
+            }
+            ins::ACTION => {
+                if broadcast {
+                    for s in &mut self.servos {
+                        // A broadcast ACTION only concerns servos with a registered write.
+                        let _ = s.action();
+                    }
+                } else if let Some(i) = self.target(p.id) {
+                    let r = self.servos[i].action();
+                    if self.answers(i, ins::ACTION) {
+                        self.status(&mut out, i, r.map(|()| Vec::new()));
+                    }
+                }
+            }
+            ins::REBOOT => {
+                if broadcast {
+                    self.servos.iter_mut().for_each(SimServo::reboot);
+                } else if let Some(i) = self.target(p.id) {
+                    if self.answers(i, ins::REBOOT) {
+                        self.status(&mut out, i, Ok(Vec::new()));
+                    }
+                    self.servos[i].reboot();
+                }
+            }
+            ins::FACTORY_RESET => {
+                let kind = prm.first().copied().unwrap_or(0xFF);
+                if broadcast {
+                    // Firmware ≥ 42 ignores a broadcast reset of everything (dynamixel2 docs).
+                    if kind != 0xFF {
+                        self.servos.iter_mut().for_each(|s| s.factory_reset(kind));
+                    }
+                } else if let Some(i) = self.target(p.id) {
+                    if self.answers(i, ins::FACTORY_RESET) {
+                        self.status(&mut out, i, Ok(Vec::new()));
+                    }
+                    self.servos[i].factory_reset(kind);
+                }
+            }
+            ins::SYNC_READ if broadcast && prm.len() >= 4 => {
+                let (a, n) = (u16_at(prm, 0), u16_at(prm, 2));
+                for &id in &prm[4..] {
+                    if let Some(i) = self.target(id) {
+                        let now = self.physics_now;
+                        self.servos[i].refresh(now);
+                        let r = self.servos[i].read(a, n);
+                        if self.answers(i, ins::SYNC_READ) {
+                            self.status(&mut out, i, r);
+                        }
+                    }
+                }
+            }
+            ins::SYNC_WRITE if broadcast && prm.len() >= 4 => {
+                let (a, n) = (u16_at(prm, 0), usize::from(u16_at(prm, 2)));
+                for chunk in prm[4..].chunks_exact(1 + n.max(1)) {
+                    if let Some(i) = self.target(chunk[0]) {
+                        // Sync write has no status packet: errors are silent, as on hardware.
+                        let _ = self.servos[i].write(a, &chunk[1..]);
+                    }
+                }
+            }
+            ins::BULK_READ if broadcast => {
+                for c in prm.chunks_exact(5) {
+                    if let Some(i) = self.target(c[0]) {
+                        let now = self.physics_now;
+                        self.servos[i].refresh(now);
+                        let r = self.servos[i].read(u16_at(c, 1), u16_at(c, 3));
+                        if self.answers(i, ins::BULK_READ) {
+                            self.status(&mut out, i, r);
+                        }
+                    }
+                }
+            }
+            ins::BULK_WRITE if broadcast => {
+                let mut rest = &prm[..];
+                while rest.len() >= 5 {
+                    let (id, a, n) = (rest[0], u16_at(rest, 1), usize::from(u16_at(rest, 3)));
+                    let Some(data) = rest.get(5..5 + n) else {
+                        break;
+                    };
+                    if let Some(i) = self.target(id) {
+                        let _ = self.servos[i].write(a, data);
+                    }
+                    rest = &rest[5 + n..];
+                }
+            }
+            _ if !broadcast => {
+                if let Some(i) = self.target(p.id) {
+                    self.status(&mut out, i, Err(InstructionError::Instruction));
+                }
+            }
+            _ => {}
+        }
+        out
+    }
+}
+
+/// A running simulated bus. Dropping it stops the simulator thread.
+pub struct SimBus {
+    world: Arc<Mutex<World>>,
+    clock: SerialPort,
+    acks: Receiver<u32>,
+    seq: u32,
+    stop: Arc<AtomicBool>,
+    thread: Option<JoinHandle<()>>,
+    client_path: PathBuf,
+}
+
+impl std::fmt::Debug for SimBus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SimBus")
+            .field("client_path", &self.client_path)
+            .finish_non_exhaustive()
+    }
+}
+
+impl SimBus {
+    /// Starts the servos of `config` on a new pty; returns the bus and the client's port.
+    ///
+    /// # Errors
+    /// Creating the pty or the thread.
+    pub fn spawn(config: SimConfig) -> std::io::Result<(Self, SerialPort)> {
+        let (mut device, client) = SerialPort::pair()?;
+        let clock = client.try_clone()?;
+        let client_path = {
+            use std::os::fd::AsRawFd;
+            std::fs::read_link(format!("/proc/self/fd/{}", client.as_raw_fd()))?
+        };
+        let world = Arc::new(Mutex::new(World {
+            servos: config
+                .ids
+                .iter()
+                .map(|&id| SimServo::new(id, config.initial_position_rad, config.params))
+                .collect(),
+            faults: vec![FaultState::default(); config.ids.len()],
+            now: Duration::ZERO,
+            physics_now: Duration::ZERO,
+            step: config.step.max(Duration::from_micros(1)),
+            baud: config.baud,
+        }));
+        let stop = Arc::new(AtomicBool::new(false));
+        let (tx, acks) = channel();
+        // The thread notices `stop` within one read timeout.
+        device.set_read_timeout(Duration::from_millis(20))?;
+        let thread = {
+            let (world, stop) = (Arc::clone(&world), Arc::clone(&stop));
+            std::thread::Builder::new()
+                .name("dxl-sim".into())
+                .spawn(move || serve(&device, &world, &stop, &tx))?
+        };
+        Ok((
+            Self {
+                world,
+                clock,
+                acks,
+                seq: 0,
+                stop,
+                thread: Some(thread),
+                client_path,
+            },
+            client,
+        ))
+    }
+
+    /// The client end's device path (`/dev/pts/N`), for another process to open.
+    pub fn client_path(&self) -> &Path {
+        &self.client_path
+    }
+
+    fn world(&self) -> MutexGuard<'_, World> {
+        // A panic in the simulator thread poisons the lock; the state is still usable to inspect.
+        self.world
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// Advances simulated time by `dt` after every byte the client sent so far; returns once
+    /// the simulator has stepped.
+    ///
+    /// # Errors
+    /// Writing the clock packet, or the simulator not acknowledging within 10 s (wall clock).
+    pub fn advance(&mut self, dt: Duration) -> std::io::Result<()> {
+        self.seq = self.seq.wrapping_add(1);
+        let mut params = Vec::with_capacity(12);
+        params.extend_from_slice(&(dt.as_nanos() as u64).to_le_bytes());
+        params.extend_from_slice(&self.seq.to_le_bytes());
+        let mut pkt = Vec::new();
+        encode(&mut pkt, CLOCK_ID, CLOCK_INSTRUCTION, &params);
+        self.clock.write_all(&pkt)?;
+        loop {
+            match self.acks.recv_timeout(ACK_TIMEOUT) {
+                Ok(s) if s == self.seq => return Ok(()),
+                Ok(_) => continue,
+                Err(e) => return Err(std::io::Error::new(std::io::ErrorKind::TimedOut, e)),
+            }
+        }
+    }
+
+    /// Simulated time since the bus started.
+    pub fn now(&self) -> Duration {
+        self.world().now
+    }
+
+    /// Runs `f` on servo `id` (e.g. to read its true angle); `None` if no such servo.
+    pub fn with_servo<R>(&self, id: u8, f: impl FnOnce(&mut SimServo) -> R) -> Option<R> {
+        let mut w = self.world();
+        let i = w.index(id)?;
+        Some(f(&mut w.servos[i]))
+    }
+
+    /// Couples an external load to servo `id` (replacing the previous one).
+    pub fn set_plant(&self, id: u8, plant: impl Plant + 'static) -> bool {
+        self.with_servo(id, |s| s.set_plant(Some(Box::new(plant))))
+            .is_some()
+    }
+
+    /// Injects a bus fault on servo `id`.
+    pub fn inject(&self, id: u8, fault: Fault) -> bool {
+        let mut w = self.world();
+        let Some(i) = w.index(id) else { return false };
+        let f = &mut w.faults[i];
+        match fault {
+            Fault::DropNextStatus => f.drop_next = true,
+            Fault::CorruptNextCrc => f.corrupt_next = true,
+            Fault::Mute => f.mute = true,
+        }
+        true
+    }
+
+    /// Clears every injected bus fault of servo `id`.
+    pub fn clear_faults(&self, id: u8) {
+        let mut w = self.world();
+        if let Some(i) = w.index(id) {
+            w.faults[i] = FaultState::default();
+        }
+    }
+}
+
+impl Drop for SimBus {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::Relaxed);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+/// The simulator thread: read, parse, execute, answer, until `stop`.
+fn serve(device: &SerialPort, world: &Mutex<World>, stop: &AtomicBool, acks: &Sender<u32>) {
+    let mut parser = Parser::default();
+    let mut buf = [0u8; 4096];
+    while !stop.load(Ordering::Relaxed) {
+        let n = match device.read(&mut buf) {
+            Ok(n) => n,
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::TimedOut
+                        | std::io::ErrorKind::WouldBlock
+                        | std::io::ErrorKind::Interrupted
+                ) =>
+            {
+                continue;
+            }
+            // The client side is gone for good.
+            Err(_) => return,
+        };
+        parser.push(&buf[..n]);
+        while let Some(frame) = parser.next_packet() {
+            let mut w = world
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            let out = match frame {
+                Ok(p)
+                    if p.id == CLOCK_ID
+                        && p.instruction == CLOCK_INSTRUCTION
+                        && p.params.len() == 12 =>
+                {
+                    let mut ns = [0u8; 8];
+                    ns.copy_from_slice(&p.params[..8]);
+                    w.advance(Duration::from_nanos(u64::from_le_bytes(ns)));
+                    let seq =
+                        u32::from_le_bytes([p.params[8], p.params[9], p.params[10], p.params[11]]);
+                    let _ = acks.send(seq);
+                    Vec::new()
+                }
+                Ok(p) => w.handle(&p),
+                Err(FrameError::Crc { id, instruction }) => {
+                    let mut out = Vec::new();
+                    if let Some(i) = w.target(id).filter(|&i| w.answers(i, instruction)) {
+                        w.status(&mut out, i, Err(InstructionError::Crc));
+                    }
+                    out
+                }
+                Err(FrameError::BadLength) => Vec::new(),
+            };
+            drop(w);
+            if !out.is_empty() && device.write_all(&out).is_err() {
+                return;
+            }
+        }
+    }
+}

@@ -1,0 +1,263 @@
+//! The driver against the simulated bus on a real pty: identification, register access, sync
+//! read / write, REG_WRITE / ACTION, and every fault as a typed error.
+#![cfg(feature = "sim")]
+
+use std::time::Duration;
+
+use hand_control::sim::{Fault, SimBus, SimConfig};
+use hand_control::{Error, InstructionError, ServoHand};
+use hand_traits::{Effort, Faults, GripperActuator, GripperCommand, SafeAction};
+
+fn hand(ids: &[u8]) -> (SimBus, ServoHand) {
+    let (sim, port) = SimBus::spawn(SimConfig::with_ids(ids)).expect("pty");
+    let hand = ServoHand::new(port, ids).expect("identify");
+    (sim, hand)
+}
+
+fn cmd(position_rad: f32, raw: u16) -> GripperCommand {
+    GripperCommand {
+        position_rad,
+        effort: Effort::from_torque_limit_raw(raw),
+    }
+}
+
+#[test]
+fn pings_identifies_and_reads_registers() {
+    let (_sim, mut hand) = hand(&[1, 2, 3]);
+    assert_eq!(hand.table().model_number, 30);
+    assert_eq!(hand.ping(2).unwrap(), (30, 45));
+    assert_eq!(hand.read_register(3, 7).unwrap(), 3); // ID
+    assert_eq!(hand.read_register(1, 36).unwrap(), 885); // PWM Limit default
+    hand.write_register(1, 65, 1).unwrap(); // LED
+    assert_eq!(hand.read_register(1, 65).unwrap(), 1);
+    // A servo that is not on the bus: no answer.
+    assert!(matches!(hand.ping(9), Err(Error::Timeout { id: Some(9) })));
+}
+
+#[test]
+fn sync_write_then_sync_read_moves_every_servo() {
+    let (mut sim, mut hand) = hand(&[1, 2, 3, 4]);
+    hand.set_position_mode().unwrap();
+    hand.set_torque(true).unwrap();
+    hand.command(&cmd(2.5, 1023)).unwrap();
+    sim.advance(Duration::from_secs(2)).unwrap();
+    let states = hand.read_states().unwrap();
+    assert_eq!(
+        states.iter().map(|s| s.id).collect::<Vec<_>>(),
+        [1, 2, 3, 4]
+    );
+    let goal = (2.5f64 / (std::f64::consts::TAU / 4096.0)).round() as i32;
+    for s in &states {
+        assert!((s.position - goal).abs() <= 2, "{s:?} vs {goal}");
+        assert!(!s.alert);
+    }
+    // Full effort is Goal PWM 885 (100 %); the paper's 400/1023 becomes 346 of 885.
+    for id in 1..=4 {
+        assert_eq!(hand.read_register(id, 100).unwrap(), 885);
+    }
+    hand.command(&cmd(2.5, 400)).unwrap();
+    for id in 1..=4 {
+        assert_eq!(hand.read_register(id, 100).unwrap(), 346);
+    }
+    let st = hand.state().unwrap();
+    assert!(
+        (st.position_rad - 2.5).abs() < 0.01 && st.faults.is_empty(),
+        "{st:?}"
+    );
+}
+
+#[test]
+fn reg_write_waits_for_action() {
+    let (_sim, mut hand) = hand(&[1, 2]);
+    let bus = hand.bus_mut();
+    bus.reg_write(1, 65, &[1]).unwrap();
+    bus.reg_write(2, 65, &[1]).unwrap();
+    assert_eq!(bus.read_u8(1, 69).unwrap().data, 1); // Registered Instruction
+    assert_eq!(bus.read_u8(1, 65).unwrap().data, 0);
+    bus.broadcast_action().unwrap();
+    assert_eq!(bus.read_u8(1, 65).unwrap().data, 1);
+    assert_eq!(bus.read_u8(2, 65).unwrap().data, 1);
+    // ACTION with nothing registered: Instruction Error.
+    assert!(matches!(
+        hand.bus_mut().action(1).map_err(|e| format!("{e:?}")),
+        Err(e) if e.contains("error_number: 2")
+    ));
+}
+
+#[test]
+fn refused_writes_are_status_errors_and_change_nothing() {
+    let (_sim, mut hand) = hand(&[1]);
+    let range = hand.write_register(1, 64, 2);
+    assert!(
+        matches!(
+            range,
+            Err(Error::Status {
+                id: 1,
+                error: InstructionError::DataRange
+            })
+        ),
+        "{range:?}"
+    );
+    let ro = hand.write_register(1, 132, 0);
+    assert!(
+        matches!(
+            ro,
+            Err(Error::Status {
+                error: InstructionError::Access,
+                ..
+            })
+        ),
+        "{ro:?}"
+    );
+    hand.write_register(1, 36, 500).unwrap();
+    let limit = hand.write_register(1, 100, 600);
+    assert!(
+        matches!(
+            limit,
+            Err(Error::Status {
+                error: InstructionError::DataLimit,
+                ..
+            })
+        ),
+        "{limit:?}"
+    );
+    assert_eq!(hand.read_register(1, 36).unwrap(), 500);
+    hand.set_torque(true).unwrap();
+    let eeprom = hand.write_register(1, 36, 300);
+    assert!(
+        matches!(
+            eeprom,
+            Err(Error::Status {
+                error: InstructionError::Access,
+                ..
+            })
+        ),
+        "{eeprom:?}"
+    );
+}
+
+#[test]
+fn out_of_range_command_is_rejected_before_the_bus() {
+    let (_sim, mut hand) = hand(&[1]);
+    for p in [f32::NAN, f32::INFINITY, -0.1, 7.0] {
+        let r = hand.command(&cmd(p, 100));
+        assert!(matches!(r, Err(Error::OutOfRange { .. })), "{p}: {r:?}");
+    }
+    // Nothing reached the servo: Goal Position still at its power-on value.
+    assert_eq!(hand.read_register(1, 116).unwrap(), 2048);
+}
+
+#[test]
+fn dropped_status_corrupt_crc_and_silence_are_typed_errors() {
+    let (sim, mut hand) = hand(&[1, 2]);
+    sim.inject(2, Fault::DropNextStatus);
+    assert!(matches!(
+        hand.read_states(),
+        Err(Error::Timeout { id: Some(2) })
+    ));
+    // The next exchange works again.
+    assert_eq!(hand.read_states().unwrap().len(), 2);
+
+    sim.inject(1, Fault::CorruptNextCrc);
+    let r = hand.read_states();
+    assert!(matches!(r, Err(Error::Crc { id: Some(1), .. })), "{r:?}");
+    assert_eq!(hand.read_states().unwrap().len(), 2);
+
+    sim.inject(2, Fault::Mute);
+    for _ in 0..3 {
+        assert!(matches!(hand.state(), Err(Error::Timeout { id: Some(2) })));
+    }
+    // The broadcast torque-off needs no answer: it still reaches the silent servo.
+    hand.set_torque(false).unwrap_err();
+    hand.safe_stop(SafeAction::TorqueOff).unwrap();
+    assert_eq!(sim.with_servo(2, |s| s.torque_enabled()), Some(false));
+    sim.clear_faults(2);
+    assert_eq!(hand.read_states().unwrap().len(), 2);
+}
+
+#[test]
+fn full_torque_stall_overloads_until_reboot() {
+    let (mut sim, mut hand) = hand(&[1]);
+    hand.set_torque(true).unwrap();
+    // An object 0.1 rad ahead, stiff enough to stall the finger.
+    let wall = std::f64::consts::PI + 0.1;
+    sim.set_plant(
+        1,
+        move |th: f64, _w: f64, _t: Duration| if th > wall { 200.0 * (th - wall) } else { 0.0 },
+    );
+    // Paper §7: at 100 % (1023) the servo overloads and lets go.
+    hand.command(&cmd(4.0, 1023)).unwrap();
+    let mut tripped_at = None;
+    for k in 0..100 {
+        sim.advance(Duration::from_millis(50)).unwrap();
+        let s = hand.state().unwrap();
+        if s.faults.contains(Faults::OVERLOAD) {
+            tripped_at = Some(k);
+            break;
+        }
+    }
+    let k = tripped_at.expect("overload within 5 s");
+    assert!((40..=60).contains(&k), "tripped after {k} × 50 ms");
+    assert_eq!(sim.with_servo(1, |s| s.torque_enabled()), Some(false));
+    // Torque cannot come back while the error is latched.
+    let r = hand.set_torque(true);
+    assert!(
+        matches!(
+            r,
+            Err(Error::Hardware {
+                id: 1,
+                faults: Faults::OVERLOAD,
+                ..
+            })
+        ),
+        "{r:?}"
+    );
+    // Recovery: reboot clears it.
+    assert_eq!(hand.recover().unwrap(), [1]);
+    hand.set_torque(true).unwrap();
+    assert!(hand.state().unwrap().faults.is_empty());
+}
+
+#[test]
+fn paper_torque_400_holds_without_overload() {
+    let (mut sim, mut hand) = hand(&[1]);
+    hand.set_torque(true).unwrap();
+    let wall = std::f64::consts::PI + 0.1;
+    sim.set_plant(
+        1,
+        move |th: f64, _w: f64, _t: Duration| if th > wall { 200.0 * (th - wall) } else { 0.0 },
+    );
+    hand.command(&cmd(4.0, 400)).unwrap();
+    // Table 5 "torque max": held for more than 2 min without release.
+    sim.advance(Duration::from_secs(130)).unwrap();
+    let s = hand.state().unwrap();
+    assert!(s.faults.is_empty(), "{s:?}");
+    assert!((s.load_fraction - 400.0 / 1023.0).abs() < 0.01, "{s:?}");
+    assert!(
+        s.position_rad > wall as f32,
+        "holding against the object: {s:?}"
+    );
+}
+
+#[test]
+fn hold_last_safe_effort_resends_the_confirmed_command() {
+    let (mut sim, mut hand) = hand(&[1]);
+    hand.set_torque(true).unwrap();
+    hand.command(&cmd(2.0, 300)).unwrap();
+    hand.state().unwrap(); // confirms it
+    hand.write_register(1, 100, 885).unwrap();
+    hand.safe_stop(SafeAction::HoldLastSafeEffort).unwrap();
+    sim.advance(Duration::from_millis(10)).unwrap();
+    assert_eq!(hand.read_register(1, 100).unwrap(), 260); // 300/1023 × 885 = 259.5
+}
+
+#[test]
+fn factory_reset_restores_eeprom_and_keeps_the_id() {
+    let (_sim, mut hand) = hand(&[5]);
+    hand.write_register(5, 36, 100).unwrap();
+    hand.bus_mut()
+        .factory_reset(5, dynamixel2::instructions::FactoryResetKind::KeepId)
+        .unwrap();
+    assert_eq!(hand.read_register(5, 36).unwrap(), 885);
+    assert_eq!(hand.read_register(5, 7).unwrap(), 5);
+}

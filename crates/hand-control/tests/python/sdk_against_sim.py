@@ -1,0 +1,73 @@
+"""The official ROBOTIS SDK (PyPI `dynamixel-sdk`) drives the simulated bus.
+
+Usage: sdk_against_sim.py PORT ID,ID,...   (run by tests/sdk_python.rs)
+Exits non-zero with a message on the first mismatch; prints one line per check.
+"""
+import sys
+
+from dynamixel_sdk import (COMM_SUCCESS, GroupBulkRead, GroupSyncRead, GroupSyncWrite,
+                           PacketHandler, PortHandler)
+
+MX28_MODEL = 30
+ADDR_LED, ADDR_TORQUE, ADDR_GOAL_PWM, ADDR_PWM_LIMIT, ADDR_ID = 65, 64, 100, 36, 7
+
+
+def check(cond, what):
+    if not cond:
+        print("FAIL:", what, flush=True)
+        sys.exit(1)
+    print("ok:", what, flush=True)
+
+
+def main():
+    path, ids = sys.argv[1], [int(x) for x in sys.argv[2].split(",")]
+    port = PortHandler(path)
+    check(port.openPort(), "open " + path)
+    check(port.setBaudRate(1000000), "baud 1 Mbps")
+    ph = PacketHandler(2.0)
+
+    for i in ids:
+        model, res, err = ph.ping(port, i)
+        check(res == COMM_SUCCESS and err == 0 and model == MX28_MODEL, f"ping {i} -> model {model}")
+    found, res = ph.broadcastPing(port)
+    check(res == COMM_SUCCESS and sorted(found) == sorted(ids), f"broadcast ping -> {sorted(found)}")
+
+    res, err = ph.write1ByteTxRx(port, ids[0], ADDR_LED, 1)
+    check(res == COMM_SUCCESS and err == 0, "write LED")
+    val, res, err = ph.read1ByteTxRx(port, ids[0], ADDR_LED)
+    check(res == COMM_SUCCESS and val == 1, f"read LED -> {val}")
+    val, res, err = ph.read2ByteTxRx(port, ids[0], ADDR_PWM_LIMIT)
+    check(res == COMM_SUCCESS and val == 885, f"read PWM Limit -> {val}")
+    res, err = ph.write1ByteTxRx(port, ids[0], ADDR_TORQUE, 2)
+    check(res == COMM_SUCCESS and err == 4, f"torque enable 2 -> data range error {err}")
+
+    gsw = GroupSyncWrite(port, ph, ADDR_GOAL_PWM, 2)
+    for k, i in enumerate(ids):
+        v = 100 + 50 * k
+        gsw.addParam(i, [v & 0xFF, v >> 8])
+    check(gsw.txPacket() == COMM_SUCCESS, "sync write Goal PWM")
+
+    gsr = GroupSyncRead(port, ph, ADDR_GOAL_PWM, 2)
+    for i in ids:
+        gsr.addParam(i)
+    check(gsr.txRxPacket() == COMM_SUCCESS, "sync read Goal PWM")
+    for k, i in enumerate(ids):
+        check(gsr.isAvailable(i, ADDR_GOAL_PWM, 2), f"sync read {i} available")
+        got = gsr.getData(i, ADDR_GOAL_PWM, 2)
+        check(got == 100 + 50 * k, f"sync read {i} -> {got}")
+
+    gbr = GroupBulkRead(port, ph)
+    check(gbr.addParam(ids[0], ADDR_ID, 1), "bulk read param 1")
+    if len(ids) > 1:
+        check(gbr.addParam(ids[1], ADDR_PWM_LIMIT, 2), "bulk read param 2")
+    check(gbr.txRxPacket() == COMM_SUCCESS, "bulk read")
+    check(gbr.getData(ids[0], ADDR_ID, 1) == ids[0], "bulk read ID")
+    if len(ids) > 1:
+        check(gbr.getData(ids[1], ADDR_PWM_LIMIT, 2) == 885, "bulk read PWM Limit")
+
+    port.closePort()
+    print("DONE", flush=True)
+
+
+if __name__ == "__main__":
+    main()
