@@ -84,16 +84,22 @@ impl FixedRate {
         }
     }
 
+    /// The tick [`wait`](Self::wait) would return if called at `now_us`, and how many ticks
+    /// it would skip.
+    pub fn peek(&self, now_us: u64) -> (u64, u64) {
+        if now_us > self.next_us {
+            // Overran: the first grid tick not in the past.
+            let behind = (now_us - self.next_us).div_ceil(self.period_us);
+            (self.next_us + behind * self.period_us, behind)
+        } else {
+            (self.next_us, 0)
+        }
+    }
+
     /// Waits for the next tick on the grid and returns its scheduled time, µs.
     pub fn wait(&mut self, clock: &mut impl LoopClock) -> u64 {
-        let now = clock.now_us();
-        if now > self.next_us {
-            // Overran: skip to the first grid tick not in the past.
-            let behind = (now - self.next_us).div_ceil(self.period_us);
-            self.missed += behind;
-            self.next_us += behind * self.period_us;
-        }
-        let tick = self.next_us;
+        let (tick, skipped) = self.peek(clock.now_us());
+        self.missed += skipped;
         clock.wait_until_us(tick);
         self.next_us = tick + self.period_us;
         tick

@@ -52,7 +52,10 @@ pub enum EstimateError {
 /// est.finish_tare()?;
 /// let e = est.update(&PressureFrame { t_us: 10_000, pressure_pa: [101_300.0, 101_310.0, 101_290.0] })?;
 /// assert!((e.pressure_pa - 300.0).abs() < 1e-3 && e.in_contact);
-/// assert!(e.rate_pa_per_s > 0.0);
+/// assert_eq!(e.rate_pa_per_s, 0.0); // no rate from a single frame
+/// let e = est.update(&PressureFrame { t_us: 20_000, pressure_pa: [101_400.0, 101_410.0, 101_390.0] })?;
+/// // 100 Pa in 10 ms is 10 kPa/s raw; the 10 Hz low-pass passes 39 % of it in one step.
+/// assert!((e.rate_pa_per_s - 3_858.0).abs() < 10.0, "{e:?}");
 /// # Ok::<(), hand_control::grasp_loop::EstimateError>(())
 /// ```
 #[derive(Debug, Clone)]

@@ -4,12 +4,14 @@ use hand_traits::{Faults, GripperActuator};
 
 use super::estimate::EstimateError;
 
-/// An actuator whose latched hardware errors are cleared by a reboot (Dynamixel: the REBOOT
-/// instruction; the servo comes back with torque off).
+/// What the loop needs to leave its safe state: an actuator whose latched hardware errors are
+/// cleared by a reboot (Dynamixel: the REBOOT instruction) and whose torque can be switched on
+/// again after a [`SafeAction::TorqueOff`](hand_traits::SafeAction::TorqueOff).
 pub trait RebootableActuator: GripperActuator {
-    /// Reboots the actuator. The next [`command`](GripperActuator::command) must enable torque
-    /// again.
+    /// Reboots the actuator and leaves its torque on (a Dynamixel comes back with torque off).
     fn reboot(&mut self) -> Result<(), Self::Error>;
+    /// Switches torque on again (commands alone do not).
+    fn enable_torque(&mut self) -> Result<(), Self::Error>;
 }
 
 /// One fault, with the part's own error inside.
@@ -36,8 +38,8 @@ pub enum LoopFault<SE: core::fmt::Debug, PE: core::fmt::Debug, AE: core::fmt::De
     /// Going to the safe state itself failed (it is retried every cycle).
     #[error("safe stop: {0:?}")]
     SafeStop(AE),
-    /// A recovery reboot failed.
-    #[error("reboot: {0:?}")]
+    /// A recovery reboot or torque enable failed.
+    #[error("recovery: {0:?}")]
     Reboot(AE),
 }
 

@@ -41,6 +41,7 @@
 //! }
 //! impl RebootableActuator for Hand {
 //!     fn reboot(&mut self) -> Result<(), Infallible> { Ok(()) }
+//!     fn enable_torque(&mut self) -> Result<(), Infallible> { Ok(()) }
 //! }
 //! struct Sim(u64);
 //! impl LoopClock for Sim {

@@ -50,6 +50,7 @@ where
     safe_since_us: u64,
     safe_confirmed: bool,
     safe_stop_failing: bool,
+    rebooted_since_safe: bool,
     reboots: u32,
     log: Vec<Sample<N>>,
     events: Vec<FaultEvent<S::Error, P::Error, A::Error>>,
@@ -90,15 +91,16 @@ where
             safe_since_us: 0,
             safe_confirmed: false,
             safe_stop_failing: false,
+            rebooted_since_safe: false,
             reboots: 0,
             log: Vec::new(),
             events: Vec::new(),
         })
     }
 
-    /// Runs cycles until the clock reaches `until_us` (a tick at or after it is not run).
+    /// Runs every cycle whose tick is before `until_us`.
     pub fn run_until(&mut self, until_us: u64) {
-        while self.clock.now_us() < until_us {
+        while self.rate.peek(self.clock.now_us()).0 < until_us {
             self.cycle();
         }
     }
@@ -196,6 +198,7 @@ where
     /// the safe stop. Both are tried even if the first fails; failures are reported.
     fn enter_safe(&mut self, t_us: u64, s: &mut Sample<N>) {
         self.mode = Mode::Safe;
+        self.rebooted_since_safe = false;
         self.safe_since_us = t_us;
         if self.config.safe_action == SafeAction::HoldLastSafeEffort {
             if let Some(safe) = self.last_safe {
@@ -246,7 +249,9 @@ where
         }
         let Some(state) = s.state else { return };
         if clean {
-            self.resume_mode();
+            if let Err(e) = self.resume_mode() {
+                self.push_event(t_us, LoopFault::Reboot(e));
+            }
             return;
         }
         if state.faults.is_empty() {
@@ -260,20 +265,27 @@ where
         if cooled && state.load_fraction.abs() <= self.config.clear_load_fraction {
             self.reboots += 1;
             s.rebooted = true;
-            if let Err(e) = self.actuator.reboot() {
-                self.push_event(t_us, LoopFault::Reboot(e));
+            match self.actuator.reboot() {
+                Ok(()) => self.rebooted_since_safe = true,
+                Err(e) => self.push_event(t_us, LoopFault::Reboot(e)),
             }
         }
     }
 
-    fn resume_mode(&mut self) {
+    /// Back to grasping (or taring): torque on again after a torque-off safe stop.
+    fn resume_mode(&mut self) -> Result<(), A::Error> {
+        if self.config.safe_action == SafeAction::TorqueOff && !self.rebooted_since_safe {
+            self.actuator.enable_torque()?;
+        }
         self.mode = if self.estimator.is_tared() {
             Mode::Grasp
         } else {
             Mode::Tare
         };
         self.safe_confirmed = false;
+        self.rebooted_since_safe = false;
         self.last_sent = None;
+        Ok(())
     }
 
     /// Leaves the safe state by hand: reboots the actuator first if it last reported a
@@ -283,8 +295,9 @@ where
             if self.last_state.is_some_and(|st| !st.faults.is_empty()) {
                 self.actuator.reboot()?;
                 self.reboots += 1;
+                self.rebooted_since_safe = true;
             }
-            self.resume_mode();
+            self.resume_mode()?;
         }
         Ok(())
     }

@@ -10,4 +10,9 @@ impl RebootableActuator for ServoHand {
         self.recover()?;
         self.set_torque(true)
     }
+
+    /// Torque Enable = 1 on every servo.
+    fn enable_torque(&mut self) -> Result<(), Error> {
+        self.set_torque(true)
+    }
 }

@@ -230,6 +230,15 @@ impl RebootableActuator for Hand {
         rig.reboot();
         rig.set_torque_enabled(true).map_err(HandError::Sim)
     }
+
+    fn enable_torque(&mut self) -> Result<(), HandError> {
+        self.transport()?;
+        self.0
+            .borrow_mut()
+            .rig
+            .set_torque_enabled(true)
+            .map_err(HandError::Sim)
+    }
 }
 
 /// The world's time as the loop's clock: waiting steps the physics.
