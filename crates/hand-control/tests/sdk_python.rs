@@ -1,6 +1,5 @@
 //! The official ROBOTIS SDK (`dynamixel_sdk`, from `$HANDSTACK_PYTHON`) drives the simulator
 //! over the same pty: ping, broadcast ping, read / write, sync read / write, bulk read.
-#![cfg(feature = "sim")]
 
 use std::io::Read;
 use std::process::{Command, Stdio};
