@@ -272,7 +272,7 @@ fn status_data_that_needs_stuffing_is_read_back_exactly() {
     let (sim, mut hand) = hand(&[1]);
     let unit = std::f64::consts::TAU / 4096.0;
     let vunit = 0.229 * std::f64::consts::TAU / 60.0;
-    sim.with_servo(1, |s| s.set_state(-3.0 * unit, -1.0 * vunit));
+    sim.with_servo(1, |s| s.set_state(-3.0 * unit, -vunit));
     let s = hand.read_states().unwrap();
     assert_eq!((s[0].position, s[0].velocity), (-3, -1));
     // dynamixel2 0.9.1's own unstuffing misses this pattern (why the driver parses replies).
