@@ -279,3 +279,34 @@ fn status_data_that_needs_stuffing_is_read_back_exactly() {
     let r = hand.bus_mut().read(1, 128, 8);
     assert!(format!("{r:?}").contains("InvalidParameterCount"), "{r:?}");
 }
+
+#[test]
+fn overheating_and_voltage_bits_reach_the_state_as_faults() {
+    let (sim, mut hand) = hand(&[1, 2]);
+    hand.set_torque(true).unwrap();
+    // Input voltage is not in the default Shutdown mask (52): torque stays on, the alert is up.
+    sim.with_servo(2, |s| s.raise_hardware_error(0x01));
+    let st = hand.state().unwrap();
+    assert_eq!(st.faults, Faults::VOLTAGE);
+    assert_eq!(sim.with_servo(2, |s| s.torque_enabled()), Some(true));
+    // Overheating is: the servo shuts down.
+    sim.with_servo(1, |s| s.raise_hardware_error(0x04));
+    let st = hand.state().unwrap();
+    assert_eq!(st.faults, Faults::VOLTAGE.union(Faults::OVERHEAT));
+    assert_eq!(sim.with_servo(1, |s| s.torque_enabled()), Some(false));
+    // Any acknowledged write to an alerting servo reports the latched error.
+    let r = hand.write_register(2, 65, 1);
+    assert!(
+        matches!(
+            r,
+            Err(Error::Hardware {
+                id: 2,
+                bits: 0x01,
+                ..
+            })
+        ),
+        "{r:?}"
+    );
+    assert_eq!(hand.recover().unwrap(), [1, 2]);
+    assert!(hand.state().unwrap().faults.is_empty());
+}
