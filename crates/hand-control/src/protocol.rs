@@ -39,6 +39,10 @@ pub enum FrameError {
         id: u8,
         /// The frame's instruction byte.
         instruction: u8,
+        /// The CRC the frame carried.
+        sent: u16,
+        /// The CRC of the bytes received.
+        computed: u16,
     },
     /// A LEN field below 3 or above [`MAX_LEN`].
     BadLength,
@@ -74,40 +78,44 @@ impl Parser {
 
     /// The next complete packet, a skipped bad frame, or `None` when more bytes are needed.
     pub fn next_packet(&mut self) -> Option<Result<Packet, FrameError>> {
-        loop {
-            let start = find_header(&self.buf);
-            self.buf.drain(..start);
-            if self.buf.len() < 7 {
-                return None;
-            }
-            let len = usize::from(u16::from_le_bytes([self.buf[5], self.buf[6]]));
-            if !(3..=MAX_LEN).contains(&len) {
-                // Not a real header: drop its first byte and look again.
-                self.buf.drain(..1);
-                return Some(Err(FrameError::BadLength));
-            }
-            let total = 7 + len;
-            if self.buf.len() < total {
-                return None;
-            }
-            let crc_at = total - 2;
-            let sent = u16::from_le_bytes([self.buf[crc_at], self.buf[crc_at + 1]]);
-            let (id, instruction) = (self.buf[4], self.buf[7]);
-            if calculate_checksum(0, &self.buf[..crc_at]) != sent {
-                // The "packet" may be garbage that happened to contain a header: resume one
-                // byte later so a real packet inside it is still found.
-                self.buf.drain(..1);
-                return Some(Err(FrameError::Crc { id, instruction }));
-            }
-            let params = unstuff(&self.buf[8..crc_at]);
-            self.buf.drain(..total);
-            return Some(Ok(Packet {
+        let start = find_header(&self.buf);
+        self.buf.drain(..start);
+        if self.buf.len() < 7 {
+            return None;
+        }
+        let len = usize::from(u16::from_le_bytes([self.buf[5], self.buf[6]]));
+        if !(3..=MAX_LEN).contains(&len) {
+            // Not a real header: drop its first byte and look again.
+            self.buf.drain(..1);
+            return Some(Err(FrameError::BadLength));
+        }
+        let total = 7 + len;
+        if self.buf.len() < total {
+            return None;
+        }
+        let crc_at = total - 2;
+        let sent = u16::from_le_bytes([self.buf[crc_at], self.buf[crc_at + 1]]);
+        let (id, instruction) = (self.buf[4], self.buf[7]);
+        let computed = calculate_checksum(0, &self.buf[..crc_at]);
+        if computed != sent {
+            // The "packet" may be garbage that happened to contain a header: resume one
+            // byte later so a real packet inside it is still found.
+            self.buf.drain(..1);
+            return Some(Err(FrameError::Crc {
                 id,
                 instruction,
-                params,
-                wire_len: total,
+                sent,
+                computed,
             }));
         }
+        let params = unstuff(&self.buf[8..crc_at]);
+        self.buf.drain(..total);
+        Some(Ok(Packet {
+            id,
+            instruction,
+            params,
+            wire_len: total,
+        }))
     }
 }
 
@@ -197,13 +205,14 @@ mod tests {
         encode(&mut wire, 2, 0x01, &[]);
         let mut p = Parser::default();
         p.push(&wire);
-        assert_eq!(
+        assert!(matches!(
             p.next_packet(),
             Some(Err(FrameError::Crc {
                 id: 1,
-                instruction: 1
+                instruction: 1,
+                ..
             }))
-        );
+        ));
         assert_eq!(p.next_packet().map(|r| r.map(|k| k.id)), Some(Ok(2)));
     }
 }

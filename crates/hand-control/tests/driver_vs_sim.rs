@@ -1,6 +1,5 @@
 //! The driver against the simulated bus on a real pty: identification, register access, sync
 //! read / write, REG_WRITE / ACTION, and every fault as a typed error.
-#![cfg(feature = "sim")]
 
 use std::time::Duration;
 
@@ -175,16 +174,24 @@ fn dropped_status_corrupt_crc_and_silence_are_typed_errors() {
     assert_eq!(hand.read_states().unwrap().len(), 2);
 }
 
+/// An object 0.1 rad ahead of servo 1 (a 200 N·m/rad spring), stiff enough to stall the finger;
+/// returns where its surface is.
+fn object_ahead(sim: &SimBus) -> f64 {
+    let wall = std::f64::consts::PI + 0.1;
+    sim.set_plant(
+        1,
+        move |th: f64, _w: f64, _t: Duration| {
+            if th > wall { 200.0 * (th - wall) } else { 0.0 }
+        },
+    );
+    wall
+}
+
 #[test]
 fn full_torque_stall_overloads_until_reboot() {
     let (mut sim, mut hand) = hand(&[1]);
     hand.set_torque(true).unwrap();
-    // An object 0.1 rad ahead, stiff enough to stall the finger.
-    let wall = std::f64::consts::PI + 0.1;
-    sim.set_plant(
-        1,
-        move |th: f64, _w: f64, _t: Duration| if th > wall { 200.0 * (th - wall) } else { 0.0 },
-    );
+    object_ahead(&sim);
     // Paper §7: at 100 % (1023) the servo overloads and lets go.
     hand.command(&cmd(4.0, 1023)).unwrap();
     let mut tripped_at = None;
@@ -222,11 +229,7 @@ fn full_torque_stall_overloads_until_reboot() {
 fn paper_torque_400_holds_without_overload() {
     let (mut sim, mut hand) = hand(&[1]);
     hand.set_torque(true).unwrap();
-    let wall = std::f64::consts::PI + 0.1;
-    sim.set_plant(
-        1,
-        move |th: f64, _w: f64, _t: Duration| if th > wall { 200.0 * (th - wall) } else { 0.0 },
-    );
+    let wall = object_ahead(&sim);
     hand.command(&cmd(4.0, 400)).unwrap();
     // Table 5 "torque max": held for more than 2 min without release.
     sim.advance(Duration::from_secs(130)).unwrap();
@@ -260,4 +263,50 @@ fn factory_reset_restores_eeprom_and_keeps_the_id() {
         .unwrap();
     assert_eq!(hand.read_register(5, 36).unwrap(), 885);
     assert_eq!(hand.read_register(5, 7).unwrap(), 5);
+}
+
+#[test]
+fn status_data_that_needs_stuffing_is_read_back_exactly() {
+    // Present Velocity −1 then Present Position −3 put FF FF FF FF FD on the wire: the servo
+    // stuffs an FD after "FF FF FD" (e-Manual, Protocol 2.0 byte stuffing).
+    let (sim, mut hand) = hand(&[1]);
+    let unit = std::f64::consts::TAU / 4096.0;
+    let vunit = 0.229 * std::f64::consts::TAU / 60.0;
+    sim.with_servo(1, |s| s.set_state(-3.0 * unit, -vunit));
+    let s = hand.read_states().unwrap();
+    assert_eq!((s[0].position, s[0].velocity), (-3, -1));
+    // dynamixel2 0.9.1's own unstuffing misses this pattern (why the driver parses replies).
+    let r = hand.bus_mut().read(1, 128, 8);
+    assert!(format!("{r:?}").contains("InvalidParameterCount"), "{r:?}");
+}
+
+#[test]
+fn overheating_and_voltage_bits_reach_the_state_as_faults() {
+    let (sim, mut hand) = hand(&[1, 2]);
+    hand.set_torque(true).unwrap();
+    // Input voltage is not in the default Shutdown mask (52): torque stays on, the alert is up.
+    sim.with_servo(2, |s| s.raise_hardware_error(0x01));
+    let st = hand.state().unwrap();
+    assert_eq!(st.faults, Faults::VOLTAGE);
+    assert_eq!(sim.with_servo(2, |s| s.torque_enabled()), Some(true));
+    // Overheating is: the servo shuts down.
+    sim.with_servo(1, |s| s.raise_hardware_error(0x04));
+    let st = hand.state().unwrap();
+    assert_eq!(st.faults, Faults::VOLTAGE.union(Faults::OVERHEAT));
+    assert_eq!(sim.with_servo(1, |s| s.torque_enabled()), Some(false));
+    // Any acknowledged write to an alerting servo reports the latched error.
+    let r = hand.write_register(2, 65, 1);
+    assert!(
+        matches!(
+            r,
+            Err(Error::Hardware {
+                id: 2,
+                bits: 0x01,
+                ..
+            })
+        ),
+        "{r:?}"
+    );
+    assert_eq!(hand.recover().unwrap(), [1, 2]);
+    assert!(hand.state().unwrap().faults.is_empty());
 }

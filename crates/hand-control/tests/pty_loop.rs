@@ -5,7 +5,6 @@
 //!
 //! One closed-loop grasp, then the fault cases on the wire: a dropped status packet, a
 //! corrupted CRC, a servo that stops answering, the servo's own overload, an out-of-range goal.
-#![cfg(feature = "sim")]
 
 use hand_control::grasp_loop::{
     FaultKind, GraspLoop, LoopClock, LoopConfig, LoopFault, Mode, Recovery, TorqueBand,

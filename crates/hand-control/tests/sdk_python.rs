@@ -1,6 +1,5 @@
 //! The official ROBOTIS SDK (`dynamixel_sdk`, from `$HANDSTACK_PYTHON`) drives the simulator
 //! over the same pty: ping, broadcast ping, read / write, sync read / write, bulk read.
-#![cfg(feature = "sim")]
 
 use std::io::Read;
 use std::process::{Command, Stdio};
@@ -52,7 +51,15 @@ fn robotis_sdk_talks_to_the_simulator() {
         status.map(|s| s.success()).unwrap_or(false),
         "script failed:\n{out}\n{err}"
     );
-    assert!(out.contains("DONE"), "{out}");
+    println!("{out}");
+    for line in [
+        "ok: broadcast ping -> [1, 2, 3]",
+        "ok: sync read 3 -> 200",
+        "ok: bulk read PWM Limit",
+        "DONE",
+    ] {
+        assert!(out.contains(line), "missing {line:?} in:\n{out}");
+    }
     // The SDK's sync write reached the simulated servos.
     for (k, id) in ids.iter().enumerate() {
         assert_eq!(

@@ -2,6 +2,7 @@
 //! effort limit (seed 000 §6–7), through `dynamixel2`.
 
 mod actuator;
+mod status;
 
 use dynamixel2::Bus;
 use dynamixel2::instructions::SyncWriteData;
@@ -132,17 +133,24 @@ impl ServoHand {
         Ok((p.data.model, p.data.firmware))
     }
 
-    /// Writes `value` to register `address` of servo `id` (width from the control table).
-    ///
-    /// # Errors
-    /// [`Error::OutOfRange`] for an address the table lacks; the servo's own errors otherwise.
-    pub fn write_register(&mut self, id: u8, address: u16, value: i32) -> Result<(), Error> {
-        let reg = self.table.register_at(address).ok_or(Error::OutOfRange {
+    /// The register at `address`, or [`Error::OutOfRange`] if the model has none there.
+    fn register(&self, address: u16) -> Result<&'static crate::control_table::Register, Error> {
+        self.table.register_at(address).ok_or(Error::OutOfRange {
             what: "register address",
             value: f64::from(address),
             min: 0.0,
             max: f64::from(self.table.size),
-        })?;
+        })
+    }
+
+    /// Writes `value` to register `address` of servo `id` (width from the control table).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for an address the table lacks; the servo's own errors otherwise;
+    /// [`Error::Hardware`] when the status packet raises the alert bit (the write was executed,
+    /// but the servo has a hardware error latched).
+    pub fn write_register(&mut self, id: u8, address: u16, value: i32) -> Result<(), Error> {
+        let reg = self.register(address)?;
         let bytes = reg.encode(value);
         let r = self
             .bus
@@ -159,12 +167,7 @@ impl ServoHand {
     /// # Errors
     /// As [`ServoHand::write_register`].
     pub fn read_register(&mut self, id: u8, address: u16) -> Result<i32, Error> {
-        let reg = self.table.register_at(address).ok_or(Error::OutOfRange {
-            what: "register address",
-            value: f64::from(address),
-            min: 0.0,
-            max: f64::from(self.table.size),
-        })?;
+        let reg = self.register(address)?;
         let r = self
             .bus
             .read(id, address, u16::from(reg.width))
@@ -304,51 +307,33 @@ impl ServoHand {
     pub fn read_states(&mut self) -> Result<Vec<RawServoState>, Error> {
         let t = self.table;
         let (start, len) = t.state_block();
-        let field = |reg: crate::control_table::Register, data: &[u8]| {
-            reg.decode(&data[usize::from(reg.address - start)..])
-        };
-        let mut out = Vec::with_capacity(self.ids.len());
-        let mut first_err = None;
         let ids = self.ids.clone();
-        let mut next = ids.iter();
-        self.bus
-            .sync_read_cb(&ids, start, len, |r| {
-                let id = next.next().copied();
-                match r {
-                    Ok(r) => {
-                        let parsed = (
-                            field(t.present_position, r.data),
-                            field(t.present_velocity, r.data),
-                            field(t.present_load, r.data),
-                        );
-                        match parsed {
-                            (Some(position), Some(velocity), Some(load)) => {
-                                out.push(RawServoState {
-                                    id: r.motor_id,
-                                    position,
-                                    velocity,
-                                    load,
-                                    alert: r.alert,
-                                })
-                            }
-                            _ => {
-                                first_err.get_or_insert(Error::Protocol {
-                                    id,
-                                    detail: "short sync read".into(),
-                                });
-                            }
-                        }
-                    }
-                    Err(e) => {
-                        first_err.get_or_insert(Error::from_read(id, e));
-                    }
+        let answers = status::sync_read(&mut self.bus, &ids, start, len)?;
+        let field = |reg: crate::control_table::Register, data: &[u8]| {
+            reg.decode(data.get(usize::from(reg.address - start)..)?)
+        };
+        answers
+            .into_iter()
+            .map(|a| {
+                match (
+                    field(t.present_position, &a.data),
+                    field(t.present_velocity, &a.data),
+                    field(t.present_load, &a.data),
+                ) {
+                    (Some(position), Some(velocity), Some(load)) => Ok(RawServoState {
+                        id: a.id,
+                        position,
+                        velocity,
+                        load,
+                        alert: a.alert,
+                    }),
+                    _ => Err(Error::Protocol {
+                        id: Some(a.id),
+                        detail: "short sync read".into(),
+                    }),
                 }
             })
-            .map_err(Error::from_write)?;
-        match first_err {
-            Some(e) => Err(e),
-            None => Ok(out),
-        }
+            .collect()
     }
 
     /// Sync-writes Torque Enable = 0 to every servo: one broadcast packet, no answer needed, so

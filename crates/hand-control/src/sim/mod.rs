@@ -533,7 +533,9 @@ fn serve(device: &SerialPort, world: &Mutex<World>, stop: &AtomicBool, acks: &Se
                     Vec::new()
                 }
                 Ok(p) => w.handle(&p),
-                Err(FrameError::Crc { id, instruction }) => {
+                Err(FrameError::Crc {
+                    id, instruction, ..
+                }) => {
                     let mut out = Vec::new();
                     if let Some(i) = w.target(id).filter(|&i| w.answers(i, instruction)) {
                         w.status(&mut out, i, Err(InstructionError::Crc));

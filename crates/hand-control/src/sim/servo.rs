@@ -225,6 +225,12 @@ impl SimServo {
         self.load
     }
 
+    /// Places the output at `theta_rad` moving at `omega_rad_s` (e.g. a finger's start pose).
+    pub fn set_state(&mut self, theta_rad: f64, omega_rad_s: f64) {
+        self.theta = theta_rad;
+        self.omega = omega_rad_s;
+    }
+
     /// Couples an external load (replacing any previous one).
     pub fn set_plant(&mut self, plant: Option<Box<dyn Plant>>) {
         self.plant = plant;
