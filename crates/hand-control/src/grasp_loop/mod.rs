@@ -23,7 +23,7 @@
 //!     type Error = Infallible;
 //!     fn read_frame(&mut self) -> Result<PressureFrame<1>, Infallible> {
 //!         self.1 += 10_000;
-//!         Ok(PressureFrame { t_us: self.1, pressure_pa: [101_000.0 + 3_000.0 * self.0.get()] })
+//!         Ok(PressureFrame { t_us: self.1, pressure_pa: [101_000.0 + 1_000.0 * self.0.get()] })
 //!     }
 //! }
 //! struct Hand(std::rc::Rc<std::cell::Cell<f32>>);
@@ -52,13 +52,14 @@
 //! let effort = std::rc::Rc::new(std::cell::Cell::new(0.0));
 //! let mut grasp = GraspLoop::new(
 //!     Pad(effort.clone(), 0), fuzzy_mamdani::grasp_controller(), Hand(effort), Sim(0),
-//!     LoopConfig { target_pressure_pa: 1_500.0, ..LoopConfig::new() },
+//!     LoopConfig { target_pressure_pa: 600.0, ..LoopConfig::new() },
 //! )?;
 //! grasp.run_until(2_000_000);
 //! assert_eq!(grasp.mode(), Mode::Grasp);
 //! assert_eq!(grasp.log().len(), 200); // every 10 ms cycle logged
 //! let last = grasp.log().last().unwrap().estimate.unwrap();
-//! assert!((last.pressure_pa - 1_500.0).abs() < 500.0, "{last:?}");
+//! // The fuzzy map is P-like: effort ≈ ½ + ½·e, so p = 1000·(½ + (600 − p)/4000) settles at 520.
+//! assert!((last.pressure_pa - 520.0).abs() < 20.0, "{last:?}");
 //! # Ok::<(), hand_control::grasp_loop::ConfigError>(())
 //! ```
 
