@@ -11,7 +11,35 @@ use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams, random_objects};
 use paper_fixtures::seed000::table5_grasp_torque;
 use support::Outcome;
 
+/// The committed `docs/grasping/results.csv` row for `name`: (settled torque, peak force N).
+fn committed(name: &str) -> (f32, f64) {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/grasping/results.csv"
+    );
+    let text = std::fs::read_to_string(path).expect("committed results (grasp_report example)");
+    let row: Vec<&str> = text
+        .lines()
+        .find(|l| l.split(',').next() == Some(name))
+        .unwrap_or_else(|| panic!("{name} not in results.csv"))
+        .split(',')
+        .collect();
+    (
+        row[3].parse().expect("settled torque"),
+        row[7].parse().expect("peak force"),
+    )
+}
+
 fn check(o: &Outcome) {
+    // The docs' table is what these runs give (regenerate with the grasp_report example).
+    let (settled, peak) = committed(&o.name);
+    assert!(
+        (o.settled_raw - settled).abs() <= 0.1 && (o.peak_force_n - peak).abs() <= 0.01,
+        "{}: {} / {} N drifted from docs/grasping/results.csv {settled} / {peak} N",
+        o.name,
+        o.settled_raw,
+        o.peak_force_n
+    );
     let (lo, hi) = o.band;
     assert!(
         !o.slipped && !o.damaged && !o.dropped,
