@@ -26,20 +26,7 @@ fn every_cycle_logged(l: &SimLoop, until_s: f64) {
     let t0 = l.log()[0].t_us;
     let n = ((until_s * 1e6) as u64 - t0).div_ceil(10_000) as usize;
     assert_eq!(l.log().len(), n);
-    for (i, s) in l.log().iter().enumerate() {
-        assert_eq!((s.cycle, s.t_us), (i as u64, t0 + i as u64 * 10_000));
-    }
-}
-
-/// The first faulted cycle: its fault kind, and the safe action sent in that same cycle.
-fn first_fault(l: &SimLoop) -> (usize, FaultKind, Option<SafeAction>, Mode) {
-    let (i, s) = l
-        .log()
-        .iter()
-        .enumerate()
-        .find(|(_, s)| s.fault.is_some())
-        .expect("a fault");
-    (i, s.fault.expect("fault"), s.safe_action, s.mode)
+    support::ticks_in_order(l.log());
 }
 
 #[test]
@@ -53,9 +40,11 @@ fn overload_at_full_torque_goes_torque_off_in_the_same_cycle() {
     let mut l = support::grasp_loop(&w, cfg);
     l.run_until(6_000_000);
     every_cycle_logged(&l, 6.0);
-    let (i, kind, action, mode) = first_fault(&l);
-    assert_eq!(kind, FaultKind::Hardware(Faults::OVERLOAD));
-    assert_eq!((action, mode), (Some(SafeAction::TorqueOff), Mode::Safe));
+    let i = support::safe_on_first_fault(
+        l.log(),
+        FaultKind::Hardware(Faults::OVERLOAD),
+        SafeAction::TorqueOff,
+    );
     // The cycle before was grasping above the servo's 90 % overload threshold.
     let before = &l.log()[i - 1];
     assert_eq!(before.mode, Mode::Grasp);
@@ -83,7 +72,7 @@ fn overload_recovers_by_reboot_once_the_load_is_gone() {
     };
     let mut l = support::grasp_loop(&w, cfg);
     l.run_until(12_000_000);
-    let (i, ..) = first_fault(&l);
+    let i = support::first_fault(l.log());
     let reboot = l.log().iter().position(|s| s.rebooted).expect("rebooted");
     // Not before the cool-down, and only with the load released.
     assert!(l.log()[reboot].t_us - l.log()[i].t_us >= 500_000);
@@ -123,13 +112,9 @@ fn lost_status_packet_holds_then_resumes() {
         max_reboots: 0,
     };
     let l = with_injection(Injected::LostStatus, 4.0, 4.01, auto);
-    let (i, kind, action, mode) = first_fault(&l);
+    let i =
+        support::safe_on_first_fault(l.log(), FaultKind::Command, SafeAction::HoldLastSafeEffort);
     assert!((4_000_000..4_010_000).contains(&l.log()[i].t_us));
-    assert_eq!(kind, FaultKind::Command);
-    assert_eq!(
-        (action, mode),
-        (Some(SafeAction::HoldLastSafeEffort), Mode::Safe)
-    );
     assert!(matches!(
         l.events()[0].fault,
         LoopFault::Command(HandError::Timeout)
@@ -143,19 +128,15 @@ fn lost_status_packet_holds_then_resumes() {
 #[test]
 fn corrupted_crc_is_a_typed_fault_and_safe() {
     let l = with_injection(Injected::Crc, 4.0, 4.01, Recovery::Manual);
-    let (_, kind, action, mode) = first_fault(&l);
-    assert_eq!(kind, FaultKind::Command);
-    assert_eq!(
-        (action, mode),
-        (Some(SafeAction::HoldLastSafeEffort), Mode::Safe)
-    );
+    let _ =
+        support::safe_on_first_fault(l.log(), FaultKind::Command, SafeAction::HoldLastSafeEffort);
     assert!(matches!(
         l.events()[0].fault,
         LoopFault::Command(HandError::Crc)
     ));
     // Manual recovery: it stays safe, nothing more is commanded.
     assert_eq!(l.mode(), Mode::Safe);
-    let i = first_fault(&l).0;
+    let i = support::first_fault(l.log());
     assert!(l.log()[i..].iter().all(|s| s.torque_raw.is_none()));
 }
 
@@ -166,7 +147,7 @@ fn servo_that_stops_answering_keeps_the_loop_safe_until_it_answers() {
         max_reboots: 0,
     };
     let l = with_injection(Injected::LostStatus, 4.0, 6.0, auto);
-    let (i, ..) = first_fault(&l);
+    let i = support::first_fault(l.log());
     // Silent from 4 s to 6 s: every cycle logged with the fault and in the safe state, the safe
     // stop retried (it cannot reach the servo), reported once per kind as it starts.
     let silent = &l.log()[i..i + 200];
@@ -207,13 +188,9 @@ fn out_of_range_goal_refused_before_sending_or_by_the_servo() {
     l.set_goal_rad(0.4).expect("within the loop's limits");
     l.run_until(4_000_000);
     every_cycle_logged(&l, 4.0);
-    let (i, kind, action, mode) = first_fault(&l);
+    let i =
+        support::safe_on_first_fault(l.log(), FaultKind::Command, SafeAction::HoldLastSafeEffort);
     assert!((3_000_000..3_010_000).contains(&l.log()[i].t_us));
-    assert_eq!(kind, FaultKind::Command);
-    assert_eq!(
-        (action, mode),
-        (Some(SafeAction::HoldLastSafeEffort), Mode::Safe)
-    );
     assert!(matches!(
         l.events()[0].fault,
         LoopFault::Command(HandError::Range { goal_rad }) if goal_rad == 0.4

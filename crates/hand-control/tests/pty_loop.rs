@@ -6,6 +6,8 @@
 //! One closed-loop grasp, then the fault cases on the wire: a dropped status packet, a
 //! corrupted CRC, a servo that stops answering, the servo's own overload, an out-of-range goal.
 
+mod support;
+
 use hand_control::grasp_loop::{
     FaultKind, GraspLoop, LoopClock, LoopConfig, LoopFault, Mode, Recovery, TorqueBand,
 };
@@ -137,30 +139,11 @@ fn cube_band() -> TorqueBand {
     TorqueBand::new(80, 400).expect("Table 5 cube")
 }
 
-/// The first faulted cycle's index, kind, safe action and mode.
-fn first_fault(l: &PtyLoop) -> (usize, FaultKind, Option<SafeAction>, Mode) {
-    let (i, s) = l
-        .log()
-        .iter()
-        .enumerate()
-        .find(|(_, s)| s.fault.is_some())
-        .expect("a fault");
-    (i, s.fault.expect("fault"), s.safe_action, s.mode)
-}
-
-/// Every 10 ms tick of the run is in the log, in order.
-fn every_cycle_logged(l: &PtyLoop) {
-    let t0 = l.log()[0].t_us;
-    for (i, s) in l.log().iter().enumerate() {
-        assert_eq!((s.cycle, s.t_us), (i as u64, t0 + i as u64 * 10_000));
-    }
-}
-
 #[test]
 fn closed_loop_grasp_through_the_driver_holds_the_cube() {
     let (mut l, w) = setup(cube(), cube_band(), |_| {});
     l.run_until(5_000_000);
-    every_cycle_logged(&l);
+    support::ticks_in_order(l.log());
     assert!(l.events().is_empty(), "{:?}", l.events());
     assert_eq!(l.mode(), Mode::Grasp);
     let st = hand_control::grasp_loop::settling(l.log(), 1_000_000, 20.0).expect("commands sent");
@@ -204,13 +187,8 @@ fn dropped_status_packet_on_the_wire_is_a_timeout_and_safe() {
     l.run_until(2_000_000);
     w.borrow().bus.inject(1, Fault::DropNextStatus);
     l.run_until(2_500_000);
-    every_cycle_logged(&l);
-    let (i, kind, action, mode) = first_fault(&l);
-    assert_eq!(kind, FaultKind::State);
-    assert_eq!(
-        (action, mode),
-        (Some(SafeAction::HoldLastSafeEffort), Mode::Safe)
-    );
+    support::ticks_in_order(l.log());
+    let i = support::safe_on_first_fault(l.log(), FaultKind::State, SafeAction::HoldLastSafeEffort);
     // Servo 1's status missing from the sync read: dynamixel2 reads servo 2's packet in its
     // place, so the driver reports a protocol error (or a timeout), typed either way.
     assert!(matches!(
@@ -227,13 +205,8 @@ fn corrupted_crc_on_the_wire_is_typed_and_safe() {
     l.run_until(2_000_000);
     w.borrow().bus.inject(2, Fault::CorruptNextCrc);
     l.run_until(2_500_000);
-    every_cycle_logged(&l);
-    let (i, kind, action, mode) = first_fault(&l);
-    assert_eq!(kind, FaultKind::State);
-    assert_eq!(
-        (action, mode),
-        (Some(SafeAction::HoldLastSafeEffort), Mode::Safe)
-    );
+    support::ticks_in_order(l.log());
+    let i = support::safe_on_first_fault(l.log(), FaultKind::State, SafeAction::HoldLastSafeEffort);
     assert!(matches!(
         l.events()[0].fault,
         LoopFault::State(Error::Crc { .. })
@@ -266,10 +239,8 @@ fn mute_servo_keeps_the_loop_safe_until_it_answers() {
     );
     w.borrow().bus.clear_faults(1);
     l.run_until(3_000_000);
-    every_cycle_logged(&l);
-    let (i, kind, action, mode) = first_fault(&l);
-    assert_eq!(kind, FaultKind::State);
-    assert_eq!((action, mode), (Some(SafeAction::TorqueOff), Mode::Safe));
+    support::ticks_in_order(l.log());
+    let i = support::safe_on_first_fault(l.log(), FaultKind::State, SafeAction::TorqueOff);
     assert!(matches!(
         l.events()[0].fault,
         LoopFault::State(Error::Timeout { .. } | Error::Protocol { .. })
@@ -309,10 +280,12 @@ fn servo_overload_bit_goes_torque_off_then_reboots_over_the_wire() {
         .with_servo(1, |s| s.raise_hardware_error(0x20))
         .expect("servo 1");
     l.run_until(4_000_000);
-    every_cycle_logged(&l);
-    let (i, kind, action, mode) = first_fault(&l);
-    assert_eq!(kind, FaultKind::Hardware(Faults::OVERLOAD));
-    assert_eq!((action, mode), (Some(SafeAction::TorqueOff), Mode::Safe));
+    support::ticks_in_order(l.log());
+    let i = support::safe_on_first_fault(
+        l.log(),
+        FaultKind::Hardware(Faults::OVERLOAD),
+        SafeAction::TorqueOff,
+    );
     let reboot = l.log().iter().position(|s| s.rebooted).expect("rebooted");
     assert!(l.log()[reboot].t_us - l.log()[i].t_us >= 300_000);
     assert!(
@@ -344,13 +317,9 @@ fn out_of_range_goal_is_refused_by_the_loop_and_the_driver() {
     // before sending.
     l.set_goal_rad(6.6).expect("within the loop's limits");
     l.run_until(1_500_000);
-    every_cycle_logged(&l);
-    let (_, kind, action, mode) = first_fault(&l);
-    assert_eq!(kind, FaultKind::Command);
-    assert_eq!(
-        (action, mode),
-        (Some(SafeAction::HoldLastSafeEffort), Mode::Safe)
-    );
+    support::ticks_in_order(l.log());
+    let _ =
+        support::safe_on_first_fault(l.log(), FaultKind::Command, SafeAction::HoldLastSafeEffort);
     assert!(matches!(
         l.events()[0].fault,
         LoopFault::Command(Error::OutOfRange { .. })

@@ -7,7 +7,9 @@
 //! status packet, CRC mismatch, silence, range error) are injected by time window.
 #![allow(dead_code, unreachable_pub)]
 
-use hand_control::grasp_loop::{GraspLoop, LoopClock, LoopConfig, RebootableActuator, TorqueBand};
+use hand_control::grasp_loop::{
+    FaultKind, GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator, Sample, TorqueBand,
+};
 use hand_sim::SimError;
 use hand_sim::fingertip::{ContactPatch, Fingertip, FingertipConfig};
 use hand_sim::grasp::{GraspRig, GraspState, ObjectParams, RigParams};
@@ -355,4 +357,31 @@ pub fn hold(
         mode: l.mode(),
     };
     (o, l, w)
+}
+
+/// Asserts the log's first fault is `kind` and that its own cycle sent `action` and ended in
+/// the safe state; returns the cycle's index.
+pub fn safe_on_first_fault<const N: usize>(
+    log: &[Sample<N>],
+    kind: FaultKind,
+    action: SafeAction,
+) -> usize {
+    let i = first_fault(log);
+    let s = &log[i];
+    assert_eq!(s.fault, Some(kind), "{s:?}");
+    assert_eq!((s.safe_action, s.mode), (Some(action), Mode::Safe), "{s:?}");
+    i
+}
+
+/// The index of the first faulted cycle.
+pub fn first_fault<const N: usize>(log: &[Sample<N>]) -> usize {
+    log.iter().position(|s| s.fault.is_some()).expect("a fault")
+}
+
+/// Every cycle is logged: numbered from 0, one 10 ms tick apart.
+pub fn ticks_in_order<const N: usize>(log: &[Sample<N>]) {
+    let t0 = log[0].t_us;
+    for (i, s) in log.iter().enumerate() {
+        assert_eq!((s.cycle, s.t_us), (i as u64, t0 + i as u64 * 10_000));
+    }
 }
