@@ -148,7 +148,7 @@ fn out_of_range_command_is_rejected_before_the_bus() {
 
 #[test]
 fn dropped_status_corrupt_crc_and_silence_are_typed_errors() {
-    let (sim, mut hand) = hand(&[1, 2]);
+    let (mut sim, mut hand) = hand(&[1, 2]);
     sim.inject(2, Fault::DropNextStatus);
     assert!(matches!(
         hand.read_states(),
@@ -169,6 +169,7 @@ fn dropped_status_corrupt_crc_and_silence_are_typed_errors() {
     // The broadcast torque-off needs no answer: it still reaches the silent servo.
     hand.set_torque(false).unwrap_err();
     hand.safe_stop(SafeAction::TorqueOff).unwrap();
+    sim.sync().unwrap(); // the broadcast has no answer to wait for
     assert_eq!(sim.with_servo(2, |s| s.torque_enabled()), Some(false));
     sim.clear_faults(2);
     assert_eq!(hand.read_states().unwrap().len(), 2);
@@ -309,4 +310,17 @@ fn overheating_and_voltage_bits_reach_the_state_as_faults() {
     );
     assert_eq!(hand.recover().unwrap(), [1, 2]);
     assert!(hand.state().unwrap().faults.is_empty());
+}
+
+#[test]
+fn each_exchange_costs_its_wire_time_in_simulated_time() {
+    let (sim, mut hand) = hand(&[1]);
+    let before = sim.now();
+    hand.ping(1).unwrap();
+    // 1 Mbps, 10 bits a byte: PING 10 bytes + Return Delay Time 250 × 2 µs + status 14 bytes.
+    assert_eq!(sim.now() - before, Duration::from_micros(100 + 500 + 140));
+    hand.write_register(1, 9, 0).unwrap(); // Return Delay Time 0
+    let before = sim.now();
+    hand.ping(1).unwrap();
+    assert_eq!(sim.now() - before, Duration::from_micros(100 + 140));
 }

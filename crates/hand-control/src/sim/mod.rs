@@ -444,6 +444,16 @@ impl SimBus {
         }
     }
 
+    /// Waits until the simulator has handled every byte the client sent so far (an
+    /// `advance` of zero): call it before inspecting a servo after a broadcast write, which
+    /// gets no answer to wait for.
+    ///
+    /// # Errors
+    /// As [`SimBus::advance`].
+    pub fn sync(&mut self) -> std::io::Result<()> {
+        self.advance(Duration::ZERO)
+    }
+
     /// Simulated time since the bus started.
     pub fn now(&self) -> Duration {
         self.world().now
