@@ -156,6 +156,13 @@ fn dropped_status_corrupt_crc_and_silence_are_typed_errors() {
     ));
     // The next exchange works again.
     assert_eq!(hand.read_states().unwrap().len(), 2);
+    // The first servo's answer missing: its timeout, not servo 2's packet taken for it.
+    sim.inject(1, Fault::DropNextStatus);
+    assert!(matches!(
+        hand.read_states(),
+        Err(Error::Timeout { id: Some(1) })
+    ));
+    assert_eq!(hand.read_states().unwrap().len(), 2);
 
     sim.inject(1, Fault::CorruptNextCrc);
     let r = hand.read_states();

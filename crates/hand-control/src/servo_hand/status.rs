@@ -50,49 +50,66 @@ pub(super) fn sync_read(
     let baud = u64::from(bus.baud_rate().max(1));
     let per_answer =
         LATENCY + Duration::from_nanos((11 + u64::from(count)) * 10 * 1_000_000_000 / baud);
+    // Answers are matched to servos by ID, so one missing status packet is that servo's
+    // timeout and does not shift the others.
+    let deadline = Instant::now() + per_answer * ids.len().max(1) as u32;
     let port = bus.serial_port();
     let mut parser = Parser::default();
     let mut buf = [0u8; 512];
-    let mut out = Vec::with_capacity(ids.len());
-    let mut first_err = None;
-    for &id in ids {
-        let deadline = Instant::now() + per_answer;
-        let result = loop {
-            match parser.next_packet() {
-                Some(Ok(p)) => break check(id, count, p),
-                Some(Err(FrameError::Crc { sent, computed, .. })) => {
-                    break Err(Error::Crc {
+    let mut results: Vec<Option<Result<Answer, Error>>> = ids.iter().map(|_| None).collect();
+    let mut stray = None;
+    while results.iter().any(Option::is_none) && Instant::now() < deadline {
+        while let Some(frame) = parser.next_packet() {
+            let (slot_id, result) = match frame {
+                Ok(p) => (p.id, check(p.id, count, p)),
+                Err(FrameError::Crc {
+                    id, sent, computed, ..
+                }) => (
+                    id,
+                    Err(Error::Crc {
                         id: Some(id),
                         message: sent,
                         computed,
+                    }),
+                ),
+                Err(FrameError::BadLength) => continue,
+            };
+            // A corrupted ID byte: charge the error to the first servo still waiting.
+            let slot = ids
+                .iter()
+                .zip(&results)
+                .position(|(&i, r)| i == slot_id && r.is_none())
+                .or_else(|| results.iter().position(Option::is_none));
+            match slot {
+                Some(k) => results[k] = Some(result),
+                None => {
+                    stray.get_or_insert(Error::Protocol {
+                        id: Some(slot_id),
+                        detail: "status packet nobody was asked for".into(),
                     });
                 }
-                Some(Err(FrameError::BadLength)) => continue,
-                None => {}
-            }
-            if Instant::now() >= deadline {
-                break Err(Error::Timeout { id: Some(id) });
-            }
-            match port.read(&mut buf) {
-                Ok(n) => parser.push(&buf[..n]),
-                Err(e) if e.kind() == std::io::ErrorKind::TimedOut => {}
-                Err(e) => return Err(Error::Io(e)),
-            }
-        };
-        match result {
-            Ok(a) => out.push(a),
-            Err(e) => {
-                first_err.get_or_insert(e);
             }
         }
+        if results.iter().all(Option::is_some) {
+            break;
+        }
+        match port.read(&mut buf) {
+            Ok(n) => parser.push(&buf[..n]),
+            Err(e) if e.kind() == std::io::ErrorKind::TimedOut => {}
+            Err(e) => return Err(Error::Io(e)),
+        }
     }
-    match first_err {
+    let mut out = Vec::with_capacity(ids.len());
+    for (&id, r) in ids.iter().zip(results) {
+        out.push(r.unwrap_or(Err(Error::Timeout { id: Some(id) }))?);
+    }
+    match stray {
         Some(e) => Err(e),
         None => Ok(out),
     }
 }
 
-/// Checks one status packet against the servo and length expected.
+/// Checks servo `id`'s status packet: a status, no error code, `count` data bytes.
 fn check(id: u8, count: u16, p: crate::protocol::Packet) -> Result<Answer, Error> {
     let bad = |detail: String| Error::Protocol {
         id: Some(id),
@@ -103,9 +120,6 @@ fn check(id: u8, count: u16, p: crate::protocol::Packet) -> Result<Answer, Error
             "instruction {:#04x}, not a status",
             p.instruction
         )));
-    }
-    if p.id != id {
-        return Err(bad(format!("answer from {} instead", p.id)));
     }
     let (&err, data) = p
         .params
