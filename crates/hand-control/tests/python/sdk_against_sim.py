@@ -65,6 +65,28 @@ def main():
     if len(ids) > 1:
         check(gbr.getData(ids[1], ADDR_PWM_LIMIT, 2) == 885, "bulk read PWM Limit")
 
+    # REG_WRITE holds the value until ACTION.
+    res, err = ph.regWriteTxRx(port, ids[0], ADDR_LED, 1, [0])
+    check(res == COMM_SUCCESS and err == 0, "reg write LED 0")
+    val, res, err = ph.read1ByteTxRx(port, ids[0], ADDR_LED)
+    check(res == COMM_SUCCESS and val == 1, f"LED still {val} before ACTION")
+    res = ph.action(port, ids[0])
+    val, res, err = ph.read1ByteTxRx(port, ids[0], ADDR_LED)
+    check(res == COMM_SUCCESS and val == 0, f"LED {val} after ACTION")
+
+    # REBOOT resets RAM (LED back to 0, torque off); FACTORY RESET (keep ID) resets EEPROM.
+    res, err = ph.write1ByteTxRx(port, ids[-1], ADDR_LED, 1)
+    res, err = ph.reboot(port, ids[-1])
+    check(res == COMM_SUCCESS and err == 0, "reboot")
+    val, res, err = ph.read1ByteTxRx(port, ids[-1], ADDR_LED)
+    check(res == COMM_SUCCESS and val == 0, f"LED {val} after reboot")
+    res, err = ph.write2ByteTxRx(port, ids[-1], ADDR_PWM_LIMIT, 300)
+    check(res == COMM_SUCCESS and err == 0, "write PWM Limit 300")
+    res, err = ph.factoryReset(port, ids[-1], 0x01)
+    check(res == COMM_SUCCESS and err == 0, "factory reset, keep ID")
+    val, res, err = ph.read2ByteTxRx(port, ids[-1], ADDR_PWM_LIMIT)
+    check(res == COMM_SUCCESS and val == 885, f"PWM Limit {val} after factory reset")
+
     port.closePort()
     print("DONE", flush=True)
 
