@@ -3,13 +3,13 @@
 
 use std::time::Duration;
 
-use hand_control::sim::{Fault, SimBus, SimConfig};
+use hand_control::sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
 use hand_control::{Error, InstructionError, ServoHand};
 use hand_traits::{Effort, Faults, GripperActuator, GripperCommand, SafeAction};
 
 fn hand(ids: &[u8]) -> (SimBus, ServoHand) {
     let (sim, port) = SimBus::spawn(SimConfig::with_ids(ids)).expect("pty");
-    let hand = ServoHand::new(port, ids).expect("identify");
+    let hand = ServoHand::with_reply_latency(port, ids, REPLY_LATENCY).expect("identify");
     (sim, hand)
 }
 
@@ -68,19 +68,26 @@ fn sync_write_then_sync_read_moves_every_servo() {
 #[test]
 fn reg_write_waits_for_action() {
     let (_sim, mut hand) = hand(&[1, 2]);
-    let bus = hand.bus_mut();
-    bus.reg_write(1, 65, &[1]).unwrap();
-    bus.reg_write(2, 65, &[1]).unwrap();
-    assert_eq!(bus.read_u8(1, 69).unwrap().data, 1); // Registered Instruction
-    assert_eq!(bus.read_u8(1, 65).unwrap().data, 0);
-    bus.broadcast_action().unwrap();
-    assert_eq!(bus.read_u8(1, 65).unwrap().data, 1);
-    assert_eq!(bus.read_u8(2, 65).unwrap().data, 1);
+    hand.reg_write(1, 65, 1).unwrap();
+    hand.reg_write(2, 65, 1).unwrap();
+    assert_eq!(hand.read_register(1, 69).unwrap(), 1); // Registered Instruction
+    assert_eq!(hand.read_register(1, 65).unwrap(), 0);
+    hand.action(dynamixel2::instructions::packet_id::BROADCAST)
+        .unwrap();
+    assert_eq!(hand.read_register(1, 65).unwrap(), 1);
+    assert_eq!(hand.read_register(2, 65).unwrap(), 1);
     // ACTION with nothing registered: Instruction Error.
-    assert!(matches!(
-        hand.bus_mut().action(1).map_err(|e| format!("{e:?}")),
-        Err(e) if e.contains("error_number: 2")
-    ));
+    let r = hand.action(1);
+    assert!(
+        matches!(
+            r,
+            Err(Error::Status {
+                id: 1,
+                error: InstructionError::Instruction
+            })
+        ),
+        "{r:?}"
+    );
 }
 
 #[test]
@@ -266,9 +273,7 @@ fn hold_last_safe_effort_resends_the_confirmed_command() {
 fn factory_reset_restores_eeprom_and_keeps_the_id() {
     let (_sim, mut hand) = hand(&[5]);
     hand.write_register(5, 36, 100).unwrap();
-    hand.bus_mut()
-        .factory_reset(5, dynamixel2::instructions::FactoryResetKind::KeepId)
-        .unwrap();
+    hand.factory_reset(5, 0x01).unwrap(); // keep the ID
     assert_eq!(hand.read_register(5, 36).unwrap(), 885);
     assert_eq!(hand.read_register(5, 7).unwrap(), 5);
 }
@@ -283,9 +288,9 @@ fn status_data_that_needs_stuffing_is_read_back_exactly() {
     sim.with_servo(1, |s| s.set_state(-3.0 * unit, -vunit));
     let s = hand.read_states().unwrap();
     assert_eq!((s[0].position, s[0].velocity), (-3, -1));
-    // dynamixel2 0.9.1's own unstuffing misses this pattern (why the driver parses replies).
-    let r = hand.bus_mut().read(1, 128, 8);
-    assert!(format!("{r:?}").contains("InvalidParameterCount"), "{r:?}");
+    // dynamixel2 0.9.1's own `Bus::read` rejects this packet (InvalidParameterCount: 11 data
+    // bytes for 10), which is why the driver parses replies itself; not asserted here, as its
+    // fixed 34 ms reply timeout is not reliable against a thread on a loaded machine.
 }
 
 #[test]

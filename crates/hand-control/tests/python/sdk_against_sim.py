@@ -5,7 +5,8 @@ Exits non-zero with a message on the first mismatch; prints one line per check.
 """
 import sys
 
-from dynamixel_sdk import (COMM_SUCCESS, GroupBulkRead, GroupSyncRead, GroupSyncWrite,
+import dynamixel_sdk.port_handler
+from dynamixel_sdk import (BROADCAST_ID, COMM_SUCCESS, GroupBulkRead, GroupSyncRead, GroupSyncWrite,
                            PacketHandler, PortHandler)
 
 MX28_MODEL = 30
@@ -20,6 +21,9 @@ def check(cond, what):
 
 
 def main():
+    # The SDK allows 2 x LATENCY_TIMER (the USB adapter's 16 ms) + 2 ms per reply; the simulator is
+    # a thread on a shared machine, so give it the same 250 ms as the Rust tests (REPLY_LATENCY).
+    dynamixel_sdk.port_handler.LATENCY_TIMER = 124
     path, ids = sys.argv[1], [int(x) for x in sys.argv[2].split(",")]
     port = PortHandler(path)
     check(port.openPort(), "open " + path)
@@ -70,7 +74,10 @@ def main():
     check(res == COMM_SUCCESS and err == 0, "reg write LED 0")
     val, res, err = ph.read1ByteTxRx(port, ids[0], ADDR_LED)
     check(res == COMM_SUCCESS and val == 1, f"LED still {val} before ACTION")
-    res = ph.action(port, ids[0])
+    # Broadcast: the SDK's txRxPacket does not wait for a unicast ACTION's status packet, which a
+    # servo (and the simulator) sends, so that packet would be read as the next reply.
+    res = ph.action(port, BROADCAST_ID)
+    check(res == COMM_SUCCESS, "broadcast ACTION")
     val, res, err = ph.read1ByteTxRx(port, ids[0], ADDR_LED)
     check(res == COMM_SUCCESS and val == 0, f"LED {val} after ACTION")
 
