@@ -10,7 +10,7 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use hand_control::ServoHand;
 use hand_control::protocol::{encode, instruction_id, packet_id};
-use hand_control::sim::{SimBus, SimConfig};
+use hand_control::sim::{REPLY_LATENCY, SimBus, SimConfig};
 use hand_traits::{Effort, GripperActuator, GripperCommand};
 
 const BAUD: u64 = 1_000_000;
@@ -52,7 +52,7 @@ fn round_trip(c: &mut Criterion) {
     for n in [2usize, 3, 4] {
         let ids: Vec<u8> = (1..=n as u8).collect();
         let (sim, port) = SimBus::spawn(SimConfig::with_ids(&ids)).expect("pty");
-        let mut hand = ServoHand::new(port, &ids).expect("hand");
+        let mut hand = ServoHand::with_reply_latency(port, &ids, REPLY_LATENCY).expect("hand");
         for &id in &ids {
             // Return Delay Time 0: compare against the bytes alone.
             hand.write_register(id, 9, 0).expect("return delay");
@@ -79,7 +79,7 @@ fn round_trip(c: &mut Criterion) {
 
 fn encoding(c: &mut Criterion) {
     let (_sim, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
-    let hand = ServoHand::new(port, &[1, 2]).expect("hand");
+    let hand = ServoHand::with_reply_latency(port, &[1, 2], REPLY_LATENCY).expect("hand");
     let cmd = GripperCommand {
         position_rad: 3.0,
         effort: Effort::from_torque_limit_raw(400),

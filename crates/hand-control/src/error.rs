@@ -169,38 +169,6 @@ pub enum Error {
 }
 
 impl Error {
-    /// Converts a `dynamixel2` read error for the exchange with `id`.
-    pub(crate) fn from_read(id: Option<u8>, e: dynamixel2::ReadError) -> Self {
-        use dynamixel2::{InvalidMessage as M, ReadError as R};
-        match e {
-            R::Io(io) if io.kind() == std::io::ErrorKind::TimedOut => Error::Timeout { id },
-            R::Io(io) => Error::Io(io),
-            R::MotorError(m) => match InstructionError::from_code(m.raw) {
-                Some(error) => Error::Status {
-                    id: id.unwrap_or(0xFE),
-                    error,
-                },
-                None => Error::Protocol {
-                    id,
-                    detail: format!("{m:?}"),
-                },
-            },
-            R::InvalidMessage(M::InvalidChecksum(c)) => Error::Crc {
-                id,
-                message: c.message,
-                computed: c.computed,
-            },
-            R::InvalidMessage(other) => Error::Protocol {
-                id,
-                detail: format!("{other:?}"),
-            },
-            R::BufferFull(b) => Error::Protocol {
-                id,
-                detail: format!("{b:?}"),
-            },
-        }
-    }
-
     /// Converts a `dynamixel2` write error.
     pub(crate) fn from_write(e: dynamixel2::WriteError) -> Self {
         use dynamixel2::WriteError as W;
@@ -210,14 +178,6 @@ impl Error {
                 id: None,
                 detail: format!("{b:?}"),
             },
-        }
-    }
-
-    /// Converts a `dynamixel2` transfer error for the exchange with `id`.
-    pub(crate) fn from_transfer(id: Option<u8>, e: dynamixel2::TransferError) -> Self {
-        match e {
-            dynamixel2::TransferError::WriteError(w) => Self::from_write(w),
-            dynamixel2::TransferError::ReadError(r) => Self::from_read(id, r),
         }
     }
 }

@@ -18,7 +18,8 @@
 //! use std::time::Duration;
 //!
 //! let (mut sim, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2]))?;
-//! let mut hand = ServoHand::new(port, &[1, 2])?; // pings both, identifies MX-28(2.0)
+//! // Pings both and identifies MX-28(2.0); the simulator gets a generous reply allowance.
+//! let mut hand = ServoHand::with_reply_latency(port, &[1, 2], hand_control::sim::REPLY_LATENCY)?;
 //! hand.set_torque(true)?;
 //! // The paper's torque limit 400 of 0…1023, closing towards 3.5 rad.
 //! let cmd = GripperCommand { position_rad: 3.5, effort: Effort::from_torque_limit_raw(400) };
@@ -42,4 +43,4 @@ mod servo_hand;
 pub mod sim;
 
 pub use error::{Error, InstructionError, faults_from_hardware_error};
-pub use servo_hand::{RawGoals, RawServoState, ServoHand};
+pub use servo_hand::{DEFAULT_REPLY_LATENCY, RawGoals, RawServoState, ServoHand};

@@ -3,13 +3,13 @@
 
 use std::time::Duration;
 
-use hand_control::sim::{Fault, SimBus, SimConfig};
+use hand_control::sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
 use hand_control::{Error, InstructionError, ServoHand};
 use hand_traits::{Effort, Faults, GripperActuator, GripperCommand, SafeAction};
 
 fn hand(ids: &[u8]) -> (SimBus, ServoHand) {
     let (sim, port) = SimBus::spawn(SimConfig::with_ids(ids)).expect("pty");
-    let hand = ServoHand::new(port, ids).expect("identify");
+    let hand = ServoHand::with_reply_latency(port, ids, REPLY_LATENCY).expect("identify");
     (sim, hand)
 }
 
@@ -68,19 +68,26 @@ fn sync_write_then_sync_read_moves_every_servo() {
 #[test]
 fn reg_write_waits_for_action() {
     let (_sim, mut hand) = hand(&[1, 2]);
-    let bus = hand.bus_mut();
-    bus.reg_write(1, 65, &[1]).unwrap();
-    bus.reg_write(2, 65, &[1]).unwrap();
-    assert_eq!(bus.read_u8(1, 69).unwrap().data, 1); // Registered Instruction
-    assert_eq!(bus.read_u8(1, 65).unwrap().data, 0);
-    bus.broadcast_action().unwrap();
-    assert_eq!(bus.read_u8(1, 65).unwrap().data, 1);
-    assert_eq!(bus.read_u8(2, 65).unwrap().data, 1);
+    hand.reg_write(1, 65, 1).unwrap();
+    hand.reg_write(2, 65, 1).unwrap();
+    assert_eq!(hand.read_register(1, 69).unwrap(), 1); // Registered Instruction
+    assert_eq!(hand.read_register(1, 65).unwrap(), 0);
+    hand.action(dynamixel2::instructions::packet_id::BROADCAST)
+        .unwrap();
+    assert_eq!(hand.read_register(1, 65).unwrap(), 1);
+    assert_eq!(hand.read_register(2, 65).unwrap(), 1);
     // ACTION with nothing registered: Instruction Error.
-    assert!(matches!(
-        hand.bus_mut().action(1).map_err(|e| format!("{e:?}")),
-        Err(e) if e.contains("error_number: 2")
-    ));
+    let r = hand.action(1);
+    assert!(
+        matches!(
+            r,
+            Err(Error::Status {
+                id: 1,
+                error: InstructionError::Instruction
+            })
+        ),
+        "{r:?}"
+    );
 }
 
 #[test]
@@ -148,13 +155,20 @@ fn out_of_range_command_is_rejected_before_the_bus() {
 
 #[test]
 fn dropped_status_corrupt_crc_and_silence_are_typed_errors() {
-    let (sim, mut hand) = hand(&[1, 2]);
+    let (mut sim, mut hand) = hand(&[1, 2]);
     sim.inject(2, Fault::DropNextStatus);
     assert!(matches!(
         hand.read_states(),
         Err(Error::Timeout { id: Some(2) })
     ));
     // The next exchange works again.
+    assert_eq!(hand.read_states().unwrap().len(), 2);
+    // The first servo's answer missing: its timeout, not servo 2's packet taken for it.
+    sim.inject(1, Fault::DropNextStatus);
+    assert!(matches!(
+        hand.read_states(),
+        Err(Error::Timeout { id: Some(1) })
+    ));
     assert_eq!(hand.read_states().unwrap().len(), 2);
 
     sim.inject(1, Fault::CorruptNextCrc);
@@ -169,6 +183,7 @@ fn dropped_status_corrupt_crc_and_silence_are_typed_errors() {
     // The broadcast torque-off needs no answer: it still reaches the silent servo.
     hand.set_torque(false).unwrap_err();
     hand.safe_stop(SafeAction::TorqueOff).unwrap();
+    sim.sync().unwrap(); // the broadcast has no answer to wait for
     assert_eq!(sim.with_servo(2, |s| s.torque_enabled()), Some(false));
     sim.clear_faults(2);
     assert_eq!(hand.read_states().unwrap().len(), 2);
@@ -258,9 +273,7 @@ fn hold_last_safe_effort_resends_the_confirmed_command() {
 fn factory_reset_restores_eeprom_and_keeps_the_id() {
     let (_sim, mut hand) = hand(&[5]);
     hand.write_register(5, 36, 100).unwrap();
-    hand.bus_mut()
-        .factory_reset(5, dynamixel2::instructions::FactoryResetKind::KeepId)
-        .unwrap();
+    hand.factory_reset(5, 0x01).unwrap(); // keep the ID
     assert_eq!(hand.read_register(5, 36).unwrap(), 885);
     assert_eq!(hand.read_register(5, 7).unwrap(), 5);
 }
@@ -275,9 +288,9 @@ fn status_data_that_needs_stuffing_is_read_back_exactly() {
     sim.with_servo(1, |s| s.set_state(-3.0 * unit, -vunit));
     let s = hand.read_states().unwrap();
     assert_eq!((s[0].position, s[0].velocity), (-3, -1));
-    // dynamixel2 0.9.1's own unstuffing misses this pattern (why the driver parses replies).
-    let r = hand.bus_mut().read(1, 128, 8);
-    assert!(format!("{r:?}").contains("InvalidParameterCount"), "{r:?}");
+    // dynamixel2 0.9.1's own `Bus::read` rejects this packet (InvalidParameterCount: 11 data
+    // bytes for 10), which is why the driver parses replies itself; not asserted here, as its
+    // fixed 34 ms reply timeout is not reliable against a thread on a loaded machine.
 }
 
 #[test]
@@ -309,4 +322,17 @@ fn overheating_and_voltage_bits_reach_the_state_as_faults() {
     );
     assert_eq!(hand.recover().unwrap(), [1, 2]);
     assert!(hand.state().unwrap().faults.is_empty());
+}
+
+#[test]
+fn each_exchange_costs_its_wire_time_in_simulated_time() {
+    let (sim, mut hand) = hand(&[1]);
+    let before = sim.now();
+    hand.ping(1).unwrap();
+    // 1 Mbps, 10 bits a byte: PING 10 bytes + Return Delay Time 250 × 2 µs + status 14 bytes.
+    assert_eq!(sim.now() - before, Duration::from_micros(100 + 500 + 140));
+    hand.write_register(1, 9, 0).unwrap(); // Return Delay Time 0
+    let before = sim.now();
+    hand.ping(1).unwrap();
+    assert_eq!(sim.now() - before, Duration::from_micros(100 + 140));
 }

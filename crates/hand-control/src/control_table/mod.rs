@@ -2,8 +2,11 @@
 //! units that turn raw values into physical ones — in the spirit of `dynamixel2`, not a type
 //! per model.
 //!
-//! Addresses and widths follow the ROBOTIS e-Manual control-table pages cited on each table and
-//! agree with ROBOTIS' own `dynamixel_hardware_interface` model files (`param/dxl_model/*.model`).
+//! Addresses, widths, access and initial values follow the ROBOTIS e-Manual control-table pages
+//! cited on each table (checked against the pages' sources in ROBOTIS-GIT/emanual) and agree with
+//! ROBOTIS' own `dynamixel_hardware_interface` model files (`param/dxl_model/*.model`). Value
+//! ranges come from the e-Manual's per-register descriptions; where a page leaves a range open
+//! ("-"), the register's full width is used. Indirect Address / Data blocks are omitted.
 
 mod mx28;
 mod rh_p12_rn;

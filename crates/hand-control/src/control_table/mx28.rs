@@ -1,7 +1,8 @@
 //! MX-28 with Protocol 2.0 firmware — the servo of the paper's hand (seed 000, Table 4).
 //!
 //! Source: ROBOTIS e-Manual, "MX-28(2.0)" control table,
-//! <https://emanual.robotis.com/docs/en/dxl/mx/mx-28-2/#control-table> (addresses, sizes,
+//! <https://emanual.robotis.com/docs/en/dxl/mx/mx-28-2/#control-table> (source
+//! `docs/en/dxl/mx/mx-28-2.md` of ROBOTIS-GIT/emanual: addresses, sizes,
 //! access, initial values and ranges); addresses agree with ROBOTIS' `dynamixel_hardware_interface`
 //! `param/dxl_model/mx_28.model`. Units from the same page: position 0.088°/unit (4096 per
 //! revolution), velocity 0.229 rev/min, Present Load 0.1 % (−1000…1000), Goal PWM 0.113 %
@@ -14,7 +15,7 @@ use super::{
 const R_MIN: i32 = i32::MIN;
 const R_MAX: i32 = i32::MAX;
 
-/// The MX-28(2.0) registers, in address order.
+/// The MX-28(2.0) registers, in address order (Indirect Address / Data 168–251, 578–661 omitted).
 pub(super) const REGISTERS: &[Register] = &[
     reg("Model Number", 0, 2, false, Eeprom, R, 0, 65535, 30),
     reg("Model Information", 2, 4, false, Eeprom, R, 0, R_MAX, 0),
@@ -35,7 +36,7 @@ pub(super) const REGISTERS: &[Register] = &[
         255,
         255,
     ),
-    reg("Protocol Type", 13, 1, false, Eeprom, Rw, 1, 2, 2),
+    reg("Protocol Version", 13, 1, false, Eeprom, Rw, 1, 2, 2),
     reg(
         "Homing Offset",
         20,
@@ -63,7 +64,7 @@ pub(super) const REGISTERS: &[Register] = &[
         32767,
         32767,
     ),
-    reg("Velocity Limit", 44, 4, false, Eeprom, Rw, 0, 1023, 230),
+    reg("Velocity Limit", 44, 4, false, Eeprom, Rw, 0, 1023, 380),
     reg(
         "Max Position Limit",
         48,

@@ -2,7 +2,8 @@
 //! paper used to press its test contacts (seed 000 §3, Figure 9).
 //!
 //! Source: ROBOTIS e-Manual, "RH-P12-RN" control table,
-//! <https://emanual.robotis.com/docs/en/platform/rh_p12_rn/#control-table> (EEPROM 0–48, RAM
+//! <https://emanual.robotis.com/docs/en/platform/rh_p12_rn/#control-table> (source
+//! `docs/en/platform/rh_p12_rn/rh_p12_rn.md` of ROBOTIS-GIT/emanual; EEPROM 0–48, RAM
 //! 562–892; Current Limit 820 × 4.02 mA; position 0 = open … 1150 = closed; velocity 0.114
 //! rev/min). The newer RH-P12-RN(A) firmware (model 35074) uses a different, X-like layout and is
 //! not this table. Ranges the page leaves open ("-") are given the register's full width here.

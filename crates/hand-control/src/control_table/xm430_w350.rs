@@ -1,7 +1,8 @@
 //! XM430-W350 (Protocol 2.0): the X-series servo with current control.
 //!
 //! Source: ROBOTIS e-Manual, "XM430-W350" control table,
-//! <https://emanual.robotis.com/docs/en/dxl/x/xm430-w350/#control-table>; addresses agree with
+//! <https://emanual.robotis.com/docs/en/dxl/x/xm430-w350/#control-table> (source
+//! `docs/en/dxl/x/xm430-w350.md` of ROBOTIS-GIT/emanual); addresses agree with
 //! ROBOTIS' `dynamixel_hardware_interface` `param/dxl_model/xm430_w350.model`. Units: position
 //! 0.088°/unit, velocity 0.229 rev/min, current 2.69 mA (Current Limit 1193 ≈ 3.2 A).
 
@@ -12,7 +13,7 @@ use super::{
 const R_MIN: i32 = i32::MIN;
 const R_MAX: i32 = i32::MAX;
 
-/// The XM430-W350 registers, in address order.
+/// The XM430-W350 registers, in address order (Indirect Address / Data 168–251, 578–661 omitted).
 pub(super) const REGISTERS: &[Register] = &[
     reg("Model Number", 0, 2, false, Eeprom, R, 0, 65535, 1020),
     reg("Model Information", 2, 4, false, Eeprom, R, 0, R_MAX, 0),
@@ -33,7 +34,7 @@ pub(super) const REGISTERS: &[Register] = &[
         255,
         255,
     ),
-    reg("Protocol Type", 13, 1, false, Eeprom, Rw, 1, 2, 2),
+    reg("Protocol Version", 13, 1, false, Eeprom, Rw, 1, 2, 2),
     reg(
         "Homing Offset",
         20,
@@ -47,11 +48,22 @@ pub(super) const REGISTERS: &[Register] = &[
     ),
     reg("Moving Threshold", 24, 4, false, Eeprom, Rw, 0, 1023, 10),
     reg("Temperature Limit", 31, 1, false, Eeprom, Rw, 0, 100, 80),
-    reg("Max Voltage Limit", 32, 2, false, Eeprom, Rw, 60, 160, 160),
-    reg("Min Voltage Limit", 34, 2, false, Eeprom, Rw, 60, 160, 95),
+    reg("Max Voltage Limit", 32, 2, false, Eeprom, Rw, 95, 160, 160),
+    reg("Min Voltage Limit", 34, 2, false, Eeprom, Rw, 95, 160, 95),
     reg("PWM Limit", 36, 2, false, Eeprom, Rw, 0, 885, 885),
     reg("Current Limit", 38, 2, false, Eeprom, Rw, 0, 1193, 1193),
-    reg("Velocity Limit", 44, 4, false, Eeprom, Rw, 0, 1023, 200),
+    reg(
+        "Acceleration Limit",
+        40,
+        4,
+        false,
+        Eeprom,
+        Rw,
+        0,
+        32767,
+        32767,
+    ),
+    reg("Velocity Limit", 44, 4, false, Eeprom, Rw, 0, 1023, 350),
     reg(
         "Max Position Limit",
         48,

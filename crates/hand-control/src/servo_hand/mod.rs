@@ -4,8 +4,11 @@
 mod actuator;
 mod status;
 
+use std::time::Duration;
+
 use dynamixel2::Bus;
 use dynamixel2::instructions::SyncWriteData;
+use dynamixel2::instructions::{instruction_id, packet_id};
 use dynamixel2::serial2::SerialPort;
 
 use crate::control_table::{ControlTable, LimitBy};
@@ -46,7 +49,7 @@ pub struct RawGoals {
 /// 0…1023 torque limit becomes 0…885) or Goal Current (XM430, RH-P12-RN).
 #[derive(Debug)]
 pub struct ServoHand {
-    bus: Bus<Vec<u8>, Vec<u8>>,
+    link: status::Link,
     ids: Vec<u8>,
     table: &'static ControlTable,
     /// The last command a fault-free state read confirmed.
@@ -55,6 +58,9 @@ pub struct ServoHand {
     pending: Option<RawGoals>,
 }
 
+/// The reply allowance a real bus needs: the ROBOTIS SDK's flat 34 ms (as `dynamixel2`).
+pub const DEFAULT_REPLY_LATENCY: Duration = Duration::from_millis(34);
+
 impl ServoHand {
     /// Opens a hand on `port` (already configured for the bus's baud rate), pings every ID and
     /// identifies the model.
@@ -62,6 +68,20 @@ impl ServoHand {
     /// # Errors
     /// [`Error::NoServos`], a ping failure, [`Error::UnknownModel`] or [`Error::MixedModels`].
     pub fn new(port: SerialPort, ids: &[u8]) -> Result<Self, Error> {
+        Self::with_reply_latency(port, ids, DEFAULT_REPLY_LATENCY)
+    }
+
+    /// As [`ServoHand::new`], allowing each status packet `latency` beyond its wire time (from
+    /// the identifying pings on). A simulated bus on a loaded machine wants more than a real
+    /// servo's [`DEFAULT_REPLY_LATENCY`]: see `sim::REPLY_LATENCY`.
+    ///
+    /// # Errors
+    /// As [`ServoHand::new`].
+    pub fn with_reply_latency(
+        port: SerialPort,
+        ids: &[u8],
+        latency: Duration,
+    ) -> Result<Self, Error> {
         let bus =
             Bus::with_buffers(port, vec![0; BUFFER_LEN], vec![0; BUFFER_LEN]).map_err(|e| {
                 Error::Io(match e {
@@ -69,7 +89,7 @@ impl ServoHand {
                     | dynamixel2::InitializeError::GetBaudRate(io) => io,
                 })
             })?;
-        Self::with_bus(bus, ids)
+        Self::with_bus(bus, ids, latency)
     }
 
     /// Opens the serial device at `path` with `baud_rate` and builds the hand.
@@ -84,11 +104,18 @@ impl ServoHand {
         Self::new(SerialPort::open(path, baud_rate)?, ids)
     }
 
-    fn with_bus(mut bus: Bus<Vec<u8>, Vec<u8>>, ids: &[u8]) -> Result<Self, Error> {
+    fn with_bus(bus: Bus<Vec<u8>, Vec<u8>>, ids: &[u8], latency: Duration) -> Result<Self, Error> {
         let (&first, _) = ids.split_first().ok_or(Error::NoServos)?;
-        let table = identify(&mut bus, first)?;
+        let mut hand = Self {
+            link: status::Link::new(bus, latency)?,
+            ids: ids.to_vec(),
+            table: &crate::control_table::MX_28,
+            last_safe: None,
+            pending: None,
+        };
+        let table = hand.identify(first)?;
         for &id in &ids[1..] {
-            let t = identify(&mut bus, id)?;
+            let t = hand.identify(id)?;
             if t.model_number != table.model_number {
                 return Err(Error::MixedModels {
                     id,
@@ -97,13 +124,31 @@ impl ServoHand {
                 });
             }
         }
-        Ok(Self {
-            bus,
-            ids: ids.to_vec(),
-            table,
-            last_safe: None,
-            pending: None,
-        })
+        hand.table = table;
+        Ok(hand)
+    }
+
+    /// Pings `id` and finds its control table.
+    fn identify(&mut self, id: u8) -> Result<&'static ControlTable, Error> {
+        let (model_number, _) = self.ping(id)?;
+        ControlTable::by_model_number(model_number).ok_or(Error::UnknownModel { id, model_number })
+    }
+
+    /// Sets how long each status packet may take beyond its wire time.
+    pub fn set_reply_latency(&mut self, latency: Duration) {
+        self.link.latency = latency;
+    }
+
+    /// One instruction to `id` and its status packet's data (`count` bytes).
+    fn transfer(
+        &mut self,
+        id: u8,
+        instruction: u8,
+        params: &[u8],
+        count: u16,
+    ) -> Result<status::Answer, Error> {
+        let mut a = self.link.exchange(id, instruction, params, &[id], count)?;
+        a.pop().ok_or(Error::Timeout { id: Some(id) })
     }
 
     /// The servo IDs, in the order commands and states use.
@@ -118,7 +163,7 @@ impl ServoHand {
 
     /// The underlying bus, for instructions this type does not wrap.
     pub fn bus_mut(&mut self) -> &mut Bus<Vec<u8>, Vec<u8>> {
-        &mut self.bus
+        &mut self.link.bus
     }
 
     /// Pings one servo: its model number and firmware version.
@@ -126,11 +171,8 @@ impl ServoHand {
     /// # Errors
     /// [`Error::Timeout`], [`Error::Crc`], [`Error::Status`]…
     pub fn ping(&mut self, id: u8) -> Result<(u16, u8), Error> {
-        let p = self
-            .bus
-            .ping(id)
-            .map_err(|e| Error::from_transfer(Some(id), e))?;
-        Ok((p.data.model, p.data.firmware))
+        let a = self.transfer(id, instruction_id::PING, &[], 3)?;
+        Ok((u16::from_le_bytes([a.data[0], a.data[1]]), a.data[2]))
     }
 
     /// The register at `address`, or [`Error::OutOfRange`] if the model has none there.
@@ -151,11 +193,7 @@ impl ServoHand {
     /// but the servo has a hardware error latched).
     pub fn write_register(&mut self, id: u8, address: u16, value: i32) -> Result<(), Error> {
         let reg = self.register(address)?;
-        let bytes = reg.encode(value);
-        let r = self
-            .bus
-            .write(id, address, &bytes[..usize::from(reg.width)])
-            .map_err(|e| Error::from_transfer(Some(id), e))?;
+        let r = self.transfer(id, instruction_id::WRITE, &address_and_value(reg, value), 0)?;
         if r.alert {
             return Err(self.hardware_error_of(id));
         }
@@ -168,10 +206,9 @@ impl ServoHand {
     /// As [`ServoHand::write_register`].
     pub fn read_register(&mut self, id: u8, address: u16) -> Result<i32, Error> {
         let reg = self.register(address)?;
-        let r = self
-            .bus
-            .read(id, address, u16::from(reg.width))
-            .map_err(|e| Error::from_transfer(Some(id), e))?;
+        let mut p = address.to_le_bytes().to_vec();
+        p.extend_from_slice(&u16::from(reg.width).to_le_bytes());
+        let r = self.transfer(id, instruction_id::READ, &p, u16::from(reg.width))?;
         reg.decode(&r.data).ok_or(Error::Protocol {
             id: Some(id),
             detail: "short read".into(),
@@ -184,11 +221,8 @@ impl ServoHand {
     /// The exchange's errors.
     pub fn hardware_error_bits(&mut self, id: u8) -> Result<u8, Error> {
         let addr = self.table.hardware_error_status.address;
-        let r = self
-            .bus
-            .read_u8(id, addr)
-            .map_err(|e| Error::from_transfer(Some(id), e))?;
-        Ok(r.data)
+        let v = self.read_register(id, addr)?;
+        Ok(v as u8)
     }
 
     /// [`Error::Hardware`] for servo `id` (or the read's own error).
@@ -243,9 +277,48 @@ impl ServoHand {
     /// # Errors
     /// The exchange's errors.
     pub fn reboot(&mut self, id: u8) -> Result<(), Error> {
-        self.bus
-            .reboot(id)
-            .map_err(|e| Error::from_transfer(Some(id), e))?;
+        self.transfer(id, instruction_id::REBOOT, &[], 0)?;
+        Ok(())
+    }
+
+    /// REG_WRITE: servo `id` stores `value` for register `address` until ACTION.
+    ///
+    /// # Errors
+    /// As [`ServoHand::write_register`].
+    pub fn reg_write(&mut self, id: u8, address: u16, value: i32) -> Result<(), Error> {
+        let reg = self.register(address)?;
+        self.transfer(
+            id,
+            instruction_id::REG_WRITE,
+            &address_and_value(reg, value),
+            0,
+        )?;
+        Ok(())
+    }
+
+    /// ACTION to servo `id` (its registered write happens), or to every servo at once with
+    /// `packet_id::BROADCAST` (no answer).
+    ///
+    /// # Errors
+    /// [`Error::Status`] with `Instruction` when nothing was registered; the exchange's errors.
+    pub fn action(&mut self, id: u8) -> Result<(), Error> {
+        let expect: &[u8] = if id == packet_id::BROADCAST {
+            &[]
+        } else {
+            &[id]
+        };
+        self.link
+            .exchange(id, instruction_id::ACTION, &[], expect, 0)?;
+        Ok(())
+    }
+
+    /// FACTORY RESET of servo `id`: `0xFF` everything, `0x01` all but the ID, `0x02` all but
+    /// ID and baud rate.
+    ///
+    /// # Errors
+    /// The exchange's errors.
+    pub fn factory_reset(&mut self, id: u8, kind: u8) -> Result<(), Error> {
+        self.transfer(id, instruction_id::FACTORY_RESET, &[kind], 0)?;
         Ok(())
     }
 
@@ -293,7 +366,8 @@ impl ServoHand {
                     data: &bytes[..usize::from(reg.width)],
                 })
                 .collect();
-            self.bus
+            self.link
+                .bus
                 .sync_write(reg.address, u16::from(reg.width), &data)
                 .map_err(Error::from_write)?;
         }
@@ -308,7 +382,17 @@ impl ServoHand {
         let t = self.table;
         let (start, len) = t.state_block();
         let ids = self.ids.clone();
-        let answers = status::sync_read(&mut self.bus, &ids, start, len)?;
+        let mut p = Vec::with_capacity(4 + ids.len());
+        p.extend_from_slice(&start.to_le_bytes());
+        p.extend_from_slice(&len.to_le_bytes());
+        p.extend_from_slice(&ids);
+        let answers = self.link.exchange(
+            packet_id::BROADCAST,
+            instruction_id::SYNC_READ,
+            &p,
+            &ids,
+            len,
+        )?;
         let field = |reg: crate::control_table::Register, data: &[u8]| {
             reg.decode(data.get(usize::from(reg.address - start)..)?)
         };
@@ -351,7 +435,8 @@ impl ServoHand {
                 data: [0u8],
             })
             .collect();
-        self.bus
+        self.link
+            .bus
             .sync_write(reg.address, 1, &data)
             .map_err(Error::from_write)
     }
@@ -395,13 +480,9 @@ fn position_limits(t: &ControlTable) -> (i32, i32) {
     }
 }
 
-/// Pings `id` and finds its control table.
-fn identify(bus: &mut Bus<Vec<u8>, Vec<u8>>, id: u8) -> Result<&'static ControlTable, Error> {
-    let p = bus
-        .ping(id)
-        .map_err(|e| Error::from_transfer(Some(id), e))?;
-    ControlTable::by_model_number(p.data.model).ok_or(Error::UnknownModel {
-        id,
-        model_number: p.data.model,
-    })
+/// WRITE / REG_WRITE parameters: the address, then the value in the register's width.
+fn address_and_value(reg: &crate::control_table::Register, value: i32) -> Vec<u8> {
+    let mut p = reg.address.to_le_bytes().to_vec();
+    p.extend_from_slice(&reg.encode(value)[..usize::from(reg.width)]);
+    p
 }

@@ -1,7 +1,7 @@
 //! A simulated Protocol 2.0 servo bus on a pseudo-terminal (feature `sim`).
 //!
 //! [`SimBus::spawn`] opens a pty pair (`serial2::SerialPort::pair`), runs the servos on one end
-//! in a thread and hands back the other end: give it to [`crate::ServoHand::new`], or open
+//! in a thread and hands back the other end: give it to [`crate::ServoHand::with_reply_latency`] (with [`REPLY_LATENCY`]), or open
 //! [`SimBus::client_path`] from another process (the ROBOTIS Python SDK does). The simulator
 //! answers PING, READ, WRITE, REG_WRITE, ACTION, FACTORY RESET, REBOOT, SYNC READ / WRITE and
 //! BULK READ / WRITE with real status packets (CRC-16, byte stuffing, error codes), keeps the
@@ -28,7 +28,7 @@
 //! use std::time::Duration;
 //!
 //! let (mut sim, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2]))?;
-//! let mut hand = ServoHand::new(port, &[1, 2])?;
+//! let mut hand = ServoHand::with_reply_latency(port, &[1, 2], hand_control::sim::REPLY_LATENCY)?;
 //! assert_eq!(hand.table().name, "MX-28(2.0)");
 //! hand.set_torque(true)?;
 //! hand.command(&GripperCommand { position_rad: 2.0, effort: Effort::from_torque_limit_raw(400) })?;
@@ -62,6 +62,14 @@ pub const CLOCK_ID: u8 = 0xFD;
 const STATUS: u8 = 0x55;
 /// Longest an `advance` waits for the simulator thread (a bound, not a delay).
 const ACK_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// The reply allowance to give a [`crate::ServoHand`] on the simulated bus.
+///
+/// The simulator answers in microseconds, but it is a thread on a shared machine: under load it
+/// can be descheduled for longer than a real servo's 34 ms allowance, and a test would see a
+/// timeout the servo did not cause. Timeouts the tests inject (a muted servo) then cost this
+/// long each.
+pub const REPLY_LATENCY: Duration = Duration::from_millis(250);
 
 /// How to build a simulated bus.
 #[derive(Debug, Clone)]
@@ -216,8 +224,7 @@ impl World {
             ins::READ if !broadcast => {
                 if let Some(i) = self.target(p.id) {
                     let r = if prm.len() == 4 {
-                        let now = self.physics_now;
-                        self.servos[i].refresh(now);
+                        self.servos[i].refresh();
                         self.servos[i].read(u16_at(prm, 0), u16_at(prm, 2))
                     } else {
                         Err(InstructionError::DataLength)
@@ -289,8 +296,7 @@ impl World {
                 let (a, n) = (u16_at(prm, 0), u16_at(prm, 2));
                 for &id in &prm[4..] {
                     if let Some(i) = self.target(id) {
-                        let now = self.physics_now;
-                        self.servos[i].refresh(now);
+                        self.servos[i].refresh();
                         let r = self.servos[i].read(a, n);
                         if self.answers(i, ins::SYNC_READ) {
                             self.status(&mut out, i, r);
@@ -310,8 +316,7 @@ impl World {
             ins::BULK_READ if broadcast => {
                 for c in prm.chunks_exact(5) {
                     if let Some(i) = self.target(c[0]) {
-                        let now = self.physics_now;
-                        self.servos[i].refresh(now);
+                        self.servos[i].refresh();
                         let r = self.servos[i].read(u16_at(c, 1), u16_at(c, 3));
                         if self.answers(i, ins::BULK_READ) {
                             self.status(&mut out, i, r);
@@ -442,6 +447,16 @@ impl SimBus {
                 Err(e) => return Err(std::io::Error::new(std::io::ErrorKind::TimedOut, e)),
             }
         }
+    }
+
+    /// Waits until the simulator has handled every byte the client sent so far (an
+    /// `advance` of zero): call it before inspecting a servo after a broadcast write, which
+    /// gets no answer to wait for.
+    ///
+    /// # Errors
+    /// As [`SimBus::advance`].
+    pub fn sync(&mut self) -> std::io::Result<()> {
+        self.advance(Duration::ZERO)
     }
 
     /// Simulated time since the bus started.

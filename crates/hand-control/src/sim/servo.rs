@@ -71,6 +71,8 @@ where
 pub struct SimServo {
     table: &'static ControlTable,
     mem: Vec<u8>,
+    /// The register starting at each address (the physics reads a dozen per step).
+    by_address: Vec<Option<Register>>,
     params: ServoParams,
     /// Output angle, rad (Present Position × unit).
     theta: f64,
@@ -80,6 +82,8 @@ pub struct SimServo {
     load: f64,
     /// Time the load has stayed above the overload threshold.
     over_for: Duration,
+    /// Simulated time of the last step.
+    now: Duration,
     plant: Option<Box<dyn Plant>>,
     registered: Option<(u16, Vec<u8>)>,
 }
@@ -128,14 +132,20 @@ mod addr {
 impl SimServo {
     /// A factory-fresh MX-28(2.0) with ID `id` at output angle `theta_rad`.
     pub fn new(id: u8, theta_rad: f64, params: ServoParams) -> Self {
+        let mut by_address = vec![None; usize::from(MX_28.size)];
+        for r in MX_28.registers {
+            by_address[usize::from(r.address)] = Some(*r);
+        }
         let mut s = Self {
             table: &MX_28,
             mem: vec![0; usize::from(MX_28.size)],
+            by_address,
             params,
             theta: theta_rad,
             omega: 0.0,
             load: 0.0,
             over_for: Duration::ZERO,
+            now: Duration::ZERO,
             plant: None,
             registered: None,
         };
@@ -161,25 +171,25 @@ impl SimServo {
             self.set(addr::GOAL_POSITION, here);
             self.over_for = Duration::ZERO;
             self.registered = None;
-            self.sync_present(Duration::ZERO);
+            self.sync_present(self.now);
         }
     }
 
-    fn reg(&self, address: u16) -> &'static Register {
-        // Only called with the MX-28 addresses of `addr`, all present in the table.
-        self.table
-            .register_at(address)
-            .unwrap_or(&self.table.registers[0])
+    /// The register starting at `address`.
+    fn reg(&self, address: u16) -> Option<Register> {
+        self.by_address.get(usize::from(address)).copied().flatten()
     }
 
-    /// A register's value.
+    /// A register's value (0 where no register starts). The Present registers are refreshed
+    /// when a read instruction arrives; [`SimServo::position_rad`] and friends are live.
     pub fn get(&self, address: u16) -> i32 {
-        let r = self.reg(address);
-        r.decode(&self.mem[usize::from(r.address)..]).unwrap_or(0)
+        self.reg(address)
+            .and_then(|r| r.decode(&self.mem[usize::from(r.address)..]))
+            .unwrap_or(0)
     }
 
     fn set(&mut self, address: u16, value: i32) {
-        let r = *self.reg(address);
+        let Some(r) = self.reg(address) else { return };
         let bytes = r.encode(value);
         self.mem[usize::from(r.address)..usize::from(r.end())]
             .copy_from_slice(&bytes[..usize::from(r.width)]);
@@ -333,6 +343,7 @@ impl SimServo {
         }
         self.theta += self.omega * h;
         self.load = (motor / p.stall_torque_nm).clamp(-1.0, 1.0);
+        self.now = now;
         if self.torque_enabled() && self.load.abs() >= p.overload_threshold {
             self.over_for += dt;
             if self.over_for >= p.overload_time {
@@ -342,7 +353,6 @@ impl SimServo {
         } else {
             self.over_for = Duration::ZERO;
         }
-        self.sync_present(now);
     }
 
     /// READ: `len` bytes from `address`.
@@ -470,9 +480,9 @@ impl SimServo {
         }
     }
 
-    /// Refreshes the Present registers without moving (after a write, before a read).
-    pub(crate) fn refresh(&mut self, now: Duration) {
-        self.sync_present(now);
+    /// Copies the physical state into the Present registers (before a read).
+    pub(crate) fn refresh(&mut self) {
+        self.sync_present(self.now);
     }
 
     /// The model number register (what PING reports).
@@ -527,6 +537,7 @@ mod tests {
             now += dt;
             s.step(dt, now);
         }
+        s.refresh();
         assert!((s.get(132) - 2048).abs() <= 2, "position {}", s.get(132));
         // A wall just ahead: the motor stalls at full PWM and trips after overload_time.
         let wall = s.position_rad() + 0.05;

@@ -5,7 +5,8 @@ Exits non-zero with a message on the first mismatch; prints one line per check.
 """
 import sys
 
-from dynamixel_sdk import (COMM_SUCCESS, GroupBulkRead, GroupSyncRead, GroupSyncWrite,
+import dynamixel_sdk.port_handler
+from dynamixel_sdk import (BROADCAST_ID, COMM_SUCCESS, GroupBulkRead, GroupSyncRead, GroupSyncWrite,
                            PacketHandler, PortHandler)
 
 MX28_MODEL = 30
@@ -20,6 +21,9 @@ def check(cond, what):
 
 
 def main():
+    # The SDK allows 2 x LATENCY_TIMER (the USB adapter's 16 ms) + 2 ms per reply; the simulator is
+    # a thread on a shared machine, so give it the same 250 ms as the Rust tests (REPLY_LATENCY).
+    dynamixel_sdk.port_handler.LATENCY_TIMER = 124
     path, ids = sys.argv[1], [int(x) for x in sys.argv[2].split(",")]
     port = PortHandler(path)
     check(port.openPort(), "open " + path)
@@ -64,6 +68,31 @@ def main():
     check(gbr.getData(ids[0], ADDR_ID, 1) == ids[0], "bulk read ID")
     if len(ids) > 1:
         check(gbr.getData(ids[1], ADDR_PWM_LIMIT, 2) == 885, "bulk read PWM Limit")
+
+    # REG_WRITE holds the value until ACTION.
+    res, err = ph.regWriteTxRx(port, ids[0], ADDR_LED, 1, [0])
+    check(res == COMM_SUCCESS and err == 0, "reg write LED 0")
+    val, res, err = ph.read1ByteTxRx(port, ids[0], ADDR_LED)
+    check(res == COMM_SUCCESS and val == 1, f"LED still {val} before ACTION")
+    # Broadcast: the SDK's txRxPacket does not wait for a unicast ACTION's status packet, which a
+    # servo (and the simulator) sends, so that packet would be read as the next reply.
+    res = ph.action(port, BROADCAST_ID)
+    check(res == COMM_SUCCESS, "broadcast ACTION")
+    val, res, err = ph.read1ByteTxRx(port, ids[0], ADDR_LED)
+    check(res == COMM_SUCCESS and val == 0, f"LED {val} after ACTION")
+
+    # REBOOT resets RAM (LED back to 0, torque off); FACTORY RESET (keep ID) resets EEPROM.
+    res, err = ph.write1ByteTxRx(port, ids[-1], ADDR_LED, 1)
+    res, err = ph.reboot(port, ids[-1])
+    check(res == COMM_SUCCESS and err == 0, "reboot")
+    val, res, err = ph.read1ByteTxRx(port, ids[-1], ADDR_LED)
+    check(res == COMM_SUCCESS and val == 0, f"LED {val} after reboot")
+    res, err = ph.write2ByteTxRx(port, ids[-1], ADDR_PWM_LIMIT, 300)
+    check(res == COMM_SUCCESS and err == 0, "write PWM Limit 300")
+    res, err = ph.factoryReset(port, ids[-1], 0x01)
+    check(res == COMM_SUCCESS and err == 0, "factory reset, keep ID")
+    val, res, err = ph.read2ByteTxRx(port, ids[-1], ADDR_PWM_LIMIT)
+    check(res == COMM_SUCCESS and val == 885, f"PWM Limit {val} after factory reset")
 
     port.closePort()
     print("DONE", flush=True)
