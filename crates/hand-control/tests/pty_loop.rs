@@ -153,6 +153,8 @@ fn closed_loop_grasp_through_the_driver_holds_the_cube() {
     // (2 µ F ≥ m g) and stays under its crush force.
     let w = w.borrow();
     let f = *w.force_n.lock().expect("plant lock");
+    let peak = w.trace.iter().map(|p| p.1).fold(0.0, f64::max);
+    eprintln!("settling {st:?}, pad force {f:.2} N, peak {peak:.2} N"); // shown on failure
 
     let o = &w.object;
     assert!(
