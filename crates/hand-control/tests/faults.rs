@@ -198,3 +198,25 @@ fn out_of_range_goal_refused_before_sending_or_by_the_servo() {
     let s = w.borrow().state();
     assert!(!s.dropped && !s.damaged, "{s:?}");
 }
+
+#[test]
+fn tactile_bus_failure_holds_the_grip_and_resumes() {
+    // No feedback for 50 ms: the loop cannot control, so it holds the last safe effort.
+    let auto = Recovery::Automatic {
+        cooldown_us: 0,
+        max_reboots: 0,
+    };
+    let l = with_injection(Injected::TactileBus, 4.0, 4.05, auto);
+    let i =
+        support::safe_on_first_fault(l.log(), FaultKind::Source, SafeAction::HoldLastSafeEffort);
+    assert!(matches!(l.events()[0].fault, LoopFault::Source(_)));
+    // Five cycles without a frame, each logged and safe, nothing commanded.
+    assert!(
+        l.log()[i..i + 5]
+            .iter()
+            .all(|s| s.frame.is_none() && s.mode == Mode::Safe)
+    );
+    assert!(l.log()[i..i + 5].iter().all(|s| s.torque_raw.is_none()));
+    assert_eq!(l.log()[i + 5].mode, Mode::Grasp);
+    assert_eq!(l.mode(), Mode::Grasp);
+}

@@ -162,3 +162,62 @@ fn check_finite<const N: usize>(frame: &PressureFrame<N>) -> Result<(), Estimate
         None => Ok(()),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame(t_us: u64, p: f32) -> PressureFrame<3> {
+        PressureFrame {
+            t_us,
+            pressure_pa: [p; 3],
+        }
+    }
+
+    #[test]
+    fn bad_frames_are_typed_errors_and_change_nothing() {
+        let mut est = PressureEstimator::<3>::new(50.0, 2.0);
+        assert_eq!(est.update(&frame(0, 1e5)), Err(EstimateError::NotTared));
+        assert_eq!(est.finish_tare(), Err(EstimateError::NotTared));
+        let mut nan = frame(0, 1e5);
+        nan.pressure_pa[2] = f32::NAN;
+        assert_eq!(est.tare(&nan), Err(EstimateError::NonFinite { sensor: 2 }));
+        est.tare(&frame(0, 1e5)).unwrap();
+        est.finish_tare().unwrap();
+        let first = est.update(&frame(10_000, 1e5 + 200.0)).unwrap();
+        // Same or earlier stamp, infinite pressure: refused, and the next good frame's rate is
+        // taken against the last good one.
+        assert_eq!(
+            est.update(&frame(10_000, 1e5 + 300.0)),
+            Err(EstimateError::TimeNotIncreasing {
+                t_us: 10_000,
+                previous_us: 10_000
+            })
+        );
+        let mut inf = frame(20_000, 1e5);
+        inf.pressure_pa[0] = f32::INFINITY;
+        assert_eq!(
+            est.update(&inf),
+            Err(EstimateError::NonFinite { sensor: 0 })
+        );
+        let next = est.update(&frame(20_000, 1e5 + 200.0)).unwrap();
+        assert_eq!(first.rate_pa_per_s, 0.0);
+        assert_eq!(next.rate_pa_per_s, 0.0);
+        assert_eq!(next.pressure_pa, 200.0);
+    }
+
+    #[test]
+    fn rate_filter_converges_to_a_ramp_slope() {
+        // A 1 kPa/s ramp sampled at 100 Hz: the first-order filter's output approaches 1 kPa/s.
+        let mut est = PressureEstimator::<3>::new(50.0, 2.0);
+        est.tare(&frame(0, 1e5)).unwrap();
+        est.finish_tare().unwrap();
+        let mut last = ContactEstimate::default();
+        for k in 1..=300_u64 {
+            last = est
+                .update(&frame(k * 10_000, 1e5 + k as f32 * 10.0))
+                .unwrap();
+        }
+        assert!((last.rate_pa_per_s - 1_000.0).abs() < 1.0, "{last:?}");
+    }
+}

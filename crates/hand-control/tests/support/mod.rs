@@ -38,6 +38,8 @@ pub enum Injected {
     LostStatus,
     /// The status packet arrives with a wrong CRC.
     Crc,
+    /// The fingertip's SPI bus fails (the tactile source's error, not the servo's).
+    TactileBus,
 }
 
 /// One injection: `kind` on every call in `from_s..until_s`.
@@ -161,6 +163,12 @@ impl TactileSource for Source {
     type Frame = PressureFrame<3>;
     type Error = SimError;
     fn read_frame(&mut self) -> Result<PressureFrame<3>, SimError> {
+        if self.0.borrow().injected() == Some(Injected::TactileBus) {
+            return Err(SimError::Driver {
+                model: "fingertip",
+                detail: "injected SPI failure".into(),
+            });
+        }
         self.0.borrow_mut().tip.read_frame()
     }
 }
@@ -173,7 +181,7 @@ impl Hand {
         match self.0.borrow().injected() {
             Some(Injected::LostStatus) => Err(HandError::Timeout),
             Some(Injected::Crc) => Err(HandError::Crc),
-            None => Ok(()),
+            Some(Injected::TactileBus) | None => Ok(()),
         }
     }
 }
