@@ -191,11 +191,10 @@ fn dropped_status_packet_on_the_wire_is_a_timeout_and_safe() {
     l.run_until(2_500_000);
     support::ticks_in_order(l.log());
     let i = support::safe_on_first_fault(l.log(), FaultKind::State, SafeAction::HoldLastSafeEffort);
-    // Servo 1's status missing from the sync read: dynamixel2 reads servo 2's packet in its
-    // place, so the driver reports a protocol error (or a timeout), typed either way.
+    // Servo 1's status missing from the sync read: that servo's timeout.
     assert!(matches!(
         l.events()[0].fault,
-        LoopFault::State(Error::Timeout { .. } | Error::Protocol { .. })
+        LoopFault::State(Error::Timeout { id: Some(1) })
     ));
     assert_eq!(l.log()[i + 1].mode, Mode::Grasp);
     assert_eq!(l.mode(), Mode::Grasp);
@@ -245,7 +244,7 @@ fn mute_servo_keeps_the_loop_safe_until_it_answers() {
     let i = support::safe_on_first_fault(l.log(), FaultKind::State, SafeAction::TorqueOff);
     assert!(matches!(
         l.events()[0].fault,
-        LoopFault::State(Error::Timeout { .. } | Error::Protocol { .. })
+        LoopFault::State(Error::Timeout { id: Some(1) })
     ));
     // Silent: no state, safe, every cycle logged; nothing commanded after the fault's cycle
     // (whose broadcast sync write went out before the read failed).
