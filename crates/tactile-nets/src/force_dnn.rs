@@ -14,6 +14,25 @@
 //! # Inference
 //! Runs through the [`crate::frozen`] copy of the network (plain arrays, no allocation);
 //! [`ForceDnn::estimate_gf_dfdx`] keeps the dfdx forward for comparison.
+//!
+//! ```
+//! use hand_traits::ForceEstimator;
+//! use tactile_nets::data::weights::tared_table;
+//! use tactile_nets::force_dnn::ForceDnn;
+//! use tactile_nets::train::TrainConfig;
+//!
+//! // Three rows of seed 000 Table 1: weight (gf) and the three pressures (hPa).
+//! let rows = [(0.0, [1191.25, 1199.02, 1018.04]), (100.0, [1191.96, 1199.55, 1018.67]),
+//!             (200.0, [1192.47, 1200.06, 1019.18])];
+//! let samples = tared_table(&rows)?; // rises above the 0 gf row
+//! let config = TrainConfig { epochs: 1000, batch_size: 3, learning_rate: 1e-2, l2: 0.0,
+//!                            seed: 1, progress: false, label: String::new() };
+//! let (mut dnn, _) = ForceDnn::train(&samples, [0.0, 200.0], &[config])?;
+//! let f = dnn.estimate_force(&samples[1].rise_hpa)?;
+//! assert!((f.gram_force() - 100.0).abs() < 10.0, "{}", f.gram_force());
+//! assert!(dnn.estimate_force(&[0.1, 0.2]).is_err()); // wrong shape: a typed error
+//! # Ok::<(), tactile_nets::NetError>(())
+//! ```
 
 use crate::data::weights::WeightSample;
 use crate::error::{NetError, check_output};
