@@ -20,15 +20,15 @@ pub const DOC: &str = "docs/learning.md";
 pub const SECTION: &str = "## 1. Force / weight DNN";
 
 /// Measured with `cargo bench -p tactile-nets --bench force_dnn` (what `cargo xtask bench
-/// force_dnn` runs) on the 2-core dev machine shared with ~6 other builds (load average ~13), so
+/// force_dnn` runs) on the 2-core dev machine shared with ~6 other builds (load average ~8), so
 /// upper bounds; a bench run, not a training run, so quoted here rather than regenerated.
 const BENCH: &str = "\
-| benchmark (`cargo xtask bench force_dnn`, 2026-11-21, loaded 2-core machine) | mean | 95 % CI |
+| benchmark (`cargo xtask bench force_dnn`, 2026-11-21, 2-core machine at load ~8) | mean | 95 % CI |
 |---|---:|---:|
-| `force_dnn/infer/frozen`: one estimate (3 rises → gf), frozen f32 form | 1.43 µs | 1.37 … 1.48 µs |
-| `force_dnn/infer/dfdx`: the same estimate through dfdx's forward | 19.4 µs | 18.5 … 20.2 µs |
-| `force_dnn/train/table1`: the Table 1 recipe, 10 000 full-batch epochs | 1.04 s | 0.99 … 1.10 s |
-| `force_dnn/train/sim_epoch`: one epoch of the simulated recipe (4 644 frames, 73 batches of 64); the recipe runs 200 | 18.2 ms | 17.1 … 20.2 ms |
+| `force_dnn/infer/frozen`: one estimate (3 rises → gf), frozen f32 form | 0.76 µs | 0.74 … 0.78 µs |
+| `force_dnn/infer/dfdx`: the same estimate through dfdx's forward | 11.8 µs | 11.3 … 12.4 µs |
+| `force_dnn/train/table1`: the Table 1 recipe, 10 000 full-batch epochs | 0.47 s | 0.46 … 0.49 s |
+| `force_dnn/train/sim_epoch`: one epoch of the simulated recipe (4 644 frames, 73 batches of 64); the recipe runs 200 | 6.0 ms | 5.8 … 6.1 ms |
 ";
 
 /// Runs the training example, then the plot and the docs section.
@@ -181,9 +181,9 @@ pub fn section(metrics: &MetricsFile, paper: &[WeightRow]) -> String {
     s += "![Force DNN training curves](learning/force-dnn-training.svg)\n\n";
     s += "### Cost\n\n";
     s += BENCH;
-    s += "\nThe frozen form meets the < 2 µs single-sample target (13× faster than dfdx's \
+    s += "\nThe frozen form meets the < 2 µs single-sample target (16× faster than dfdx's \
           forward, whose per-call tensor allocation and dispatch alone exceed it); the whole \
-          simulated recipe is ~3.6 s, and `cargo xtask train force-dnn` trains its 15 models in \
+          simulated recipe is ~1.2 s, and `cargo xtask train force-dnn` trains its 15 models in \
           20–30 s.\n";
     s
 }
