@@ -5,9 +5,13 @@
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
 //! - `bench [FILTER] [-- CRITERION ARGS]`: runs the criterion benches and prints a summary table.
 //! - `train contact-mlp`: trains the contact-area MLP, writes its weights, metrics and plot.
+//! - `train force-dnn`: trains the force / weight DNN, writes its weights, metrics, training
+//!   curve and its section of `docs/learning.md`.
 
 pub mod bench;
+pub mod docs_section;
 pub mod fixtures;
+pub mod force_dnn;
 pub mod fuzzy_peers;
 pub mod run;
 pub mod test;

@@ -1,15 +1,17 @@
-//! `cargo xtask train contact-mlp`: trains the contact-area MLP (seeded, one model per OSR and
-//! head) and writes `fixtures/models/contact_mlp/` (weights + `metrics.json`), then draws
-//! `docs/contact-location/contact-mlp-osr.svg` and prints the markdown table of
-//! `docs/contact-location.md`.
+//! `cargo xtask train MODEL`:
+//! - `contact-mlp` trains the contact-area MLP (seeded, one model per OSR and head) and writes
+//!   `fixtures/models/contact_mlp/` (weights + `metrics.json`), then draws
+//!   `docs/contact-location/contact-mlp-osr.svg` and prints the markdown table of
+//!   `docs/contact-location.md`;
+//! - `force-dnn`: see [`crate::force_dnn`].
 //!
-//! Training runs as `tactile-nets`'s `train_contact_mlp` example under the optimised `test`
-//! profile (dfdx at `opt-level = 0`, the xtask's own profile, is several times slower).
+//! Training runs as a `tactile-nets` example under the optimised `test` profile (dfdx at
+//! `opt-level = 0`, the xtask's own profile, is several times slower).
 
+use crate::run::{cargo, step};
 use anyhow::{Context, Result, bail};
 use plotters::prelude::*;
 use std::path::Path;
-use std::process::Command;
 use tactile_nets::contact_eval::{METRICS_FILE, MODEL_DIR, row_label};
 use tactile_nets::contact_mlp::Head;
 use tactile_nets::metrics::MetricsFile;
@@ -21,22 +23,25 @@ pub const PLOT: &str = "docs/contact-location/contact-mlp-osr.svg";
 pub fn run(root: &Path, args: &[String]) -> Result<()> {
     match args {
         [model] if model == "contact-mlp" => contact_mlp(root),
-        _ => bail!("usage: cargo xtask train contact-mlp"),
+        [model] if model == "force-dnn" => crate::force_dnn::train(root),
+        _ => bail!("usage: cargo xtask train contact-mlp | force-dnn"),
     }
 }
 
+/// Runs `tactile-nets`'s example `name` under the `test` profile, the workspace root as its
+/// argument.
+pub fn run_example(root: &Path, name: &str) -> Result<()> {
+    step(
+        &format!("train ({name})"),
+        cargo(root)
+            .args(["run", "--quiet", "--profile", "test", "-p", "tactile-nets"])
+            .args(["--example", name, "--"])
+            .arg(root),
+    )
+}
+
 fn contact_mlp(root: &Path) -> Result<()> {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let status = Command::new(cargo)
-        .args(["run", "--quiet", "--profile", "test", "-p", "tactile-nets"])
-        .args(["--example", "train_contact_mlp", "--"])
-        .arg(root)
-        .current_dir(root)
-        .status()
-        .context("running the train_contact_mlp example")?;
-    if !status.success() {
-        bail!("training failed ({status})");
-    }
+    run_example(root, "train_contact_mlp")?;
     let path = root.join(MODEL_DIR).join(METRICS_FILE);
     let metrics = MetricsFile::from_json(
         &std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?,
@@ -214,6 +219,6 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
     Ok(())
 }
 
-fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
+pub(crate) fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
     anyhow::anyhow!("plot: {e}")
 }

@@ -12,7 +12,8 @@
 //!
 //! The network standardises them with the training set's mean and spread (stored with the
 //! weights), then runs hidden layers of 64 and 32 ReLU units, each followed by 30 % dropout
-//! (active only in training), trained by Adam with L2 0.001 — the paper's recipe.
+//! (active only in training), trained by Adam with L2 0.001 — the paper's recipe. Inference
+//! runs through the network's [`crate::frozen`] copy (no dfdx call per sample).
 //!
 //! # Heads
 //! - [`Head::AverageArea`] (the paper's): one linear output regressing the eq. 4 average-area
@@ -28,8 +29,10 @@
 
 use crate::activations::{log_sigmoid, sigmoid, softmax};
 use crate::data::fingertip::{TapReading, TapRecord};
-use crate::error::{NetError, check_input, check_output};
+use crate::error::{NetError, check_output};
+use crate::frozen::{self, Freeze, Layer};
 use crate::io::TensorFile;
+use crate::norm::{mean_and_scale, standardise};
 use crate::pad::{self, CELLS, COLS, ROWS};
 use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
 use dfdx::prelude::*;
@@ -67,6 +70,8 @@ type Arch<const O: usize> = (
     Linear<32, O>,
 );
 type Net<const O: usize> = <Arch<O> as BuildOnDevice<Cpu, f32>>::Built;
+/// The allocation-free inference copy of a [`Net`].
+type Fast<const O: usize> = <Net<O> as Freeze>::Frozen;
 
 /// What the network's last layer predicts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -103,9 +108,10 @@ impl Head {
     }
 }
 
+/// The trained network (saved) and its frozen copy (run).
 enum Body {
-    Area(Net<1>),
-    Cells(Net<CELLS>),
+    Area(Net<1>, Fast<1>),
+    Cells(Net<CELLS>, Fast<CELLS>),
 }
 
 /// A trained contact-area MLP.
@@ -115,7 +121,6 @@ pub struct ContactMlp {
     mean: [f32; N_FEATURES],
     scale: [f32; N_FEATURES],
     catalogue: Vec<u32>,
-    dev: Cpu,
 }
 
 /// One localisation.
@@ -172,12 +177,8 @@ fn build<const O: usize>(dev: &Cpu) -> Net<O> {
     net
 }
 
-fn run<const O: usize>(
-    net: &Net<O>,
-    dev: &Cpu,
-    z: [f32; N_FEATURES],
-) -> Result<Vec<f32>, NetError> {
-    Ok(net.try_forward(dev.tensor(z))?.as_vec())
+fn run<const O: usize>(fast: &Fast<O>, z: [f32; N_FEATURES]) -> Vec<f32> {
+    fast.forward(z).to_vec()
 }
 
 /// Cell nearest a mask's centroid (ties: the lower row, then column).
@@ -199,26 +200,10 @@ impl ContactMlp {
             return Err(NetError::Training("no training taps".into()));
         }
         let rows: Vec<[f32; N_FEATURES]> = records.iter().map(|r| features(&r.reading)).collect();
-        let n = rows.len() as f64;
-        let mut mean = [0.0f32; N_FEATURES];
-        let mut scale = [1.0f32; N_FEATURES];
-        for j in 0..N_FEATURES {
-            let m = rows.iter().map(|r| f64::from(r[j])).sum::<f64>() / n;
-            let var = rows
-                .iter()
-                .map(|r| (f64::from(r[j]) - m).powi(2))
-                .sum::<f64>()
-                / n;
-            mean[j] = m as f32;
-            scale[j] = if var.sqrt() > 1e-6 {
-                var.sqrt() as f32
-            } else {
-                1.0
-            };
-        }
+        let (mean, scale) = mean_and_scale(&rows);
         let mut samples = Samples::default();
         for (row, rec) in rows.iter().zip(records) {
-            let z: [f32; N_FEATURES] = core::array::from_fn(|j| (row[j] - mean[j]) / scale[j]);
+            let z = standardise(row, &mean, &scale);
             match head {
                 Head::AverageArea => samples.push(&z, &[rec.tap.average_area]),
                 Head::CellSet => {
@@ -233,13 +218,19 @@ impl ContactMlp {
             Head::AverageArea => {
                 let mut net = build::<1>(&dev);
                 let log = fit::<_, N_FEATURES, 1>(&dev, &mut net, &samples, Loss::Mse, config)?;
-                (Body::Area(net), log)
+                {
+                    let fast = net.freeze()?;
+                    (Body::Area(net, fast), log)
+                }
             }
             Head::CellSet => {
                 let mut net = build::<CELLS>(&dev);
                 let loss = Loss::SigmoidCrossEntropy;
                 let log = fit::<_, N_FEATURES, CELLS>(&dev, &mut net, &samples, loss, config)?;
-                (Body::Cells(net), log)
+                {
+                    let fast = net.freeze()?;
+                    (Body::Cells(net, fast), log)
+                }
             }
         };
         let model = ContactMlp {
@@ -248,7 +239,6 @@ impl ContactMlp {
             mean,
             scale,
             catalogue: catalogue_of(records),
-            dev,
         };
         Ok((model, log))
     }
@@ -269,14 +259,12 @@ impl ContactMlp {
     /// [`NetError::NonFinite`] for a NaN or infinite value, [`NetError::NonFiniteOutput`] when
     /// an input far outside the training range overflows the network.
     pub fn outputs(&self, input: &[f32]) -> Result<Vec<f32>, NetError> {
-        check_input(input, N_FEATURES)?;
-        let z: [f32; N_FEATURES] =
-            core::array::from_fn(|j| (input[j] - self.mean[j]) / self.scale[j]);
+        let z: [f32; N_FEATURES] = standardise(&frozen::input(input)?, &self.mean, &self.scale);
         // A finite input can still overflow the standardisation: report it as the overflow it is.
         check_output(&z)?;
         let out = match &self.body {
-            Body::Area(net) => run(net, &self.dev, z)?,
-            Body::Cells(net) => run(net, &self.dev, z)?,
+            Body::Area(_, fast) => run(fast, z),
+            Body::Cells(_, fast) => run(fast, z),
         };
         check_output(&out)?;
         Ok(out)
@@ -349,8 +337,8 @@ impl ContactMlp {
     pub fn to_file(&self) -> Result<TensorFile, NetError> {
         let mut f = TensorFile::new();
         match &self.body {
-            Body::Area(net) => f.add_module("net.", net)?,
-            Body::Cells(net) => f.add_module("net.", net)?,
+            Body::Area(net, _) => f.add_module("net.", net)?,
+            Body::Cells(net, _) => f.add_module("net.", net)?,
         }
         f.insert("input.mean", &[N_FEATURES], &self.mean)?;
         f.insert("input.scale", &[N_FEATURES], &self.scale)?;
@@ -370,8 +358,7 @@ impl ContactMlp {
 
     /// A model from [`ContactMlp::to_file`]'s output.
     pub fn from_file(file: &TensorFile) -> Result<ContactMlp, NetError> {
-        let meta: serde_json::Value = serde_json::from_str(file.metadata())
-            .map_err(|e| NetError::SafeTensors(format!("metadata: {e}")))?;
+        let meta = file.metadata_json()?;
         let head = meta
             .get("head")
             .and_then(|h| h.as_str())
@@ -382,12 +369,14 @@ impl ContactMlp {
             Head::AverageArea => {
                 let mut net = build::<1>(&dev);
                 file.load_module("net.", &mut net)?;
-                Body::Area(net)
+                let fast = net.freeze()?;
+                Body::Area(net, fast)
             }
             Head::CellSet => {
                 let mut net = build::<CELLS>(&dev);
                 file.load_module("net.", &mut net)?;
-                Body::Cells(net)
+                let fast = net.freeze()?;
+                Body::Cells(net, fast)
             }
         };
         let vec9 = |name: &str| -> Result<[f32; N_FEATURES], NetError> {
@@ -404,7 +393,6 @@ impl ContactMlp {
             mean: vec9("input.mean")?,
             scale: vec9("input.scale")?,
             catalogue,
-            dev,
         })
     }
 

@@ -90,6 +90,12 @@ impl TensorFile {
         &self.metadata
     }
 
+    /// The metadata parsed as JSON ([`NetError::SafeTensors`] when it does not parse).
+    pub fn metadata_json(&self) -> Result<serde_json::Value, NetError> {
+        serde_json::from_str(&self.metadata)
+            .map_err(|e| NetError::SafeTensors(format!("metadata: {e}")))
+    }
+
     /// Sets the metadata JSON string.
     pub fn set_metadata(&mut self, json: String) {
         self.metadata = json;

@@ -1,11 +1,16 @@
-//! Learned tactile models on [dfdx](https://docs.rs/dfdx) (CPU, stable Rust): the contact-area
-//! MLP of a barometric fingertip (seed 000 §4), and the parts every model of the stack shares.
+//! Learned tactile models on [dfdx](https://docs.rs/dfdx) (CPU, stable Rust): the force / weight
+//! DNN (seed 000 §2.2) and contact-area MLP (seed 000 §4) of a barometric fingertip, and the parts every model of the stack shares.
 //!
 //! - [`io`]: weights as safetensors for any dfdx module, plus extra named tensors;
 //! - [`train`]: a seeded minibatch Adam loop with an indicatif progress bar;
 //! - [`metrics`]: the committed metrics file and its drift check;
 //! - [`error`]: typed errors (wrong shape, non-finite input or output, bad files);
 //! - [`activations`]: sigmoid / softmax that stay finite for any logit;
+//! - [`frozen`]: the allocation-free inference form of any trained dfdx dense stack;
+//! - [`norm`]: input standardisation;
+//! - [`data::weights`]: Table 1 and the simulated weight series, tared;
+//! - [`force_dnn`]: the force / weight DNN and its [`hand_traits::ForceEstimator`];
+//! - [`force_eval`]: its recipes, Table 1 fit / leave-one-out and held-out evaluation;
 //! - [`data::fingertip`]: the simulated fingertip's tap dataset, baselines and arrival times;
 //! - [`pad`]: the 4 × 6 pad, eq. 4 labels and cell sets;
 //! - [`contact_mlp`]: the MLP, its two heads and its [`hand_traits::ContactLocator`];
@@ -42,14 +47,19 @@ pub mod activations;
 pub mod contact_eval;
 pub mod contact_mlp;
 pub mod error;
+pub mod force_dnn;
+pub mod force_eval;
+pub mod frozen;
 pub mod io;
 pub mod metrics;
+pub mod norm;
 pub mod pad;
 pub mod train;
 
 /// Datasets the models train on.
 pub mod data {
     pub mod fingertip;
+    pub mod weights;
 }
 
 pub use error::NetError;

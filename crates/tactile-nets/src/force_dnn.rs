@@ -1,0 +1,233 @@
+//! The force / weight DNN of seed 000 §2.2: three tared fingertip pressures → the weight on
+//! the pad, in gram-force.
+//!
+//! # Network
+//! The paper: "sigmoid is used as the activation function for the input and output layers,
+//! and a rectified linear unit (ReLU) and sigmoid are used for the hidden layer", Adam, MSE
+//! (eq. 1). Here: 3 inputs → [`HIDDEN`] sigmoid → [`HIDDEN`] ReLU → [`HIDDEN`] sigmoid → 1
+//! sigmoid output. The inputs are the pressure rises above the sensors' unloaded reading
+//! ([`crate::data::weights`]), standardised with the training set's mean and spread; the
+//! target weight is mapped linearly onto [`OUTPUT_SPAN`] of the sigmoid (the rated range's
+//! lightest weight at 0.1, heaviest at 0.9, a choice made before training, not fitted), so
+//! estimates saturate 12.5 % of the range beyond it instead of running away.
+//!
+//! # Inference
+//! Runs through the [`crate::frozen`] copy of the network (plain arrays, no allocation);
+//! [`ForceDnn::estimate_gf_dfdx`] keeps the dfdx forward for comparison.
+//!
+//! ```
+//! use hand_traits::ForceEstimator;
+//! use tactile_nets::data::weights::tared_table;
+//! use tactile_nets::force_dnn::ForceDnn;
+//! use tactile_nets::train::TrainConfig;
+//!
+//! // Three rows of seed 000 Table 1: weight (gf) and the three pressures (hPa).
+//! let rows = [(0.0, [1191.25, 1199.02, 1018.04]), (100.0, [1191.96, 1199.55, 1018.67]),
+//!             (200.0, [1192.47, 1200.06, 1019.18])];
+//! let samples = tared_table(&rows)?; // rises above the 0 gf row
+//! let config = TrainConfig { epochs: 1000, batch_size: 3, learning_rate: 1e-2, l2: 0.0,
+//!                            seed: 1, progress: false, label: String::new() };
+//! let (mut dnn, _) = ForceDnn::train(&samples, [0.0, 200.0], &[config])?;
+//! let f = dnn.estimate_force(&samples[1].rise_hpa)?;
+//! assert!((f.gram_force() - 100.0).abs() < 10.0, "{}", f.gram_force());
+//! assert!(dnn.estimate_force(&[0.1, 0.2]).is_err()); // wrong shape: a typed error
+//! # Ok::<(), tactile_nets::NetError>(())
+//! ```
+
+use crate::data::weights::WeightSample;
+use crate::error::{NetError, check_output};
+use crate::frozen::{self, Freeze, Layer};
+use crate::io::TensorFile;
+use crate::norm::{mean_and_scale, standardise};
+use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
+use dfdx::prelude::*;
+use hand_traits::{ForceEstimate, ForceEstimator};
+use std::path::Path;
+
+/// Inputs: the rises of sensors 1–3, hPa.
+pub const N_INPUTS: usize = 3;
+/// Width of each of the three hidden layers.
+pub const HIDDEN: usize = 16;
+/// The sigmoid output values the lightest and heaviest training weights map to.
+pub const OUTPUT_SPAN: [f32; 2] = [0.1, 0.9];
+
+type Arch = (
+    (Linear<N_INPUTS, HIDDEN>, Sigmoid),
+    (Linear<HIDDEN, HIDDEN>, ReLU),
+    (Linear<HIDDEN, HIDDEN>, Sigmoid),
+    (Linear<HIDDEN, 1>, Sigmoid),
+);
+type Net = <Arch as BuildOnDevice<Cpu, f32>>::Built;
+type Fast = <Net as Freeze>::Frozen;
+
+/// A trained force / weight DNN.
+pub struct ForceDnn {
+    net: Net,
+    fast: Fast,
+    mean: [f32; N_INPUTS],
+    scale: [f32; N_INPUTS],
+    range_gf: [f32; 2],
+    dev: Cpu,
+}
+
+impl ForceDnn {
+    /// Trains on `samples` for the rated range `range_gf` (lightest, heaviest), running
+    /// `stages` one after the other (each a fresh Adam with its own learning rate and epochs;
+    /// the network is built on a device seeded by the first stage's seed).
+    ///
+    /// Errors: [`NetError::Training`] for no samples or stages, or a range that is empty or
+    /// not finite; [`NetError::NonFinite`] for a non-finite sample.
+    pub fn train(
+        samples: &[WeightSample],
+        range_gf: [f32; 2],
+        stages: &[TrainConfig],
+    ) -> Result<(ForceDnn, TrainLog), NetError> {
+        let first = stages
+            .first()
+            .ok_or_else(|| NetError::Training("no training stages".into()))?;
+        if samples.is_empty() {
+            return Err(NetError::Training("no weight samples".into()));
+        }
+        let rows: Vec<[f32; N_INPUTS]> = samples.iter().map(|s| s.rise_hpa).collect();
+        let (mean, scale) = mean_and_scale(&rows);
+        let [lo, hi] = range_gf;
+        if !(hi > lo && lo.is_finite() && hi.is_finite()) {
+            return Err(NetError::Training(format!(
+                "rated range {lo}..{hi} gf is empty"
+            )));
+        }
+        let mut data = Samples::default();
+        for (row, s) in rows.iter().zip(samples) {
+            data.push(
+                &standardise(row, &mean, &scale),
+                &[to_unit(s.weight_gf, range_gf)],
+            );
+        }
+        let dev = Cpu::seed_from_u64(first.seed);
+        let mut net = dev.build_module::<Arch, f32>();
+        let mut log = TrainLog::default();
+        for stage in stages {
+            let part = fit::<_, N_INPUTS, 1>(&dev, &mut net, &data, Loss::Mse, stage)?;
+            log.epoch_loss.extend(part.epoch_loss);
+        }
+        let fast = net.freeze()?;
+        let model = ForceDnn {
+            net,
+            fast,
+            mean,
+            scale,
+            range_gf,
+            dev,
+        };
+        Ok((model, log))
+    }
+
+    /// The rated range (lightest, heaviest weight), gf.
+    pub fn range_gf(&self) -> [f32; 2] {
+        self.range_gf
+    }
+
+    fn standardised(&self, rise_hpa: &[f32]) -> Result<[f32; N_INPUTS], NetError> {
+        let z = standardise(&frozen::input(rise_hpa)?, &self.mean, &self.scale);
+        // A finite input can still overflow the standardisation: report it as the overflow it is.
+        check_output(&z)?;
+        Ok(z)
+    }
+
+    fn decoded(&self, unit: f32) -> Result<f32, NetError> {
+        let [lo, hi] = self.range_gf;
+        let [a, b] = OUTPUT_SPAN;
+        let gf = lo + (unit - a) / (b - a) * (hi - lo);
+        check_output(&[gf])?;
+        Ok(gf)
+    }
+
+    /// The weight, gf, for the three tared rises `rise_hpa` (hPa), through the frozen network.
+    ///
+    /// Errors: [`NetError::Shape`] unless `rise_hpa` has 3 values, [`NetError::NonFinite`] for
+    /// a NaN or infinite value, [`NetError::NonFiniteOutput`] when a finite input overflows.
+    pub fn estimate_gf(&self, rise_hpa: &[f32]) -> Result<f32, NetError> {
+        let z = self.standardised(rise_hpa)?;
+        self.decoded(self.fast.forward(z)[0])
+    }
+
+    /// [`ForceDnn::estimate_gf`] through dfdx's forward (the reference the frozen copy is
+    /// checked against; ~10 µs slower per call).
+    pub fn estimate_gf_dfdx(&self, rise_hpa: &[f32]) -> Result<f32, NetError> {
+        let z = self.standardised(rise_hpa)?;
+        let out = self.net.try_forward(self.dev.tensor(z))?.array();
+        self.decoded(out[0])
+    }
+
+    /// Weights, input standardisation and output range as a [`TensorFile`].
+    pub fn to_file(&self) -> Result<TensorFile, NetError> {
+        let mut f = TensorFile::new();
+        f.add_module("net.", &self.net)?;
+        f.insert("input.mean", &[N_INPUTS], &self.mean)?;
+        f.insert("input.scale", &[N_INPUTS], &self.scale)?;
+        f.insert("output.range_gf", &[2], &self.range_gf)?;
+        let meta = serde_json::json!({
+            "model": "force_dnn",
+            "inputs": ["rise1_hpa", "rise2_hpa", "rise3_hpa"],
+            "layers": [
+                format!("linear 3->{HIDDEN}, sigmoid"),
+                format!("linear {HIDDEN}->{HIDDEN}, relu"),
+                format!("linear {HIDDEN}->{HIDDEN}, sigmoid"),
+                format!("linear {HIDDEN}->1, sigmoid"),
+            ],
+            "output_span": OUTPUT_SPAN,
+        });
+        f.set_metadata(meta.to_string());
+        Ok(f)
+    }
+
+    /// A model from [`ForceDnn::to_file`]'s output.
+    pub fn from_file(file: &TensorFile) -> Result<ForceDnn, NetError> {
+        let meta = file.metadata_json()?;
+        if meta.get("model").and_then(|m| m.as_str()) != Some("force_dnn") {
+            return Err(NetError::SafeTensors("metadata names no force DNN".into()));
+        }
+        let dev = Cpu::seed_from_u64(0);
+        let mut net = dev.build_module::<Arch, f32>();
+        file.load_module("net.", &mut net)?;
+        let vec3 = |name: &str| -> Result<[f32; N_INPUTS], NetError> {
+            let v = file.get(name, &[N_INPUTS])?;
+            Ok(core::array::from_fn(|j| v[j]))
+        };
+        let range = file.get("output.range_gf", &[2])?;
+        Ok(ForceDnn {
+            fast: net.freeze()?,
+            net,
+            mean: vec3("input.mean")?,
+            scale: vec3("input.scale")?,
+            range_gf: [range[0], range[1]],
+            dev,
+        })
+    }
+
+    /// Writes the model as a `.safetensors` file.
+    pub fn save(&self, path: &Path) -> Result<(), NetError> {
+        self.to_file()?.save(path)
+    }
+
+    /// Reads a model written by [`ForceDnn::save`].
+    pub fn load(path: &Path) -> Result<ForceDnn, NetError> {
+        Self::from_file(&TensorFile::load(path)?)
+    }
+}
+
+/// `weight_gf` on the sigmoid's [`OUTPUT_SPAN`].
+fn to_unit(weight_gf: f32, [lo, hi]: [f32; 2]) -> f32 {
+    let [a, b] = OUTPUT_SPAN;
+    a + (weight_gf - lo) / (hi - lo) * (b - a)
+}
+
+/// Input: the three tared rises, hPa ([`crate::data::weights`]).
+impl ForceEstimator for ForceDnn {
+    type Input = [f32];
+    type Error = NetError;
+
+    fn estimate_force(&mut self, input: &[f32]) -> Result<ForceEstimate, NetError> {
+        Ok(ForceEstimate::from_gram_force(self.estimate_gf(input)?))
+    }
+}
