@@ -136,7 +136,7 @@ pub fn eq3(geometry: &Geometry, event: &ArrivalEvent) -> Result<Scores, AotError
 
 /// `a + b + c` in ascending order: the same bits whatever order the sensors come in, so that
 /// renumbering the sensors cannot change a score or break a tie differently.
-fn sum3_sorted([mut a, mut b, mut c]: [f64; 3]) -> f64 {
+pub(crate) fn sum3_sorted([mut a, mut b, mut c]: [f64; 3]) -> f64 {
     if a > b {
         core::mem::swap(&mut a, &mut b);
     }
