@@ -148,7 +148,9 @@ impl Ranging {
             let lag = self.lag_us * self.lag(event.pressure_pa[k]);
             Some((t - self.delay_us - lag) / self.us_per_mm)
         });
-        let sensors = geometry.sensors_mm().map(|s| [f64::from(s[0]), f64::from(s[1])]);
+        let sensors = geometry
+            .sensors_mm()
+            .map(|s| [f64::from(s[0]), f64::from(s[1])]);
         let centres = geometry.centres_mm();
         // Start at the centre of the areas: the pad's centre, the same for any sensor order.
         let mut p = [0, 1].map(|j| centres.iter().map(|c| f64::from(c[j])).sum::<f64>() / 9.0);
@@ -236,22 +238,29 @@ impl RangingFit {
     /// Adds one training tap: its event and each sensor's distance to the true contact, mm.
     /// A tap with a non-finite pressure or distance is skipped whole.
     pub fn push(&mut self, event: &ArrivalEvent, distances_mm: [f32; SENSORS]) {
-        let finite = event.pressure_pa.iter().chain(&distances_mm).all(|v| v.is_finite());
+        let finite = event
+            .pressure_pa
+            .iter()
+            .chain(&distances_mm)
+            .all(|v| v.is_finite());
         if !finite || event.arrival_us.iter().all(Option::is_none) {
             return;
         }
-        for k in 0..SENSORS {
-            let Some(t) = event.arrival_us[k] else { continue };
-            let row = [
-                1.0,
-                f64::from(distances_mm[k]),
-                lag(self.threshold_pa, event.pressure_pa[k]),
-            ];
-            for i in 0..3 {
-                for j in 0..3 {
-                    self.xx[i][j] += row[i] * row[j];
+        let sensors = event
+            .arrival_us
+            .iter()
+            .zip(distances_mm)
+            .zip(event.pressure_pa);
+        for ((t, d), p) in sensors {
+            let Some(t) = t else { continue };
+            let row = [1.0, f64::from(d), lag(self.threshold_pa, p)];
+            for (xx, ri) in self.xx.iter_mut().zip(row) {
+                for (x, rj) in xx.iter_mut().zip(row) {
+                    *x += ri * rj;
                 }
-                self.xt[i] += row[i] * f64::from(t);
+            }
+            for (x, ri) in self.xt.iter_mut().zip(row) {
+                *x += ri * f64::from(*t);
             }
         }
         self.taps += 1;
@@ -295,17 +304,8 @@ impl RangingFit {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::AreaGrid;
-
-    /// The hand pad of `score.rs`: sensors at (3, 0), (0, −3), (−3, 0) over a 12 × 12 mm pad
-    /// (area centres at x, y ∈ {−4, 0, 4}).
-    fn hand_pad() -> Geometry {
-        let grid = AreaGrid {
-            width_mm: 12.0,
-            height_mm: 12.0,
-        };
-        Geometry::new([[3.0, 0.0], [0.0, -3.0], [-3.0, 0.0]], grid).unwrap()
-    }
+    // Sensors at (3, 0), (0, −3), (−3, 0) over a 12 × 12 mm pad (centres at x, y ∈ {−4, 0, 4}).
+    use crate::score::tests::hand_pad;
 
     fn at(p: [f64; 2], model: &Ranging, pressure: [f32; 3]) -> ArrivalEvent {
         let s = [[3.0, 0.0], [0.0, -3.0], [-3.0, 0.0]];
@@ -313,7 +313,8 @@ mod tests {
             pressure_pa: pressure,
             arrival_us: core::array::from_fn(|k| {
                 let r = libm::sqrt((p[0] - s[k][0]).powi(2) + (p[1] - s[k][1]).powi(2));
-                let t = model.delay_us + model.us_per_mm * r + model.lag_us * model.lag(pressure[k]);
+                let t =
+                    model.delay_us + model.us_per_mm * r + model.lag_us * model.lag(pressure[k]);
                 Some(t.round() as u32)
             }),
         }
@@ -345,7 +346,10 @@ mod tests {
         let m = Ranging::new(2000.0, 2500.0, 20_000.0, 50.0).unwrap();
         let e = at([1.5, 1.5], &m, [100.0, 5000.0, 5000.0]);
         let p = m.position_mm(&hand_pad(), &e).unwrap();
-        assert!((p[0] - 1.5).abs() < 0.01 && (p[1] - 1.5).abs() < 0.01, "{p:?}");
+        assert!(
+            (p[0] - 1.5).abs() < 0.01 && (p[1] - 1.5).abs() < 0.01,
+            "{p:?}"
+        );
         assert_eq!(m.scores(&hand_pad(), &e).unwrap().argmax(), 4);
         // Ignoring the lag (c = 0) reads sensor 1 as 5.5 mm farther: the point is lost.
         let blind = Ranging::new(2000.0, 2500.0, 0.0, 50.0).unwrap();

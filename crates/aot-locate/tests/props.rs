@@ -48,7 +48,12 @@ fn geometry() -> impl Strategy<Value = Geometry> {
 /// Any valid ranging model: delays, slopes and lags across and beyond the fitted ones.
 fn ranging() -> impl Strategy<Value = Ranging> {
     (
-        prop_oneof![-1e6f32..1e6f32, Just(0.0f32), Just(f32::MIN), Just(f32::MAX)],
+        prop_oneof![
+            -1e6f32..1e6f32,
+            Just(0.0f32),
+            Just(f32::MIN),
+            Just(f32::MAX)
+        ],
         prop_oneof![1e-3f32..1e6f32, Just(f32::MIN_POSITIVE), Just(f32::MAX)],
         prop_oneof![-1e6f32..1e6f32, Just(0.0f32), Just(f32::MAX)],
         prop_oneof![0f32..1e4f32, Just(0.0f32), Just(f32::MAX)],

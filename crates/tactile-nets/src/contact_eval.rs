@@ -241,7 +241,11 @@ pub fn select(
 }
 
 /// The selection results as a metrics file (validation metrics, one row per candidate).
-pub fn selection_file(results: &[(Candidate, Evaluation)], chosen: Candidate, seed: u64) -> MetricsFile {
+pub fn selection_file(
+    results: &[(Candidate, Evaluation)],
+    chosen: Candidate,
+    seed: u64,
+) -> MetricsFile {
     MetricsFile {
         model: "contact_mlp".into(),
         description: format!(

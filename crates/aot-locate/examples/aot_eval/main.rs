@@ -92,8 +92,16 @@ fn section(rep: &Report) -> Result<String, std::fmt::Error> {
     )?;
     for osr in &osrs {
         for r in Rule::ALL {
-            let inside = rep.by_interior.get(&(r, *osr, true)).copied().unwrap_or_default();
-            let border = rep.by_interior.get(&(r, *osr, false)).copied().unwrap_or_default();
+            let inside = rep
+                .by_interior
+                .get(&(r, *osr, true))
+                .copied()
+                .unwrap_or_default();
+            let border = rep
+                .by_interior
+                .get(&(r, *osr, false))
+                .copied()
+                .unwrap_or_default();
             let either = rep.tolerant.get(&(r, *osr)).copied().unwrap_or_default();
             writeln!(
                 s,
