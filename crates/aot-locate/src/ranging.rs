@@ -13,8 +13,9 @@
 //!
 //! `a` (µs), `b` (µs per mm) and `c` (µs) are fitted on taps whose contact is known
 //! ([`RangingFit`]); `t_k` counts from contact onset, as [`ArrivalEvent`] defines it. Each
-//! arrived sensor then gives a range `ρ_k = (t_k − a − c·L_k) / b`; a few damped Gauss–Newton
-//! steps find the pad point whose distances best match the ranges, and area `n` scores
+//! arrived sensor then gives a range `ρ_k = (t_k − a − c·L_k) / b`; from the linearised fix
+//! (or the pad centre when fewer than three sensors arrived) a few damped Gauss–Newton steps
+//! find the pad point whose distances best match the ranges, and area `n` scores
 //! `−|p − centre_n|²` (mm²), so the argmax is the area holding the point on a regular grid.
 
 use crate::geometry::{AREAS, Geometry, SENSORS};
@@ -24,9 +25,12 @@ use crate::score::{AotError, ArrivalEvent, Scores, sum3_sorted};
 /// held rise is at or under the threshold (noise pushed it over) gets the largest lag the
 /// model allows, `ln 100 ≈ 4.6` time constants, instead of an infinite one.
 const MAX_THRESHOLD_SHARE: f64 = 0.99;
-/// Gauss–Newton steps: six converge on the simulated pad (three already within 2 % of the
-/// final accuracy, docs/contact-location.md) and keep a localisation under 100 ns.
-const ITERATIONS: usize = 6;
+/// Gauss–Newton steps from the pad centre (fewer than three ranges, or collinear sensors):
+/// six converge on the simulated pad.
+const ITERATIONS_FROM_CENTRE: usize = 6;
+/// Gauss–Newton steps from the closed-form start (three ranges): two reach the accuracy of
+/// six from the centre on the simulated taps, at a third of the cost.
+const ITERATIONS_FROM_LINEAR: usize = 2;
 /// Levenberg damping of the 2 × 2 normal matrix: keeps a step defined when fewer than two
 /// sensors (or collinear ones) constrain the position.
 const DAMPING: f64 = 1e-3;
@@ -152,9 +156,16 @@ impl Ranging {
             .sensors_mm()
             .map(|s| [f64::from(s[0]), f64::from(s[1])]);
         let centres = geometry.centres_mm();
-        // Start at the centre of the areas: the pad's centre, the same for any sensor order.
-        let mut p = [0, 1].map(|j| centres.iter().map(|c| f64::from(c[j])).sum::<f64>() / 9.0);
-        for _ in 0..ITERATIONS {
+        // Start: with three ranges the closed-form (linearised) fix, else the pad's centre;
+        // either is the same for any sensor order.
+        let (mut p, iterations) = match linear_fix(&sensors, &range) {
+            Some(p) => (p, ITERATIONS_FROM_LINEAR),
+            None => (
+                [0, 1].map(|j| centres.iter().map(|c| f64::from(c[j])).sum::<f64>() / 9.0),
+                ITERATIONS_FROM_CENTRE,
+            ),
+        };
+        for _ in 0..iterations {
             // Per sensor: the unit vector from it to p and the range residual; sums in sorted
             // order so renumbering the sensors cannot change a bit.
             let mut terms = [[0.0f64; 5]; SENSORS];
@@ -165,14 +176,18 @@ impl Ranging {
                 if d <= 0.0 {
                     continue;
                 }
-                let (ux, uy, r) = (dx / d, dy / d, d - rho);
+                let inv = 1.0 / d;
+                let (ux, uy, r) = (dx * inv, dy * inv, d - rho);
                 *term = [ux * ux, ux * uy, uy * uy, ux * r, uy * r];
             }
             let sum = |j: usize| sum3_sorted([terms[0][j], terms[1][j], terms[2][j]]);
             let (hxx, hxy, hyy) = (sum(0) + DAMPING, sum(1), sum(2) + DAMPING);
             let (gx, gy) = (sum(3), sum(4));
-            let det = hxx * hyy - hxy * hxy;
-            let step = [(hyy * gx - hxy * gy) / det, (hxx * gy - hxy * gx) / det];
+            let inv_det = 1.0 / (hxx * hyy - hxy * hxy);
+            let step = [
+                (hyy * gx - hxy * gy) * inv_det,
+                (hxx * gy - hxy * gx) * inv_det,
+            ];
             if !(step[0].is_finite() && step[1].is_finite()) {
                 break;
             }
@@ -200,6 +215,38 @@ impl Ranging {
     fn lag(&self, pressure_pa: f32) -> f64 {
         lag(self.threshold_pa, pressure_pa)
     }
+}
+
+/// The linearised fix from three ranges: `|p − s_k|² = ρ_k²` minus its mean over the sensors
+/// is linear in `p`, `2(s_k − s̄)·p = (|s_k|² − ρ_k²) − mean`; solved by least squares. `None`
+/// with fewer than three ranges, collinear sensors or a non-finite result. Sums in sorted order
+/// (sensor-order invariant).
+fn linear_fix(sensors: &[[f64; 2]; SENSORS], range: &[Option<f64>; SENSORS]) -> Option<[f64; 2]> {
+    let rho = [range[0]?, range[1]?, range[2]?];
+    let mean = |v: [f64; 3]| sum3_sorted(v) / 3.0;
+    let sbar = [0, 1].map(|j| mean(sensors.map(|s| s[j])));
+    let a: [[f64; 2]; 3] =
+        core::array::from_fn(|k| [0, 1].map(|j| 2.0 * (sensors[k][j] - sbar[j])));
+    let q: [f64; 3] = core::array::from_fn(|k| {
+        sensors[k][0] * sensors[k][0] + sensors[k][1] * sensors[k][1] - rho[k] * rho[k]
+    });
+    let qbar = mean(q);
+    let sum = |f: &dyn Fn(usize) -> f64| sum3_sorted([f(0), f(1), f(2)]);
+    let (hxx, hxy, hyy) = (
+        sum(&|k| a[k][0] * a[k][0]),
+        sum(&|k| a[k][0] * a[k][1]),
+        sum(&|k| a[k][1] * a[k][1]),
+    );
+    let (gx, gy) = (
+        sum(&|k| a[k][0] * (q[k] - qbar)),
+        sum(&|k| a[k][1] * (q[k] - qbar)),
+    );
+    let det = hxx * hyy - hxy * hxy;
+    if !(det > 1e-9 * (hxx * hyy)) {
+        return None;
+    }
+    let p = [(hyy * gx - hxy * gy) / det, (hxx * gy - hxy * gx) / det];
+    (p[0].is_finite() && p[1].is_finite()).then(|| p.map(|v| v.clamp(-BOUND_MM, BOUND_MM)))
 }
 
 fn lag(threshold_pa: f64, pressure_pa: f32) -> f64 {
