@@ -231,15 +231,14 @@ fn linear_fix(sensors: &[[f64; 2]; SENSORS], range: &[Option<f64>; SENSORS]) -> 
         sensors[k][0] * sensors[k][0] + sensors[k][1] * sensors[k][1] - rho[k] * rho[k]
     });
     let qbar = mean(q);
-    let sum = |f: &dyn Fn(usize) -> f64| sum3_sorted([f(0), f(1), f(2)]);
     let (hxx, hxy, hyy) = (
-        sum(&|k| a[k][0] * a[k][0]),
-        sum(&|k| a[k][0] * a[k][1]),
-        sum(&|k| a[k][1] * a[k][1]),
+        sum3(|k| a[k][0] * a[k][0]),
+        sum3(|k| a[k][0] * a[k][1]),
+        sum3(|k| a[k][1] * a[k][1]),
     );
     let (gx, gy) = (
-        sum(&|k| a[k][0] * (q[k] - qbar)),
-        sum(&|k| a[k][1] * (q[k] - qbar)),
+        sum3(|k| a[k][0] * (q[k] - qbar)),
+        sum3(|k| a[k][1] * (q[k] - qbar)),
     );
     let det = hxx * hyy - hxy * hxy;
     // Collinear sensors (or a NaN) leave the fix undetermined.
@@ -248,6 +247,11 @@ fn linear_fix(sensors: &[[f64; 2]; SENSORS], range: &[Option<f64>; SENSORS]) -> 
     }
     let p = [(hyy * gx - hxy * gy) / det, (hxx * gy - hxy * gx) / det];
     (p[0].is_finite() && p[1].is_finite()).then(|| p.map(|v| v.clamp(-BOUND_MM, BOUND_MM)))
+}
+
+/// `f(0) + f(1) + f(2)` in sorted order (sensor-order invariant), inlined.
+fn sum3(f: impl Fn(usize) -> f64) -> f64 {
+    sum3_sorted([f(0), f(1), f(2)])
 }
 
 fn lag(threshold_pa: f64, pressure_pa: f32) -> f64 {
