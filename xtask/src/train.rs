@@ -1,6 +1,7 @@
 //! `cargo xtask train MODEL`:
-//! - `contact-mlp` trains the contact-area MLP (seeded, one model per OSR and head) and writes
-//!   `fixtures/models/contact_mlp/` (weights + `metrics.json`), then draws
+//! - `contact-mlp` trains the contact-area MLP (seeded: a validation search on repeat 0, then per
+//!   OSR the paper's recipe for both heads and the chosen configuration) and writes
+//!   `fixtures/models/contact_mlp/` (weights, `metrics.json`, `selection.json`), then draws
 //!   `docs/contact-location/contact-mlp-osr.svg` and prints the markdown table of
 //!   `docs/contact-location.md`;
 //! - `force-dnn`: see [`crate::force_dnn`].
@@ -12,7 +13,7 @@ use crate::run::{cargo, step};
 use anyhow::{Context, Result, bail};
 use plotters::prelude::*;
 use std::path::Path;
-use tactile_nets::contact_eval::{METRICS_FILE, MODEL_DIR, row_label};
+use tactile_nets::contact_eval::{METRICS_FILE, MODEL_DIR, chosen_label, row_label};
 use tactile_nets::contact_mlp::Head;
 use tactile_nets::metrics::MetricsFile;
 
@@ -63,33 +64,66 @@ fn osrs(metrics: &MetricsFile) -> Vec<u16> {
     v
 }
 
-fn value(metrics: &MetricsFile, osr: u16, head: Head, key: &str) -> f64 {
+/// Which model of an OSR a metrics row belongs to.
+#[derive(Clone, Copy)]
+enum Model {
+    /// The paper's recipe with this head.
+    Paper(Head),
+    /// The configuration chosen on the validation split.
+    Chosen,
+}
+
+impl Model {
+    const ALL: [Model; 3] = [
+        Model::Paper(Head::AverageArea),
+        Model::Paper(Head::CellSet),
+        Model::Chosen,
+    ];
+
+    fn label(self, osr: u16) -> String {
+        match self {
+            Model::Paper(head) => row_label(osr, head),
+            Model::Chosen => chosen_label(osr),
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Model::Paper(Head::AverageArea) => "paper recipe, eq. 4 regression",
+            Model::Paper(Head::CellSet) => "paper recipe, cell-set head",
+            Model::Chosen => "validation-chosen",
+        }
+    }
+}
+
+fn value(metrics: &MetricsFile, osr: u16, model: Model, key: &str) -> f64 {
     metrics
-        .row(&row_label(osr, head))
+        .row(&model.label(osr))
         .and_then(|r| r.values.get(key).copied())
         .unwrap_or(f64::NAN)
 }
 
-/// The markdown table: one row per OSR, both heads side by side.
+/// The markdown table: one row per OSR and model.
 pub fn table(metrics: &MetricsFile) -> String {
     let mut s = String::from(
-        "| OSR | 24-area acc. (eq. 4 regression) | 24-area acc. (cell-set) | exact set (regr.) | exact set (cell-set) | mean cell error (regr.) | mean cell error (cell-set) | centroid error, cells (regr. / cell-set) |\n\
-         |---:|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| OSR | model | 24-area acc. (single-cell taps) | exact set | mean cell error | mean centroid error, cells |\n\
+         |---:|---|---:|---:|---:|---:|\n",
     );
     for osr in osrs(metrics) {
-        let v = |h, k| value(metrics, osr, h, k);
-        let (a, c) = (Head::AverageArea, Head::CellSet);
-        s += &format!(
-            "| {osr} | {:.1} % | {:.1} % | {:.1} % | {:.1} % | {:.2} | {:.2} | {:.2} / {:.2} |\n",
-            100.0 * v(a, "area_accuracy"),
-            100.0 * v(c, "area_accuracy"),
-            100.0 * v(a, "exact_accuracy"),
-            100.0 * v(c, "exact_accuracy"),
-            v(a, "mean_cell_error"),
-            v(c, "mean_cell_error"),
-            v(a, "mean_centroid_error"),
-            v(c, "mean_centroid_error"),
-        );
+        for m in Model::ALL {
+            let v = |k| value(metrics, osr, m, k);
+            if v("taps").is_nan() {
+                continue;
+            }
+            s += &format!(
+                "| {osr} | {} | {:.1} % | {:.1} % | {:.2} | {:.2} |\n",
+                m.name(),
+                100.0 * v("area_accuracy"),
+                100.0 * v("exact_accuracy"),
+                v("mean_cell_error"),
+                v("mean_centroid_error"),
+            );
+        }
     }
     s
 }
@@ -111,27 +145,27 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
     };
     let series = [
         (
-            Head::AverageArea,
+            Model::Paper(Head::AverageArea),
             "area_accuracy",
-            "24-area, eq. 4 regression",
+            "24-area, paper recipe, eq. 4 regression",
             RED,
         ),
         (
-            Head::CellSet,
+            Model::Paper(Head::CellSet),
             "area_accuracy",
-            "24-area, cell-set head",
+            "24-area, paper recipe, cell-set head",
             BLUE,
         ),
         (
-            Head::AverageArea,
-            "exact_accuracy",
-            "exact set, eq. 4 regression",
-            MAGENTA,
+            Model::Chosen,
+            "area_accuracy",
+            "24-area, validation-chosen",
+            GREEN,
         ),
         (
-            Head::CellSet,
+            Model::Chosen,
             "exact_accuracy",
-            "exact set, cell-set head",
+            "exact set, validation-chosen",
             CYAN,
         ),
     ];
@@ -150,11 +184,11 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
         .x_label_formatter(&label_osr)
         .draw()
         .map_err(plot_err)?;
-    for (head, key, name, color) in series {
+    for (model, key, name, color) in series {
         let pts: Vec<(f64, f64)> = osrs
             .iter()
             .enumerate()
-            .map(|(i, &o)| (i as f64, 100.0 * value(metrics, o, head, key)))
+            .map(|(i, &o)| (i as f64, 100.0 * value(metrics, o, model, key)))
             .collect();
         chart
             .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
@@ -174,7 +208,7 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
         .map_err(plot_err)?;
     let max_err = osrs
         .iter()
-        .flat_map(|&o| Head::ALL.map(|h| value(metrics, o, h, "mean_cell_error")))
+        .flat_map(|&o| Model::ALL.map(|m| value(metrics, o, m, "mean_cell_error")))
         .fold(1.0f64, f64::max);
     let mut chart = ChartBuilder::on(&right)
         .caption(
@@ -194,14 +228,12 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
         .x_label_formatter(&label_osr)
         .draw()
         .map_err(plot_err)?;
-    for (head, name, color) in [
-        (Head::AverageArea, "eq. 4 regression", RED),
-        (Head::CellSet, "cell-set head", BLUE),
-    ] {
+    for (model, color) in Model::ALL.into_iter().zip([RED, BLUE, GREEN]) {
+        let name = model.name();
         let pts: Vec<(f64, f64)> = osrs
             .iter()
             .enumerate()
-            .map(|(i, &o)| (i as f64, value(metrics, o, head, "mean_cell_error")))
+            .map(|(i, &o)| (i as f64, value(metrics, o, model, "mean_cell_error")))
             .collect();
         chart
             .draw_series(LineSeries::new(pts, color.stroke_width(2)))

@@ -1,7 +1,7 @@
-//! AoT per localisation: eq. 3 over the nine areas, argmax and confidence, through the
-//! `ContactLocator` trait (issue 7 target: under 100 ns).
+//! AoT per localisation: eq. 3, or the ranging scorer, over the nine areas, argmax and
+//! confidence, through the `ContactLocator` trait (issue 7 target: under 100 ns).
 
-use aot_locate::{AotLocator, ArrivalEvent};
+use aot_locate::{AotLocator, ArrivalEvent, Geometry, Ranging, Scorer};
 use criterion::{Criterion, criterion_group, criterion_main};
 use hand_traits::ContactLocator;
 use std::hint::black_box;
@@ -23,6 +23,12 @@ fn locate(c: &mut Criterion) {
     };
     c.bench_function("aot_locate_three_arrivals", |b| {
         b.iter(|| locator.locate(black_box(&all)))
+    });
+    // The ranging scorer with constants of the size fitted at OSR 256 (docs/contact-location.md).
+    let model = Ranging::new(3_000.0, 2_500.0, 25_000.0, 30.0).unwrap();
+    let mut ranging = AotLocator::with_scorer(Geometry::simulated_pad(), Scorer::Ranging(model));
+    c.bench_function("aot_ranging_three_arrivals", |b| {
+        b.iter(|| ranging.locate(black_box(&all)))
     });
 }
 

@@ -6,6 +6,7 @@ mod arrival;
 mod geometry;
 mod label;
 mod locator;
+mod ranging;
 mod score;
 
 pub use arrival::{ArrivalDetector, ChannelDetector, DetectorConfig};
@@ -14,5 +15,6 @@ pub use label::{
     AverageArea, CELLS, COLS, Candidates, CellSet, DECODE_TOLERANCE, FIGURE7_SHAPES, LabelError,
     MAX_CANDIDATES, ROWS, Shape, decode, decode_among, figure7_placements,
 };
-pub use locator::AotLocator;
+pub use locator::{AotLocator, Scorer};
+pub use ranging::{Ranging, RangingError, RangingFit};
 pub use score::{AotError, ArrivalEvent, Scores, eq3};

@@ -1,20 +1,48 @@
 //! Arrival-of-Time behind the `hand-traits` contact-locator trait.
 
 use crate::geometry::{AREAS, Geometry};
-use crate::score::{AotError, ArrivalEvent, eq3};
+use crate::ranging::Ranging;
+use crate::score::{AotError, ArrivalEvent, Scores, eq3};
 use hand_traits::{Contact, ContactLocator};
 
-/// Locates a contact on the 3 × 3 grid with eq. 3: the area of largest `Arr_n`, with the
-/// normalised margin of [`crate::Scores::confidence`].
+/// Which area scores a locator ranks.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Scorer {
+    /// Seed 000's eq. 3 exactly as written ([`eq3`]).
+    #[default]
+    Eq3,
+    /// Arrival times as ranges ([`Ranging::scores`]): translation-aware, fitted.
+    Ranging(Ranging),
+}
+
+/// Locates a contact on the 3 × 3 grid: the area of largest score (eq. 3's `Arr_n` by
+/// default), with the normalised margin of [`crate::Scores::confidence`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct AotLocator {
     geometry: Geometry,
+    scorer: Scorer,
 }
 
 impl AotLocator {
-    /// A locator for `geometry`.
+    /// An eq. 3 locator for `geometry`.
     pub fn new(geometry: Geometry) -> AotLocator {
-        AotLocator { geometry }
+        AotLocator {
+            geometry,
+            scorer: Scorer::Eq3,
+        }
+    }
+
+    /// A locator for `geometry` ranking `scorer`'s scores.
+    pub fn with_scorer(geometry: Geometry, scorer: Scorer) -> AotLocator {
+        AotLocator { geometry, scorer }
+    }
+
+    /// The nine area scores for `input`.
+    pub fn scores(&self, input: &ArrivalEvent) -> Result<Scores, AotError> {
+        match &self.scorer {
+            Scorer::Eq3 => eq3(&self.geometry, input),
+            Scorer::Ranging(model) => model.scores(&self.geometry, input),
+        }
     }
 
     /// The pad it locates on.
@@ -28,7 +56,7 @@ impl ContactLocator for AotLocator {
     type Error = AotError;
 
     fn locate(&mut self, input: &ArrivalEvent) -> Result<Contact, AotError> {
-        let scores = eq3(&self.geometry, input)?;
+        let scores = self.scores(input)?;
         Ok(Contact {
             region: scores.argmax() as u16,
             regions: AREAS as u16,

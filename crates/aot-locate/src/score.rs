@@ -136,7 +136,7 @@ pub fn eq3(geometry: &Geometry, event: &ArrivalEvent) -> Result<Scores, AotError
 
 /// `a + b + c` in ascending order: the same bits whatever order the sensors come in, so that
 /// renumbering the sensors cannot change a score or break a tie differently.
-fn sum3_sorted([mut a, mut b, mut c]: [f64; 3]) -> f64 {
+pub(crate) fn sum3_sorted([mut a, mut b, mut c]: [f64; 3]) -> f64 {
     if a > b {
         core::mem::swap(&mut a, &mut b);
     }
@@ -150,13 +150,13 @@ fn sum3_sorted([mut a, mut b, mut c]: [f64; 3]) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::geometry::AreaGrid;
 
     /// A pad whose distances are easy by hand: sensors at (3, 0), (0, −3), (−3, 0) mm over a
-    /// 12 × 12 mm pad (area centres at x, y ∈ {−4, 0, 4}).
-    fn hand_pad() -> Geometry {
+    /// 12 × 12 mm pad (area centres at x, y ∈ {−4, 0, 4}). Also used by `ranging.rs`.
+    pub(crate) fn hand_pad() -> Geometry {
         let grid = AreaGrid {
             width_mm: 12.0,
             height_mm: 12.0,

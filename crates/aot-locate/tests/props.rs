@@ -1,7 +1,8 @@
 //! proptest: finite scores for any finite input, sensor-order invariance, no panics.
 
 use aot_locate::{
-    AotLocator, ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, decode, eq3,
+    AotLocator, ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, Ranging, Scorer, decode,
+    eq3,
 };
 use hand_traits::ContactLocator;
 use proptest::prelude::*;
@@ -44,6 +45,22 @@ fn geometry() -> impl Strategy<Value = Geometry> {
         })
 }
 
+/// Any valid ranging model: delays, slopes and lags across and beyond the fitted ones.
+fn ranging() -> impl Strategy<Value = Ranging> {
+    (
+        prop_oneof![
+            -1e6f32..1e6f32,
+            Just(0.0f32),
+            Just(f32::MIN),
+            Just(f32::MAX)
+        ],
+        prop_oneof![1e-3f32..1e6f32, Just(f32::MIN_POSITIVE), Just(f32::MAX)],
+        prop_oneof![-1e6f32..1e6f32, Just(0.0f32), Just(f32::MAX)],
+        prop_oneof![0f32..1e4f32, Just(0.0f32), Just(f32::MAX)],
+    )
+        .prop_map(|(a, b, c, theta)| Ranging::new(a, b, c, theta).unwrap())
+}
+
 const PERMUTATIONS: [[usize; 3]; 6] = [
     [0, 1, 2],
     [0, 2, 1],
@@ -81,6 +98,37 @@ proptest! {
             AotLocator::new(g).locate(&e).map(|c| (c.region, c.confidence.to_bits())),
             AotLocator::new(pg).locate(&pe).map(|c| (c.region, c.confidence.to_bits()))
         );
+    }
+
+    #[test]
+    fn ranging_scores_are_finite_for_finite_input(g in geometry(), m in ranging(), e in event()) {
+        match m.scores(&g, &e) {
+            Ok(s) => {
+                prop_assert!(s.values().iter().all(|v| v.is_finite()), "{:?}", s.values());
+                prop_assert!((0.0..=1.0).contains(&s.confidence()));
+            }
+            Err(err) => prop_assert_eq!(err, aot_locate::AotError::NoArrival),
+        }
+        prop_assert_eq!(m.scores(&g, &e).is_err(), e.arrival_us.iter().all(Option::is_none));
+    }
+
+    #[test]
+    fn ranging_ignores_sensor_order(
+        g in geometry(), m in ranging(), e in event(), p in 0usize..6,
+    ) {
+        let order = PERMUTATIONS[p];
+        let pg = g.permuted(order).unwrap();
+        let pe = ArrivalEvent {
+            pressure_pa: order.map(|i| e.pressure_pa[i]),
+            arrival_us: order.map(|i| e.arrival_us[i]),
+        };
+        prop_assert_eq!(m.scores(&g, &e), m.scores(&pg, &pe));
+        let locate = |g, e: &ArrivalEvent| {
+            AotLocator::with_scorer(g, Scorer::Ranging(m))
+                .locate(e)
+                .map(|c| (c.region, c.confidence.to_bits()))
+        };
+        prop_assert_eq!(locate(g, &e), locate(pg, &pe));
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! The fingertip law against seed 000 Tables 1 and 2 (as `fixtures/derived/` holds their rises).
-//! Tolerances are the fit's documented residuals (docs/sim-calibration.md), not tuned targets.
+//! Tolerances are the fit's documented residuals (docs/sim-calibration/fingertip.md), not tuned targets.
 
 use hand_sim::fingertip::{Cell, CellSet, ContactPatch, LawParams};
 use paper_fixtures::Table;
@@ -62,8 +62,10 @@ fn table2_orderings_hold() {
     for kgf in [5.0, 7.0, 9.0] {
         let a11 = at(1.1, kgf);
         let a15 = at(1.5, kgf);
-        // Row 1 is far from the bottom sensor 2: it barely moves (≤ 3.3 hPa in Table 2).
+        // Row 1 is far from the bottom sensor 2: it barely moves (≤ 3.3 hPa in Table 2), but it
+        // moves (1.3 / 3.3 hPa at 9 kgf, both repeats): the pad has no blind sensor.
         assert!(a11[1] < a11[0] && a11[1] < a11[2] && a15[1] < a15[0] && a15[1] < a15[2]);
+        assert!(a11[1] > 0.3 && a15[1] > 0.3, "{kgf} kgf: {a11:?} {a15:?}");
         // Area 1.1 (left) rises sensor 3 (top left) more than sensor 1.
         assert!(a11[2] > a11[0], "{kgf} kgf: {a11:?}");
     }
@@ -79,7 +81,7 @@ fn table2_orderings_hold() {
 }
 
 #[test]
-fn table1_whole_pad_rises_grow_with_weight_and_stay_within_a_quarter_hpa_at_200_gf() {
+fn table1_whole_pad_rises_grow_with_weight_and_stay_within_the_documented_residual_at_200_gf() {
     let law = LawParams::CALIBRATED;
     let all = Cell::all().fold(CellSet::EMPTY, CellSet::with);
     let mut previous = [0.0; 3];
@@ -93,13 +95,27 @@ fn table1_whole_pad_rises_grow_with_weight_and_stay_within_a_quarter_hpa_at_200_
         if gf == 200.0 {
             for (k, col) in ["rise1_hpa", "rise2_hpa", "rise3_hpa"].iter().enumerate() {
                 let paper = r.f64(col).unwrap();
+                // Worst documented residual 0.55 hPa (sensor 1): the σy = 3.1 mm that Table 2's
+                // sensor-2 readings and a blind-free pad need costs Table 1's low end (another
+                // rig) this much (docs/sim-calibration/fingertip.md).
                 assert!(
-                    (sim[k] - paper).abs() < 0.25,
+                    (sim[k] - paper).abs() < 0.6,
                     "sensor {}: sim {:.3} paper {paper}",
                     k + 1,
                     sim[k]
                 );
             }
         }
+    }
+}
+
+/// The paper localises every one of 3 × 3 and 24 areas from three sensors (§3–4, Figures 10–11):
+/// every sensor must feel every single cell. 0.3 hPa is aot-locate's arrival threshold (30 Pa).
+#[test]
+fn every_sensor_feels_every_cell_at_5_kgf() {
+    let law = LawParams::CALIBRATED;
+    for cell in Cell::all() {
+        let rise = law.steady_rise_hpa(&ContactPatch::from_kgf(CellSet::EMPTY.with(cell), 5.0));
+        assert!(rise.iter().all(|r| *r > 0.3), "{cell:?}: {rise:?}");
     }
 }

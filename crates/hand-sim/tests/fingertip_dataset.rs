@@ -51,7 +51,8 @@ fn weight_series_is_deterministic_for_a_seed_and_grows_with_weight() {
         v[v.len() / 2..].iter().sum::<f64>() / (v.len() - v.len() / 2) as f64
     };
     let rise_hpa = (mean_at(200.0) - mean_at(0.0)) / 100.0;
-    // Table 1: sensor 1 rises 1.22 hPa from 0 to 200 gf; the law holds it within 0.25 hPa, and
-    // 40 s of 0.1 hPa/min drift adds about 0.07 hPa.
-    assert!((rise_hpa - 1.22).abs() < 0.35, "{rise_hpa}");
+    // Table 1: sensor 1 rises 1.22 hPa from 0 to 200 gf; the law (σy = 3.1 mm) gives 0.67 hPa,
+    // its documented worst Table 1 residual (docs/sim-calibration/fingertip.md), and 40 s of
+    // 0.1 hPa/min drift adds about 0.07 hPa.
+    assert!((rise_hpa - 1.22).abs() < 0.7, "{rise_hpa}");
 }

@@ -107,7 +107,11 @@ fn committed_metrics_match_a_re_evaluation_of_the_committed_weights() -> Result<
     )?)?;
     let loaded = contact_eval::load_committed(&root(), &records)?;
     let fresh = contact_eval::metrics_file(&loaded, SEED);
-    assert_eq!(committed.rows.len(), 10, "5 OSRs x 2 heads committed");
+    assert_eq!(
+        committed.rows.len(),
+        15,
+        "5 OSRs x (2 paper-recipe heads + the chosen model)"
+    );
     let drift = committed.drift(&fresh, 1e-9);
     assert!(drift.is_empty(), "committed metrics drifted: {drift:#?}");
     Ok(())

@@ -3,7 +3,9 @@
 //! Shared by the `aot_eval` example (which writes `docs/contact-location.md`) and the drift
 //! test (which re-runs one OSR and compares with the doc).
 
-use aot_locate::{ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, Scores, eq3};
+use aot_locate::{
+    ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, Ranging, RangingFit, Scores, eq3,
+};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -101,20 +103,20 @@ pub(crate) enum Rule {
     Eq3Rise,
     /// Eq. 3 as written, `P_k` = absolute held pressure (Table 2's columns are absolute hPa).
     Eq3Absolute,
-    /// Not the paper's: time of flight. Arrival times are modelled as `t_k = a + b·r` and the
-    /// area whose `r_{n,k}` fit the arrived sensors' times best (least squares) wins; `a`, `b`
-    /// fitted per OSR on the training repeat.
-    TimeOfFlight,
+    /// Not the paper's: eq. 3's ingredients as ranges ([`Ranging`]): `t_k ≈ a + b·r + c·L_k`
+    /// gives each arrived sensor a range, the pad point that matches them best picks the area;
+    /// `a`, `b`, `c` fitted per OSR on the training repeat.
+    Ranging,
 }
 
 impl Rule {
-    pub(crate) const ALL: [Rule; 3] = [Rule::Eq3Rise, Rule::Eq3Absolute, Rule::TimeOfFlight];
+    pub(crate) const ALL: [Rule; 3] = [Rule::Eq3Rise, Rule::Eq3Absolute, Rule::Ranging];
 
     pub(crate) fn name(self) -> &'static str {
         match self {
             Rule::Eq3Rise => "eq. 3, P = held rise",
             Rule::Eq3Absolute => "eq. 3, P = absolute held",
-            Rule::TimeOfFlight => "time of flight (fitted)",
+            Rule::Ranging => "ranging (fitted)",
         }
     }
 
@@ -122,12 +124,12 @@ impl Rule {
     pub(crate) fn predict(
         self,
         geometry: &Geometry,
-        tof: &TofFit,
+        ranging: Option<&Ranging>,
         tap: &Tap,
         event: &ArrivalEvent,
     ) -> Option<usize> {
         let scores: Scores = match self {
-            Rule::TimeOfFlight => tof.scores(geometry, event)?,
+            Rule::Ranging => ranging?.scores(geometry, event).ok()?,
             Rule::Eq3Rise => eq3(geometry, event).ok()?,
             Rule::Eq3Absolute => {
                 let abs = ArrivalEvent {
@@ -173,76 +175,43 @@ pub(crate) struct Report {
     pub(crate) by_force: BTreeMap<(Rule, u16, u32), Tally>,
     pub(crate) missing_sensor: BTreeMap<u16, Tally>,
     pub(crate) no_arrival: BTreeMap<u16, u32>,
-    pub(crate) fits: BTreeMap<u16, TofFit>,
+    pub(crate) fits: BTreeMap<u16, Ranging>,
     /// How often each rule picked each area (all OSRs): which areas a rule can reach at all.
     pub(crate) picked: BTreeMap<Rule, [u32; 9]>,
+    /// Taps whose centroid lies inside one area (`true`) or on a border between areas:
+    /// hits against the strict label, per rule and OSR.
+    pub(crate) by_interior: BTreeMap<(Rule, u16, bool), Tally>,
+    /// Hits when any area whose closed rectangle holds the centroid counts (a centroid on a
+    /// border belongs to both sides), per rule and OSR.
+    pub(crate) tolerant: BTreeMap<(Rule, u16), Tally>,
+}
+
+/// The areas (0…8) whose closed rectangle on the simulated pad holds the point `c` (mm).
+pub(crate) fn areas_holding(c: [f32; 2]) -> Vec<usize> {
+    let g = aot_locate::AreaGrid::SIMULATED_PAD;
+    let (hw, hh) = (g.width_mm / 6.0, g.height_mm / 6.0);
+    g.centres_mm()
+        .iter()
+        .enumerate()
+        .filter(|(_, a)| (c[0] - a[0]).abs() <= hw + 1e-4 && (c[1] - a[1]).abs() <= hh + 1e-4)
+        .map(|(n, _)| n)
+        .collect()
 }
 
 /// The repeat the time-of-flight variant is fitted on; the other is held out.
 pub(crate) const TRAIN_REPEAT: u32 = 0;
 
-/// `t = a + b·d`: arrival time against distance from the patch centroid, by least squares.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub(crate) struct TofFit {
-    pub(crate) a_us: f64,
-    pub(crate) b_us_per_mm: f64,
+/// Each sensor's distance to the patch centroid of `mask`, mm (`None` for an empty mask).
+pub(crate) fn distances_mm(mask: u32) -> Option<[f32; 3]> {
+    let c = centroid_mm(mask)?;
+    let s = Geometry::SIMULATED_SENSORS_MM;
+    Some(std::array::from_fn(|k| {
+        ((c[0] - s[k][0]).powi(2) + (c[1] - s[k][1]).powi(2)).sqrt()
+    }))
 }
 
-impl TofFit {
-    /// Fits on the arrived sensors of `taps` (true centroid from the mask).
-    pub(crate) fn fit<'a>(taps: impl Iterator<Item = (&'a Tap, &'a ArrivalEvent)>) -> TofFit {
-        let (mut n, mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        let sensors = Geometry::SIMULATED_SENSORS_MM;
-        for (tap, e) in taps {
-            let Some(c) = centroid_mm(tap.mask) else {
-                continue;
-            };
-            for (k, t) in e.arrival_us.iter().enumerate() {
-                if let Some(t) = t {
-                    let d = f64::from(
-                        ((c[0] - sensors[k][0]).powi(2) + (c[1] - sensors[k][1]).powi(2)).sqrt(),
-                    );
-                    let t = f64::from(*t);
-                    n += 1.0;
-                    sx += d;
-                    sy += t;
-                    sxx += d * d;
-                    sxy += d * t;
-                }
-            }
-        }
-        let b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-        let a = (sy - b * sx) / n;
-        if a.is_finite() && b.is_finite() {
-            TofFit {
-                a_us: a,
-                b_us_per_mm: b,
-            }
-        } else {
-            TofFit::default()
-        }
-    }
-
-    /// Negative squared residual of the arrived sensors' times against each area's `a + b·r`.
-    pub(crate) fn scores(&self, geometry: &Geometry, e: &ArrivalEvent) -> Option<Scores> {
-        if e.arrival_us.iter().all(Option::is_none) {
-            return None;
-        }
-        let values = std::array::from_fn(|n| {
-            -(0..3)
-                .filter_map(|k| {
-                    let t = f64::from(e.arrival_us[k]?);
-                    let r = geometry.distance_mm(n, k)?;
-                    Some((t - self.a_us - self.b_us_per_mm * r).powi(2))
-                })
-                .sum::<f64>()
-        });
-        Some(Scores::from_values(values))
-    }
-}
-
-/// Runs every rule on the held-out taps of `data` (repeat 1), after fitting the
-/// time-of-flight variant on the training taps (repeat 0).
+/// Runs every rule on the held-out taps of `data` (repeat 1), after fitting the ranging
+/// model on the training taps (repeat 0) only.
 pub(crate) fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> Report {
     let mut rep = Report::default();
     let events: Vec<(&Tap, ArrivalEvent)> = data
@@ -255,14 +224,21 @@ pub(crate) fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConf
         .collect();
     let mut fits = BTreeMap::new();
     for (tap, _) in &events {
-        fits.entry(tap.osr).or_insert_with(|| {
-            TofFit::fit(
-                events
-                    .iter()
-                    .filter(|(t, _)| t.osr == tap.osr && t.repeat == TRAIN_REPEAT)
-                    .map(|(t, e)| (*t, e)),
-            )
-        });
+        if fits.contains_key(&tap.osr) {
+            continue;
+        }
+        let mut fit = RangingFit::new(config.threshold_pa);
+        for (t, e) in events
+            .iter()
+            .filter(|(t, _)| t.osr == tap.osr && t.repeat == TRAIN_REPEAT)
+        {
+            if let Some(d) = distances_mm(t.mask) {
+                fit.push(e, d);
+            }
+        }
+        if let Some(model) = fit.finish() {
+            fits.insert(tap.osr, model);
+        }
     }
     rep.fits = fits.clone();
     for (tap, event) in events.iter().filter(|(t, _)| t.repeat != TRAIN_REPEAT) {
@@ -272,12 +248,21 @@ pub(crate) fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConf
         if event.arrival_us.iter().all(Option::is_none) {
             *rep.no_arrival.entry(tap.osr).or_default() += 1;
         }
+        let holding = centroid_mm(tap.mask).map(areas_holding).unwrap_or_default();
         for rule in Rule::ALL {
-            let pick = rule.predict(geometry, &fits[&tap.osr], tap, &event);
+            let pick = rule.predict(geometry, fits.get(&tap.osr), tap, &event);
+            rep.tolerant
+                .entry((rule, tap.osr))
+                .or_default()
+                .add(pick.is_some_and(|p| holding.contains(&p)));
             if let Some(p) = pick {
                 rep.picked.entry(rule).or_default()[p] += 1;
             }
             let hit = pick == Some(tap.aot_region);
+            rep.by_interior
+                .entry((rule, tap.osr, holding.len() == 1))
+                .or_default()
+                .add(hit);
             rep.by_osr.entry((rule, tap.osr)).or_default().add(hit);
             rep.by_shape
                 .entry((rule, tap.osr, tap.shape.clone()))

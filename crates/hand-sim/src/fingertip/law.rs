@@ -11,12 +11,12 @@
 //! The linear term carries the light, whole-pad loads of seed 000 Table 1 (grams); the
 //! Weibull-shaped term the convex-then-saturating growth of Table 2 between 5, 7 and 9 kgf on one
 //! cell. The kernel is anisotropic because Table 2 is: a press on row 1 at the far left still
-//! raises the right-hand sensor 1 by 35 hPa (wide spread along a row, σx), while sensor 2, a
-//! few millimetres lower, stays within 3.3 hPa (narrow spread across rows, σy); an isotropic
-//! kernel fits one or the other, never both (docs/sim-calibration.md). `g_k` absorbs sensor-to-sensor spread (Table 1's three sensors rise 1.22 / 1.04 / 1.14 hPa
+//! raises the right-hand sensor 1 by 35 hPa (wide spread along a row, σx), while sensor 2, nine
+//! millimetres lower, rises only 1.3…3.3 hPa (narrower spread across rows, σy); an isotropic
+//! kernel fits one or the other, never both (docs/sim-calibration/fingertip.md). `g_k` absorbs sensor-to-sensor spread (Table 1's three sensors rise 1.22 / 1.04 / 1.14 hPa
 //! for the same 200 gf). The parameters are fitted by least squares to
 //! `fixtures/derived/seed000_table{1,2}_rise.csv` (see [`LawParams::CALIBRATED`] and
-//! `docs/sim-calibration.md`, which lists the residuals).
+//! `docs/sim-calibration/fingertip.md`, which lists the residuals).
 //!
 //! Timing (not given by the paper, an assumption sized so Arrival-of-Time is measurable at the
 //! MS5611's conversion rates): sensor `k` starts rising `τ0 + d_k / v` after contact, where `d_k`

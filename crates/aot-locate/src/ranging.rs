@@ -1,0 +1,476 @@
+//! Translation-aware area scores from eq. 3's ingredients: arrival times read as ranges.
+//!
+//! Eq. 3 ranks sensors (its argmax is always the area nearest the dominant sensor, see
+//! `docs/contact-location.md`); this scorer places the contact *between* them. A pressure
+//! front leaves the contact and reaches sensor `k` after a time that grows with its distance
+//! `r_k`, and the detector then needs a little longer to see a small rise cross its threshold
+//! than a large one:
+//!
+//! ```text
+//! t_k ≈ a + b·r_k + c·L_k,     L_k = −ln(1 − θ / P_k)   (a first-order rise of size P_k
+//!                                                       crossing the threshold θ)
+//! ```
+//!
+//! `a` (µs), `b` (µs per mm) and `c` (µs) are fitted on taps whose contact is known
+//! ([`RangingFit`]); `t_k` counts from contact onset, as [`ArrivalEvent`] defines it. Each
+//! arrived sensor then gives a range `ρ_k = (t_k − a − c·L_k) / b`; from the linearised fix
+//! (or the pad centre when fewer than three sensors arrived) a few damped Gauss–Newton steps
+//! find the pad point whose distances best match the ranges, and area `n` scores
+//! `−|p − centre_n|²` (mm²), so the argmax is the area holding the point on a regular grid.
+
+use crate::geometry::{AREAS, Geometry, SENSORS};
+use crate::score::{AotError, ArrivalEvent, Scores, sum3_sorted};
+
+/// `θ / P` is clamped below this before `ln(1 − θ/P)`: a sensor that arrived although its
+/// held rise is at or under the threshold (noise pushed it over) gets the largest lag the
+/// model allows, `ln 100 ≈ 4.6` time constants, instead of an infinite one.
+const MAX_THRESHOLD_SHARE: f64 = 0.99;
+/// Gauss–Newton steps from the pad centre (fewer than three ranges, or collinear sensors):
+/// six converge on the simulated pad.
+const ITERATIONS_FROM_CENTRE: usize = 6;
+/// Gauss–Newton steps from the closed-form start (three ranges): two reach the accuracy of
+/// six from the centre on the simulated taps, at a third of the cost.
+const ITERATIONS_FROM_LINEAR: usize = 2;
+/// Levenberg damping of the 2 × 2 normal matrix: keeps a step defined when fewer than two
+/// sensors (or collinear ones) constrain the position.
+const DAMPING: f64 = 1e-3;
+/// The position search stays within this many mm of the pad centre (far beyond any pad), so
+/// absurd ranges still give finite scores.
+const BOUND_MM: f64 = 1e4;
+
+/// The fitted range model of arrival times (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ranging {
+    delay_us: f64,
+    us_per_mm: f64,
+    lag_us: f64,
+    threshold_pa: f64,
+}
+
+/// Why a [`Ranging`] model was refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RangingError {
+    /// `b` (µs per mm) is not finite and positive: distances would not order times.
+    Slope,
+    /// The delay `a`, the lag coefficient `c` or the threshold `θ` is not finite, or `θ` is
+    /// negative.
+    Offset,
+}
+
+impl core::fmt::Display for RangingError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            RangingError::Slope => f.write_str("µs per mm must be finite and positive"),
+            RangingError::Offset => {
+                f.write_str("delay, lag and threshold must be finite, threshold ≥ 0")
+            }
+        }
+    }
+}
+
+impl Ranging {
+    /// A model `t = delay_us + us_per_mm·r + lag_us·L` for a detector threshold `threshold_pa`.
+    ///
+    /// ```
+    /// use aot_locate::{ArrivalEvent, Geometry, Ranging};
+    /// // 2 ms until the front leaves, 2.5 ms per mm, no threshold lag.
+    /// let model = Ranging::new(2_000.0, 2_500.0, 0.0, 30.0).unwrap();
+    /// // A press at (0, −4) mm, the bottom-middle area: sensor 2 is 0.5 mm away, sensors 1
+    /// // and 3 are √(4.5² + 5.5²) ≈ 7.11 mm away.
+    /// let e = ArrivalEvent {
+    ///     pressure_pa: [500.0, 2_000.0, 500.0],
+    ///     arrival_us: [Some(19_770), Some(3_250), Some(19_770)],
+    /// };
+    /// let p = model.position_mm(&Geometry::simulated_pad(), &e).unwrap();
+    /// assert!(p[0].abs() < 0.05 && (p[1] + 4.0).abs() < 0.05, "{p:?}");
+    /// assert_eq!(model.scores(&Geometry::simulated_pad(), &e).unwrap().argmax(), 7);
+    /// assert!(Ranging::new(0.0, 0.0, 0.0, 30.0).is_err());
+    /// ```
+    pub fn new(
+        delay_us: f32,
+        us_per_mm: f32,
+        lag_us: f32,
+        threshold_pa: f32,
+    ) -> Result<Ranging, RangingError> {
+        if !(us_per_mm.is_finite() && us_per_mm > 0.0) {
+            return Err(RangingError::Slope);
+        }
+        let finite = delay_us.is_finite() && lag_us.is_finite() && threshold_pa.is_finite();
+        if !(finite && threshold_pa >= 0.0) {
+            return Err(RangingError::Offset);
+        }
+        Ok(Ranging {
+            delay_us: f64::from(delay_us),
+            us_per_mm: f64::from(us_per_mm),
+            lag_us: f64::from(lag_us),
+            threshold_pa: f64::from(threshold_pa),
+        })
+    }
+
+    /// `a`, µs.
+    pub fn delay_us(&self) -> f64 {
+        self.delay_us
+    }
+
+    /// `b`, µs per mm.
+    pub fn us_per_mm(&self) -> f64 {
+        self.us_per_mm
+    }
+
+    /// `c`, µs per unit of `L = −ln(1 − θ/P)`.
+    pub fn lag_us(&self) -> f64 {
+        self.lag_us
+    }
+
+    /// The pad point (mm) whose distances to the arrived sensors best match their ranges.
+    ///
+    /// Defined at the edges:
+    /// - a sensor that never arrived (`None`) gives no range and drops out; with two ranges
+    ///   the search settles on the circles' crossing nearer the pad centre, with one on the
+    ///   point of its circle nearest the pad centre (the start of the search);
+    /// - no sensor arrived: [`AotError::NoArrival`]; a NaN or infinite pressure:
+    ///   [`AotError::NonFinitePressure`], as [`crate::eq3`];
+    /// - zero and equal times are ordinary values (a time before `a` is a negative range,
+    ///   which pulls the point onto the sensor); no division by `r` or `t` takes place, and a
+    ///   point exactly on a sensor takes no direction from it in that step;
+    /// - a pressure at or under `θ` gets the largest lag, `ln 100`;
+    /// - the point stays within 10 m of the pad centre, so any finite input gives a finite
+    ///   point.
+    pub fn position_mm(
+        &self,
+        geometry: &Geometry,
+        event: &ArrivalEvent,
+    ) -> Result<[f64; 2], AotError> {
+        if let Some(sensor) = event.pressure_pa.iter().position(|p| !p.is_finite()) {
+            return Err(AotError::NonFinitePressure { sensor });
+        }
+        if event.arrival_us.iter().all(Option::is_none) {
+            return Err(AotError::NoArrival);
+        }
+        let range: [Option<f64>; SENSORS] = core::array::from_fn(|k| {
+            let t = f64::from(event.arrival_us[k]?);
+            let lag = self.lag_us * self.lag(event.pressure_pa[k]);
+            Some((t - self.delay_us - lag) / self.us_per_mm)
+        });
+        let sensors = geometry
+            .sensors_mm()
+            .map(|s| [f64::from(s[0]), f64::from(s[1])]);
+        let centres = geometry.centres_mm();
+        // Start: with three ranges the closed-form (linearised) fix, else the pad's centre;
+        // either is the same for any sensor order.
+        let (mut p, iterations) = match linear_fix(&sensors, &range) {
+            Some(p) => (p, ITERATIONS_FROM_LINEAR),
+            None => (
+                [0, 1].map(|j| centres.iter().map(|c| f64::from(c[j])).sum::<f64>() / 9.0),
+                ITERATIONS_FROM_CENTRE,
+            ),
+        };
+        for _ in 0..iterations {
+            // Per sensor: the unit vector from it to p and the range residual; sums in sorted
+            // order so renumbering the sensors cannot change a bit.
+            let mut terms = [[0.0f64; 5]; SENSORS];
+            for (k, term) in terms.iter_mut().enumerate() {
+                let Some(rho) = range[k] else { continue };
+                let (dx, dy) = (p[0] - sensors[k][0], p[1] - sensors[k][1]);
+                let d = libm::sqrt(dx * dx + dy * dy);
+                if d <= 0.0 {
+                    continue;
+                }
+                let inv = 1.0 / d;
+                let (ux, uy, r) = (dx * inv, dy * inv, d - rho);
+                *term = [ux * ux, ux * uy, uy * uy, ux * r, uy * r];
+            }
+            let sum = |j: usize| sum3_sorted([terms[0][j], terms[1][j], terms[2][j]]);
+            let (hxx, hxy, hyy) = (sum(0) + DAMPING, sum(1), sum(2) + DAMPING);
+            let (gx, gy) = (sum(3), sum(4));
+            let inv_det = 1.0 / (hxx * hyy - hxy * hxy);
+            let step = [
+                (hyy * gx - hxy * gy) * inv_det,
+                (hxx * gy - hxy * gx) * inv_det,
+            ];
+            if !(step[0].is_finite() && step[1].is_finite()) {
+                break;
+            }
+            p = [0, 1].map(|j| (p[j] - step[j]).clamp(-BOUND_MM, BOUND_MM));
+        }
+        Ok(p)
+    }
+
+    /// Scores for the nine areas: `−|p − centre_n|²`, mm², with `p` from
+    /// [`Ranging::position_mm`] (same errors and edge cases). Larger is better; on a regular
+    /// grid the argmax is the area holding `p`.
+    pub fn scores(&self, geometry: &Geometry, event: &ArrivalEvent) -> Result<Scores, AotError> {
+        let p = self.position_mm(geometry, event)?;
+        let centres = geometry.centres_mm();
+        Ok(Scores::from_values(core::array::from_fn::<f64, AREAS, _>(
+            |n| {
+                let dx = p[0] - f64::from(centres[n][0]);
+                let dy = p[1] - f64::from(centres[n][1]);
+                -(dx * dx + dy * dy)
+            },
+        )))
+    }
+
+    /// `L = −ln(1 − θ/P)` for a held rise `P` (see the module docs).
+    fn lag(&self, pressure_pa: f32) -> f64 {
+        lag(self.threshold_pa, pressure_pa)
+    }
+}
+
+/// The linearised fix from three ranges: `|p − s_k|² = ρ_k²` minus its mean over the sensors
+/// is linear in `p`, `2(s_k − s̄)·p = (|s_k|² − ρ_k²) − mean`; solved by least squares. `None`
+/// with fewer than three ranges, collinear sensors or a non-finite result. Sums in sorted order
+/// (sensor-order invariant).
+fn linear_fix(sensors: &[[f64; 2]; SENSORS], range: &[Option<f64>; SENSORS]) -> Option<[f64; 2]> {
+    let rho = [range[0]?, range[1]?, range[2]?];
+    let mean = |v: [f64; 3]| sum3_sorted(v) / 3.0;
+    let sbar = [0, 1].map(|j| mean(sensors.map(|s| s[j])));
+    let a: [[f64; 2]; 3] =
+        core::array::from_fn(|k| [0, 1].map(|j| 2.0 * (sensors[k][j] - sbar[j])));
+    let q: [f64; 3] = core::array::from_fn(|k| {
+        sensors[k][0] * sensors[k][0] + sensors[k][1] * sensors[k][1] - rho[k] * rho[k]
+    });
+    let qbar = mean(q);
+    let (hxx, hxy, hyy) = (
+        sum3(|k| a[k][0] * a[k][0]),
+        sum3(|k| a[k][0] * a[k][1]),
+        sum3(|k| a[k][1] * a[k][1]),
+    );
+    let (gx, gy) = (
+        sum3(|k| a[k][0] * (q[k] - qbar)),
+        sum3(|k| a[k][1] * (q[k] - qbar)),
+    );
+    let det = hxx * hyy - hxy * hxy;
+    // Collinear sensors (or a NaN) leave the fix undetermined.
+    if det.is_nan() || det <= 1e-9 * (hxx * hyy) {
+        return None;
+    }
+    let p = [(hyy * gx - hxy * gy) / det, (hxx * gy - hxy * gx) / det];
+    (p[0].is_finite() && p[1].is_finite()).then(|| p.map(|v| v.clamp(-BOUND_MM, BOUND_MM)))
+}
+
+/// `f(0) + f(1) + f(2)` in sorted order (sensor-order invariant), inlined.
+fn sum3(f: impl Fn(usize) -> f64) -> f64 {
+    sum3_sorted([f(0), f(1), f(2)])
+}
+
+fn lag(threshold_pa: f64, pressure_pa: f32) -> f64 {
+    let p = f64::from(pressure_pa);
+    let share = if p > 0.0 {
+        (threshold_pa / p).min(MAX_THRESHOLD_SHARE)
+    } else {
+        MAX_THRESHOLD_SHARE
+    };
+    // f32 is ample (a lag of ≤ 4.6 time constants to 1e-7) and log1pf costs half of log1p,
+    // which matters: three of them are most of a localisation's cost.
+    f64::from(-libm::log1pf(-share as f32))
+}
+
+/// Least-squares fit of [`Ranging`]'s `a`, `b` and `c` from taps whose contact position is
+/// known, without allocation: it keeps the 3 × 3 normal equations of `t_k = a + b·r_k + c·L_k`
+/// over every arrived sensor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RangingFit {
+    threshold_pa: f64,
+    // Normal matrix of the rows (1, r, L) and right-hand side Σ (1, r, L)·t.
+    xx: [[f64; 3]; 3],
+    xt: [f64; 3],
+    taps: u32,
+}
+
+impl RangingFit {
+    /// An empty fit for a detector with threshold `threshold_pa`.
+    pub fn new(threshold_pa: f32) -> RangingFit {
+        RangingFit {
+            threshold_pa: f64::from(threshold_pa),
+            xx: [[0.0; 3]; 3],
+            xt: [0.0; 3],
+            taps: 0,
+        }
+    }
+
+    /// Adds one training tap: its event and each sensor's distance to the true contact, mm.
+    /// A tap with a non-finite pressure or distance is skipped whole.
+    pub fn push(&mut self, event: &ArrivalEvent, distances_mm: [f32; SENSORS]) {
+        let finite = event
+            .pressure_pa
+            .iter()
+            .chain(&distances_mm)
+            .all(|v| v.is_finite());
+        if !finite || event.arrival_us.iter().all(Option::is_none) {
+            return;
+        }
+        let sensors = event
+            .arrival_us
+            .iter()
+            .zip(distances_mm)
+            .zip(event.pressure_pa);
+        for ((t, d), p) in sensors {
+            let Some(t) = t else { continue };
+            let row = [1.0, f64::from(d), lag(self.threshold_pa, p)];
+            for (xx, ri) in self.xx.iter_mut().zip(row) {
+                for (x, rj) in xx.iter_mut().zip(row) {
+                    *x += ri * rj;
+                }
+            }
+            for (x, ri) in self.xt.iter_mut().zip(row) {
+                *x += ri * f64::from(*t);
+            }
+        }
+        self.taps += 1;
+    }
+
+    /// Taps that contributed.
+    pub fn taps(&self) -> u32 {
+        self.taps
+    }
+
+    /// The fitted model, if the taps determine it (a non-singular system and `b > 0`).
+    pub fn finish(&self) -> Option<Ranging> {
+        let det3 = |m: [[f64; 3]; 3]| {
+            m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+        };
+        let det = det3(self.xx);
+        // Cramer's rule: column i of the normal matrix replaced by the right-hand side.
+        let solve = |i: usize| {
+            let mut m = self.xx;
+            for (row, rhs) in m.iter_mut().zip(self.xt) {
+                row[i] = rhs;
+            }
+            det3(m) / det
+        };
+        let scale = self.xx[0][0] * self.xx[1][1] * self.xx[2][2];
+        if !(det.is_finite() && det > 1e-12 * scale) {
+            return None;
+        }
+        Ranging::new(
+            solve(0) as f32,
+            solve(1) as f32,
+            solve(2) as f32,
+            self.threshold_pa as f32,
+        )
+        .ok()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    // Sensors at (3, 0), (0, −3), (−3, 0) over a 12 × 12 mm pad (centres at x, y ∈ {−4, 0, 4}).
+    use crate::score::tests::hand_pad;
+
+    fn at(p: [f64; 2], model: &Ranging, pressure: [f32; 3]) -> ArrivalEvent {
+        let s = [[3.0, 0.0], [0.0, -3.0], [-3.0, 0.0]];
+        ArrivalEvent {
+            pressure_pa: pressure,
+            arrival_us: core::array::from_fn(|k| {
+                let r = libm::sqrt((p[0] - s[k][0]).powi(2) + (p[1] - s[k][1]).powi(2));
+                let t =
+                    model.delay_us + model.us_per_mm * r + model.lag_us * model.lag(pressure[k]);
+                Some(t.round() as u32)
+            }),
+        }
+    }
+
+    #[test]
+    fn exact_ranges_give_the_point_and_its_area() {
+        // a = 1 ms, b = 1 ms/mm, no lag. A press at (4, 0) (area 5's centre): r = 1, 5, 7 mm,
+        // times 2, 6, 8 ms. The scores are −|p − centre|²: area 5 ≈ 0, area 4 ≈ −16,
+        // area 2 (4, 4) ≈ −16, area 0 (−4, 4) ≈ −80.
+        let m = Ranging::new(1000.0, 1000.0, 0.0, 0.0).unwrap();
+        let e = ArrivalEvent {
+            pressure_pa: [1.0; 3],
+            arrival_us: [Some(2000), Some(6000), Some(8000)],
+        };
+        let p = m.position_mm(&hand_pad(), &e).unwrap();
+        assert!((p[0] - 4.0).abs() < 1e-3 && p[1].abs() < 1e-3, "{p:?}");
+        let s = m.scores(&hand_pad(), &e).unwrap();
+        assert_eq!(s.argmax(), 5);
+        assert!(s.values()[5] > -1e-5);
+        assert!((s.values()[4] + 16.0).abs() < 1e-2);
+        assert!((s.values()[0] + 80.0).abs() < 1e-1);
+    }
+
+    #[test]
+    fn the_lag_of_a_weak_rise_is_removed() {
+        // θ = 50 Pa; sensor 1's 100 Pa rise crosses ln 2 time constants late (c = 20 ms). With
+        // the lag removed the press at (1.5, 1.5) mm (area 4, off-centre) is found again.
+        let m = Ranging::new(2000.0, 2500.0, 20_000.0, 50.0).unwrap();
+        let e = at([1.5, 1.5], &m, [100.0, 5000.0, 5000.0]);
+        let p = m.position_mm(&hand_pad(), &e).unwrap();
+        assert!(
+            (p[0] - 1.5).abs() < 0.01 && (p[1] - 1.5).abs() < 0.01,
+            "{p:?}"
+        );
+        assert_eq!(m.scores(&hand_pad(), &e).unwrap().argmax(), 4);
+        // Ignoring the lag (c = 0) reads sensor 1 as 5.5 mm farther: the point is lost.
+        let blind = Ranging::new(2000.0, 2500.0, 0.0, 50.0).unwrap();
+        let q = blind.position_mm(&hand_pad(), &e).unwrap();
+        assert!((q[0] - 1.5).hypot(q[1] - 1.5) > 1.0, "{q:?}");
+    }
+
+    #[test]
+    fn missing_single_equal_and_no_arrivals_are_defined() {
+        let m = Ranging::new(0.0, 1000.0, 0.0, 30.0).unwrap();
+        // Only sensor 3 (−3, 0), range 1 mm: the circle's point nearest the start (0, 0),
+        // (−2, 0).
+        let only3 = ArrivalEvent {
+            pressure_pa: [0.0, 0.0, 100.0],
+            arrival_us: [None, None, Some(1000)],
+        };
+        let p = m.position_mm(&hand_pad(), &only3).unwrap();
+        assert!((p[0] + 2.0).abs() < 1e-2 && p[1].abs() < 1e-2, "{p:?}");
+        // Equal times: the point equidistant from all three sensors, (0, 0), area 4.
+        let equal = ArrivalEvent {
+            pressure_pa: [100.0; 3],
+            arrival_us: [Some(3000); 3],
+        };
+        assert_eq!(m.scores(&hand_pad(), &equal).unwrap().argmax(), 4);
+        // Zero times: negative ranges after a positive delay; still finite.
+        let late = Ranging::new(5000.0, 1000.0, 0.0, 30.0).unwrap();
+        let zero = ArrivalEvent {
+            pressure_pa: [100.0; 3],
+            arrival_us: [Some(0); 3],
+        };
+        let s = late.scores(&hand_pad(), &zero).unwrap();
+        assert!(s.values().iter().all(|v| v.is_finite()));
+        let none = ArrivalEvent {
+            pressure_pa: [0.0; 3],
+            arrival_us: [None; 3],
+        };
+        assert_eq!(m.scores(&hand_pad(), &none), Err(AotError::NoArrival));
+        let inf = ArrivalEvent {
+            pressure_pa: [0.0, f32::INFINITY, 0.0],
+            arrival_us: [Some(0); 3],
+        };
+        assert_eq!(
+            m.scores(&hand_pad(), &inf),
+            Err(AotError::NonFinitePressure { sensor: 1 })
+        );
+    }
+
+    #[test]
+    fn fit_recovers_the_model_that_made_the_times() {
+        // Times made by a = 3 ms, b = 2.5 ms/mm, c = 20 ms, θ = 30 Pa at known points.
+        let truth = Ranging::new(3000.0, 2500.0, 20_000.0, 30.0).unwrap();
+        let s = [[3.0f64, 0.0], [0.0, -3.0], [-3.0, 0.0]];
+        let mut fit = RangingFit::new(30.0);
+        for i in 0..30u32 {
+            let p = [f64::from(i % 6) - 2.5, f64::from(i % 5) - 2.0];
+            let pressure = [40.0 + 9.0 * i as f32, 400.0, 35.0 + (i % 4) as f32 * 60.0];
+            let e = at(p, &truth, pressure);
+            let d = core::array::from_fn(|k| {
+                libm::sqrt((p[0] - s[k][0]).powi(2) + (p[1] - s[k][1]).powi(2)) as f32
+            });
+            fit.push(&e, d);
+        }
+        let m = fit.finish().unwrap();
+        assert_eq!(fit.taps(), 30);
+        assert!((m.delay_us() - 3000.0).abs() < 5.0, "{m:?}");
+        assert!((m.us_per_mm() - 2500.0).abs() < 2.0, "{m:?}");
+        assert!((m.lag_us() - 20_000.0).abs() < 10.0, "{m:?}");
+        assert_eq!(RangingFit::new(30.0).finish(), None);
+    }
+}
