@@ -20,10 +20,9 @@ use tactile_nets::data::imu_pad;
 use tactile_nets::train::TrainConfig;
 
 /// The (variant, grouping) pairs the protocol runs.
-const RUNS: [(Variant, Grouping); 4] = [
+const RUNS: [(Variant, Grouping); 3] = [
     (Variant::Paper, Grouping::Samples),
     (Variant::Paper, Grouping::Taps),
-    (Variant::Wide, Grouping::Samples),
     (Variant::Small, Grouping::Samples),
 ];
 const THREADS: usize = 2;

@@ -4,7 +4,7 @@
 //! # Architecture ([`Variant::Paper`])
 //! The paper's Figure 8B: one 3 × 3 convolution, ReLU, 2 × 2 max-pool, flatten, a dense layer
 //! of 320, a dense layer of 9 and softmax. What the paper leaves open, and what we chose:
-//! - filters: not stated; 8 (the paper's MATLAB net is small; [`Variant::Wide`] tries 32);
+//! - filters: not stated; 8;
 //! - padding / stride: MATLAB's defaults, a *valid* convolution (2 × 36 map), and a pool of
 //!   stride 2 (1 × 18 per filter) — see [`crate::cnn_layers`];
 //! - the dense 320 layer's activation: ReLU (MATLAB needs an explicit activation layer);
@@ -39,21 +39,18 @@ type Net<const F: usize, const FLAT: usize, const H: usize> =
 pub enum Variant {
     /// The paper's: 8 filters, dense 320.
     Paper,
-    /// More filters: 32 filters, dense 320.
-    Wide,
     /// Smaller and faster: 4 filters, dense 32.
     Small,
 }
 
 impl Variant {
     /// Every variant.
-    pub const ALL: [Variant; 3] = [Variant::Paper, Variant::Wide, Variant::Small];
+    pub const ALL: [Variant; 2] = [Variant::Paper, Variant::Small];
 
     /// File and metrics name.
     pub fn name(self) -> &'static str {
         match self {
             Variant::Paper => "paper",
-            Variant::Wide => "wide",
             Variant::Small => "small",
         }
     }
@@ -67,7 +64,6 @@ impl Variant {
     pub fn sizes(self) -> (usize, usize) {
         match self {
             Variant::Paper => (8, 320),
-            Variant::Wide => (32, 320),
             Variant::Small => (4, 32),
         }
     }
@@ -81,7 +77,6 @@ impl Variant {
 
 enum Body {
     Paper(Net<8, { 8 * POOLED }, 320>),
-    Wide(Net<32, { 32 * POOLED }, 320>),
     Small(Net<4, { 4 * POOLED }, 32>),
 }
 
@@ -90,7 +85,6 @@ macro_rules! with_net {
     ($body:expr, $n:ident => $e:expr) => {
         match $body {
             Body::Paper($n) => $e,
-            Body::Wide($n) => $e,
             Body::Small($n) => $e,
         }
     };
@@ -118,7 +112,6 @@ pub struct Prediction {
 fn build(variant: Variant, dev: &Cpu) -> Body {
     match variant {
         Variant::Paper => Body::Paper(dev.build_module::<Arch<8, { 8 * POOLED }, 320>, f32>()),
-        Variant::Wide => Body::Wide(dev.build_module::<Arch<32, { 32 * POOLED }, 320>, f32>()),
         Variant::Small => Body::Small(dev.build_module::<Arch<4, { 4 * POOLED }, 32>, f32>()),
     }
 }
