@@ -6,6 +6,7 @@
 //! - [`metrics`]: the committed metrics file and its drift check;
 //! - [`error`]: typed errors (wrong shape, non-finite input or output, bad files);
 //! - [`activations`]: sigmoid / softmax that stay finite for any logit;
+//! - [`frozen`]: the allocation-free inference form of any trained dfdx dense stack;
 //! - [`data::fingertip`]: the simulated fingertip's tap dataset, baselines and arrival times;
 //! - [`pad`]: the 4 × 6 pad, eq. 4 labels and cell sets;
 //! - [`contact_mlp`]: the MLP, its two heads and its [`hand_traits::ContactLocator`];
@@ -51,6 +52,7 @@ pub mod contact_cnn;
 pub mod contact_eval;
 pub mod contact_mlp;
 pub mod error;
+pub mod frozen;
 pub mod io;
 pub mod metrics;
 pub mod pad;
