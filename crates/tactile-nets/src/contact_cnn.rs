@@ -80,6 +80,12 @@ enum Body {
     Small(Net<4, { 4 * POOLED }, 32>),
 }
 
+/// The frozen (plain-array) form of a [`Body`].
+enum Fast {
+    Paper(FrozenCnn<8, { 8 * POOLED }, 320>),
+    Small(FrozenCnn<4, { 4 * POOLED }, 32>),
+}
+
 /// Runs `$e` with `$n` bound to the concrete network inside a [`Body`].
 macro_rules! with_net {
     ($body:expr, $n:ident => $e:expr) => {
@@ -90,13 +96,29 @@ macro_rules! with_net {
     };
 }
 
+impl Fast {
+    fn of(body: &Body) -> Result<Fast, NetError> {
+        Ok(match body {
+            Body::Paper(n) => Fast::Paper(FrozenCnn::new(&n.0.1, &n.1)?),
+            Body::Small(n) => Fast::Small(FrozenCnn::new(&n.0.1, &n.1)?),
+        })
+    }
+
+    fn logits(&self, z: &[f32; WINDOW_VALUES]) -> [f32; REGIONS] {
+        match self {
+            Fast::Paper(f) => f.logits(z),
+            Fast::Small(f) => f.logits(z),
+        }
+    }
+}
+
 /// A trained contact CNN.
 pub struct ContactCnn {
     variant: Variant,
     body: Body,
     mean: [f32; CHANNELS],
     scale: [f32; CHANNELS],
-    frozen: FrozenCnn,
+    frozen: Fast,
     dev: Cpu,
 }
 
@@ -182,9 +204,7 @@ impl ContactCnn {
         scale: [f32; CHANNELS],
         dev: Cpu,
     ) -> Result<ContactCnn, NetError> {
-        let mut file = TensorFile::new();
-        with_net!(&body, net => file.add_module("net.", net)?);
-        let frozen = FrozenCnn::from_file(&file, "net.", variant.sizes())?;
+        let frozen = Fast::of(&body)?;
         Ok(ContactCnn {
             variant,
             body,
