@@ -6,7 +6,9 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
-use tactile_nets::cnn_eval::{self, Case, Grouping, MODEL_DIR, NOISY_COPIES, Protocol, SEED, SNR_DB};
+use tactile_nets::cnn_eval::{
+    self, Case, Grouping, MODEL_DIR, NOISY_COPIES, Protocol, SEED, SNR_DB,
+};
 use tactile_nets::contact_cnn::{ContactCnn, Variant};
 use tactile_nets::data::imu_pad;
 

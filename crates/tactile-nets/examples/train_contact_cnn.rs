@@ -47,7 +47,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let cases = Case::all(&taps);
     let data: Vec<(Case, Augmented)> = cases
         .iter()
-        .map(|&c| (c, cnn_eval::augment(&c.taps(&taps), NOISY_COPIES, SNR_DB, SEED)))
+        .map(|&c| {
+            (
+                c,
+                cnn_eval::augment(&c.taps(&taps), NOISY_COPIES, SNR_DB, SEED),
+            )
+        })
         .collect();
     let mut jobs = Vec::new();
     for (variant, grouping) in RUNS {
@@ -96,10 +101,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     };
                     let t = Instant::now();
                     match cnn_eval::run_job(job, d, SEED, &adjust) {
-                        Ok((acc, _)) => results
-                            .lock()
-                            .unwrap_or_else(|e| e.into_inner())
-                            .push((job, acc, t.elapsed().as_secs_f64())),
+                        Ok((acc, _)) => results.lock().unwrap_or_else(|e| e.into_inner()).push((
+                            job,
+                            acc,
+                            t.elapsed().as_secs_f64(),
+                        )),
                         Err(e) => {
                             *failure.lock().unwrap_or_else(|e| e.into_inner()) =
                                 Some(format!("{job:?}: {e}"));
@@ -142,7 +148,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
         }
     }
-    println!("protocol: {} trainings in {protocol_seconds:.1} s", results.len());
+    println!(
+        "protocol: {} trainings in {protocol_seconds:.1} s",
+        results.len()
+    );
     if quick {
         return Ok(());
     }

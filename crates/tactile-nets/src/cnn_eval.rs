@@ -76,9 +76,8 @@ pub fn augment(taps: &[&ImuTap], copies: usize, snr_db: f32, seed: u64) -> Augme
     for (t, tap) in taps.iter().enumerate() {
         // One stream per tap, keyed by what the tap is, so a case's copies do not depend on
         // which other taps are in the case.
-        let key = (u64::from(tap.depth_um) << 32)
-            | (u64::from(tap.repeat) << 16)
-            | tap.position() as u64;
+        let key =
+            (u64::from(tap.depth_um) << 32) | (u64::from(tap.repeat) << 16) | tap.position() as u64;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         rng.set_stream(key);
         let sigma: [f32; CHANNELS] = core::array::from_fn(|c| {
@@ -93,7 +92,8 @@ pub fn augment(taps: &[&ImuTap], copies: usize, snr_db: f32, seed: u64) -> Augme
             });
             out.windows.push(w);
         }
-        out.regions.extend(std::iter::repeat_n(tap.region, copies + 1));
+        out.regions
+            .extend(std::iter::repeat_n(tap.region, copies + 1));
         out.taps.extend(std::iter::repeat_n(t, copies + 1));
     }
     out
@@ -274,10 +274,7 @@ pub fn recipe(seed: u64, label: String) -> TrainConfig {
 
 /// The seed of one training run, from the root seed and what the run is.
 pub fn run_seed(seed: u64, case: Case, protocol: Protocol, grouping: Grouping, run: usize) -> u64 {
-    let tag = (case.key() << 8)
-        ^ ((protocol as u64) << 4)
-        ^ ((grouping as u64) << 6)
-        ^ run as u64;
+    let tag = (case.key() << 8) ^ ((protocol as u64) << 4) ^ ((grouping as u64) << 6) ^ run as u64;
     seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ tag
 }
 

@@ -32,10 +32,7 @@ impl<const F: usize, const FLAT: usize, const H: usize> FrozenCnn<F, FLAT, H> {
     const SIZES_AGREE: () = assert!(FLAT == POOLED * F, "FrozenCnn: FLAT must be 18 · F");
 
     /// Freezes a trained net's conv kernel (`Linear<9, F>`) and dense head.
-    pub fn new(
-        conv: &Linear<PATCH, F, f32, Cpu>,
-        head: &Head<FLAT, H>,
-    ) -> Result<Self, NetError> {
+    pub fn new(conv: &Linear<PATCH, F, f32, Cpu>, head: &Head<FLAT, H>) -> Result<Self, NetError> {
         let () = Self::SIZES_AGREE;
         Ok(FrozenCnn {
             conv: conv.freeze()?,

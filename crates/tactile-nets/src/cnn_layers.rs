@@ -171,9 +171,14 @@ mod tests {
         for (f, (k, b)) in [(centre, 0.25), (edge, -1.0)].iter().enumerate() {
             let d = direct_conv(&x, k, *b);
             for pc in 0..POOLED {
-                let want = [d[0][2 * pc], d[0][2 * pc + 1], d[1][2 * pc], d[1][2 * pc + 1]]
-                    .into_iter()
-                    .fold(f32::NEG_INFINITY, f32::max);
+                let want = [
+                    d[0][2 * pc],
+                    d[0][2 * pc + 1],
+                    d[1][2 * pc],
+                    d[1][2 * pc + 1],
+                ]
+                .into_iter()
+                .fold(f32::NEG_INFINITY, f32::max);
                 assert!((pooled[pc * 2 + f] - want).abs() < 1e-5);
                 assert!((pooled[POOLED * 2 + pc * 2 + f] - want).abs() < 1e-5);
             }

@@ -144,7 +144,11 @@ fn channel_stats(windows: &[[f32; WINDOW_VALUES]]) -> ([f32; CHANNELS], [f32; CH
     let mut scale = [1.0f32; CHANNELS];
     let n = (windows.len() * WINDOW).max(1) as f64;
     for c in 0..CHANNELS {
-        let vals = || windows.iter().flat_map(|w| &w[c * WINDOW..(c + 1) * WINDOW]);
+        let vals = || {
+            windows
+                .iter()
+                .flat_map(|w| &w[c * WINDOW..(c + 1) * WINDOW])
+        };
         let m = vals().map(|&v| f64::from(v)).sum::<f64>() / n;
         let var = vals().map(|&v| (f64::from(v) - m).powi(2)).sum::<f64>() / n;
         mean[c] = m as f32;

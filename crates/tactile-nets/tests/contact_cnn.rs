@@ -56,8 +56,8 @@ fn dataset_is_the_papers_collection() {
     );
     // Region = 3 · row group + column − 1 (§IV-A: 3 groups of 8 rows × 3 columns).
     assert!(
-        taps.iter()
-            .all(|t| usize::from(t.region) == 3 * ((usize::from(t.row) - 1) / 8) + usize::from(t.column) - 1)
+        taps.iter().all(|t| usize::from(t.region)
+            == 3 * ((usize::from(t.row) - 1) / 8) + usize::from(t.column) - 1)
     );
     // Augmentation: 1 + 20 windows per tap (5 → 105 per position); the copies are the tap
     // plus noise at 30 dB per signal.

@@ -134,7 +134,10 @@ mod tests {
         let taps = parse(&text)?;
         assert_eq!(taps.len(), 1);
         let t = &taps[0];
-        assert_eq!((t.depth_um, t.repeat, t.column, t.row, t.region), (400, 2, 3, 9, 5));
+        assert_eq!(
+            (t.depth_um, t.repeat, t.column, t.row, t.region),
+            (400, 2, 3, 9, 5)
+        );
         assert_eq!(t.position(), 26);
         assert!(t.window.iter().all(|&v| v == -1.5));
         assert!(matches!(
