@@ -2,9 +2,11 @@
 //! the plain-array path against dfdx's forward, finite softmax, and the drift check of the
 //! committed metrics.
 
+mod common;
+
+use common::{bits, quick, root};
 use hand_traits::ContactLocator;
 use proptest::prelude::*;
-use std::path::{Path, PathBuf};
 use tactile_nets::NetError;
 use tactile_nets::activations::softmax;
 use tactile_nets::cnn_eval::{self, Case, METRICS_FILE, MODEL_DIR, NOISY_COPIES, SEED, SNR_DB};
@@ -13,28 +15,12 @@ use tactile_nets::data::imu_pad::{self, ImuTap, WINDOW_VALUES};
 use tactile_nets::metrics::MetricsFile;
 use tactile_nets::train::TrainConfig;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
 fn taps() -> Vec<ImuTap> {
     imu_pad::load(&root()).expect("the committed imu_pad dataset parses")
 }
 
 fn tiny(seed: u64) -> TrainConfig {
-    TrainConfig {
-        epochs: 2,
-        batch_size: 32,
-        learning_rate: 1e-3,
-        l2: 0.0,
-        seed,
-        progress: false,
-        label: String::new(),
-    }
-}
-
-fn bits(v: &[f32]) -> Vec<u32> {
-    v.iter().map(|x| x.to_bits()).collect()
+    quick(seed, 2, 32, 1e-3, 0.0)
 }
 
 /// The 1.6 mm taps' windows and regions (360 taps: a small, quick training set).
