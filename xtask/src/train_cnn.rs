@@ -263,6 +263,9 @@ pub fn replace_section(path: &Path, section: &str) -> Result<()> {
     Ok(())
 }
 
+/// A named line of points and its colour.
+type Series = (String, Vec<(f64, f64)>, RGBColor);
+
 fn plot_table1(m: &MetricsFile, table1: &[CnnAccuracyRow], path: &Path) -> Result<()> {
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
@@ -310,25 +313,24 @@ fn plot_table1(m: &MetricsFile, table1: &[CnnAccuracyRow], path: &Path) -> Resul
                 (i as f64, v)
             })
             .collect();
-        let series: Vec<(String, Vec<(f64, f64)>, RGBColor)> =
-            std::iter::once(("Table I".to_owned(), paper, BLACK))
-                .chain(
-                    [
-                        ("paper", "samples", "paper net, samples split", RED),
-                        ("paper", "taps", "paper net, leak-free", BLUE),
-                        ("small", "samples", "small net, samples split", GREEN),
-                    ]
-                    .into_iter()
-                    .map(|(v, g, name, color)| {
-                        let pts = names
-                            .iter()
-                            .enumerate()
-                            .map(|(i, c)| (i as f64, ours(m, v, g, protocol, c).0))
-                            .collect();
-                        (name.to_owned(), pts, color)
-                    }),
-                )
-                .collect();
+        let series: Vec<Series> = std::iter::once(("Table I".to_owned(), paper, BLACK))
+            .chain(
+                [
+                    ("paper", "samples", "paper net, samples split", RED),
+                    ("paper", "taps", "paper net, leak-free", BLUE),
+                    ("small", "samples", "small net, samples split", GREEN),
+                ]
+                .into_iter()
+                .map(|(v, g, name, color)| {
+                    let pts = names
+                        .iter()
+                        .enumerate()
+                        .map(|(i, c)| (i as f64, ours(m, v, g, protocol, c).0))
+                        .collect();
+                    (name.to_owned(), pts, color)
+                }),
+            )
+            .collect();
         for (name, pts, color) in series {
             chart
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
