@@ -10,7 +10,11 @@ commands:
   fixtures [--check]        regenerate the generated fixtures, or check the committed ones
   bench [FILTER] [-- ARGS]  run the criterion benches (names containing FILTER), print a summary
   train contact-mlp         train the contact-area MLP, write its weights, metrics and plot
-  train force-dnn           train the force / weight DNN, write its weights, metrics, curve, docs";
+  train force-dnn           train the force / weight DNN, write its weights, metrics, curve, docs
+
+  train contact-cnn [--docs-only]
+                            run the contact CNN's Table I protocol, write weights, metrics, plots,
+                            docs (--docs-only: redraw plots and docs from the committed metrics)";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -25,7 +25,11 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     match args {
         [model] if model == "contact-mlp" => contact_mlp(root),
         [model] if model == "force-dnn" => crate::force_dnn::train(root),
-        _ => bail!("usage: cargo xtask train contact-mlp | force-dnn"),
+        [model] if model == "contact-cnn" => crate::train_cnn::run(root, false),
+        [model, flag] if model == "contact-cnn" && flag == "--docs-only" => {
+            crate::train_cnn::run(root, true)
+        }
+        _ => bail!("usage: cargo xtask train contact-mlp | force-dnn | contact-cnn [--docs-only]"),
     }
 }
 
