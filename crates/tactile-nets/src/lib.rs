@@ -9,7 +9,12 @@
 //! - [`data::fingertip`]: the simulated fingertip's tap dataset, baselines and arrival times;
 //! - [`pad`]: the 4 × 6 pad, eq. 4 labels and cell sets;
 //! - [`contact_mlp`]: the MLP, its two heads and its [`hand_traits::ContactLocator`];
-//! - [`contact_eval`]: the held-out split, metrics and committed models.
+//! - [`contact_eval`]: the held-out split, metrics and committed models;
+//! - [`data::underactuated`]: the simulated underactuated hand's softness grasps;
+//! - [`softness`]: the 8 → 4 → 4 → 3 softness classifier (seed 001) and its
+//!   [`hand_traits::SoftnessClassifier`];
+//! - [`softness_train`]: its Levenberg–Marquardt (and Adam) training;
+//! - [`softness_eval`]: the paper's protocol, confusion matrices and committed models.
 //!
 //! ```
 //! use tactile_nets::contact_mlp::{ContactMlp, Head, features};
@@ -45,11 +50,15 @@ pub mod error;
 pub mod io;
 pub mod metrics;
 pub mod pad;
+pub mod softness;
+pub mod softness_eval;
+pub mod softness_train;
 pub mod train;
 
 /// Datasets the models train on.
 pub mod data {
     pub mod fingertip;
+    pub mod underactuated;
 }
 
 pub use error::NetError;

@@ -112,14 +112,14 @@ pub fn parse(taps_csv: &str, series_csv: &str) -> Result<Vec<TapRecord>, NetErro
 }
 
 /// Data lines of a CSV text with their 1-based line numbers (comments and header skipped).
-fn data_lines<'a>(text: &'a str, header: &'a str) -> impl Iterator<Item = (usize, &'a str)> {
+pub(crate) fn data_lines<'a>(text: &'a str, header: &'a str) -> impl Iterator<Item = (usize, &'a str)> {
     text.lines()
         .enumerate()
         .map(|(i, l)| (i + 1, l.trim()))
         .filter(move |(_, l)| !l.is_empty() && !l.starts_with('#') && !l.starts_with(header))
 }
 
-fn field<T: std::str::FromStr>(
+pub(crate) fn field<T: std::str::FromStr>(
     fields: &[&str],
     i: usize,
     name: &str,
