@@ -5,6 +5,8 @@
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
 //! - `bench [FILTER] [-- CRITERION ARGS]`: runs the criterion benches and prints a summary table.
 //! - `train contact-mlp`: trains the contact-area MLP, writes its weights, metrics and plot.
+//! - `train softness`: trains the softness classifier (LM and Adam), writes its weights,
+//!   metrics, figures and section 2 of `docs/learning.md`.
 
 pub mod bench;
 pub mod fixtures;
@@ -12,6 +14,7 @@ pub mod fuzzy_peers;
 pub mod run;
 pub mod test;
 pub mod train;
+pub mod train_softness;
 pub mod venv;
 
 use std::path::{Path, PathBuf};

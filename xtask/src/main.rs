@@ -9,7 +9,8 @@ commands:
   test                      set up .venv, then fmt, clippy, every test, docs, fixtures --check
   fixtures [--check]        regenerate the generated fixtures, or check the committed ones
   bench [FILTER] [-- ARGS]  run the criterion benches (names containing FILTER), print a summary
-  train contact-mlp         train the contact-area MLP, write its weights, metrics and plot";
+  train contact-mlp         train the contact-area MLP, write its weights, metrics and plot
+  train softness            train the softness classifier (LM, Adam), write weights, metrics, report";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -21,7 +21,8 @@ pub const PLOT: &str = "docs/contact-location/contact-mlp-osr.svg";
 pub fn run(root: &Path, args: &[String]) -> Result<()> {
     match args {
         [model] if model == "contact-mlp" => contact_mlp(root),
-        _ => bail!("usage: cargo xtask train contact-mlp"),
+        [model] if model == "softness" => crate::train_softness::run(root),
+        _ => bail!("usage: cargo xtask train contact-mlp | softness"),
     }
 }
 
@@ -214,6 +215,6 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
     Ok(())
 }
 
-fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
+pub(crate) fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
     anyhow::anyhow!("plot: {e}")
 }

@@ -19,13 +19,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.."));
     let grasps = underactuated::load(&root)?;
     let bar = ProgressBar::new((OPTIMISERS.len() * SEEDS.len()) as u64);
-    if let Ok(style) = ProgressStyle::with_template("{prefix:>12} [{bar:30}] {pos}/{len} models {msg}") {
+    if let Ok(style) =
+        ProgressStyle::with_template("{prefix:>12} [{bar:30}] {pos}/{len} models {msg}")
+    {
         bar.set_style(style.progress_chars("=> "));
     }
     bar.set_prefix("softness");
     let mut runs = Vec::new();
-    let only: Option<usize> = std::env::var("SOFTNESS_ONLY").ok().and_then(|s| s.parse().ok());
-    for optimiser in OPTIMISERS.into_iter().skip(only.unwrap_or(0)).take(if only.is_some() { 1 } else { 2 }) {
+    let only: Option<usize> = std::env::var("SOFTNESS_ONLY")
+        .ok()
+        .and_then(|s| s.parse().ok());
+    for optimiser in OPTIMISERS
+        .into_iter()
+        .skip(only.unwrap_or(0))
+        .take(if only.is_some() { 1 } else { 2 })
+    {
         for seed in SEEDS {
             bar.set_message(format!("{} seed {seed}", optimiser().name()));
             let run = softness_eval::train_one(&grasps, optimiser(), seed)?;

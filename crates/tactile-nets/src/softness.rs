@@ -285,13 +285,28 @@ impl SoftnessNet {
         let l = &self.layers;
         let mut f = TensorFile::new();
         let rows = |m: &dyn Fn(usize, usize) -> f32, r: usize, c: usize| -> Vec<f32> {
-            (0..r).flat_map(|i| (0..c).map(move |j| (i, j))).map(|(i, j)| m(i, j)).collect()
+            (0..r)
+                .flat_map(|i| (0..c).map(move |j| (i, j)))
+                .map(|(i, j)| m(i, j))
+                .collect()
         };
-        f.insert("net.0.weight", &[HIDDEN, N_VARIABLES], &rows(&|i, j| l.w1[(i, j)], HIDDEN, N_VARIABLES))?;
+        f.insert(
+            "net.0.weight",
+            &[HIDDEN, N_VARIABLES],
+            &rows(&|i, j| l.w1[(i, j)], HIDDEN, N_VARIABLES),
+        )?;
         f.insert("net.0.bias", &[HIDDEN], l.b1.as_slice())?;
-        f.insert("net.1.weight", &[HIDDEN, HIDDEN], &rows(&|i, j| l.w2[(i, j)], HIDDEN, HIDDEN))?;
+        f.insert(
+            "net.1.weight",
+            &[HIDDEN, HIDDEN],
+            &rows(&|i, j| l.w2[(i, j)], HIDDEN, HIDDEN),
+        )?;
         f.insert("net.1.bias", &[HIDDEN], l.b2.as_slice())?;
-        f.insert("net.2.weight", &[CLASSES, HIDDEN], &rows(&|i, j| l.w3[(i, j)], CLASSES, HIDDEN))?;
+        f.insert(
+            "net.2.weight",
+            &[CLASSES, HIDDEN],
+            &rows(&|i, j| l.w3[(i, j)], CLASSES, HIDDEN),
+        )?;
         f.insert("net.2.bias", &[CLASSES], l.b3.as_slice())?;
         f.insert("input.min", &[N_VARIABLES], &self.scale.min)?;
         f.insert("input.gain", &[N_VARIABLES], &self.scale.gain)?;
@@ -366,7 +381,9 @@ mod tests {
 
     #[test]
     fn flat_round_trip_and_jacobian_matches_finite_differences() {
-        let p: Vec<f64> = (0..N_PARAMS).map(|i| ((i * 37 % 17) as f64 - 8.0) / 9.0).collect();
+        let p: Vec<f64> = (0..N_PARAMS)
+            .map(|i| ((i * 37 % 17) as f64 - 8.0) / 9.0)
+            .collect();
         let l = Layers::from_flat(&p).unwrap_or_else(|| unreachable!());
         assert_eq!(l.flat(), p);
         let z = SVector::<f64, N_VARIABLES>::from_fn(|i, _| (i as f64 - 3.5) / 4.0);
@@ -379,10 +396,16 @@ mod tests {
             dn[q] -= h;
             let fu = Layers::from_flat(&up).map(|l| l.forward(&z).y);
             let fd = Layers::from_flat(&dn).map(|l| l.forward(&z).y);
-            let (Some(fu), Some(fd)) = (fu, fd) else { unreachable!() };
+            let (Some(fu), Some(fd)) = (fu, fd) else {
+                unreachable!()
+            };
             for k in 0..CLASSES {
                 let num = (fu[k] - fd[k]) / (2.0 * h);
-                assert!((num - j[(k, q)]).abs() < 1e-7, "param {q} output {k}: {num} vs {}", j[(k, q)]);
+                assert!(
+                    (num - j[(k, q)]).abs() < 1e-7,
+                    "param {q} output {k}: {num} vs {}",
+                    j[(k, q)]
+                );
             }
         }
     }

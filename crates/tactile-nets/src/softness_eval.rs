@@ -294,7 +294,11 @@ pub fn save_all(dir: &Path, runs: &[Run]) -> Result<Vec<PathBuf>, NetError> {
         written.push(path);
         if let Some(t) = &r.report {
             // Six significant digits keep the file small and its diffs readable.
-            let curve: Vec<f64> = t.curve.iter().map(|v| format!("{v:.6e}").parse().unwrap_or(*v)).collect();
+            let curve: Vec<f64> = t
+                .curve
+                .iter()
+                .map(|v| format!("{v:.6e}").parse().unwrap_or(*v))
+                .collect();
             training.push(serde_json::json!({
                 "optimiser": r.optimiser, "seed": r.seed, "stop": t.stop.name(),
                 "rows": t.rows, "seconds": (r.seconds * 1000.0).round() / 1000.0,
@@ -306,7 +310,8 @@ pub fn save_all(dir: &Path, runs: &[Run]) -> Result<Vec<PathBuf>, NetError> {
     std::fs::write(&path, metrics_file(runs).to_json()?)?;
     written.push(path);
     let path = dir.join(TRAINING_FILE);
-    let text = serde_json::to_string_pretty(&training).map_err(|e| NetError::Metrics(e.to_string()))?;
+    let text =
+        serde_json::to_string_pretty(&training).map_err(|e| NetError::Metrics(e.to_string()))?;
     std::fs::write(&path, text + "\n")?;
     written.push(path);
     Ok(written)

@@ -182,7 +182,9 @@ impl Rows {
 
     fn mse(&self, l: &Layers<f64>) -> f64 {
         let mut sum = 0.0;
-        self.each(l, false, |_, r, _| sum += r.iter().map(|v| v * v).sum::<f64>());
+        self.each(l, false, |_, r, _| {
+            sum += r.iter().map(|v| v * v).sum::<f64>()
+        });
         sum / self.residuals() as f64
     }
 }
@@ -232,7 +234,8 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         let mut out = DMatrix::zeros(self.rows.residuals(), N_PARAMS);
         self.rows.each(&self.layers, true, |i, _, j| {
             if let Some(j) = j {
-                out.view_mut((i * CLASSES, 0), (CLASSES, N_PARAMS)).copy_from(j);
+                out.view_mut((i * CLASSES, 0), (CLASSES, N_PARAMS))
+                    .copy_from(j);
             }
         });
         Some(out)
@@ -269,7 +272,12 @@ pub fn train(
     }
     let picked: Vec<(&[f32; N_VARIABLES], Softness)> = grasps
         .iter()
-        .flat_map(|(series, label)| series.iter().step_by(config.stride).map(move |s| (s, *label)))
+        .flat_map(|(series, label)| {
+            series
+                .iter()
+                .step_by(config.stride)
+                .map(move |s| (s, *label))
+        })
         .collect();
     if picked.is_empty() {
         return Err(NetError::Training("no training samples".into()));
@@ -294,7 +302,8 @@ pub fn train(
         Optimiser::Lm(lm) => levenberg_marquardt(&rows, p0, lm)?,
         Optimiser::Adam(adam) => self::adam(&rows, p0, adam),
     };
-    let layers = Layers::from_flat(&p).ok_or_else(|| NetError::Training("parameter count".into()))?;
+    let layers =
+        Layers::from_flat(&p).ok_or_else(|| NetError::Training("parameter count".into()))?;
     let mse = rows.mse(&layers);
     let flat32: Vec<f32> = p.iter().map(|&v| v as f32).collect();
     let layers32 =
@@ -316,7 +325,8 @@ fn levenberg_marquardt(
     let mut problem = Problem {
         rows,
         p: DVector::zeros(N_PARAMS),
-        layers: Layers::from_flat(&p0).ok_or_else(|| NetError::Training("parameter count".into()))?,
+        layers: Layers::from_flat(&p0)
+            .ok_or_else(|| NetError::Training("parameter count".into()))?,
         curve: Vec::new(),
     };
     problem.set(&DVector::from_vec(p0));
@@ -349,7 +359,9 @@ fn adam(rows: &Rows, mut p: Vec<f64>, config: AdamConfig) -> (Vec<f64>, Stop, Ve
     let mut curve = Vec::with_capacity(config.epochs + 1);
     let scale = 1.0 / rows.residuals() as f64;
     for epoch in 1..=config.epochs {
-        let Some(l) = Layers::from_flat(&p) else { break };
+        let Some(l) = Layers::from_flat(&p) else {
+            break;
+        };
         let mut grad = [0.0f64; N_PARAMS];
         let mut sq = 0.0;
         rows.each(&l, true, |_, r, j| {

@@ -112,7 +112,10 @@ pub fn parse(taps_csv: &str, series_csv: &str) -> Result<Vec<TapRecord>, NetErro
 }
 
 /// Data lines of a CSV text with their 1-based line numbers (comments and header skipped).
-pub(crate) fn data_lines<'a>(text: &'a str, header: &'a str) -> impl Iterator<Item = (usize, &'a str)> {
+pub(crate) fn data_lines<'a>(
+    text: &'a str,
+    header: &'a str,
+) -> impl Iterator<Item = (usize, &'a str)> {
     text.lines()
         .enumerate()
         .map(|(i, l)| (i + 1, l.trim()))

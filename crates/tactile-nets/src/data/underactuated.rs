@@ -89,7 +89,10 @@ pub fn load(root: &Path) -> Result<Vec<Grasp>, NetError> {
             dir.join(format!("{}.csv", set.name())),
         )?);
     }
-    parse(&grasps, &series.iter().map(String::as_str).collect::<Vec<_>>())
+    parse(
+        &grasps,
+        &series.iter().map(String::as_str).collect::<Vec<_>>(),
+    )
 }
 
 /// Parses `grasps.csv` and the series files' texts, joined by grasp id. Every grasp must have
@@ -148,7 +151,11 @@ pub fn parse(grasps_csv: &str, series_csvs: &[&str]) -> Result<Vec<Grasp>, NetEr
         if g.series.len() != n {
             return Err(NetError::Data {
                 line: 0,
-                reason: format!("grasp {} has {} samples, expected {n}", g.id, g.series.len()),
+                reason: format!(
+                    "grasp {} has {} samples, expected {n}",
+                    g.id,
+                    g.series.len()
+                ),
             });
         }
     }
@@ -168,10 +175,17 @@ mod tests {
         let g = parse(grasps, &[series])?;
         assert_eq!(g[0].label, Some(Softness::Soft));
         assert_eq!(g[0].series[1][7], 9.0);
-        let short = "grasp,t_s,f1_n,f2_n,f3_n,f4_n,a1_deg,a2_deg,a3_deg,a4_deg\n0,0.0,1,2,3,4,5,6,7,8\n";
-        assert!(matches!(parse(grasps, &[short]), Err(NetError::Data { .. })));
+        let short =
+            "grasp,t_s,f1_n,f2_n,f3_n,f4_n,a1_deg,a2_deg,a3_deg,a4_deg\n0,0.0,1,2,3,4,5,6,7,8\n";
+        assert!(matches!(
+            parse(grasps, &[short]),
+            Err(NetError::Data { .. })
+        ));
         let bad = grasps.replace("soft", "squishy");
-        assert!(matches!(parse(&bad, &[series]), Err(NetError::Data { line: 2, .. })));
+        assert!(matches!(
+            parse(&bad, &[series]),
+            Err(NetError::Data { line: 2, .. })
+        ));
         Ok(())
     }
 }
