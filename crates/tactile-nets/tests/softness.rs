@@ -127,8 +127,10 @@ fn bad_input_gives_typed_errors() -> Result<(), NetError> {
     let mut bad = vec![[1.0f32; N_VARIABLES]; 4];
     bad[2][1] = f32::NAN;
     let pairs = [(bad.as_slice(), Softness::Soft)];
+    let mut every = quick("lm", 1);
+    every.stride = 1;
     assert!(matches!(
-        train(&pairs, &quick("lm", 1)),
+        train(&pairs, &every),
         Err(NetError::NonFinite { index: 17 })
     ));
     let ok = vec![[1.0f32; N_VARIABLES]; 4];
