@@ -5,7 +5,7 @@
 //! `metrics.json` and `training.json`.
 
 use crate::run::{cargo, step};
-use crate::train::plot_err;
+use crate::train::{draw_legend, legend_mark, plot_err};
 use anyhow::{Context, Result, anyhow};
 use plotters::prelude::*;
 use serde_json::Value;
@@ -387,14 +387,9 @@ fn curves_plot(training: &[Value], path: &Path) -> Result<()> {
                 ))
                 .map_err(plot_err)?
                 .label(format!("seed {seed}"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color));
+                .legend(legend_mark(color));
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(plot_err)?;
+        draw_legend(&mut chart, SeriesLabelPosition::MiddleRight)?;
     }
     root.present().map_err(plot_err)?;
     Ok(())
