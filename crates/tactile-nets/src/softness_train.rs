@@ -336,20 +336,23 @@ fn levenberg_marquardt(
         .with_xtol(config.tol)
         .with_gtol(config.tol)
         .minimize(problem);
-    let stop = match report.termination {
-        TerminationReason::Converged { .. } => Stop::Converged,
-        TerminationReason::Orthogonal => Stop::Orthogonal,
-        TerminationReason::ResidualsZero => Stop::ResidualsZero,
-        TerminationReason::NoImprovementPossible(_) => Stop::MachinePrecision,
-        TerminationReason::LostPatience => Stop::BudgetSpent,
-        other => {
-            return Err(NetError::Training(format!(
-                "Levenberg–Marquardt stopped: {other:?}"
-            )));
-        }
-    };
+    let stop = stop_of(report.termination)?;
     // The crate leaves the problem at the best parameters it accepted.
     Ok((problem.p.as_slice().to_vec(), stop, problem.curve))
+}
+
+/// The crate's termination reason as a [`Stop`] (usable weights) or a typed error.
+fn stop_of(reason: TerminationReason) -> Result<Stop, NetError> {
+    match reason {
+        TerminationReason::Converged { .. } => Ok(Stop::Converged),
+        TerminationReason::Orthogonal => Ok(Stop::Orthogonal),
+        TerminationReason::ResidualsZero => Ok(Stop::ResidualsZero),
+        TerminationReason::NoImprovementPossible(_) => Ok(Stop::MachinePrecision),
+        TerminationReason::LostPatience => Ok(Stop::BudgetSpent),
+        other => Err(NetError::Training(format!(
+            "Levenberg–Marquardt stopped: {other:?}"
+        ))),
+    }
 }
 
 fn adam(rows: &Rows, mut p: Vec<f64>, config: AdamConfig) -> (Vec<f64>, Stop, Vec<f64>) {
@@ -384,4 +387,43 @@ fn adam(rows: &Rows, mut p: Vec<f64>, config: AdamConfig) -> (Vec<f64>, Stop, Ve
         }
     }
     (p, Stop::Epochs, curve)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_termination_reason_is_a_stop_or_a_typed_error() {
+        let ok = [
+            (
+                TerminationReason::Converged {
+                    ftol: true,
+                    xtol: false,
+                },
+                Stop::Converged,
+            ),
+            (TerminationReason::Orthogonal, Stop::Orthogonal),
+            (TerminationReason::ResidualsZero, Stop::ResidualsZero),
+            (
+                TerminationReason::NoImprovementPossible("gtol"),
+                Stop::MachinePrecision,
+            ),
+            (TerminationReason::LostPatience, Stop::BudgetSpent),
+        ];
+        for (reason, stop) in ok {
+            assert_eq!(stop_of(reason).ok(), Some(stop));
+        }
+        for reason in [
+            TerminationReason::Numerical("jacobian"),
+            TerminationReason::User("residuals"),
+            TerminationReason::NoParameters,
+            TerminationReason::NoResiduals,
+            TerminationReason::WrongDimensions("residuals"),
+        ] {
+            assert!(
+                matches!(stop_of(reason), Err(NetError::Training(m)) if m.contains("Levenberg"))
+            );
+        }
+    }
 }
