@@ -9,6 +9,8 @@
 //!   plots and its section of `docs/learning.md`.
 //! - `train force-dnn`: trains the force / weight DNN, writes its weights, metrics, training
 //!   curve and its section of `docs/learning.md`.
+//! - `train softness`: trains the softness classifier (LM and Adam), writes its weights,
+//!   metrics, figures and section 2 of `docs/learning.md`.
 
 pub mod bench;
 pub mod docs_section;
@@ -19,6 +21,7 @@ pub mod run;
 pub mod test;
 pub mod train;
 pub mod train_cnn;
+pub mod train_softness;
 pub mod venv;
 
 use std::path::{Path, PathBuf};

@@ -14,7 +14,9 @@ commands:
 
   train contact-cnn [--docs-only]
                             run the contact CNN's Table I protocol, write weights, metrics, plots,
-                            docs (--docs-only: redraw plots and docs from the committed metrics)";
+                            docs (--docs-only: redraw plots and docs from the committed metrics)
+
+  train softness            train the softness classifier (LM, Adam), write weights, metrics, report";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -29,7 +29,10 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
         [model, flag] if model == "contact-cnn" && flag == "--docs-only" => {
             crate::train_cnn::run(root, true)
         }
-        _ => bail!("usage: cargo xtask train contact-mlp | force-dnn | contact-cnn [--docs-only]"),
+        [model] if model == "softness" => crate::train_softness::run(root),
+        _ => bail!(
+            "usage: cargo xtask train contact-mlp | force-dnn | softness | contact-cnn [--docs-only]"
+        ),
     }
 }
 
@@ -198,18 +201,12 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
             .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
             .map_err(plot_err)?
             .label(name)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color));
+            .legend(legend_mark(color));
         chart
             .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
             .map_err(plot_err)?;
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::LowerRight)
-        .draw()
-        .map_err(plot_err)?;
+    draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
     let max_err = osrs
         .iter()
         .flat_map(|&o| Model::ALL.map(|m| value(metrics, o, m, "mean_cell_error")))
@@ -243,15 +240,30 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
             .draw_series(LineSeries::new(pts, color.stroke_width(2)))
             .map_err(plot_err)?
             .label(name)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color));
+            .legend(legend_mark(color));
     }
+    draw_legend(&mut chart, SeriesLabelPosition::MiddleRight)?;
+    root.present().map_err(plot_err)?;
+    Ok(())
+}
+
+/// A series' legend mark: a short line in its colour.
+pub(crate) fn legend_mark(color: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
+    move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color)
+}
+
+/// Draws the chart's series legend in a translucent white box at `position`.
+pub(crate) fn draw_legend<'a, DB: DrawingBackend + 'a, X: Ranged, Y: Ranged>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    position: SeriesLabelPosition,
+) -> Result<()> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
+        .position(position)
         .draw()
         .map_err(plot_err)?;
-    root.present().map_err(plot_err)?;
     Ok(())
 }
 

@@ -14,12 +14,17 @@
 //! - [`data::fingertip`]: the simulated fingertip's tap dataset, baselines and arrival times;
 //! - [`pad`]: the 4 × 6 pad, eq. 4 labels and cell sets;
 //! - [`contact_mlp`]: the MLP, its two heads and its [`hand_traits::ContactLocator`];
-//! - [`contact_eval`]: the held-out split, metrics and committed models.
+//! - [`contact_eval`]: the held-out split, metrics and committed models;
 //! - [`data::imu_pad`]: the simulated ICM-20789 pad's 4 × 38 tap windows (seed 002);
 //! - [`cnn_layers`], [`cnn_frozen`]: im2col convolution and max-pool on stable dfdx, and the
 //!   plain-array inference path;
 //! - [`contact_cnn`]: the contact CNN of seed 002 §IV-A and its [`hand_traits::ContactLocator`];
-//! - [`cnn_eval`]: 30 dB augmentation, 80 / 20 × 10 and 5-fold protocols, committed models.
+//! - [`cnn_eval`]: 30 dB augmentation, 80 / 20 × 10 and 5-fold protocols, committed models;
+//! - [`data::underactuated`]: the simulated underactuated hand's softness grasps;
+//! - [`softness`]: the 8 → 4 → 4 → 3 softness classifier (seed 001) and its
+//!   [`hand_traits::SoftnessClassifier`];
+//! - [`softness_train`]: its Levenberg–Marquardt (and Adam) training;
+//! - [`softness_eval`]: the paper's protocol, confusion matrices and committed models.
 //!
 //! ```
 //! use tactile_nets::contact_mlp::{ContactMlp, Head, features};
@@ -63,12 +68,16 @@ pub mod io;
 pub mod metrics;
 pub mod norm;
 pub mod pad;
+pub mod softness;
+pub mod softness_eval;
+pub mod softness_train;
 pub mod train;
 
 /// Datasets the models train on.
 pub mod data {
     pub mod fingertip;
     pub mod imu_pad;
+    pub mod underactuated;
     pub mod weights;
 }
 

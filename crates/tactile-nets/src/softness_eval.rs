@@ -1,0 +1,318 @@
+//! The paper's protocol for the softness classifier (seed 001 §3.3–4) on the simulated hand's
+//! dataset, its confusion matrices, and the committed models (`fixtures/models/softness/`).
+//!
+//! # Protocol
+//! - Train on the `train` set's labelled grasps: the 27 model objects × 5 poses and the 18
+//!   household objects (153 grasps). The 6 empty grasps are left out: the paper gives them no
+//!   class among its three, and a fourth output would change its 8 → 4 → 4 → 3 network.
+//! - Test on `test_regular` (24 objects) and `test_irregular` (30 objects), one grasp each,
+//!   each classified from its whole series ([`crate::softness`]).
+//! - For each optimiser (LM, Adam) one model per seed in [`SEEDS`]; the *selected* model of an
+//!   optimiser is the seed with the lowest training MSE — chosen on training data only.
+
+use crate::data::underactuated::{Grasp, GraspSet, N_VARIABLES};
+use crate::error::NetError;
+use crate::metrics::{MetricsFile, MetricsRow};
+use crate::softness::{CLASSES, SoftnessNet};
+use crate::softness_train::{Optimiser, SoftnessTrainConfig, TrainReport, train};
+use hand_traits::Softness;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Where the committed weights and metrics live, below the workspace root.
+pub const MODEL_DIR: &str = "fixtures/models/softness";
+/// The committed metrics file inside [`MODEL_DIR`].
+pub const METRICS_FILE: &str = "metrics.json";
+/// Training curves, stop reasons and wall times of the committed run (not drift-checked:
+/// times depend on the machine).
+pub const TRAINING_FILE: &str = "training.json";
+/// Seeds of the committed models.
+pub const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
+/// Training rows: every 14th sample (1.4 s apart, 11 per grasp); inference reads every sample.
+pub const STRIDE: usize = 14;
+/// Both optimisers, with their committed settings.
+pub const OPTIMISERS: [fn() -> Optimiser; 2] = [Optimiser::lm, Optimiser::adam];
+
+/// A 3 × 3 confusion matrix: `counts[truth][predicted]`, classes in [`Softness::ALL`] order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Confusion {
+    /// Grasps per (true class, predicted class).
+    pub counts: [[u32; CLASSES]; CLASSES],
+}
+
+impl Confusion {
+    /// Adds one classified grasp.
+    pub fn add(&mut self, truth: Softness, predicted: Softness) {
+        self.counts[truth.index()][predicted.index()] += 1;
+    }
+
+    /// Grasps counted.
+    pub fn total(&self) -> u32 {
+        self.counts.iter().flatten().sum()
+    }
+
+    /// Grasps on the diagonal.
+    pub fn correct(&self) -> u32 {
+        (0..CLASSES).map(|k| self.counts[k][k]).sum()
+    }
+
+    /// Fraction correct (0 when empty).
+    pub fn accuracy(&self) -> f64 {
+        match self.total() {
+            0 => 0.0,
+            n => f64::from(self.correct()) / f64::from(n),
+        }
+    }
+}
+
+/// The labelled grasps of `set` as (series, class) pairs (empty grasps left out).
+pub fn labelled(grasps: &[Grasp], set: GraspSet) -> Vec<(&[[f32; N_VARIABLES]], Softness)> {
+    grasps
+        .iter()
+        .filter(|g| g.set == set)
+        .filter_map(|g| Some((g.series.as_slice(), g.label?)))
+        .collect()
+}
+
+/// Classifies every grasp of `pairs` from its whole series.
+pub fn confusion(
+    net: &SoftnessNet,
+    pairs: &[(&[[f32; N_VARIABLES]], Softness)],
+) -> Result<Confusion, NetError> {
+    let mut c = Confusion::default();
+    for (series, truth) in pairs {
+        c.add(*truth, net.predict(series.as_flattened())?);
+    }
+    Ok(c)
+}
+
+/// The f32 network's mean squared error against one-hot targets on the training rows (every
+/// [`STRIDE`]-th sample).
+pub fn training_mse(
+    net: &SoftnessNet,
+    pairs: &[(&[[f32; N_VARIABLES]], Softness)],
+) -> Result<f64, NetError> {
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for (series, truth) in pairs {
+        for s in series.iter().step_by(STRIDE) {
+            let y = net.sample_outputs(s)?;
+            for (k, v) in y.iter().enumerate() {
+                let t = if k == truth.index() { 1.0 } else { 0.0 };
+                sum += (f64::from(*v) - t).powi(2);
+                n += 1;
+            }
+        }
+    }
+    Ok(if n == 0 { 0.0 } else { sum / n as f64 })
+}
+
+/// One model's evaluation under the protocol.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Evaluation {
+    /// On the training grasps.
+    pub train: Confusion,
+    /// On the 24 regular-shape objects.
+    pub regular: Confusion,
+    /// On the 30 irregular objects.
+    pub irregular: Confusion,
+    /// [`training_mse`].
+    pub train_mse: f64,
+}
+
+impl Evaluation {
+    /// The metrics as a row's values: accuracies, training MSE and every confusion count
+    /// (`regular_cm_soft_hard` = true soft, predicted hard).
+    pub fn values(&self) -> BTreeMap<String, f64> {
+        let mut v = BTreeMap::from([
+            ("train_accuracy".to_owned(), self.train.accuracy()),
+            ("regular_accuracy".to_owned(), self.regular.accuracy()),
+            ("irregular_accuracy".to_owned(), self.irregular.accuracy()),
+            ("train_mse".to_owned(), self.train_mse),
+        ]);
+        for (set, c) in [("regular", &self.regular), ("irregular", &self.irregular)] {
+            for t in Softness::ALL {
+                for p in Softness::ALL {
+                    v.insert(
+                        format!("{set}_cm_{}_{}", class_name(t), class_name(p)),
+                        f64::from(c.counts[t.index()][p.index()]),
+                    );
+                }
+            }
+        }
+        v
+    }
+}
+
+/// `soft`, `moderate` or `hard`.
+pub fn class_name(s: Softness) -> &'static str {
+    match s {
+        Softness::Soft => "soft",
+        Softness::Moderate => "moderate",
+        Softness::Hard => "hard",
+    }
+}
+
+/// Evaluates `net` on the dataset's three sets.
+pub fn evaluate(net: &SoftnessNet, grasps: &[Grasp]) -> Result<Evaluation, NetError> {
+    let train = labelled(grasps, GraspSet::Train);
+    Ok(Evaluation {
+        train: confusion(net, &train)?,
+        regular: confusion(net, &labelled(grasps, GraspSet::TestRegular))?,
+        irregular: confusion(net, &labelled(grasps, GraspSet::TestIrregular))?,
+        train_mse: training_mse(net, &train)?,
+    })
+}
+
+/// The committed recipe for `optimiser` and `seed`.
+pub fn recipe(optimiser: Optimiser, seed: u64) -> SoftnessTrainConfig {
+    SoftnessTrainConfig {
+        optimiser,
+        seed,
+        stride: STRIDE,
+    }
+}
+
+/// One trained (or loaded) model.
+#[derive(Debug, Clone)]
+pub struct Run {
+    /// `lm` or `adam`.
+    pub optimiser: String,
+    /// Its seed.
+    pub seed: u64,
+    /// The model.
+    pub net: SoftnessNet,
+    /// Its evaluation.
+    pub evaluation: Evaluation,
+    /// Training report (`None` for a loaded model).
+    pub report: Option<TrainReport>,
+    /// Training wall time, s (0 for a loaded model).
+    pub seconds: f64,
+}
+
+/// File name of a model inside [`MODEL_DIR`].
+pub fn model_file(optimiser: &str, seed: u64) -> String {
+    format!("{optimiser}-seed{seed}.safetensors")
+}
+
+/// Metrics row label of a model.
+pub fn row_label(optimiser: &str, seed: u64) -> String {
+    format!("{optimiser}/seed{seed}")
+}
+
+/// Trains and evaluates one model with [`recipe`].
+pub fn train_one(grasps: &[Grasp], optimiser: Optimiser, seed: u64) -> Result<Run, NetError> {
+    let pairs = labelled(grasps, GraspSet::Train);
+    let start = Instant::now();
+    let (net, report) = train(&pairs, &recipe(optimiser, seed))?;
+    let seconds = start.elapsed().as_secs_f64();
+    Ok(Run {
+        optimiser: optimiser.name().to_owned(),
+        seed,
+        evaluation: evaluate(&net, grasps)?,
+        net,
+        report: Some(report),
+        seconds,
+    })
+}
+
+/// Loads every committed model below the workspace root `root` and evaluates it.
+pub fn load_committed(root: &Path, grasps: &[Grasp]) -> Result<Vec<Run>, NetError> {
+    let dir = root.join(MODEL_DIR);
+    let mut out = Vec::new();
+    for optimiser in OPTIMISERS.map(|o| o().name()) {
+        for seed in SEEDS {
+            let net = SoftnessNet::load(&dir.join(model_file(optimiser, seed)))?;
+            out.push(Run {
+                optimiser: optimiser.to_owned(),
+                seed,
+                evaluation: evaluate(&net, grasps)?,
+                net,
+                report: None,
+                seconds: 0.0,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The selected run of `optimiser`: lowest training MSE (ties: the lower seed).
+pub fn selected<'a>(runs: &'a [Run], optimiser: &str) -> Option<&'a Run> {
+    runs.iter()
+        .filter(|r| r.optimiser == optimiser)
+        .min_by(|a, b| a.evaluation.train_mse.total_cmp(&b.evaluation.train_mse))
+}
+
+/// The metrics file of a set of runs: one row per model, and a `selected` row naming the
+/// selected seed of each optimiser.
+pub fn metrics_file(runs: &[Run]) -> MetricsFile {
+    let mut rows: Vec<MetricsRow> = runs
+        .iter()
+        .map(|r| MetricsRow {
+            label: row_label(&r.optimiser, r.seed),
+            values: r.evaluation.values(),
+        })
+        .collect();
+    let picks = OPTIMISERS
+        .map(|o| o().name())
+        .into_iter()
+        .filter_map(|o| Some((format!("{o}_seed"), selected(runs, o)?.seed as f64)))
+        .collect();
+    rows.push(MetricsRow {
+        label: "selected".into(),
+        values: picks,
+    });
+    MetricsFile {
+        model: "softness".into(),
+        description: "Softness classifier (seed 001 §3.3–4), 8 → 4 → 4 → 3 sigmoid / linear, \
+                      on the simulated underactuated hand: per optimiser and seed, accuracy on \
+                      the training grasps, the 24 regular and the 30 irregular test objects, \
+                      training MSE (f32 weights, one-hot targets) and the confusion counts \
+                      (`<set>_cm_<true>_<predicted>`); `selected`: the seed of lowest training \
+                      MSE per optimiser."
+            .into(),
+        split: format!(
+            "train: 153 labelled grasps of `train` (27 model objects x 5 poses + 18 household; \
+             every {STRIDE}th sample); test: test_regular (24), test_irregular (30), whole series"
+        ),
+        seed: SEEDS[0],
+        rows,
+    }
+}
+
+/// Saves every model, the metrics file and the training file into `dir`; returns the paths.
+pub fn save_all(dir: &Path, runs: &[Run]) -> Result<Vec<PathBuf>, NetError> {
+    std::fs::create_dir_all(dir)?;
+    let mut written = Vec::new();
+    let mut training = Vec::new();
+    for r in runs {
+        let path = dir.join(model_file(&r.optimiser, r.seed));
+        let stop = r.report.as_ref().map(|t| t.stop.name());
+        let meta = serde_json::json!({ "optimiser": r.optimiser, "seed": r.seed,
+                                        "stride": STRIDE, "stop": stop });
+        r.net.save(&path, meta)?;
+        written.push(path);
+        if let Some(t) = &r.report {
+            // Six significant digits keep the file small and its diffs readable.
+            let curve: Vec<f64> = t
+                .curve
+                .iter()
+                .map(|v| format!("{v:.6e}").parse().unwrap_or(*v))
+                .collect();
+            training.push(serde_json::json!({
+                "optimiser": r.optimiser, "seed": r.seed, "stop": t.stop.name(),
+                "rows": t.rows, "seconds": (r.seconds * 1000.0).round() / 1000.0,
+                "evaluations": t.curve.len(), "mse": t.mse, "curve": curve,
+            }));
+        }
+    }
+    let path = dir.join(METRICS_FILE);
+    std::fs::write(&path, metrics_file(runs).to_json()?)?;
+    written.push(path);
+    let path = dir.join(TRAINING_FILE);
+    let text =
+        serde_json::to_string_pretty(&training).map_err(|e| NetError::Metrics(e.to_string()))?;
+    std::fs::write(&path, text + "\n")?;
+    written.push(path);
+    Ok(written)
+}
