@@ -84,6 +84,8 @@ pub struct World {
     pub peak_force_n: f64,
     pub ever_slipping: bool,
     pub trace: Vec<Truth>,
+    /// When the arm lifts the object, s ([`LIFT_AT_S`] unless a test needs it earlier).
+    pub lift_at_s: f64,
 }
 
 impl World {
@@ -103,7 +105,7 @@ impl World {
     fn advance_to(&mut self, t_ns: u64) -> Result<(), SimError> {
         let dt_ns = (DT_S * 1e9) as u64;
         while self.t_ns + dt_ns <= t_ns {
-            self.rig.set_lifted(self.now_s() >= LIFT_AT_S);
+            self.rig.set_lifted(self.now_s() >= self.lift_at_s);
             let s = self.rig.step(DT_S)?;
             self.t_ns += dt_ns;
             self.peak_force_n = self.peak_force_n.max(s.grip_force_n);
@@ -153,6 +155,7 @@ pub fn world(object: ObjectParams, seed: u64) -> Shared {
         peak_force_n: 0.0,
         ever_slipping: false,
         trace: Vec::new(),
+        lift_at_s: LIFT_AT_S,
     }))
 }
 
