@@ -427,11 +427,15 @@ impl Drop for UrArm {
         // against a dead controller only the local sockets are closed.
         Python::attach(|py| {
             let c = self.control.bind(py);
-            if c.call_method0("isConnected").and_then(|v| v.extract::<bool>()).unwrap_or(false) {
+            let r = self.receive.bind(py);
+            let up = |o: &Bound<'_, PyAny>| o.call_method0("isConnected").and_then(|v| v.extract::<bool>()).unwrap_or(false);
+            // The receive link never reconnects by itself, so it tells whether the controller
+            // is still there; stopScript against a dead one would wait out ur_rtde's 300 s.
+            if up(r) && up(c) {
                 let _ = c.call_method0("stopScript");
             }
             let _ = c.call_method0("disconnect");
-            let _ = self.receive.bind(py).call_method0("disconnect");
+            let _ = r.call_method0("disconnect");
             let _ = self.dashboard.bind(py).call_method0("disconnect");
         });
     }
