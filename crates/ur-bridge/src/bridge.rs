@@ -55,7 +55,10 @@ pub struct JointMotion {
 impl Default for JointMotion {
     /// ur_rtde's `moveJ` defaults: 1.05 rad/s, 1.4 rad/s².
     fn default() -> Self {
-        Self { speed_rad_per_s: 1.05, accel_rad_per_s2: 1.4 }
+        Self {
+            speed_rad_per_s: 1.05,
+            accel_rad_per_s2: 1.4,
+        }
     }
 }
 
@@ -96,7 +99,9 @@ pub struct UrArm {
 
 impl core::fmt::Debug for UrArm {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("UrArm").field("config", &self.config).finish_non_exhaustive()
+        f.debug_struct("UrArm")
+            .field("config", &self.config)
+            .finish_non_exhaustive()
     }
 }
 
@@ -107,22 +112,38 @@ fn map_py(py: Python<'_>, err: PyErr, call: &'static str, host: &str) -> UrError
         return UrError::InvalidArgument(format!("{call}: {message}"));
     }
     let lower = message.to_lowercase();
-    if lower.contains("could not connect") || lower.contains("timeout connecting") || lower.contains("connection refused") {
-        return UrError::Connect { host: host.to_owned(), message };
+    if lower.contains("could not connect")
+        || lower.contains("timeout connecting")
+        || lower.contains("connection refused")
+    {
+        return UrError::Connect {
+            host: host.to_owned(),
+            message,
+        };
     }
     UrError::Controller(format!("{call}: {message}"))
 }
 
 fn six(v: Vec<f64>, call: &'static str) -> Result<[f64; 6], UrError> {
-    <[f64; 6]>::try_from(v).map_err(|v| UrError::BadReply { call, detail: format!("{} values, expected 6", v.len()) })
+    <[f64; 6]>::try_from(v).map_err(|v| UrError::BadReply {
+        call,
+        detail: format!("{} values, expected 6", v.len()),
+    })
 }
 
 fn pose_of(v: [f64; 6]) -> Pose {
-    Pose { position_m: [v[0], v[1], v[2]], rotation_vec_rad: [v[3], v[4], v[5]] }
+    Pose {
+        position_m: [v[0], v[1], v[2]],
+        rotation_vec_rad: [v[3], v[4], v[5]],
+    }
 }
 
 fn vec_of(p: &Pose) -> Vec<f64> {
-    p.position_m.iter().chain(p.rotation_vec_rad.iter()).copied().collect()
+    p.position_m
+        .iter()
+        .chain(p.rotation_vec_rad.iter())
+        .copied()
+        .collect()
 }
 
 impl UrArm {
@@ -131,16 +152,24 @@ impl UrArm {
     pub fn connect(config: UrConfig) -> Result<Self, UrError> {
         Python::attach(|py| {
             config.venv.activate(py)?;
-            let import = |name: &str| py.import(name).map_err(|e| UrError::Python(format!("import {name}: {e}")));
-            let (rtde_control, rtde_receive, dashboard_client) =
-                (import("rtde_control")?, import("rtde_receive")?, import("dashboard_client")?);
+            let import = |name: &str| {
+                py.import(name)
+                    .map_err(|e| UrError::Python(format!("import {name}: {e}")))
+            };
+            let (rtde_control, rtde_receive, dashboard_client) = (
+                import("rtde_control")?,
+                import("rtde_receive")?,
+                import("dashboard_client")?,
+            );
             let host = config.host.as_str();
             let freq = config.frequency_hz.unwrap_or(-1.0);
             let dashboard = dashboard_client
                 .getattr("DashboardClient")
                 .and_then(|c| c.call1((host,)))
                 .map_err(|e| map_py(py, e, "DashboardClient", host))?;
-            dashboard.call_method0("connect").map_err(|e| map_py(py, e, "dashboard connect", host))?;
+            dashboard
+                .call_method0("connect")
+                .map_err(|e| map_py(py, e, "dashboard connect", host))?;
             if config.power_up {
                 power_up(py, &dashboard, &config)?;
             }
@@ -152,7 +181,12 @@ impl UrArm {
                 .getattr("RTDEControlInterface")
                 .and_then(|c| c.call1((host, freq)))
                 .map_err(|e| map_py(py, e, "RTDEControlInterface", host))?;
-            Ok(Self { control: control.unbind(), receive: receive.unbind(), dashboard: dashboard.unbind(), config })
+            Ok(Self {
+                control: control.unbind(),
+                receive: receive.unbind(),
+                dashboard: dashboard.unbind(),
+                config,
+            })
         })
     }
 
@@ -167,14 +201,16 @@ impl UrArm {
         f: impl for<'py> FnOnce(Python<'py>, &Bound<'py, PyAny>, &Bound<'py, PyAny>) -> PyResult<T>,
     ) -> Result<T, UrError> {
         Python::attach(|py| {
-            f(py, self.control.bind(py), self.receive.bind(py)).map_err(|e| map_py(py, e, call, &self.config.host))
+            f(py, self.control.bind(py), self.receive.bind(py))
+                .map_err(|e| map_py(py, e, call, &self.config.host))
         })
     }
 
     /// Whether both RTDE connections are up.
     pub fn is_connected(&self) -> Result<bool, UrError> {
         self.with("isConnected", |_, c, r| {
-            Ok(c.call_method0("isConnected")?.extract::<bool>()? && r.call_method0("isConnected")?.extract::<bool>()?)
+            Ok(c.call_method0("isConnected")?.extract::<bool>()?
+                && r.call_method0("isConnected")?.extract::<bool>()?)
         })
     }
 
@@ -193,13 +229,17 @@ impl UrArm {
 
     /// The present joint angles, rad.
     pub fn joint_positions(&self) -> Result<Joints, UrError> {
-        let v = self.with("getActualQ", |_, _, r| r.call_method0("getActualQ")?.extract::<Vec<f64>>())?;
+        let v = self.with("getActualQ", |_, _, r| {
+            r.call_method0("getActualQ")?.extract::<Vec<f64>>()
+        })?;
         six(v, "getActualQ")
     }
 
     /// The present tool pose.
     pub fn tool_pose(&self) -> Result<Pose, UrError> {
-        let v = self.with("getActualTCPPose", |_, _, r| r.call_method0("getActualTCPPose")?.extract::<Vec<f64>>())?;
+        let v = self.with("getActualTCPPose", |_, _, r| {
+            r.call_method0("getActualTCPPose")?.extract::<Vec<f64>>()
+        })?;
         Ok(pose_of(six(v, "getActualTCPPose")?))
     }
 
@@ -211,8 +251,12 @@ impl UrArm {
             Ok(true) => {}
         }
         match self.status() {
-            Ok(s) if s.is_emergency_stopped() => UrError::EmergencyStop { safety_status_bits: s.safety_status_bits },
-            Ok(s) if s.is_protective_stopped() => UrError::ProtectiveStop { safety_status_bits: s.safety_status_bits },
+            Ok(s) if s.is_emergency_stopped() => UrError::EmergencyStop {
+                safety_status_bits: s.safety_status_bits,
+            },
+            Ok(s) if s.is_protective_stopped() => UrError::ProtectiveStop {
+                safety_status_bits: s.safety_status_bits,
+            },
             Ok(s) if !s.is_program_running() => UrError::ScriptNotRunning,
             Ok(_) => UrError::Rejected(call),
             Err(e) => e,
@@ -227,14 +271,24 @@ impl UrArm {
         let accepted = self.with(call, |_, c, _| {
             let out = f(c)?;
             // stopL / stopJ return None; the move commands return a bool.
-            if out.is_none() { Ok(true) } else { out.extract::<bool>() }
+            if out.is_none() {
+                Ok(true)
+            } else {
+                out.extract::<bool>()
+            }
         })?;
-        if accepted { Ok(()) } else { Err(self.explain(call)) }
+        if accepted {
+            Ok(())
+        } else {
+            Err(self.explain(call))
+        }
     }
 
     fn op_id(&self) -> Result<i32, UrError> {
         self.with("getAsyncOperationProgressEx", |_, c, _| {
-            c.call_method0("getAsyncOperationProgressEx")?.call_method0("operationId")?.extract()
+            c.call_method0("getAsyncOperationProgressEx")?
+                .call_method0("operationId")?
+                .extract()
         })
     }
 
@@ -247,22 +301,53 @@ impl UrArm {
     }
 
     /// Starts a straight-line tool move (`moveL`, asynchronous) and returns at once.
-    pub fn start_move_linear(&mut self, target: &Pose, motion: &LinearMotion) -> Result<MoveHandle, UrError> {
+    pub fn start_move_linear(
+        &mut self,
+        target: &Pose,
+        motion: &LinearMotion,
+    ) -> Result<MoveHandle, UrError> {
         let v = vec_of(target);
         Self::check_finite(&v, "moveL target")?;
         let from = self.tool_pose()?;
         let op_id_before = self.op_id()?;
-        self.command("moveL", |c| c.call_method1("moveL", (v, motion.speed_m_per_s, motion.accel_m_per_s2, true)))?;
-        Ok(MoveHandle { target: Target::Tool { from, to: *target }, op_id_before, started: Instant::now() })
+        self.command("moveL", |c| {
+            c.call_method1(
+                "moveL",
+                (v, motion.speed_m_per_s, motion.accel_m_per_s2, true),
+            )
+        })?;
+        Ok(MoveHandle {
+            target: Target::Tool { from, to: *target },
+            op_id_before,
+            started: Instant::now(),
+        })
     }
 
     /// Starts a joint-space move (`moveJ`, asynchronous) and returns at once.
-    pub fn start_move_joints(&mut self, q: &Joints, motion: &JointMotion) -> Result<MoveHandle, UrError> {
+    pub fn start_move_joints(
+        &mut self,
+        q: &Joints,
+        motion: &JointMotion,
+    ) -> Result<MoveHandle, UrError> {
         Self::check_finite(q, "moveJ target")?;
         let from = self.joint_positions()?;
         let op_id_before = self.op_id()?;
-        self.command("moveJ", |c| c.call_method1("moveJ", (q.to_vec(), motion.speed_rad_per_s, motion.accel_rad_per_s2, true)))?;
-        Ok(MoveHandle { target: Target::Joints { from, to: *q }, op_id_before, started: Instant::now() })
+        self.command("moveJ", |c| {
+            c.call_method1(
+                "moveJ",
+                (
+                    q.to_vec(),
+                    motion.speed_rad_per_s,
+                    motion.accel_rad_per_s2,
+                    true,
+                ),
+            )
+        })?;
+        Ok(MoveHandle {
+            target: Target::Joints { from, to: *q },
+            op_id_before,
+            started: Instant::now(),
+        })
     }
 
     /// How far `handle`'s move has come; a protective stop, an emergency stop or a lost link
@@ -273,14 +358,22 @@ impl UrArm {
         }
         let status = self.status()?;
         if status.is_emergency_stopped() {
-            return Err(UrError::EmergencyStop { safety_status_bits: status.safety_status_bits });
+            return Err(UrError::EmergencyStop {
+                safety_status_bits: status.safety_status_bits,
+            });
         }
         if status.is_protective_stopped() {
-            return Err(UrError::ProtectiveStop { safety_status_bits: status.safety_status_bits });
+            return Err(UrError::ProtectiveStop {
+                safety_status_bits: status.safety_status_bits,
+            });
         }
         let (op_id, op_running) = self.with("getAsyncOperationProgressEx", |_, c, _| {
             let s = c.call_method0("getAsyncOperationProgressEx")?;
-            Ok((s.call_method0("operationId")?.extract::<i32>()?, s.call_method0("isAsyncOperationRunning")?.extract::<bool>()?))
+            Ok((
+                s.call_method0("operationId")?.extract::<i32>()?,
+                s.call_method0("isAsyncOperationRunning")?
+                    .extract::<bool>()?,
+            ))
         })?;
         // The script bumps the operation id when the move thread starts.
         let running = op_id == handle.op_id_before || op_running;
@@ -295,12 +388,20 @@ impl UrArm {
                 covered(max_abs_diff(&from, &to), max_abs_diff(&q, &to))
             }
         };
-        Ok(MoveProgress { running, fraction, tcp })
+        Ok(MoveProgress {
+            running,
+            fraction,
+            tcp,
+        })
     }
 
     /// Waits for `handle`'s move to finish, calling `on_progress` at every poll; bounded by
     /// [`UrConfig::move_timeout`].
-    pub fn wait(&mut self, handle: &MoveHandle, mut on_progress: impl FnMut(&MoveProgress)) -> Result<(), UrError> {
+    pub fn wait(
+        &mut self,
+        handle: &MoveHandle,
+        mut on_progress: impl FnMut(&MoveProgress),
+    ) -> Result<(), UrError> {
         loop {
             let p = self.progress(handle)?;
             on_progress(&p);
@@ -308,7 +409,10 @@ impl UrArm {
                 return Ok(());
             }
             if handle.started.elapsed() > self.config.move_timeout {
-                return Err(UrError::Timeout { after: self.config.move_timeout, what: "move to finish" });
+                return Err(UrError::Timeout {
+                    after: self.config.move_timeout,
+                    what: "move to finish",
+                });
             }
             std::thread::sleep(self.config.poll_period);
         }
@@ -328,32 +432,56 @@ impl UrArm {
 
     /// Moves in joint space to the joint angles that put the tool at `target` (ur_rtde
     /// `moveJ_IK`: the controller's inverse kinematics, nearest the present joints).
-    pub fn move_joints_to_pose(&mut self, target: &Pose, motion: &JointMotion) -> Result<(), UrError> {
+    pub fn move_joints_to_pose(
+        &mut self,
+        target: &Pose,
+        motion: &JointMotion,
+    ) -> Result<(), UrError> {
         let v = vec_of(target);
         Self::check_finite(&v, "moveJ_IK target")?;
         let from = self.tool_pose()?;
         let op_id_before = self.op_id()?;
-        self.command("moveJ_IK", |c| c.call_method1("moveJ_IK", (v, motion.speed_rad_per_s, motion.accel_rad_per_s2, true)))?;
-        let h = MoveHandle { target: Target::Tool { from, to: *target }, op_id_before, started: Instant::now() };
+        self.command("moveJ_IK", |c| {
+            c.call_method1(
+                "moveJ_IK",
+                (v, motion.speed_rad_per_s, motion.accel_rad_per_s2, true),
+            )
+        })?;
+        let h = MoveHandle {
+            target: Target::Tool { from, to: *target },
+            op_id_before,
+            started: Instant::now(),
+        };
         self.wait(&h, |_| {})
     }
 
     /// Decelerates the tool to rest at `decel_m_per_s2` (ur_rtde `stopL`, synchronous).
     pub fn stop_linear(&mut self, decel_m_per_s2: f64) -> Result<(), UrError> {
         Self::check_finite(&[decel_m_per_s2], "stopL deceleration")?;
-        self.command("stopL", |c| c.call_method1("stopL", (decel_m_per_s2, false)))
+        self.command("stopL", |c| {
+            c.call_method1("stopL", (decel_m_per_s2, false))
+        })
     }
 
     /// Accelerates the tool to the twist `xd` (m/s, rad/s, base frame) and keeps it until
     /// [`UrArm::speed_stop`] (ur_rtde `speedL`; `time_s` 0 means "until the next command").
-    pub fn speed_linear(&mut self, xd: &[f64; 6], accel_m_per_s2: f64, time_s: f64) -> Result<(), UrError> {
+    pub fn speed_linear(
+        &mut self,
+        xd: &[f64; 6],
+        accel_m_per_s2: f64,
+        time_s: f64,
+    ) -> Result<(), UrError> {
         Self::check_finite(xd, "speedL twist")?;
-        self.command("speedL", |c| c.call_method1("speedL", (xd.to_vec(), accel_m_per_s2, time_s)))
+        self.command("speedL", |c| {
+            c.call_method1("speedL", (xd.to_vec(), accel_m_per_s2, time_s))
+        })
     }
 
     /// Ends a [`UrArm::speed_linear`] motion, decelerating at `decel_m_per_s2`.
     pub fn speed_stop(&mut self, decel_m_per_s2: f64) -> Result<(), UrError> {
-        self.command("speedStop", |c| c.call_method1("speedStop", (decel_m_per_s2,)))
+        self.command("speedStop", |c| {
+            c.call_method1("speedStop", (decel_m_per_s2,))
+        })
     }
 
     /// After a protective stop: unlocks it on the dashboard and re-uploads the control script.
@@ -370,13 +498,20 @@ impl UrArm {
                 .call_method0("reuploadScript")
                 .and_then(|v| v.extract::<bool>())
                 .map_err(|e| map_py(py, e, "reuploadScript", host))?;
-            if ok { Ok(()) } else { Err(UrError::Rejected("reuploadScript")) }
+            if ok {
+                Ok(())
+            } else {
+                Err(UrError::Rejected("reuploadScript"))
+            }
         })?;
         // The script reports ready within a few control cycles.
         let start = Instant::now();
         while !self.status()?.is_program_running() {
             if start.elapsed() > Duration::from_secs(5) {
-                return Err(UrError::Timeout { after: Duration::from_secs(5), what: "control script to run" });
+                return Err(UrError::Timeout {
+                    after: Duration::from_secs(5),
+                    what: "control script to run",
+                });
             }
             std::thread::sleep(self.config.poll_period);
         }
@@ -386,39 +521,64 @@ impl UrArm {
     /// The dashboard's one-line answer to `command` (e.g. `"robotmode"`, `"safetystatus"`).
     pub fn dashboard(&self, method: &'static str) -> Result<String, UrError> {
         Python::attach(|py| {
-            let out = self.dashboard.bind(py).call_method0(method).map_err(|e| map_py(py, e, method, &self.config.host))?;
+            let out = self
+                .dashboard
+                .bind(py)
+                .call_method0(method)
+                .map_err(|e| map_py(py, e, method, &self.config.host))?;
             Ok(out.str().map(|s| s.to_string()).unwrap_or_default())
         })
     }
 }
 
-fn power_up(py: Python<'_>, dashboard: &Bound<'_, PyAny>, config: &UrConfig) -> Result<(), UrError> {
+fn power_up(
+    py: Python<'_>,
+    dashboard: &Bound<'_, PyAny>,
+    config: &UrConfig,
+) -> Result<(), UrError> {
     let host = config.host.as_str();
     let mode = |py: Python<'_>| -> Result<String, UrError> {
-        dashboard.call_method0("robotmode").and_then(|s| s.extract::<String>()).map_err(|e| map_py(py, e, "robotmode", host))
+        dashboard
+            .call_method0("robotmode")
+            .and_then(|s| s.extract::<String>())
+            .map_err(|e| map_py(py, e, "robotmode", host))
     };
     let wait_for = |py: Python<'_>, want: &str, what: &'static str| -> Result<(), UrError> {
         let start = Instant::now();
         while !mode(py)?.contains(want) {
             if start.elapsed() > config.move_timeout {
-                return Err(UrError::Timeout { after: config.move_timeout, what });
+                return Err(UrError::Timeout {
+                    after: config.move_timeout,
+                    what,
+                });
             }
             std::thread::sleep(config.poll_period);
         }
         Ok(())
     };
-    dashboard.call_method0("powerOn").map_err(|e| map_py(py, e, "powerOn", host))?;
+    dashboard
+        .call_method0("powerOn")
+        .map_err(|e| map_py(py, e, "powerOn", host))?;
     wait_for(py, "IDLE", "power on")?;
-    dashboard.call_method0("brakeRelease").map_err(|e| map_py(py, e, "brakeRelease", host))?;
+    dashboard
+        .call_method0("brakeRelease")
+        .map_err(|e| map_py(py, e, "brakeRelease", host))?;
     wait_for(py, "RUNNING", "brake release")
 }
 
 fn max_abs_diff(a: &Joints, b: &Joints) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
 
 fn covered(total: f64, left: f64) -> f64 {
-    if total <= 0.0 { 1.0 } else { (1.0 - left / total).clamp(0.0, 1.0) }
+    if total <= 0.0 {
+        1.0
+    } else {
+        (1.0 - left / total).clamp(0.0, 1.0)
+    }
 }
 
 impl Drop for UrArm {
@@ -428,7 +588,11 @@ impl Drop for UrArm {
         Python::attach(|py| {
             let c = self.control.bind(py);
             let r = self.receive.bind(py);
-            let up = |o: &Bound<'_, PyAny>| o.call_method0("isConnected").and_then(|v| v.extract::<bool>()).unwrap_or(false);
+            let up = |o: &Bound<'_, PyAny>| {
+                o.call_method0("isConnected")
+                    .and_then(|v| v.extract::<bool>())
+                    .unwrap_or(false)
+            };
             // The receive link never reconnects by itself, so it tells whether the controller
             // is still there; stopScript against a dead one would wait out ur_rtde's 300 s.
             if up(r) && up(c) {

@@ -77,6 +77,13 @@ pub enum ExperimentError<S: core::fmt::Debug, L: core::fmt::Debug, A: core::fmt:
     NoContact(usize),
 }
 
+/// The error of a cycle over source `S`, locator `L` and arm `A`.
+pub type CycleError<S, L, A> =
+    ExperimentError<<S as TactileSource>::Error, <L as ContactLocator>::Error, <A as Arm>::Error>;
+
+/// A contact window (the frames around the trigger) and the trigger frame's time, µs.
+type Window = (VecDeque<ImuFrame>, u64);
+
 /// The tap-to-move experiment over a grid.
 #[derive(Debug, Clone)]
 pub struct TapToMove<'g> {
@@ -100,7 +107,7 @@ impl<'g> TapToMove<'g> {
         locator: &mut L,
         arm: &mut A,
         mut to_input: F,
-    ) -> Result<CycleReport, ExperimentError<S::Error, L::Error, A::Error>>
+    ) -> Result<CycleReport, CycleError<S, L, A>>
     where
         S: TactileSource<Frame = ImuFrame>,
         L: ContactLocator,
@@ -113,16 +120,25 @@ impl<'g> TapToMove<'g> {
             let _ = arm.stop();
             e
         }
-        arm.move_linear(self.grid.home(), &self.config.motion).map_err(|e| halt(arm, ExperimentError::Arm(e)))?;
+        arm.move_linear(self.grid.home(), &self.config.motion)
+            .map_err(|e| halt(arm, ExperimentError::Arm(e)))?;
         let (mut window, trigger_t_us) = self.wait_for_contact(source).map_err(|e| halt(arm, e))?;
-        let window_wait_us = window.back().map_or(0, |f| f.t_us.saturating_sub(trigger_t_us));
+        let window_wait_us = window
+            .back()
+            .map_or(0, |f| f.t_us.saturating_sub(trigger_t_us));
         let input = to_input(window.make_contiguous());
         let t0 = Instant::now();
-        let contact = locator.locate(&input).map_err(|e| halt(arm, ExperimentError::Locator(e)))?;
+        let contact = locator
+            .locate(&input)
+            .map_err(|e| halt(arm, ExperimentError::Locator(e)))?;
         let locate_s = t0.elapsed().as_secs_f64();
-        let target = *self.grid.pose(contact.region).map_err(|e| halt(arm, ExperimentError::Grid(e)))?;
+        let target = *self
+            .grid
+            .pose(contact.region)
+            .map_err(|e| halt(arm, ExperimentError::Grid(e)))?;
         let t1 = Instant::now();
-        arm.move_linear(&target, &self.config.motion).map_err(|e| halt(arm, ExperimentError::Arm(e)))?;
+        arm.move_linear(&target, &self.config.motion)
+            .map_err(|e| halt(arm, ExperimentError::Arm(e)))?;
         Ok(CycleReport {
             region: contact.region,
             confidence: contact.confidence,
@@ -135,14 +151,18 @@ impl<'g> TapToMove<'g> {
 
     /// Reads frames until the pressure rises `threshold_pa` over the resting baseline, then the
     /// rest of the window. Returns the window and the trigger frame's time.
-    fn wait_for_contact<S, LE, AE>(&self, source: &mut S) -> Result<(VecDeque<ImuFrame>, u64), ExperimentError<S::Error, LE, AE>>
+    fn wait_for_contact<S, LE, AE>(
+        &self,
+        source: &mut S,
+    ) -> Result<Window, ExperimentError<S::Error, LE, AE>>
     where
         S: TactileSource<Frame = ImuFrame>,
         LE: core::fmt::Debug,
         AE: core::fmt::Debug,
     {
         let c = &self.config;
-        let mut recent: VecDeque<ImuFrame> = VecDeque::with_capacity(c.frames_before + c.frames_after);
+        let mut recent: VecDeque<ImuFrame> =
+            VecDeque::with_capacity(c.frames_before + c.frames_after);
         let (mut sum, mut n) = (0.0_f64, 0_usize);
         for _ in 0..c.max_wait_frames {
             let f = source.read_frame().map_err(ExperimentError::Source)?;
@@ -150,7 +170,9 @@ impl<'g> TapToMove<'g> {
                 if n < c.baseline_samples {
                     sum += f64::from(p);
                     n += 1;
-                } else if p - (sum / n as f64) as f32 > c.threshold_pa && recent.len() == c.frames_before {
+                } else if p - (sum / n as f64) as f32 > c.threshold_pa
+                    && recent.len() == c.frames_before
+                {
                     // The trigger frame is the first of the `frames_after`.
                     recent.push_back(f);
                     while recent.len() < c.frames_before + c.frames_after {

@@ -67,7 +67,11 @@ impl RegionToGrid {
             for k in 1..=LINE_CHECKS {
                 let u = k as f64 / LINE_CHECKS as f64;
                 let p = nalgebra::Isometry3::from_parts(
-                    home_iso.translation.vector.lerp(&target.translation.vector, u).into(),
+                    home_iso
+                        .translation
+                        .vector
+                        .lerp(&target.translation.vector, u)
+                        .into(),
                     home_iso.rotation.slerp(&target.rotation, u),
                 );
                 q = model.inverse_near(&p, &q).map_err(err)?;
@@ -75,7 +79,12 @@ impl RegionToGrid {
             }
             joints[region] = q;
         }
-        Ok(Self { home: kinematics::to_pose(&home_iso), home_q, poses, joints })
+        Ok(Self {
+            home: kinematics::to_pose(&home_iso),
+            home_q,
+            poses,
+            joints,
+        })
     }
 
     /// A 3 × 3 grid in the horizontal plane through `centre_m`, `spacing_m` apart, tool
@@ -90,7 +99,12 @@ impl RegionToGrid {
     /// assert!(RegionToGrid::square(&UrModel::ur3(), RegionToGrid::HOME_Q, [-0.9, 0.0, 0.2], 0.06).is_err());
     /// # Ok::<(), ur_bridge::GridError>(())
     /// ```
-    pub fn square(model: &UrModel, home_q: Joints, centre_m: [f64; 3], spacing_m: f64) -> Result<Self, GridError> {
+    pub fn square(
+        model: &UrModel,
+        home_q: Joints,
+        centre_m: [f64; 3],
+        spacing_m: f64,
+    ) -> Result<Self, GridError> {
         if !(spacing_m.is_finite() && spacing_m > 0.0) {
             return Err(GridError::Spacing(spacing_m));
         }
@@ -98,7 +112,11 @@ impl RegionToGrid {
         let poses = core::array::from_fn(|r| {
             let (row, col) = ((r / 3) as f64 - 1.0, (r % 3) as f64 - 1.0);
             Pose {
-                position_m: [centre_m[0] + col * spacing_m, centre_m[1] + row * spacing_m, centre_m[2]],
+                position_m: [
+                    centre_m[0] + col * spacing_m,
+                    centre_m[1] + row * spacing_m,
+                    centre_m[2],
+                ],
                 rotation_vec_rad: rot,
             }
         });
@@ -123,12 +141,22 @@ impl RegionToGrid {
 
     /// The pose for `region`.
     pub fn pose(&self, region: u16) -> Result<&Pose, GridError> {
-        self.poses.get(usize::from(region)).ok_or(GridError::NoSuchRegion { region, regions: REGIONS as u16 })
+        self.poses
+            .get(usize::from(region))
+            .ok_or(GridError::NoSuchRegion {
+                region,
+                regions: REGIONS as u16,
+            })
     }
 
     /// The joint solution the validation found for `region` (reached by moveL from home).
     pub fn joints(&self, region: u16) -> Result<&Joints, GridError> {
-        self.joints.get(usize::from(region)).ok_or(GridError::NoSuchRegion { region, regions: REGIONS as u16 })
+        self.joints
+            .get(usize::from(region))
+            .ok_or(GridError::NoSuchRegion {
+                region,
+                regions: REGIONS as u16,
+            })
     }
 
     /// All nine poses, region order.
@@ -151,7 +179,10 @@ mod tests {
         }
         let d = g.pose(0).unwrap().distance_m(g.pose(1).unwrap());
         assert!((d - 0.06).abs() < 1e-12);
-        assert!(matches!(g.pose(9), Err(GridError::NoSuchRegion { region: 9, .. })));
+        assert!(matches!(
+            g.pose(9),
+            Err(GridError::NoSuchRegion { region: 9, .. })
+        ));
     }
 
     #[test]
@@ -160,8 +191,21 @@ mod tests {
         // A base joint limited to ±0.1 rad cannot swing to a grid 0.3 m to the side.
         m.q_min_rad[0] = -0.1;
         m.q_max_rad[0] = 0.1;
-        let e = RegionToGrid::square(&m, RegionToGrid::HOME_Q, [-0.10, -0.35, 0.20], 0.06).unwrap_err();
-        assert!(matches!(e, GridError::Unreachable { source: KinematicsError::JointLimit { joint: 0, .. }, .. }), "{e}");
-        assert!(matches!(RegionToGrid::square(&m, RegionToGrid::HOME_Q, [0.0; 3], f64::NAN), Err(GridError::Spacing(_))));
+        let e =
+            RegionToGrid::square(&m, RegionToGrid::HOME_Q, [-0.10, -0.35, 0.20], 0.06).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                GridError::Unreachable {
+                    source: KinematicsError::JointLimit { joint: 0, .. },
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(matches!(
+            RegionToGrid::square(&m, RegionToGrid::HOME_Q, [0.0; 3], f64::NAN),
+            Err(GridError::Spacing(_))
+        ));
     }
 }

@@ -131,7 +131,8 @@ impl UrModel {
     /// Distance from the shoulder joint to the wrist centre (flange minus the last link), the
     /// quantity the datasheet reach bounds.
     pub fn shoulder_distance_m(&self, target: &Isometry3<f64>) -> f64 {
-        let wrist = target.translation.vector - target.rotation * Vector3::new(0.0, 0.0, self.d_m[5]);
+        let wrist =
+            target.translation.vector - target.rotation * Vector3::new(0.0, 0.0, self.d_m[5]);
         (wrist - Vector3::new(0.0, 0.0, self.d_m[0])).norm()
     }
 
@@ -139,7 +140,11 @@ impl UrModel {
     ///
     /// Damped least squares on the 6-D pose error; converges to ~1e-12 from a seed within a
     /// few tenths of a radian, which is how the simulator steps straight-line moves.
-    pub fn inverse_near(&self, target: &Isometry3<f64>, q_near: &Joints) -> Result<Joints, KinematicsError> {
+    pub fn inverse_near(
+        &self,
+        target: &Isometry3<f64>,
+        q_near: &Joints,
+    ) -> Result<Joints, KinematicsError> {
         if !finite_iso(target) {
             return Err(KinematicsError::NonFinite("target pose"));
         }
@@ -148,7 +153,10 @@ impl UrModel {
         }
         let distance_m = self.shoulder_distance_m(target);
         if distance_m > self.reach_m {
-            return Err(KinematicsError::OutOfReach { distance_m, reach_m: self.reach_m });
+            return Err(KinematicsError::OutOfReach {
+                distance_m,
+                reach_m: self.reach_m,
+            });
         }
         let mut q = *q_near;
         let mut residual = f64::INFINITY;
@@ -187,7 +195,12 @@ impl UrModel {
             }
             let (min_rad, max_rad) = (self.q_min_rad[joint], self.q_max_rad[joint]);
             if angle_rad < min_rad || angle_rad > max_rad {
-                return Err(KinematicsError::JointLimit { joint, angle_rad, min_rad, max_rad });
+                return Err(KinematicsError::JointLimit {
+                    joint,
+                    angle_rad,
+                    min_rad,
+                    max_rad,
+                });
             }
         }
         Ok(())
@@ -195,7 +208,8 @@ impl UrModel {
 }
 
 fn finite_iso(p: &Isometry3<f64>) -> bool {
-    p.translation.vector.iter().all(|v| v.is_finite()) && p.rotation.coords.iter().all(|v| v.is_finite())
+    p.translation.vector.iter().all(|v| v.is_finite())
+        && p.rotation.coords.iter().all(|v| v.is_finite())
 }
 
 /// The 6-D error taking `from` to `to`: position difference, then the rotation vector of
@@ -212,7 +226,9 @@ pub fn to_isometry(pose: &Pose) -> Isometry3<f64> {
     let [rx, ry, rz] = pose.rotation_vec_rad;
     Isometry3::from_parts(
         Translation3::new(x, y, z),
-        UnitQuaternion::from_rotation_matrix(&Rotation3::from_scaled_axis(Vector3::new(rx, ry, rz))),
+        UnitQuaternion::from_rotation_matrix(&Rotation3::from_scaled_axis(Vector3::new(
+            rx, ry, rz,
+        ))),
     )
 }
 
@@ -220,7 +236,10 @@ pub fn to_isometry(pose: &Pose) -> Isometry3<f64> {
 pub fn to_pose(iso: &Isometry3<f64>) -> Pose {
     let t = iso.translation.vector;
     let r = iso.rotation.scaled_axis();
-    Pose { position_m: [t.x, t.y, t.z], rotation_vec_rad: [r.x, r.y, r.z] }
+    Pose {
+        position_m: [t.x, t.y, t.z],
+        rotation_vec_rad: [r.x, r.y, r.z],
+    }
 }
 
 /// The angle between two orientations, in radians.
@@ -243,7 +262,12 @@ mod tests {
             qp[k] += h;
             let d = pose_error(&m.forward(&qp), &m.forward(&q)) / h;
             for r in 0..6 {
-                assert!((d[r] - j[(r, k)]).abs() < 1e-5, "J[{r},{k}] {} vs {}", j[(r, k)], d[r]);
+                assert!(
+                    (d[r] - j[(r, k)]).abs() < 1e-5,
+                    "J[{r},{k}] {} vs {}",
+                    j[(r, k)],
+                    d[r]
+                );
             }
         }
     }
@@ -264,9 +288,15 @@ mod tests {
         let m = UrModel::ur3();
         let mut target = m.forward(&[0.0, -1.57, 1.57, -1.57, -1.57, 0.0]);
         target.translation.vector.x = 0.9;
-        assert!(matches!(m.inverse_near(&target, &[0.0; 6]), Err(KinematicsError::OutOfReach { .. })));
+        assert!(matches!(
+            m.inverse_near(&target, &[0.0; 6]),
+            Err(KinematicsError::OutOfReach { .. })
+        ));
         target.translation.vector.x = f64::NAN;
-        assert!(matches!(m.inverse_near(&target, &[0.0; 6]), Err(KinematicsError::NonFinite(_))));
+        assert!(matches!(
+            m.inverse_near(&target, &[0.0; 6]),
+            Err(KinematicsError::NonFinite(_))
+        ));
     }
 
     #[test]

@@ -21,5 +21,5 @@ pub mod status;
 
 pub use bridge::{JointMotion, MoveHandle, MoveProgress, UrArm, UrConfig};
 pub use error::UrError;
-pub use grid::{GridError, RegionToGrid, REGIONS};
-pub use python::{Venv, PYTHON_ENV, VENV_ENV};
+pub use grid::{GridError, REGIONS, RegionToGrid};
+pub use python::{PYTHON_ENV, VENV_ENV, Venv};

@@ -71,7 +71,9 @@ impl Venv {
         }
         // site.addsitedir also runs the .pth files, as the venv's own interpreter would.
         py.import("site")
-            .and_then(|site_mod| site_mod.call_method1("addsitedir", (site.to_string_lossy().as_ref(),)))
+            .and_then(|site_mod| {
+                site_mod.call_method1("addsitedir", (site.to_string_lossy().as_ref(),))
+            })
             .map_err(|e| UrError::Python(e.to_string()))?;
         done.insert(self.root.clone());
         Ok(())

@@ -99,7 +99,9 @@ impl ArmStatus {
     /// Whether any emergency stop is active.
     pub fn is_emergency_stopped(&self) -> bool {
         self.safety_status_bits
-            & (SAFETY_EMERGENCY_STOPPED | SAFETY_ROBOT_EMERGENCY_STOPPED | SAFETY_SYSTEM_EMERGENCY_STOPPED)
+            & (SAFETY_EMERGENCY_STOPPED
+                | SAFETY_ROBOT_EMERGENCY_STOPPED
+                | SAFETY_SYSTEM_EMERGENCY_STOPPED)
             != 0
     }
 

@@ -37,8 +37,14 @@ mod cmd {
 /// A path being followed: joint-space (moveJ) or a straight tool line (moveL).
 #[derive(Debug, Clone, Copy)]
 enum PathKind {
-    Joint { from: Joints, to: Joints },
-    Linear { from: Isometry3<f64>, to: Isometry3<f64> },
+    Joint {
+        from: Joints,
+        to: Joints,
+    },
+    Linear {
+        from: Isometry3<f64>,
+        to: Isometry3<f64>,
+    },
 }
 
 /// What the arm is doing.
@@ -144,7 +150,10 @@ impl Controller {
     /// `robot_status_bits`: power on, program running.
     pub(crate) fn robot_status_bits(&self) -> u32 {
         let mut bits = 0;
-        if matches!(self.robot_mode, robot_mode::IDLE | robot_mode::RUNNING | robot_mode::POWER_ON) {
+        if matches!(
+            self.robot_mode,
+            robot_mode::IDLE | robot_mode::RUNNING | robot_mode::POWER_ON
+        ) {
             bits |= status::STATUS_POWER_ON;
         }
         if self.runtime_state == runtime_state::PLAYING {
@@ -159,7 +168,14 @@ impl Controller {
 
     pub(crate) fn tcp_vector(&self) -> [f64; 6] {
         let p = kinematics::to_pose(&self.tcp());
-        [p.position_m[0], p.position_m[1], p.position_m[2], p.rotation_vec_rad[0], p.rotation_vec_rad[1], p.rotation_vec_rad[2]]
+        [
+            p.position_m[0],
+            p.position_m[1],
+            p.position_m[2],
+            p.rotation_vec_rad[0],
+            p.rotation_vec_rad[1],
+            p.rotation_vec_rad[2],
+        ]
     }
 
     pub(crate) fn tcp_speed(&self) -> [f64; 6] {
@@ -224,7 +240,11 @@ impl Controller {
     }
 
     pub(crate) fn program_name(&self) -> &'static str {
-        if self.program.is_some() { "rtde_control" } else { "<unnamed>" }
+        if self.program.is_some() {
+            "rtde_control"
+        } else {
+            "<unnamed>"
+        }
     }
 
     // ---- script intake --------------------------------------------------------------------
@@ -233,7 +253,10 @@ impl Controller {
     /// function and markers; anything else is logged and not run.
     pub(crate) fn receive_script(&mut self, text: &str) {
         let Some(reg_offset) = recognise_rtde_control(text) else {
-            self.textmsg(format!("script not run: not ur_rtde's control script ({} bytes)", text.len()));
+            self.textmsg(format!(
+                "script not run: not ur_rtde's control script ({} bytes)",
+                text.len()
+            ));
             return;
         };
         if self.robot_mode != robot_mode::RUNNING || self.is_protective_stopped() {
@@ -247,7 +270,10 @@ impl Controller {
         // A new program replaces the running one: its threads die, the arm stops.
         self.waiters.clear();
         self.halt();
-        let mut s = Script { reg_offset, ..Script::default() };
+        let mut s = Script {
+            reg_offset,
+            ..Script::default()
+        };
         self.runtime_state = runtime_state::PLAYING;
         self.textmsg("RTDE Control Script Loaded");
         // reset_async_progress(); signal_ready()
@@ -285,7 +311,9 @@ impl Controller {
         if self.runtime_state != runtime_state::PLAYING {
             return;
         }
-        let Some(mut s) = self.program.take() else { return };
+        let Some(mut s) = self.program.take() else {
+            return;
+        };
         let off = s.reg_offset;
         // A synchronous command blocks the main loop until the arm is at rest.
         if !self.waiters.contains(&Waiter::Blocking) {
@@ -305,7 +333,10 @@ impl Controller {
             self.program = Some(s);
         } else {
             // Keep the script so that `play` can restart it.
-            self.program = Some(Script { reg_offset: s.reg_offset, ..Script::default() });
+            self.program = Some(Script {
+                reg_offset: s.reg_offset,
+                ..Script::default()
+            });
         }
     }
 
@@ -326,17 +357,27 @@ impl Controller {
         let off = s.reg_offset;
         let done_now = match c {
             cmd::MOVEJ | cmd::MOVEJ_IK | cmd::MOVEL | cmd::MOVEL_FK => {
-                let (v, a, asynchronous) = (self.arg(s, 6), self.arg(s, 7), self.int_arg(s, 1) == 1);
+                let (v, a, asynchronous) =
+                    (self.arg(s, 6), self.arg(s, 7), self.int_arg(s, 1) == 1);
                 let target = self.args6(s);
                 self.stop_async_move(s);
                 let kind = match c {
-                    cmd::MOVEJ => Ok(PathKind::Joint { from: self.q, to: target }),
+                    cmd::MOVEJ => Ok(PathKind::Joint {
+                        from: self.q,
+                        to: target,
+                    }),
                     cmd::MOVEJ_IK => self
                         .model
                         .inverse_near(&kinematics::to_isometry(&pose6(&target)), &self.q)
                         .map(|to| PathKind::Joint { from: self.q, to }),
-                    cmd::MOVEL => Ok(PathKind::Linear { from: self.tcp(), to: kinematics::to_isometry(&pose6(&target)) }),
-                    _ => Ok(PathKind::Linear { from: self.tcp(), to: self.model.forward(&target) }),
+                    cmd::MOVEL => Ok(PathKind::Linear {
+                        from: self.tcp(),
+                        to: kinematics::to_isometry(&pose6(&target)),
+                    }),
+                    _ => Ok(PathKind::Linear {
+                        from: self.tcp(),
+                        to: self.model.forward(&target),
+                    }),
                 };
                 match kind {
                     Ok(kind) => {
@@ -362,10 +403,18 @@ impl Controller {
                 let (target, accel) = (self.args6(s), self.arg(s, 6));
                 let joint = c == cmd::SPEEDJ;
                 let current = match self.motion {
-                    Motion::Speed { current, joint: j, .. } if j == joint => current,
+                    Motion::Speed {
+                        current, joint: j, ..
+                    } if j == joint => current,
                     _ => [0.0; 6],
                 };
-                self.motion = Motion::Speed { joint, target, current, accel, stopping: false };
+                self.motion = Motion::Speed {
+                    joint,
+                    target,
+                    current,
+                    accel,
+                    stopping: false,
+                };
                 true
             }
             cmd::SPEED_STOP | cmd::STOPL | cmd::STOPJ => {
@@ -421,22 +470,43 @@ impl Controller {
 
     fn start_path(&mut self, kind: PathKind, v: f64, a: f64) {
         let length = match kind {
-            PathKind::Joint { from, to } => from.iter().zip(&to).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max),
+            PathKind::Joint { from, to } => from
+                .iter()
+                .zip(&to)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f64::max),
             PathKind::Linear { from, to } => {
                 let d = (to.translation.vector - from.translation.vector).norm();
                 // A pure reorientation runs its angle at v rad/s.
-                if d > 1e-9 { d } else { kinematics::rotation_distance_rad(&from, &to) }
+                if d > 1e-9 {
+                    d
+                } else {
+                    kinematics::rotation_distance_rad(&from, &to)
+                }
             }
         };
         let profile = Trapezoid::new(length, v.abs(), a.abs());
-        self.motion = Motion::Path { kind, profile, length, t: 0.0, s: 0.0, v: 0.0, stopping: None };
+        self.motion = Motion::Path {
+            kind,
+            profile,
+            length,
+            t: 0.0,
+            s: 0.0,
+            v: 0.0,
+            stopping: None,
+        };
     }
 
     fn begin_stop(&mut self, decel: f64) {
         let decel = decel.abs().max(1e-6);
         match &mut self.motion {
             Motion::Path { stopping, .. } => *stopping = Some(decel),
-            Motion::Speed { stopping, accel, target, .. } => {
+            Motion::Speed {
+                stopping,
+                accel,
+                target,
+                ..
+            } => {
                 *stopping = true;
                 *accel = decel;
                 *target = [0.0; 6];
@@ -455,7 +525,8 @@ impl Controller {
     pub(crate) fn protective_stop(&mut self, why: &str) {
         self.textmsg(format!("protective stop: {why}"));
         self.safety_mode = safety_mode::PROTECTIVE_STOP;
-        self.safety_status_bits = status::SAFETY_PROTECTIVE_STOPPED | status::SAFETY_STOPPED_DUE_TO_SAFETY;
+        self.safety_status_bits =
+            status::SAFETY_PROTECTIVE_STOPPED | status::SAFETY_STOPPED_DUE_TO_SAFETY;
         if self.runtime_state == runtime_state::PLAYING {
             self.runtime_state = runtime_state::PAUSED;
         }
@@ -468,7 +539,9 @@ impl Controller {
         if self.waiters.is_empty() || self.runtime_state != runtime_state::PLAYING {
             return;
         }
-        let Some(mut s) = self.program.take() else { return };
+        let Some(mut s) = self.program.take() else {
+            return;
+        };
         for w in core::mem::take(&mut self.waiters) {
             match w {
                 Waiter::Blocking => self.out_int[s.reg_offset] = 2,
@@ -483,7 +556,15 @@ impl Controller {
     fn step_motion(&mut self, dt: f64) {
         let next = match &mut self.motion {
             Motion::Idle => return,
-            Motion::Path { kind, profile, length, t, s, v, stopping } => {
+            Motion::Path {
+                kind,
+                profile,
+                length,
+                t,
+                s,
+                v,
+                stopping,
+            } => {
                 let finished;
                 if let Some(decel) = *stopping {
                     let v_new = (*v - decel * dt).max(0.0);
@@ -497,7 +578,9 @@ impl Controller {
                 }
                 let u = if *length > 0.0 { *s / *length } else { 1.0 };
                 let q = match *kind {
-                    PathKind::Joint { from, to } => Ok(core::array::from_fn(|i| from[i] + u * (to[i] - from[i]))),
+                    PathKind::Joint { from, to } => {
+                        Ok(core::array::from_fn(|i| from[i] + u * (to[i] - from[i])))
+                    }
                     PathKind::Linear { from, to } => {
                         let p = Isometry3::from_parts(
                             (from.translation.vector.lerp(&to.translation.vector, u)).into(),
@@ -508,11 +591,22 @@ impl Controller {
                 };
                 (q, finished)
             }
-            Motion::Speed { joint, target, current, accel, stopping } => {
+            Motion::Speed {
+                joint,
+                target,
+                current,
+                accel,
+                stopping,
+            } => {
                 // Ramp the commanded velocity towards its target at `accel`.
-                let diff: Vector6<f64> = Vector6::from_row_slice(target) - Vector6::from_row_slice(current);
+                let diff: Vector6<f64> =
+                    Vector6::from_row_slice(target) - Vector6::from_row_slice(current);
                 let max_step = *accel * dt;
-                let step = if diff.norm() > max_step { diff * (max_step / diff.norm()) } else { diff };
+                let step = if diff.norm() > max_step {
+                    diff * (max_step / diff.norm())
+                } else {
+                    diff
+                };
                 for i in 0..6 {
                     current[i] += step[i];
                 }
@@ -520,17 +614,25 @@ impl Controller {
                 let qd = if *joint {
                     Some(Vector6::from_row_slice(current))
                 } else {
-                    self.model.jacobian(&self.q).lu().solve(&Vector6::from_row_slice(current))
+                    self.model
+                        .jacobian(&self.q)
+                        .lu()
+                        .solve(&Vector6::from_row_slice(current))
                 };
                 let q = match qd {
                     Some(qd) => Ok(core::array::from_fn(|i| self.q[i] + qd[i] * dt)),
-                    None => Err(kinematics::KinematicsError::NoSolution { residual: f64::INFINITY }),
+                    None => Err(kinematics::KinematicsError::NoSolution {
+                        residual: f64::INFINITY,
+                    }),
                 };
                 (q, finished)
             }
         };
         let (q, finished) = next;
-        match q.map_err(|e| e.to_string()).and_then(|q| self.check_step(&q, dt).map(|()| q)) {
+        match q
+            .map_err(|e| e.to_string())
+            .and_then(|q| self.check_step(&q, dt).map(|()| q))
+        {
             Ok(q) => {
                 self.qd = core::array::from_fn(|i| (q[i] - self.q[i]) / dt);
                 self.q = q;
@@ -546,11 +648,16 @@ impl Controller {
     /// Joint position and speed limits, as the safety system checks them every cycle.
     fn check_step(&self, q: &Joints, dt: f64) -> Result<(), String> {
         self.model.check_limits(q).map_err(|e| e.to_string())?;
-        for i in 0..6 {
-            let speed = (q[i] - self.q[i]).abs() / dt;
+        for (i, ((new, old), max)) in q
+            .iter()
+            .zip(&self.q)
+            .zip(&self.model.qd_max_rad_per_s)
+            .enumerate()
+        {
+            let speed = (new - old).abs() / dt;
             // 1 % over the limit trips it (the safety system's own tolerance is not published).
-            if speed > self.model.qd_max_rad_per_s[i] * 1.01 {
-                return Err(format!("joint {i} speed {speed:.3} rad/s over {:.3}", self.model.qd_max_rad_per_s[i]));
+            if speed > max * 1.01 {
+                return Err(format!("joint {i} speed {speed:.3} rad/s over {max:.3}"));
             }
         }
         Ok(())
@@ -559,7 +666,11 @@ impl Controller {
     /// Writes input variable `name` (from an RTDE data package).
     pub(crate) fn set_input(&mut self, name: &str, value: super::wire::Value) {
         use super::wire::Value;
-        let idx = |p: &str| name.strip_prefix(p).and_then(|n| n.parse::<usize>().ok()).filter(|i| *i < 48);
+        let idx = |p: &str| {
+            name.strip_prefix(p)
+                .and_then(|n| n.parse::<usize>().ok())
+                .filter(|i| *i < 48)
+        };
         match value {
             Value::Int32(v) => {
                 if let Some(i) = idx("input_int_register_") {
@@ -579,7 +690,10 @@ impl Controller {
 }
 
 fn pose6(v: &[f64; 6]) -> hand_traits::Pose {
-    hand_traits::Pose { position_m: [v[0], v[1], v[2]], rotation_vec_rad: [v[3], v[4], v[5]] }
+    hand_traits::Pose {
+        position_m: [v[0], v[1], v[2]],
+        rotation_vec_rad: [v[3], v[4], v[5]],
+    }
 }
 
 /// ur_rtde's control script: `def rtde_control():` with its header markers and `process_cmd`;
@@ -606,7 +720,11 @@ mod tests {
     use super::*;
 
     fn running() -> Controller {
-        let mut c = Controller::new(UrModel::ur3(), [0.0, -1.5708, 1.5708, -1.5708, -1.5708, 0.0], robot_mode::RUNNING);
+        let mut c = Controller::new(
+            UrModel::ur3(),
+            crate::RegionToGrid::HOME_Q,
+            robot_mode::RUNNING,
+        );
         c.receive_script("def rtde_control():\n# HEADER_BEGIN\n    global reg_offset_float = # float register offset\n0    global reg_offset_int = # int register offset\n0    global y = 1\n    def signal_ready():\n    def process_cmd(cmd):\nend\n");
         c
     }
@@ -639,8 +757,9 @@ mod tests {
             assert!(ticks < 1000);
         }
         assert_eq!(c.q, target);
-        // 0.3 rad at 1 rad/s, 2 rad/s²: 0.3 + 0.5 s = 0.8 s → 100 cycles of 8 ms (+1 to read it).
-        assert!((99..=102).contains(&ticks), "{ticks}");
+        // 0.3 rad at 2 rad/s² never reaches 1 rad/s (0.3 < 1²/2): a triangle of 2·√(0.3/2)
+        // = 0.775 s, the 97th cycle of 8 ms.
+        assert_eq!(ticks, 97);
         c.in_int[0] = 0;
         c.tick(0.008);
         assert_eq!(c.out_int[0], 1);
@@ -651,7 +770,11 @@ mod tests {
         let mut c = running();
         assert_eq!(c.runtime_state, runtime_state::PLAYING, "{:?}", c.log);
         c.model.q_max_rad[0] = 0.05;
-        c.in_double[..6].copy_from_slice(&[0.2, -1.5708, 1.5708, -1.5708, -1.5708, 0.0]);
+        c.in_double[..6].copy_from_slice(&{
+            let mut q = crate::RegionToGrid::HOME_Q;
+            q[0] = 0.2;
+            q
+        });
         c.in_double[6] = 1.0;
         c.in_double[7] = 2.0;
         c.in_int[0] = cmd::MOVEJ;

@@ -52,19 +52,30 @@ fn answer(shared: &Shared, line: &str) -> Option<String> {
             "Brake releasing".into()
         }
         "unlock protective stop" => {
-            if c.unlock_protective_stop() { "Protective stop releasing".into() } else { "Cannot unlock protective stop: robot is not protective stopped".into() }
+            if c.unlock_protective_stop() {
+                "Protective stop releasing".into()
+            } else {
+                "Cannot unlock protective stop: robot is not protective stopped".into()
+            }
         }
         "close safety popup" => "closing safety popup".into(),
         "close popup" => "closing popup".into(),
         "play" => {
-            if c.play() { "Starting program".into() } else { "Failed to execute: play".into() }
+            if c.play() {
+                "Starting program".into()
+            } else {
+                "Failed to execute: play".into()
+            }
         }
         "stop" => {
             c.stop_program();
             "Stopped".into()
         }
         "pause" => "Failed to execute: pause".into(),
-        "running" => format!("Program running: {}", c.runtime_state == crate::status::runtime_state::PLAYING),
+        "running" => format!(
+            "Program running: {}",
+            c.runtime_state == crate::status::runtime_state::PLAYING
+        ),
         "programState" => {
             let state = match c.runtime_state {
                 crate::status::runtime_state::PLAYING => "PLAYING",

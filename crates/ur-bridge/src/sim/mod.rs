@@ -99,13 +99,19 @@ impl Shared {
 
     pub(crate) fn spawn(&self, f: impl FnOnce() + Send + 'static) {
         let handle = std::thread::spawn(f);
-        self.threads.lock().unwrap_or_else(|e| e.into_inner()).push(handle);
+        self.threads
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(handle);
     }
 
     /// Claims RTDE input variables for connection `id`; false where another connection holds one.
     pub(crate) fn claim_inputs(&self, id: u64, names: &[String]) -> Vec<bool> {
         let mut claims = self.input_claims.lock().unwrap_or_else(|e| e.into_inner());
-        let free: Vec<bool> = names.iter().map(|n| claims.get(n).is_none_or(|owner| *owner == id)).collect();
+        let free: Vec<bool> = names
+            .iter()
+            .map(|n| claims.get(n).is_none_or(|owner| *owner == id))
+            .collect();
         if free.iter().all(|f| *f) {
             for n in names {
                 claims.insert(n.clone(), id);
@@ -115,7 +121,10 @@ impl Shared {
     }
 
     pub(crate) fn release_inputs(&self, id: u64) {
-        self.input_claims.lock().unwrap_or_else(|e| e.into_inner()).retain(|_, owner| *owner != id);
+        self.input_claims
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .retain(|_, owner| *owner != id);
     }
 }
 
@@ -127,7 +136,9 @@ pub struct UrSim {
 
 impl core::fmt::Debug for UrSim {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("UrSim").field("addrs", &self.addrs).finish_non_exhaustive()
+        f.debug_struct("UrSim")
+            .field("addrs", &self.addrs)
+            .finish_non_exhaustive()
     }
 }
 
@@ -136,9 +147,12 @@ type Handler = fn(&Arc<Shared>, TcpStream, u64) -> std::io::Result<()>;
 impl UrSim {
     /// Binds the three ports and starts the control loop.
     pub fn start(config: SimConfig) -> std::io::Result<Self> {
-        let controller = Controller::new(config.model.clone(), config.initial_q, config.initial_mode);
+        let controller =
+            Controller::new(config.model.clone(), config.initial_q, config.initial_mode);
         let ports: [(u16, Handler); 3] = [
-            (config.dashboard_port, |s, stream, _| dashboard::serve(s, stream)),
+            (config.dashboard_port, |s, stream, _| {
+                dashboard::serve(s, stream)
+            }),
             (config.script_port, |s, stream, _| serve_script(s, stream)),
             (config.rtde_port, rtde::serve),
         ];
@@ -190,14 +204,26 @@ impl UrSim {
         if self.shared.stop.swap(true, Ordering::SeqCst) {
             return;
         }
-        for s in self.shared.streams.lock().unwrap_or_else(|e| e.into_inner()).drain(..) {
+        for s in self
+            .shared
+            .streams
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .drain(..)
+        {
             let _ = s.shutdown(Shutdown::Both);
         }
         // Wake the blocking accepts so their threads see the stop flag.
         for a in &self.addrs {
             let _ = TcpStream::connect_timeout(a, Duration::from_millis(200));
         }
-        let threads: Vec<_> = self.shared.threads.lock().unwrap_or_else(|e| e.into_inner()).drain(..).collect();
+        let threads: Vec<_> = self
+            .shared
+            .threads
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .drain(..)
+            .collect();
         for t in threads {
             let _ = t.join();
         }
@@ -216,8 +242,14 @@ fn accept_loop(shared: &Arc<Shared>, listener: &TcpListener, handler: Handler) {
             break;
         }
         let Ok(stream) = stream else { continue };
-        let Ok(clone) = stream.try_clone() else { continue };
-        shared.streams.lock().unwrap_or_else(|e| e.into_inner()).push(clone);
+        let Ok(clone) = stream.try_clone() else {
+            continue;
+        };
+        shared
+            .streams
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(clone);
         let id = shared.next_id.fetch_add(1, Ordering::SeqCst);
         let s = shared.clone();
         // A client's I/O error ends its own connection only.

@@ -20,8 +20,18 @@ impl Trapezoid {
         let v_peak = v.min((length * a).sqrt());
         let t_acc = if a > 0.0 { v_peak / a } else { 0.0 };
         let ramp = v_peak * t_acc; // distance of both ramps together
-        let t_flat = if v_peak > 0.0 { (length - ramp).max(0.0) / v_peak } else { 0.0 };
-        Self { length, v_peak, a, t_acc, t_flat }
+        let t_flat = if v_peak > 0.0 {
+            (length - ramp).max(0.0) / v_peak
+        } else {
+            0.0
+        };
+        Self {
+            length,
+            v_peak,
+            a,
+            t_acc,
+            t_flat,
+        }
     }
 
     /// Total duration, s.

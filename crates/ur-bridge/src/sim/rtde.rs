@@ -8,9 +8,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+use super::Shared;
 use super::variables::{input_type, output_type, output_value};
 use super::wire::{self, Value, VarType};
-use super::Shared;
 
 /// What the client asked for on this connection.
 struct Session {
@@ -21,7 +21,12 @@ struct Session {
 }
 
 fn parse_names(bytes: &[u8]) -> Vec<String> {
-    String::from_utf8_lossy(bytes).split(',').map(str::trim).filter(|s| !s.is_empty()).map(String::from).collect()
+    String::from_utf8_lossy(bytes)
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(String::from)
+        .collect()
 }
 
 fn send(out: &Mutex<TcpStream>, kind: u8, payload: &[u8]) -> std::io::Result<()> {
@@ -34,7 +39,12 @@ pub(crate) fn serve(shared: &Arc<Shared>, stream: TcpStream, id: u64) -> std::io
     stream.set_nodelay(true)?;
     let out = Arc::new(Mutex::new(stream.try_clone()?));
     let mut reader = std::io::BufReader::new(stream);
-    let mut session = Session { id, output: None, inputs: Vec::new(), streaming: None };
+    let mut session = Session {
+        id,
+        output: None,
+        inputs: Vec::new(),
+        streaming: None,
+    };
     let result = (|| -> std::io::Result<()> {
         while let Some((kind, payload)) = wire::read_package(&mut reader)? {
             if shared.stopped() {
@@ -51,10 +61,19 @@ pub(crate) fn serve(shared: &Arc<Shared>, stream: TcpStream, id: u64) -> std::io
     result
 }
 
-fn handle(shared: &Arc<Shared>, out: &Arc<Mutex<TcpStream>>, session: &mut Session, kind: u8, payload: &[u8]) -> std::io::Result<()> {
+fn handle(
+    shared: &Arc<Shared>,
+    out: &Arc<Mutex<TcpStream>>,
+    session: &mut Session,
+    kind: u8,
+    payload: &[u8],
+) -> std::io::Result<()> {
     match kind {
         wire::REQUEST_PROTOCOL_VERSION => {
-            let version = payload.get(..2).map(|b| u16::from_be_bytes([b[0], b[1]])).unwrap_or(0);
+            let version = payload
+                .get(..2)
+                .map(|b| u16::from_be_bytes([b[0], b[1]]))
+                .unwrap_or(0);
             send(out, kind, &[u8::from(version == 1 || version == 2)])
         }
         wire::GET_URCONTROL_VERSION => {
@@ -73,12 +92,18 @@ fn handle(shared: &Arc<Shared>, out: &Arc<Mutex<TcpStream>>, session: &mut Sessi
             let names = parse_names(&payload[8..]);
             let types: Vec<Option<VarType>> = names.iter().map(|n| output_type(n)).collect();
             let ok = types.iter().all(Option::is_some) && freq.is_finite() && freq > 0.0;
-            let listed: Vec<&str> = types.iter().map(|t| t.map_or("NOT_FOUND", VarType::name)).collect();
+            let listed: Vec<&str> = types
+                .iter()
+                .map(|t| t.map_or("NOT_FOUND", VarType::name))
+                .collect();
             let mut reply = vec![u8::from(ok)];
             reply.extend_from_slice(listed.join(",").as_bytes());
             if ok {
                 let freq = freq.min(shared.config.max_frequency_hz);
-                session.output = Some((names.into_iter().zip(types.into_iter().flatten()).collect(), freq));
+                session.output = Some((
+                    names.into_iter().zip(types.into_iter().flatten()).collect(),
+                    freq,
+                ));
             }
             send(out, kind, &reply)
         }
@@ -122,7 +147,9 @@ fn handle(shared: &Arc<Shared>, out: &Arc<Mutex<TcpStream>>, session: &mut Sessi
                 let flag = Arc::new(AtomicBool::new(true));
                 session.streaming = Some(flag.clone());
                 let (shared, out) = (shared.clone(), out.clone());
-                shared.clone().spawn(move || stream_outputs(&shared, &out, &vars, freq, &flag));
+                shared
+                    .clone()
+                    .spawn(move || stream_outputs(&shared, &out, &vars, freq, &flag));
             }
             send(out, kind, &[1])
         }
@@ -133,13 +160,24 @@ fn handle(shared: &Arc<Shared>, out: &Arc<Mutex<TcpStream>>, session: &mut Sessi
             send(out, kind, &[1])
         }
         wire::DATA_PACKAGE => {
-            let Some((&recipe_id, mut rest)) = payload.split_first() else { return Ok(()) };
-            let Some(recipe) = usize::from(recipe_id).checked_sub(1).and_then(|i| session.inputs.get(i)) else {
+            let Some((&recipe_id, mut rest)) = payload.split_first() else {
+                return Ok(());
+            };
+            let Some(recipe) = usize::from(recipe_id)
+                .checked_sub(1)
+                .and_then(|i| session.inputs.get(i))
+            else {
                 return text(out, &format!("unknown input recipe {recipe_id}"));
             };
             let need: usize = recipe.iter().map(|(_, t)| t.size()).sum();
             if rest.len() < need {
-                return text(out, &format!("input package for recipe {recipe_id}: {} bytes, need {need}", rest.len()));
+                return text(
+                    out,
+                    &format!(
+                        "input package for recipe {recipe_id}: {} bytes, need {need}",
+                        rest.len()
+                    ),
+                );
             }
             let mut c = shared.lock();
             for (name, ty) in recipe {
@@ -167,7 +205,13 @@ fn text(out: &Mutex<TcpStream>, message: &str) -> std::io::Result<()> {
 }
 
 /// Sends the output recipe every `1/freq` s while `flag` holds.
-fn stream_outputs(shared: &Shared, out: &Mutex<TcpStream>, vars: &[(String, VarType)], freq: f64, flag: &AtomicBool) {
+fn stream_outputs(
+    shared: &Shared,
+    out: &Mutex<TcpStream>,
+    vars: &[(String, VarType)],
+    freq: f64,
+    flag: &AtomicBool,
+) {
     let period = Duration::from_secs_f64(1.0 / freq);
     let start = Instant::now();
     let mut n: u32 = 0;

@@ -32,22 +32,60 @@ pub(crate) fn output_type(name: &str) -> Option<VarType> {
         return Some(Bool);
     }
     Some(match name {
-        "timestamp" | "actual_execution_time" | "speed_scaling" | "target_speed_fraction" | "actual_momentum"
-        | "actual_main_voltage" | "actual_robot_voltage" | "actual_robot_current" | "standard_analog_input0"
-        | "standard_analog_input1" | "standard_analog_output0" | "standard_analog_output1" | "io_current"
-        | "tool_analog_input0" | "tool_analog_input1" | "tool_output_current" | "tool_temperature"
-        | "tcp_force_scalar" | "payload" => Double,
-        "target_q" | "target_qd" | "target_qdd" | "target_current" | "target_moment" | "actual_q" | "actual_qd"
-        | "actual_current" | "joint_control_output" | "actual_TCP_pose" | "actual_TCP_speed" | "actual_TCP_force"
-        | "target_TCP_pose" | "target_TCP_speed" | "joint_temperatures" | "actual_joint_voltage"
-        | "ft_raw_wrench" | "payload_inertia" => Vector6d,
+        "timestamp"
+        | "actual_execution_time"
+        | "speed_scaling"
+        | "target_speed_fraction"
+        | "actual_momentum"
+        | "actual_main_voltage"
+        | "actual_robot_voltage"
+        | "actual_robot_current"
+        | "standard_analog_input0"
+        | "standard_analog_input1"
+        | "standard_analog_output0"
+        | "standard_analog_output1"
+        | "io_current"
+        | "tool_analog_input0"
+        | "tool_analog_input1"
+        | "tool_output_current"
+        | "tool_temperature"
+        | "tcp_force_scalar"
+        | "payload" => Double,
+        "target_q"
+        | "target_qd"
+        | "target_qdd"
+        | "target_current"
+        | "target_moment"
+        | "actual_q"
+        | "actual_qd"
+        | "actual_current"
+        | "joint_control_output"
+        | "actual_TCP_pose"
+        | "actual_TCP_speed"
+        | "actual_TCP_force"
+        | "target_TCP_pose"
+        | "target_TCP_speed"
+        | "joint_temperatures"
+        | "actual_joint_voltage"
+        | "ft_raw_wrench"
+        | "payload_inertia" => Vector6d,
         "actual_digital_input_bits" | "actual_digital_output_bits" => Uint64,
         "robot_mode" | "safety_mode" | "safety_status" | "tool_output_voltage" => Int32,
         "joint_mode" => Vector6Int32,
-        "actual_tool_accelerometer" | "elbow_position" | "elbow_velocity" | "payload_cog" => Vector3d,
-        "runtime_state" | "robot_status_bits" | "safety_status_bits" | "analog_io_types" | "tool_mode"
-        | "tool_analog_input_types" | "output_bit_registers0_to_31" | "output_bit_registers32_to_63"
-        | "input_bit_registers0_to_31" | "input_bit_registers32_to_63" | "script_control_line" => Uint32,
+        "actual_tool_accelerometer" | "elbow_position" | "elbow_velocity" | "payload_cog" => {
+            Vector3d
+        }
+        "runtime_state"
+        | "robot_status_bits"
+        | "safety_status_bits"
+        | "analog_io_types"
+        | "tool_mode"
+        | "tool_analog_input_types"
+        | "output_bit_registers0_to_31"
+        | "output_bit_registers32_to_63"
+        | "input_bit_registers0_to_31"
+        | "input_bit_registers32_to_63"
+        | "script_control_line" => Uint32,
         _ => return None,
     })
 }
@@ -65,11 +103,18 @@ pub(crate) fn input_type(name: &str) -> Option<VarType> {
         return Some(Bool);
     }
     Some(match name {
-        "speed_slider_mask" | "input_bit_registers0_to_31" | "input_bit_registers32_to_63" => Uint32,
+        "speed_slider_mask" | "input_bit_registers0_to_31" | "input_bit_registers32_to_63" => {
+            Uint32
+        }
         "speed_slider_fraction" | "standard_analog_output_0" | "standard_analog_output_1" => Double,
-        "standard_digital_output_mask" | "standard_digital_output" | "configurable_digital_output_mask"
-        | "configurable_digital_output" | "tool_digital_output_mask" | "tool_digital_output"
-        | "standard_analog_output_mask" | "standard_analog_output_type" => Uint8,
+        "standard_digital_output_mask"
+        | "standard_digital_output"
+        | "configurable_digital_output_mask"
+        | "configurable_digital_output"
+        | "tool_digital_output_mask"
+        | "tool_digital_output"
+        | "standard_analog_output_mask"
+        | "standard_analog_output_type" => Uint8,
         "external_force_torque" => Vector6d,
         _ => return None,
     })
@@ -124,11 +169,13 @@ pub(crate) fn output_value(c: &Controller, name: &str, ty: VarType) -> Value {
         "runtime_state" => Value::Uint32(c.runtime_state),
         "speed_scaling" | "target_speed_fraction" => Value::Double(c.speed_fraction),
         "elbow_position" => Value::Vector3d(c.elbow_position()),
-        "joint_mode" => Value::Vector6Int32([match c.robot_mode {
-            crate::status::robot_mode::RUNNING => JOINT_RUNNING_MODE,
-            crate::status::robot_mode::IDLE => JOINT_IDLE_MODE,
-            _ => JOINT_POWER_OFF_MODE,
-        }; 6]),
+        "joint_mode" => Value::Vector6Int32(
+            [match c.robot_mode {
+                crate::status::robot_mode::RUNNING => JOINT_RUNNING_MODE,
+                crate::status::robot_mode::IDLE => JOINT_IDLE_MODE,
+                _ => JOINT_POWER_OFF_MODE,
+            }; 6],
+        ),
         _ => quiescent(ty),
     }
 }
@@ -142,11 +189,17 @@ mod tests {
         assert_eq!(output_type("actual_TCP_pose"), Some(VarType::Vector6d));
         assert_eq!(output_type("runtime_state"), Some(VarType::Uint32));
         assert_eq!(output_type("robot_mode"), Some(VarType::Int32));
-        assert_eq!(output_type("actual_digital_input_bits"), Some(VarType::Uint64));
+        assert_eq!(
+            output_type("actual_digital_input_bits"),
+            Some(VarType::Uint64)
+        );
         assert_eq!(output_type("output_int_register_47"), Some(VarType::Int32));
         assert_eq!(output_type("output_int_register_48"), None);
         assert_eq!(output_type("no_such_variable"), None);
-        assert_eq!(input_type("input_double_register_23"), Some(VarType::Double));
+        assert_eq!(
+            input_type("input_double_register_23"),
+            Some(VarType::Double)
+        );
         assert_eq!(input_type("external_force_torque"), Some(VarType::Vector6d));
         assert_eq!(input_type("actual_q"), None);
     }

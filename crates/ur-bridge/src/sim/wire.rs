@@ -87,9 +87,15 @@ impl Value {
             Value::Uint64(v) => out.extend_from_slice(&v.to_be_bytes()),
             Value::Int32(v) => out.extend_from_slice(&v.to_be_bytes()),
             Value::Double(v) => out.extend_from_slice(&v.to_be_bytes()),
-            Value::Vector3d(v) => v.iter().for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
-            Value::Vector6d(v) => v.iter().for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
-            Value::Vector6Int32(v) => v.iter().for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
+            Value::Vector3d(v) => v
+                .iter()
+                .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
+            Value::Vector6d(v) => v
+                .iter()
+                .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
+            Value::Vector6Int32(v) => v
+                .iter()
+                .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
         }
     }
 
@@ -101,7 +107,9 @@ impl Value {
             VarType::Bool => Value::Bool(bytes[0] != 0),
             VarType::Uint8 => Value::Uint8(bytes[0]),
             VarType::Uint32 => Value::Uint32(n(0) as u32),
-            VarType::Uint64 => Value::Uint64(u64::from_be_bytes(bytes[..8].try_into().unwrap_or([0; 8]))),
+            VarType::Uint64 => {
+                Value::Uint64(u64::from_be_bytes(bytes[..8].try_into().unwrap_or([0; 8])))
+            }
             VarType::Int32 => Value::Int32(n(0)),
             VarType::Double => Value::Double(f(0)),
             VarType::Vector3d => Value::Vector3d([f(0), f(1), f(2)]),
@@ -121,7 +129,10 @@ pub(crate) fn read_package(r: &mut impl Read) -> io::Result<Option<(u8, Vec<u8>)
     }
     let size = usize::from(u16::from_be_bytes([header[0], header[1]]));
     if size < 3 {
-        return Err(io::Error::new(io::ErrorKind::InvalidData, format!("package size {size} < header")));
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("package size {size} < header"),
+        ));
     }
     let mut payload = vec![0; size - 3];
     r.read_exact(&mut payload)?;
@@ -154,9 +165,15 @@ mod tests {
             (VarType::Int32, Value::Int32(-7)),
             (VarType::Uint32, Value::Uint32(0xdead_beef)),
             (VarType::Double, Value::Double(-1.25)),
-            (VarType::Vector6d, Value::Vector6d([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])),
+            (
+                VarType::Vector6d,
+                Value::Vector6d([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+            ),
             (VarType::Vector3d, Value::Vector3d([0.5, -0.5, 9.0])),
-            (VarType::Vector6Int32, Value::Vector6Int32([253, 253, 253, 253, 253, -1])),
+            (
+                VarType::Vector6Int32,
+                Value::Vector6Int32([253, 253, 253, 253, 253, -1]),
+            ),
             (VarType::Uint64, Value::Uint64(1 << 40)),
         ];
         for (ty, v) in vals {
