@@ -89,12 +89,18 @@ type Window = (VecDeque<ImuFrame>, u64);
 pub struct TapToMove<'g> {
     grid: &'g RegionToGrid,
     config: TapToMoveConfig,
+    /// The resting pressure of the last wait: the next wait first lets the last press end.
+    rest_pa: Option<f32>,
 }
 
 impl<'g> TapToMove<'g> {
     /// The experiment on `grid`.
     pub fn new(grid: &'g RegionToGrid, config: TapToMoveConfig) -> Self {
-        Self { grid, config }
+        Self {
+            grid,
+            config,
+            rest_pa: None,
+        }
     }
 
     /// One cycle: home, wait for a contact, locate it, move to its grid pose.
@@ -102,7 +108,7 @@ impl<'g> TapToMove<'g> {
     /// `to_input` turns the `frames_before + frames_after` frames around the trigger into the
     /// locator's input (for a CNN: the 4 × 38 acc x / y, gyro x / y window).
     pub fn cycle<S, L, A, F>(
-        &self,
+        &mut self,
         source: &mut S,
         locator: &mut L,
         arm: &mut A,
@@ -152,7 +158,7 @@ impl<'g> TapToMove<'g> {
     /// Reads frames until the pressure rises `threshold_pa` over the resting baseline, then the
     /// rest of the window. Returns the window and the trigger frame's time.
     fn wait_for_contact<S, LE, AE>(
-        &self,
+        &mut self,
         source: &mut S,
     ) -> Result<Window, ExperimentError<S::Error, LE, AE>>
     where
@@ -164,12 +170,22 @@ impl<'g> TapToMove<'g> {
         let mut recent: VecDeque<ImuFrame> =
             VecDeque::with_capacity(c.frames_before + c.frames_after);
         let (mut sum, mut n) = (0.0_f64, 0_usize);
+        // Until the previous press is released (half the threshold above the old rest), no new
+        // baseline: a baseline taken mid-press would hide the next tap.
+        let mut released = self.rest_pa.is_none();
         for _ in 0..c.max_wait_frames {
             let f = source.read_frame().map_err(ExperimentError::Source)?;
             if let Some(p) = f.pressure_pa.filter(|p| p.is_finite()) {
-                if n < c.baseline_samples {
+                if !released {
+                    released = self
+                        .rest_pa
+                        .is_none_or(|rest| p - rest < 0.5 * c.threshold_pa);
+                } else if n < c.baseline_samples {
                     sum += f64::from(p);
                     n += 1;
+                    if n == c.baseline_samples {
+                        self.rest_pa = Some((sum / n as f64) as f32);
+                    }
                 } else if p - (sum / n as f64) as f32 > c.threshold_pa
                     && recent.len() == c.frames_before
                 {
