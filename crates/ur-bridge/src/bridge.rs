@@ -300,27 +300,33 @@ impl UrArm {
         }
     }
 
+    /// Starts `call` (`moveL` or `moveJ_IK`) to a tool pose, asynchronous, and returns at once.
+    fn start_tool_move(
+        &mut self,
+        call: &'static str,
+        target: &Pose,
+        speed: f64,
+        accel: f64,
+    ) -> Result<MoveHandle, UrError> {
+        let v = vec_of(target);
+        Self::check_finite(&v, "target pose")?;
+        let from = self.tool_pose()?;
+        let op_id_before = self.op_id()?;
+        self.command(call, |c| c.call_method1(call, (v, speed, accel, true)))?;
+        Ok(MoveHandle {
+            target: Target::Tool { from, to: *target },
+            op_id_before,
+            started: Instant::now(),
+        })
+    }
+
     /// Starts a straight-line tool move (`moveL`, asynchronous) and returns at once.
     pub fn start_move_linear(
         &mut self,
         target: &Pose,
         motion: &LinearMotion,
     ) -> Result<MoveHandle, UrError> {
-        let v = vec_of(target);
-        Self::check_finite(&v, "moveL target")?;
-        let from = self.tool_pose()?;
-        let op_id_before = self.op_id()?;
-        self.command("moveL", |c| {
-            c.call_method1(
-                "moveL",
-                (v, motion.speed_m_per_s, motion.accel_m_per_s2, true),
-            )
-        })?;
-        Ok(MoveHandle {
-            target: Target::Tool { from, to: *target },
-            op_id_before,
-            started: Instant::now(),
-        })
+        self.start_tool_move("moveL", target, motion.speed_m_per_s, motion.accel_m_per_s2)
     }
 
     /// Starts a joint-space move (`moveJ`, asynchronous) and returns at once.
@@ -437,21 +443,12 @@ impl UrArm {
         target: &Pose,
         motion: &JointMotion,
     ) -> Result<(), UrError> {
-        let v = vec_of(target);
-        Self::check_finite(&v, "moveJ_IK target")?;
-        let from = self.tool_pose()?;
-        let op_id_before = self.op_id()?;
-        self.command("moveJ_IK", |c| {
-            c.call_method1(
-                "moveJ_IK",
-                (v, motion.speed_rad_per_s, motion.accel_rad_per_s2, true),
-            )
-        })?;
-        let h = MoveHandle {
-            target: Target::Tool { from, to: *target },
-            op_id_before,
-            started: Instant::now(),
-        };
+        let h = self.start_tool_move(
+            "moveJ_IK",
+            target,
+            motion.speed_rad_per_s,
+            motion.accel_rad_per_s2,
+        )?;
         self.wait(&h, |_| {})
     }
 

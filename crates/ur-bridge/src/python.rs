@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use pyo3::prelude::*;
+use pyo3::sync::MutexExt;
 
 use crate::UrError;
 
@@ -50,7 +51,9 @@ impl Venv {
     /// and checks that the interpreter's version matches the venv's.
     pub(crate) fn activate(&self, py: Python<'_>) -> Result<(), UrError> {
         static DONE: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
-        let mut done = DONE.lock().unwrap_or_else(|e| e.into_inner());
+        // Wait for the lock detached from the interpreter: the holder runs Python
+        // (`addsitedir`), which may release the GIL and need it back.
+        let mut done = DONE.lock_py_attached(py).unwrap_or_else(|e| e.into_inner());
         let done = done.get_or_insert_with(HashSet::new);
         if done.contains(&self.root) {
             return Ok(());

@@ -9,7 +9,7 @@
 use std::net::Ipv4Addr;
 use std::time::Duration;
 
-use hand_sim::imu_pad::{ImuPad, ImuPadConfig, TapSpec, WINDOW_SAMPLES, WINDOW_SIGNALS};
+use hand_sim::imu_pad::{ImuPad, ImuPadConfig, TapSpec, TapWindow, WINDOW_SAMPLES, WINDOW_SIGNALS};
 use hand_traits::{Contact, ContactLocator, ImuFrame};
 use ur_bridge::experiment::{TapToMove, TapToMoveConfig};
 use ur_bridge::sim::{SimConfig, UrSim};
@@ -41,16 +41,12 @@ impl ContactLocator for Scheduled {
     }
 }
 
+/// The 38 frames around the trigger as hand-sim cuts a training window (trigger = frame 19).
 fn window(frames: &[ImuFrame]) -> Window {
     assert_eq!(frames.len(), WINDOW_SAMPLES);
-    let mut w = [[0.0; WINDOW_SAMPLES]; WINDOW_SIGNALS];
-    for (i, f) in frames.iter().enumerate() {
-        w[0][i] = f.accel_mps2[0];
-        w[1][i] = f.accel_mps2[1];
-        w[2][i] = f.gyro_rps[0];
-        w[3][i] = f.gyro_rps[1];
-    }
-    w
+    TapWindow::extract(frames, frames[WINDOW_SAMPLES / 2].t_us)
+        .expect("38 frames")
+        .signals
 }
 
 #[test]

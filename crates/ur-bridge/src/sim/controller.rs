@@ -382,14 +382,7 @@ impl Controller {
                 match kind {
                     Ok(kind) => {
                         self.start_path(kind, v, a);
-                        if asynchronous {
-                            self.write_async(s, 0);
-                            self.waiters.push(Waiter::MoveThread);
-                            true
-                        } else {
-                            self.waiters.push(Waiter::Blocking);
-                            false
-                        }
+                        self.wait_for_rest(s, asynchronous, Waiter::MoveThread)
                     }
                     Err(e) => {
                         // get_inverse_kin raised: on a UR this is a runtime error that halts the program.
@@ -422,14 +415,7 @@ impl Controller {
                 let asynchronous = c != cmd::SPEED_STOP && self.int_arg(s, 1) == 1;
                 self.stop_async_move(s);
                 self.begin_stop(decel);
-                if asynchronous {
-                    self.write_async(s, 0);
-                    self.waiters.push(Waiter::StopThread);
-                    true
-                } else {
-                    self.waiters.push(Waiter::Blocking);
-                    false
-                }
+                self.wait_for_rest(s, asynchronous, Waiter::StopThread)
             }
             cmd::SET_PAYLOAD => true, // the kinematic model carries no payload
             cmd::PROTECTIVE_STOP => {
@@ -453,6 +439,19 @@ impl Controller {
         if done_now {
             self.out_int[off] = 2;
         }
+    }
+
+    /// Who learns when the arm comes to rest: the script's `thread` (asynchronous: started now,
+    /// the command is done at once) or the main loop (blocking: done at rest). Returns whether
+    /// the command is done now.
+    fn wait_for_rest(&mut self, s: &mut Script, asynchronous: bool, thread: Waiter) -> bool {
+        if asynchronous {
+            self.write_async(s, 0);
+            self.waiters.push(thread);
+        } else {
+            self.waiters.push(Waiter::Blocking);
+        }
+        asynchronous
     }
 
     /// `stop_async_move()`: kills the move thread (reporting it finished); the arm keeps its

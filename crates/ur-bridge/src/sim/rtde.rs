@@ -143,6 +143,9 @@ fn handle(
             let Some((vars, freq)) = session.output.clone() else {
                 return send(out, kind, &[0]);
             };
+            // The reply goes out before the first data package: ur_rtde reads exactly one
+            // package after START and takes it for the reply.
+            send(out, kind, &[1])?;
             if session.streaming.is_none() {
                 let flag = Arc::new(AtomicBool::new(true));
                 session.streaming = Some(flag.clone());
@@ -151,7 +154,7 @@ fn handle(
                     .clone()
                     .spawn(move || stream_outputs(&shared, &out, &vars, freq, &flag));
             }
-            send(out, kind, &[1])
+            Ok(())
         }
         wire::PAUSE => {
             if let Some(flag) = session.streaming.take() {
