@@ -5,8 +5,10 @@
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
 //! - `bench [FILTER] [-- CRITERION ARGS]`: runs the criterion benches and prints a summary table.
 //! - `train contact-mlp`: trains the contact-area MLP, writes its weights, metrics and plot.
+//! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
 
 pub mod bench;
+pub mod demo;
 pub mod fixtures;
 pub mod fuzzy_peers;
 pub mod run;

@@ -1,7 +1,7 @@
 //! `cargo xtask`: the handstack workspace's developer commands (see the `xtask` library docs).
 
 use std::process::ExitCode;
-use xtask::{bench, fixtures, test, train, workspace_root};
+use xtask::{bench, demo, fixtures, test, train, workspace_root};
 
 const USAGE: &str = "usage: cargo xtask <command>
 
@@ -9,7 +9,8 @@ commands:
   test                      set up .venv, then fmt, clippy, every test, docs, fixtures --check
   fixtures [--check]        regenerate the generated fixtures, or check the committed ones
   bench [FILTER] [-- ARGS]  run the criterion benches (names containing FILTER), print a summary
-  train contact-mlp         train the contact-area MLP, write its weights, metrics and plot";
+  train contact-mlp         train the contact-area MLP, write its weights, metrics and plot
+  demo tap-to-move          seed 002 §IV-B on the simulated UR3 via ur_rtde, into docs/arm-tap-to-move.md";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -23,6 +24,7 @@ fn main() -> ExitCode {
         },
         Some("bench") => bench::run(&root, &args[1..]),
         Some("train") => train::run(&root, &args[1..]),
+        Some("demo") => demo::run(&root, &args[1..]),
         Some("help" | "-h" | "--help") => {
             println!("{USAGE}");
             Ok(())
