@@ -5,6 +5,8 @@
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
 //! - `bench [FILTER] [-- CRITERION ARGS]`: runs the criterion benches and prints a summary table.
 //! - `train contact-mlp`: trains the contact-area MLP, writes its weights, metrics and plot.
+//! - `train contact-cnn`: runs the contact CNN's Table I protocol, writes weights, metrics,
+//!   plots and its section of `docs/learning.md`.
 //! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
 
 pub mod bench;
@@ -14,6 +16,7 @@ pub mod fuzzy_peers;
 pub mod run;
 pub mod test;
 pub mod train;
+pub mod train_cnn;
 pub mod venv;
 
 use std::path::{Path, PathBuf};

@@ -10,6 +10,9 @@ commands:
   fixtures [--check]        regenerate the generated fixtures, or check the committed ones
   bench [FILTER] [-- ARGS]  run the criterion benches (names containing FILTER), print a summary
   train contact-mlp         train the contact-area MLP, write its weights, metrics and plot
+  train contact-cnn [--docs-only]
+                            run the contact CNN's Table I protocol, write weights, metrics, plots,
+                            docs (--docs-only: redraw plots and docs from the committed metrics)
   demo tap-to-move          seed 002 §IV-B on the simulated UR3 via ur_rtde, into docs/arm-tap-to-move.md";
 
 fn main() -> ExitCode {

@@ -21,7 +21,11 @@ pub const PLOT: &str = "docs/contact-location/contact-mlp-osr.svg";
 pub fn run(root: &Path, args: &[String]) -> Result<()> {
     match args {
         [model] if model == "contact-mlp" => contact_mlp(root),
-        _ => bail!("usage: cargo xtask train contact-mlp"),
+        [model] if model == "contact-cnn" => crate::train_cnn::run(root, false),
+        [model, flag] if model == "contact-cnn" && flag == "--docs-only" => {
+            crate::train_cnn::run(root, true)
+        }
+        _ => bail!("usage: cargo xtask train contact-mlp | contact-cnn [--docs-only]"),
     }
 }
 

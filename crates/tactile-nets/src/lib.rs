@@ -6,10 +6,16 @@
 //! - [`metrics`]: the committed metrics file and its drift check;
 //! - [`error`]: typed errors (wrong shape, non-finite input or output, bad files);
 //! - [`activations`]: sigmoid / softmax that stay finite for any logit;
+//! - [`frozen`]: the allocation-free inference form of any trained dfdx dense stack;
 //! - [`data::fingertip`]: the simulated fingertip's tap dataset, baselines and arrival times;
 //! - [`pad`]: the 4 × 6 pad, eq. 4 labels and cell sets;
 //! - [`contact_mlp`]: the MLP, its two heads and its [`hand_traits::ContactLocator`];
 //! - [`contact_eval`]: the held-out split, metrics and committed models.
+//! - [`data::imu_pad`]: the simulated ICM-20789 pad's 4 × 38 tap windows (seed 002);
+//! - [`cnn_layers`], [`cnn_frozen`]: im2col convolution and max-pool on stable dfdx, and the
+//!   plain-array inference path;
+//! - [`contact_cnn`]: the contact CNN of seed 002 §IV-A and its [`hand_traits::ContactLocator`];
+//! - [`cnn_eval`]: 30 dB augmentation, 80 / 20 × 10 and 5-fold protocols, committed models.
 //!
 //! ```
 //! use tactile_nets::contact_mlp::{ContactMlp, Head, features};
@@ -39,9 +45,14 @@
 //! ```
 
 pub mod activations;
+pub mod cnn_eval;
+pub mod cnn_frozen;
+pub mod cnn_layers;
+pub mod contact_cnn;
 pub mod contact_eval;
 pub mod contact_mlp;
 pub mod error;
+pub mod frozen;
 pub mod io;
 pub mod metrics;
 pub mod pad;
@@ -50,6 +61,7 @@ pub mod train;
 /// Datasets the models train on.
 pub mod data {
     pub mod fingertip;
+    pub mod imu_pad;
 }
 
 pub use error::NetError;

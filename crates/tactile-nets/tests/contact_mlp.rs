@@ -1,9 +1,11 @@
 //! The contact-area MLP: save → load bit-identical, seeded determinism, typed errors on bad
 //! input, stable activations, and the drift check of the committed metrics.
 
+mod common;
+
+use common::{bits, quick, root};
 use hand_traits::ContactLocator;
 use proptest::prelude::*;
-use std::path::{Path, PathBuf};
 use tactile_nets::NetError;
 use tactile_nets::activations::{log_sigmoid, sigmoid, softmax};
 use tactile_nets::contact_eval::{self, METRICS_FILE, MODEL_DIR, SEED};
@@ -12,28 +14,12 @@ use tactile_nets::data::fingertip::{self, TapRecord};
 use tactile_nets::metrics::MetricsFile;
 use tactile_nets::train::TrainConfig;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
 fn records() -> Vec<TapRecord> {
     fingertip::load(&root()).expect("the committed fingertip dataset parses")
 }
 
 fn tiny(seed: u64) -> TrainConfig {
-    TrainConfig {
-        epochs: 5,
-        batch_size: 16,
-        learning_rate: 3e-3,
-        l2: 0.001,
-        seed,
-        progress: false,
-        label: String::new(),
-    }
-}
-
-fn bits(v: &[f32]) -> Vec<u32> {
-    v.iter().map(|x| x.to_bits()).collect()
+    quick(seed, 5, 16, 3e-3, 0.001)
 }
 
 #[test]

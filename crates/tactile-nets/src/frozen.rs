@@ -1,0 +1,285 @@
+//! The fast inference form of a trained dfdx dense stack: plain fixed-size `f32` arrays, no
+//! tensors, no device, no allocation per call.
+//!
+//! dfdx pays ~10 µs of bookkeeping per forward call (tensor allocation, shape checks, device
+//! dispatch) whatever the model's size; a 3 → 16 → 16 → 1 network needs well under a
+//! microsecond of arithmetic. [`Freeze::freeze`] copies the parameters of any trained stack of
+//! [`Linear`](dfdx::nn::modules::Linear) layers and activations ([`ReLU`], [`Sigmoid`], [`Tanh`]; [`Dropout`] becomes the
+//! identity, as at inference) into the matching frozen layers, nested tuples as in dfdx. The
+//! frozen stack implements [`Layer`] on `[f32; I]` → `[f32; O]`: the widths are checked by the
+//! compiler, and a call only touches the stack and the weights.
+//!
+//! ```
+//! use dfdx::prelude::*;
+//! use tactile_nets::frozen::{Freeze, Layer};
+//!
+//! let dev = Cpu::seed_from_u64(0);
+//! let net = dev.build_module::<((Linear<3, 8>, Sigmoid), (Linear<8, 4>, ReLU), Linear<4, 2>), f32>();
+//! let fast = net.freeze()?;
+//! let x = [0.5f32, -1.0, 2.0];
+//! let (slow, quick) = (net.forward(dev.tensor(x)).array(), fast.forward(x));
+//! assert!(slow.iter().zip(quick).all(|(a, b)| (a - b).abs() < 1e-6));
+//! # Ok::<(), tactile_nets::NetError>(())
+//! ```
+
+use crate::activations::sigmoid;
+use crate::error::{NetError, check_input};
+use dfdx::prelude::{Cpu, Dropout, ReLU, Sigmoid, Tanh};
+
+/// One inference step on a value of type `X` (an `[f32; N]` array for every layer here).
+pub trait Layer<X> {
+    /// What the layer returns.
+    type Output;
+    /// Runs the layer.
+    fn forward(&self, x: X) -> Self::Output;
+}
+
+/// A trained dfdx module that has a frozen inference form.
+pub trait Freeze {
+    /// The frozen form.
+    type Frozen;
+    /// Copies the module's parameters into its frozen form.
+    ///
+    /// Errors: [`NetError::TensorMismatch`] if a parameter tensor does not hold its shape's
+    /// values (cannot happen for a module dfdx built).
+    fn freeze(&self) -> Result<Self::Frozen, NetError>;
+}
+
+/// A dense layer `y = W x + b`, `W` row-major `O × I` as dfdx stores it.
+///
+/// The weights are boxed (a 576 → 320 layer is 720 KiB, too big for a thread's stack); the
+/// box is made once, at freezing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dense<const I: usize, const O: usize> {
+    weight: Box<[[f32; I]; O]>,
+    bias: Box<[f32; O]>,
+}
+
+impl<const I: usize, const O: usize> Dense<I, O> {
+    /// A layer from row-major `weight` (`O × I` values) and `bias` (`O` values).
+    ///
+    /// Errors: [`NetError::TensorMismatch`] when a length is wrong.
+    pub fn new(weight: &[f32], bias: &[f32]) -> Result<Self, NetError> {
+        let mismatch = |name: &str, got: usize, want: &str| NetError::TensorMismatch {
+            name: name.to_owned(),
+            stored: format!("{got} values"),
+            expected: want.to_owned(),
+        };
+        if weight.len() != I * O {
+            return Err(mismatch("weight", weight.len(), &format!("[{O}, {I}]")));
+        }
+        let rows: Vec<[f32; I]> = weight
+            .chunks_exact(I.max(1))
+            .take(O)
+            .map(|r| core::array::from_fn(|i| r[i]))
+            .collect();
+        let weight: Box<[[f32; I]; O]> = rows
+            .into_boxed_slice()
+            .try_into()
+            .map_err(|_| mismatch("weight", weight.len(), &format!("[{O}, {I}]")))?;
+        let bias: Box<[f32; O]> = bias
+            .to_vec()
+            .into_boxed_slice()
+            .try_into()
+            .map_err(|b: Box<[f32]>| mismatch("bias", b.len(), &format!("[{O}]")))?;
+        Ok(Self { weight, bias })
+    }
+}
+
+impl<const I: usize, const O: usize> Layer<[f32; I]> for Dense<I, O> {
+    type Output = [f32; O];
+
+    #[inline]
+    fn forward(&self, x: [f32; I]) -> [f32; O] {
+        let mut y = [0.0f32; O];
+        for ((y, row), b) in y.iter_mut().zip(self.weight.iter()).zip(self.bias.iter()) {
+            let dot: f32 = row.iter().zip(&x).map(|(w, v)| w * v).sum();
+            *y = dot + b;
+        }
+        y
+    }
+}
+
+impl<const I: usize, const O: usize> Freeze for dfdx::nn::modules::Linear<I, O, f32, Cpu> {
+    type Frozen = Dense<I, O>;
+
+    fn freeze(&self) -> Result<Dense<I, O>, NetError> {
+        Dense::new(&self.weight.as_vec(), &self.bias.as_vec())
+    }
+}
+
+/// Declares a frozen element-wise activation and its dfdx counterpart(s).
+macro_rules! activation {
+    ($(#[$doc:meta])* $name:ident, |$v:ident| $f:expr, $($dfdx:ty),+) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+        pub struct $name;
+
+        impl<const N: usize> Layer<[f32; N]> for $name {
+            type Output = [f32; N];
+
+            #[inline]
+            fn forward(&self, mut x: [f32; N]) -> [f32; N] {
+                for $v in x.iter_mut() {
+                    *$v = $f;
+                }
+                x
+            }
+        }
+
+        $(impl Freeze for $dfdx {
+            type Frozen = $name;
+
+            fn freeze(&self) -> Result<$name, NetError> {
+                Ok($name)
+            }
+        })+
+    };
+}
+
+activation!(
+    /// `max(x, 0)` (dfdx [`ReLU`]).
+    Relu, |v| v.max(0.0), ReLU
+);
+activation!(
+    /// The logistic function, overflow-free ([`crate::activations::sigmoid`]; dfdx [`Sigmoid`]).
+    Logistic, |v| sigmoid(*v), Sigmoid
+);
+activation!(
+    /// `tanh(x)` (dfdx [`Tanh`]).
+    HyperbolicTangent, |v| v.tanh(), Tanh
+);
+activation!(
+    /// The identity: dfdx [`Dropout`] at inference.
+    Identity, |v| *v, Dropout
+);
+
+/// Freezing and chaining for tuples of layers (dfdx's sequential containers): each element
+/// after the first is named with the one before it, whose output it reads.
+macro_rules! tuple {
+    ($first:ident . $fi:tt $(, $t:ident . $i:tt : $prev:ident)* ; $last:ident) => {
+        impl<$first: Freeze $(, $t: Freeze)*> Freeze for ($first, $($t,)*) {
+            type Frozen = ($first::Frozen, $($t::Frozen,)*);
+
+            fn freeze(&self) -> Result<Self::Frozen, NetError> {
+                Ok((self.$fi.freeze()?, $(self.$i.freeze()?,)*))
+            }
+        }
+
+        impl<X, $first $(, $t)*> Layer<X> for ($first, $($t,)*)
+        where
+            $first: Layer<X>,
+            $($t: Layer<$prev::Output>,)*
+        {
+            type Output = $last::Output;
+
+            #[inline]
+            fn forward(&self, x: X) -> Self::Output {
+                let x = self.$fi.forward(x);
+                $(let x = self.$i.forward(x);)*
+                x
+            }
+        }
+    };
+}
+
+tuple!(A.0; A);
+tuple!(A.0, B.1: A; B);
+tuple!(A.0, B.1: A, C.2: B; C);
+tuple!(A.0, B.1: A, C.2: B, D.3: C; D);
+tuple!(A.0, B.1: A, C.2: B, D.3: C, E.4: D; E);
+tuple!(A.0, B.1: A, C.2: B, D.3: C, E.4: D, F.5: E; F);
+
+/// `input` as an array of `N` values, checked like every model input: [`NetError::Shape`]
+/// unless it has `N` values, [`NetError::NonFinite`] for a NaN or infinite value.
+pub fn input<const N: usize>(input: &[f32]) -> Result<[f32; N], NetError> {
+    check_input(input, N)?;
+    Ok(core::array::from_fn(|i| input[i]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dfdx::prelude::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Largest `|dfdx − frozen|` over `n` seeded inputs in `-span..span`.
+    fn max_gap<M, const I: usize, const O: usize>(net: &M, n: usize, span: f32) -> f32
+    where
+        M: Module<Tensor<Rank1<I>, f32, Cpu>, Output = Tensor<Rank1<O>, f32, Cpu>> + Freeze,
+        M::Frozen: Layer<[f32; I], Output = [f32; O]>,
+        M::Error: core::fmt::Debug,
+    {
+        let dev = Cpu::default();
+        let fast = net.freeze().expect("a built module freezes");
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut gap = 0.0f32;
+        for _ in 0..n {
+            let x: [f32; I] = core::array::from_fn(|_| rng.random_range(-span..span));
+            let slow = net.forward(dev.tensor(x)).array();
+            let quick = fast.forward(x);
+            for (a, b) in slow.iter().zip(quick) {
+                gap = gap.max((a - b).abs());
+            }
+        }
+        gap
+    }
+
+    #[test]
+    fn frozen_stacks_agree_with_dfdx() {
+        let dev = Cpu::seed_from_u64(5);
+        let a = dev.build_module::<(
+            (Linear<3, 32>, Sigmoid),
+            (Linear<32, 32>, ReLU),
+            (Linear<32, 32>, Sigmoid),
+            (Linear<32, 1>, Sigmoid),
+        ), f32>();
+        assert!(max_gap(&a, 200, 3.0) <= 1e-5);
+        let mut b = dev.build_module::<(
+            (Linear<9, 64>, ReLU, Dropout),
+            (Linear<64, 32>, ReLU, Dropout),
+            Linear<32, 24>,
+        ), f32>();
+        b.0.2.p = 0.3;
+        assert!(max_gap(&b, 200, 3.0) <= 1e-5);
+        let c = dev.build_module::<(Linear<40, 320>, Tanh, Linear<320, 9>), f32>();
+        assert!(max_gap(&c, 50, 1.0) <= 1e-5);
+        // The check can fail: a frozen copy of another network does not agree.
+        let other =
+            Cpu::seed_from_u64(6).build_module::<(Linear<40, 320>, Tanh, Linear<320, 9>), f32>();
+        let (x, fast) = ([0.5f32; 40], other.freeze().expect("freezes"));
+        let gap = (c.forward(dev.tensor(x)).array()[0] - fast.forward(x)[0]).abs();
+        assert!(gap > 1e-3, "gap {gap}");
+    }
+
+    #[test]
+    fn activations_and_checks() -> Result<(), NetError> {
+        let x = [-2.0f32, 0.0, 3.0, f32::MAX, -f32::MAX];
+        assert_eq!(Relu.forward(x), [0.0, 0.0, 3.0, f32::MAX, 0.0]);
+        assert_eq!(Identity.forward(x), x);
+        let s = Logistic.forward(x);
+        assert!(s.iter().all(|v| (0.0..=1.0).contains(v)) && s[1] == 0.5);
+        assert!(HyperbolicTangent.forward(x).iter().all(|v| v.abs() <= 1.0));
+        assert!(matches!(
+            Dense::<2, 2>::new(&[1.0; 3], &[0.0; 2]),
+            Err(NetError::TensorMismatch { .. })
+        ));
+        assert!(Dense::<2, 2>::new(&[1.0; 4], &[0.0; 3]).is_err());
+        let d = Dense::<2, 2>::new(&[1.0, 2.0, 3.0, 4.0], &[0.5, -0.5])?;
+        assert_eq!(d.forward([1.0, 1.0]), [3.5, 6.5]);
+        assert_eq!(input::<2>(&[1.0, 2.0])?, [1.0, 2.0]);
+        assert!(matches!(
+            input::<2>(&[1.0]),
+            Err(NetError::Shape {
+                expected: 2,
+                got: 1
+            })
+        ));
+        assert!(matches!(
+            input::<2>(&[1.0, f32::NAN]),
+            Err(NetError::NonFinite { index: 1 })
+        ));
+        Ok(())
+    }
+}
