@@ -3,6 +3,7 @@
 //! instant goes to a [`ContactLocator`]; the region it names picks a grid pose; the arm moves
 //! there in a straight line. Any fault stops the arm (`Arm::stop`) before it is returned.
 
+use std::borrow::Borrow;
 use std::collections::VecDeque;
 use std::time::Instant;
 
@@ -106,8 +107,9 @@ impl<'g> TapToMove<'g> {
     /// One cycle: home, wait for a contact, locate it, move to its grid pose.
     ///
     /// `to_input` turns the `frames_before + frames_after` frames around the trigger into the
-    /// locator's input (for a CNN: the 4 × 38 acc x / y, gyro x / y window).
-    pub fn cycle<S, L, A, F>(
+    /// locator's input, owned or as anything that borrows as it (for a CNN taking `[f32]`: the
+    /// 4 × 38 acc x / y, gyro x / y window as a `[f32; 152]`).
+    pub fn cycle<S, L, A, F, B>(
         &mut self,
         source: &mut S,
         locator: &mut L,
@@ -117,9 +119,9 @@ impl<'g> TapToMove<'g> {
     where
         S: TactileSource<Frame = ImuFrame>,
         L: ContactLocator,
-        L::Input: Sized,
         A: Arm,
-        F: FnMut(&[ImuFrame]) -> L::Input,
+        F: FnMut(&[ImuFrame]) -> B,
+        B: Borrow<L::Input>,
     {
         // Any fault: stop the arm (safe state), then report the fault.
         fn halt<A: Arm, E>(arm: &mut A, e: E) -> E {
@@ -135,7 +137,7 @@ impl<'g> TapToMove<'g> {
         let input = to_input(window.make_contiguous());
         let t0 = Instant::now();
         let contact = locator
-            .locate(&input)
+            .locate(input.borrow())
             .map_err(|e| halt(arm, ExperimentError::Locator(e)))?;
         let locate_s = t0.elapsed().as_secs_f64();
         let target = *self
