@@ -9,6 +9,7 @@ mod run;
 use hand_sim::imu_pad::TapSpec;
 use hand_traits::{Contact, ContactLocator};
 use run::Window;
+use ur_bridge::experiment::TapToMoveConfig;
 
 /// Answers the scheduled regions in order: a stand-in for the CNN that measures no recognition.
 struct Scheduled {
@@ -52,7 +53,14 @@ impl ContactLocator for Scheduled {
 fn every_region_moves_the_arm_to_its_grid_pose() {
     let taps = run::schedule(&run::ROUNDS[..1]);
     let mut locator = Scheduled::new(&taps).unwrap();
-    let rows = run::run(21, taps, &mut locator, run::window).unwrap_or_else(|e| panic!("{e}"));
+    let rows = run::run(
+        21,
+        taps,
+        TapToMoveConfig::default(),
+        &mut locator,
+        run::window,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(rows.len(), 9);
     for (k, r) in rows.iter().enumerate() {
         assert_eq!(usize::from(r.region), k, "one tap per region, in order");
@@ -66,5 +74,8 @@ fn every_region_moves_the_arm_to_its_grid_pose() {
         assert!((r.window_s - 18.0 / 30.0).abs() < 1e-3, "{}", r.window_s);
         assert!(r.tcp_error_m < 1e-4, "region {k}: {} m", r.tcp_error_m);
     }
-    println!("{}", run::markdown(&rows, "stand-in (scheduled regions)"));
+    println!(
+        "{}",
+        run::markdown(&rows, "stand-in (scheduled regions)", "trigger-centred")
+    );
 }

@@ -55,6 +55,27 @@ pub(crate) fn cnn_window(frames: &[ImuFrame]) -> [f32; WINDOW_SAMPLES * WINDOW_S
     core::array::from_fn(|i| w[i / WINDOW_SAMPLES][i % WINDOW_SAMPLES] * 1e3)
 }
 
+/// Frames from the trigger to the centre hand-sim's training windows are cut around (the middle
+/// of press + hold + release, `TapTiming::centre_s`), less the ~1 frame the trigger lags the
+/// press: where a window must sit to look like the CNN's training data.
+pub(crate) fn training_centre_frames() -> usize {
+    let c = ImuPadConfig::default();
+    let t = c.timing;
+    let centre_after_press_s = 0.5 * (t.press_s + t.hold_s + t.release_s);
+    ((centre_after_press_s * c.sample_rate_hz).round() as usize).saturating_sub(1)
+}
+
+/// The experiment with its window placed like the training windows: `training_centre_frames`
+/// after the trigger at frame 19 of 38.
+pub(crate) fn training_aligned() -> TapToMoveConfig {
+    let shift = training_centre_frames().min(WINDOW_SAMPLES / 2);
+    TapToMoveConfig {
+        frames_before: WINDOW_SAMPLES / 2 - shift,
+        frames_after: WINDOW_SAMPLES / 2 + shift,
+        ..TapToMoveConfig::default()
+    }
+}
+
 /// One cycle's outcome.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Row {
@@ -82,6 +103,7 @@ pub(crate) struct Row {
 pub(crate) fn run<L, B>(
     octet: u8,
     taps: Vec<TapSpec>,
+    experiment_config: TapToMoveConfig,
     locator: &mut L,
     to_input: impl FnMut(&[ImuFrame]) -> B,
 ) -> Result<Vec<Row>, String>
@@ -104,7 +126,7 @@ where
     config.move_timeout = Duration::from_secs(20);
     let mut arm = UrArm::connect(config).map_err(|e| e.to_string())?;
     let grid = RegionToGrid::ur3_default().map_err(|e| e.to_string())?;
-    let mut experiment = TapToMove::new(&grid, TapToMoveConfig::default());
+    let mut experiment = TapToMove::new(&grid, experiment_config);
 
     let timing = pad_config.timing;
     let mut rows = Vec::with_capacity(pad.taps().len());
@@ -134,13 +156,13 @@ where
 }
 
 /// The rows as a markdown report, with `locator` named in its header.
-pub(crate) fn markdown(rows: &[Row], locator: &str) -> String {
+pub(crate) fn markdown(rows: &[Row], locator: &str, window: &str) -> String {
     let correct = rows.iter().filter(|r| r.located == r.region).count();
     let mut md = format!(
-        "# Tap-to-move run (seed 002 §IV-B)\n\nWritten by `cargo xtask demo tap-to-move`. \
+        "## {window}\n\n\
          hand-sim ICM-20789 pad (seed {PAD_SEED}), {n} taps of {DEPTH_MM} mm ({rounds} per \
          region, rows {ROUNDS:?} for region groups 0 / 1 / 2), pressure trigger 20 Pa, 4 × 38 \
-         window; locator: {locator}; moveL at 0.25 m/s, 1.2 m/s² to the located region's grid \
+         window ({window}); locator: {locator}; moveL at 0.25 m/s, 1.2 m/s² to the located region's grid \
          pose on the simulated UR3 through ur_rtde 1.6.5. Pad times are simulated; locate and \
          move times are wall time on this machine.\n\n\
          **Located correctly: {correct} / {n} = {pct:.1} %** (paper, real time: 93 %, §V / \
