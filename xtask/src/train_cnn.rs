@@ -205,8 +205,29 @@ pub fn section(
     s += "\nTimes: the latest `cargo xtask bench contact_cnn` on this machine (single sample, \
           f32; shared, loaded cores). Target: < 50 µs per inference.\n\n\
           ![Confusion matrix of the committed paper net](learning/contact-cnn-confusion.svg)\n\n";
+    s += &format!("{}\n\n", largest_confusions(m));
     s += WHY;
     s
+}
+
+/// The three largest off-diagonal counts of the committed paper net, as a sentence.
+fn largest_confusions(m: &MetricsFile) -> String {
+    let label = committed_label(Variant::Paper);
+    let mut off: Vec<(f64, usize, usize)> = (0..9)
+        .flat_map(|t| (0..9).map(move |p| (t, p)))
+        .filter(|(t, p)| t != p)
+        .map(|(t, p)| (get(m, &label, &format!("c{t}{p}")), t, p))
+        .collect();
+    off.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let top: Vec<String> = off
+        .iter()
+        .take(3)
+        .map(|(n, t, p)| format!("region {t} read as {p} ({n:.0} windows)"))
+        .collect();
+    format!(
+        "Largest confusions of the committed paper net: {}.",
+        top.join(", ")
+    )
 }
 
 /// Why our figures differ from Table I (the mechanisms; the numbers are in the tables).
@@ -222,10 +243,11 @@ whose (u, v) swap give the same window at every depth. In the committed dataset 
 mm/s², 61 / 4 mrad/s and column 1 row 24 (region 6) −3 / −1, 63 / 3; column 1 row 12 (region \
 3) 207 / −205, 33 / 37 and column 2 row 1 (region 1) 205 / −204, 33 / 33; column 3 row 13 \
 (region 5) −193 / 192 and column 2 row 24 (region 7) −202 / 202. Deeper taps lift the signal \
-over the chip noise but cannot separate these pairs, so accuracy saturates near 85–90 % where \
-the paper reaches 98–99 %. The paper's pad has no such symmetry (its Fig. 5 traces differ per \
-column): this is a calibration limit of the simulator's IMU model, not something to tune a \
-test or the net for.\n\
+over the chip noise but cannot separate these pairs — the confusion matrix above is \
+dominated by them — so accuracy saturates near 85–90 % where the paper reaches 98–99 %. \
+The paper's pad has no such symmetry (its Fig. 5 traces differ per column): this is a \
+calibration limit of the simulator's IMU model, not something to tune a test or the net \
+for.\n\
 - **Training length.** One epoch is the budget; the paper's MATLAB run length is not stated. \
 With 8 epochs (`train_contact_cnn --only paper/samples/kfold/0.2mm --epochs 8`, not \
 committed) the *samples* 5-fold figure is 100.0 % at 0.2 mm and 97.0 % at 1.6 mm — the net \
@@ -262,6 +284,9 @@ pub fn replace_section(path: &Path, section: &str) -> Result<()> {
     std::fs::write(path, out).with_context(|| format!("writing {}", path.display()))?;
     Ok(())
 }
+
+/// A named line of points and its colour.
+type Series = (String, Vec<(f64, f64)>, RGBColor);
 
 fn plot_table1(m: &MetricsFile, table1: &[CnnAccuracyRow], path: &Path) -> Result<()> {
     if let Some(dir) = path.parent() {
@@ -310,25 +335,24 @@ fn plot_table1(m: &MetricsFile, table1: &[CnnAccuracyRow], path: &Path) -> Resul
                 (i as f64, v)
             })
             .collect();
-        let series: Vec<(String, Vec<(f64, f64)>, RGBColor)> =
-            std::iter::once(("Table I".to_owned(), paper, BLACK))
-                .chain(
-                    [
-                        ("paper", "samples", "paper net, samples split", RED),
-                        ("paper", "taps", "paper net, leak-free", BLUE),
-                        ("small", "samples", "small net, samples split", GREEN),
-                    ]
-                    .into_iter()
-                    .map(|(v, g, name, color)| {
-                        let pts = names
-                            .iter()
-                            .enumerate()
-                            .map(|(i, c)| (i as f64, ours(m, v, g, protocol, c).0))
-                            .collect();
-                        (name.to_owned(), pts, color)
-                    }),
-                )
-                .collect();
+        let series: Vec<Series> = std::iter::once(("Table I".to_owned(), paper, BLACK))
+            .chain(
+                [
+                    ("paper", "samples", "paper net, samples split", RED),
+                    ("paper", "taps", "paper net, leak-free", BLUE),
+                    ("small", "samples", "small net, samples split", GREEN),
+                ]
+                .into_iter()
+                .map(|(v, g, name, color)| {
+                    let pts = names
+                        .iter()
+                        .enumerate()
+                        .map(|(i, c)| (i as f64, ours(m, v, g, protocol, c).0))
+                        .collect();
+                    (name.to_owned(), pts, color)
+                }),
+            )
+            .collect();
         for (name, pts, color) in series {
             chart
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))

@@ -15,6 +15,26 @@
 //!
 //! Inference runs through [`crate::cnn_frozen`] (plain arrays, no allocation per call),
 //! checked against the dfdx forward in the tests.
+//!
+//! ```
+//! use hand_traits::ContactLocator;
+//! use tactile_nets::contact_cnn::{ContactCnn, Variant};
+//! use tactile_nets::train::TrainConfig;
+//!
+//! // Two synthetic regions: acc x swings positive (region 0) or negative (region 4).
+//! let window = |s: f32| -> [f32; 152] {
+//!     core::array::from_fn(|i| if i < 38 { s * (i as f32 / 6.0).sin().abs() } else { 1.0 })
+//! };
+//! let windows = [window(100.0), window(-100.0)].repeat(8);
+//! let regions = [0u8, 4].repeat(8);
+//! let config = TrainConfig { epochs: 30, batch_size: 4, learning_rate: 1e-2, l2: 0.0,
+//!                            seed: 1, progress: false, label: String::new() };
+//! let (mut cnn, _) = ContactCnn::train(&windows, &regions, Variant::Small, &config)?;
+//! let contact = cnn.locate(&window(-100.0))?;
+//! assert_eq!((contact.region, contact.regions), (4, 9));
+//! assert!(cnn.locate(&[0.0; 3]).is_err()); // wrong shape: a typed error, not a panic
+//! # Ok::<(), tactile_nets::NetError>(())
+//! ```
 
 use crate::activations::softmax_into;
 use crate::cnn_frozen::FrozenCnn;

@@ -86,6 +86,27 @@ impl<const I: usize, const O: usize> Dense<I, O> {
     }
 }
 
+/// `Σ a_i · b_i` over 8 independent partial sums, which the compiler can vectorise (one running
+/// `f32` sum is a serial chain, ~4 cycles a term: 46 000 terms cost the contact CNN ~60 µs).
+#[inline]
+fn dot(a: &[f32], b: &[f32]) -> f32 {
+    const LANES: usize = 8;
+    let mut part = [0.0f32; LANES];
+    let (ca, cb) = (a.chunks_exact(LANES), b.chunks_exact(LANES));
+    let tail: f32 = ca
+        .remainder()
+        .iter()
+        .zip(cb.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ca.zip(cb) {
+        for k in 0..LANES {
+            part[k] += x[k] * y[k];
+        }
+    }
+    part.iter().sum::<f32>() + tail
+}
+
 impl<const I: usize, const O: usize> Layer<[f32; I]> for Dense<I, O> {
     type Output = [f32; O];
 
@@ -93,8 +114,7 @@ impl<const I: usize, const O: usize> Layer<[f32; I]> for Dense<I, O> {
     fn forward(&self, x: [f32; I]) -> [f32; O] {
         let mut y = [0.0f32; O];
         for ((y, row), b) in y.iter_mut().zip(self.weight.iter()).zip(self.bias.iter()) {
-            let dot: f32 = row.iter().zip(&x).map(|(w, v)| w * v).sum();
-            *y = dot + b;
+            *y = dot(row, &x) + b;
         }
         y
     }
