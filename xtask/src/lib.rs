@@ -11,8 +11,10 @@
 //!   curve and its section of `docs/learning.md`.
 //! - `train softness`: trains the softness classifier (LM and Adam), writes its weights,
 //!   metrics, figures and section 2 of `docs/learning.md`.
+//! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
 
 pub mod bench;
+pub mod demo;
 pub mod docs_section;
 pub mod fixtures;
 pub mod force_dnn;

@@ -1,7 +1,7 @@
 //! `cargo xtask`: the handstack workspace's developer commands (see the `xtask` library docs).
 
 use std::process::ExitCode;
-use xtask::{bench, fixtures, test, train, workspace_root};
+use xtask::{bench, demo, fixtures, test, train, workspace_root};
 
 const USAGE: &str = "usage: cargo xtask <command>
 
@@ -11,12 +11,11 @@ commands:
   bench [FILTER] [-- ARGS]  run the criterion benches (names containing FILTER), print a summary
   train contact-mlp         train the contact-area MLP, write its weights, metrics and plot
   train force-dnn           train the force / weight DNN, write its weights, metrics, curve, docs
-
+  train softness            train the softness classifier (LM, Adam), write weights, metrics, report
   train contact-cnn [--docs-only]
                             run the contact CNN's Table I protocol, write weights, metrics, plots,
                             docs (--docs-only: redraw plots and docs from the committed metrics)
-
-  train softness            train the softness classifier (LM, Adam), write weights, metrics, report";
+  demo tap-to-move          seed 002 §IV-B on the simulated UR3 via ur_rtde, into docs/arm-tap-to-move.md";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -30,6 +29,7 @@ fn main() -> ExitCode {
         },
         Some("bench") => bench::run(&root, &args[1..]),
         Some("train") => train::run(&root, &args[1..]),
+        Some("demo") => demo::run(&root, &args[1..]),
         Some("help" | "-h" | "--help") => {
             println!("{USAGE}");
             Ok(())

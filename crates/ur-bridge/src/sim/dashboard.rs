@@ -1,0 +1,116 @@
+//! The dashboard server (port 29999): one command a line, one answer a line, in PolyScope's
+//! wording (Universal Robots' "Dashboard Server CB-Series" command list).
+
+use std::io::{BufRead, BufReader, Write};
+use std::net::TcpStream;
+
+use super::Shared;
+use crate::status::{robot_mode, safety_mode};
+
+fn mode_name(mode: i32) -> &'static str {
+    match mode {
+        robot_mode::NO_CONTROLLER => "NO_CONTROLLER",
+        robot_mode::DISCONNECTED => "DISCONNECTED",
+        robot_mode::CONFIRM_SAFETY => "CONFIRM_SAFETY",
+        robot_mode::BOOTING => "BOOTING",
+        robot_mode::POWER_OFF => "POWER_OFF",
+        robot_mode::POWER_ON => "POWER_ON",
+        robot_mode::IDLE => "IDLE",
+        robot_mode::BACKDRIVE => "BACKDRIVE",
+        _ => "RUNNING",
+    }
+}
+
+fn safety_name(mode: i32) -> &'static str {
+    match mode {
+        safety_mode::PROTECTIVE_STOP => "PROTECTIVE_STOP",
+        safety_mode::REDUCED => "REDUCED",
+        _ => "NORMAL",
+    }
+}
+
+/// The answer to one command line.
+fn answer(shared: &Shared, line: &str) -> Option<String> {
+    let cmd = line.trim();
+    let mut c = shared.lock();
+    let (major, minor, bugfix, build) = shared.config.controller_version;
+    Some(match cmd {
+        "PolyscopeVersion" => format!("URSoftware {major}.{minor}.{bugfix}.{build} (simulated)"),
+        "robotmode" => format!("Robotmode: {}", mode_name(c.robot_mode)),
+        "safetymode" => format!("Safetymode: {}", safety_name(c.safety_mode)),
+        "safetystatus" => format!("Safetystatus: {}", safety_name(c.safety_mode)),
+        "power on" => {
+            c.power_on();
+            "Powering on".into()
+        }
+        "power off" => {
+            c.power_off();
+            "Powering off".into()
+        }
+        "brake release" => {
+            c.brake_release();
+            "Brake releasing".into()
+        }
+        "unlock protective stop" => {
+            if c.unlock_protective_stop() {
+                "Protective stop releasing".into()
+            } else {
+                "Cannot unlock protective stop: robot is not protective stopped".into()
+            }
+        }
+        "close safety popup" => "closing safety popup".into(),
+        "close popup" => "closing popup".into(),
+        "play" => {
+            if c.play() {
+                "Starting program".into()
+            } else {
+                "Failed to execute: play".into()
+            }
+        }
+        "stop" => {
+            c.stop_program();
+            "Stopped".into()
+        }
+        "pause" => "Failed to execute: pause".into(),
+        "running" => format!(
+            "Program running: {}",
+            c.runtime_state == crate::status::runtime_state::PLAYING
+        ),
+        "programState" => {
+            let state = match c.runtime_state {
+                crate::status::runtime_state::PLAYING => "PLAYING",
+                crate::status::runtime_state::PAUSED => "PAUSED",
+                _ => "STOPPED",
+            };
+            format!("{state} {}", c.program_name())
+        }
+        "get loaded program" => "No program loaded".into(),
+        "is in remote control" => "true".into(),
+        "isProgramSaved" => "true".into(),
+        "get robot model" => "UR3".into(),
+        "get serial number" => "20235500001".into(),
+        "quit" => return None,
+        other if other.starts_with("addToLog ") => "Added log message".into(),
+        other => format!("could not understand: '{other}'"),
+    })
+}
+
+/// Serves one dashboard connection until it closes, `quit` or the simulator stops.
+pub(crate) fn serve(shared: &Shared, stream: TcpStream) -> std::io::Result<()> {
+    let mut out = stream.try_clone()?;
+    out.write_all(b"Connected: Universal Robots Dashboard Server\n")?;
+    for line in BufReader::new(stream).lines() {
+        let line = line?;
+        if shared.stopped() {
+            break;
+        }
+        match answer(shared, &line) {
+            Some(reply) => out.write_all(format!("{reply}\n").as_bytes())?,
+            None => {
+                out.write_all(b"Disconnected\n")?;
+                break;
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,305 @@
+//! A UR controller on loopback that the unmodified ur_rtde client accepts: dashboard server
+//! (29999), RTDE (30004), and a script intake (30003) that recognises ur_rtde's control script
+//! and runs its register protocol on a kinematic UR3.
+//!
+//! ur_rtde's `RTDEControlInterface` connects to the fixed ports 29999 / 30003 / 30004, so
+//! simulators that must run side by side bind different loopback addresses (`127.0.0.2`,
+//! `127.0.0.3`, … all reach the local host on Linux).
+//!
+//! ```no_run
+//! use ur_bridge::sim::{SimConfig, UrSim};
+//! let sim = UrSim::start(SimConfig::default())?; // 127.0.0.1
+//! // … connect ur_rtde (or `UrArm`) to 127.0.0.1 …
+//! sim.kill(); // every socket closes at once, as if the controller died
+//! # Ok::<(), std::io::Error>(())
+//! ```
+
+mod controller;
+mod dashboard;
+mod motion;
+mod rtde;
+mod variables;
+mod wire;
+
+use std::collections::HashMap;
+use std::io::Read;
+use std::net::{Ipv4Addr, Shutdown, SocketAddr, TcpListener, TcpStream};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use crate::kinematics::{Joints, UrModel};
+use crate::status::robot_mode;
+use controller::Controller;
+
+/// How the simulated controller is set up.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimConfig {
+    /// Loopback address to bind (default 127.0.0.1).
+    pub address: Ipv4Addr,
+    /// Dashboard port (29999 on a real controller).
+    pub dashboard_port: u16,
+    /// Script intake port (30003).
+    pub script_port: u16,
+    /// RTDE port (30004).
+    pub rtde_port: u16,
+    /// Arm geometry and the safety system's joint position / speed limits.
+    pub model: UrModel,
+    /// Joint angles at start-up.
+    pub initial_q: Joints,
+    /// Robot mode at start-up (`RUNNING`, or `POWER_OFF` to exercise power-up).
+    pub initial_mode: i32,
+    /// Control cycle (CB3: 8 ms, 125 Hz).
+    pub control_period: Duration,
+    /// Reported controller version (major, minor, bugfix, build).
+    pub controller_version: (u32, u32, u32, u32),
+    /// Highest RTDE output frequency served (CB3: 125 Hz).
+    pub max_frequency_hz: f64,
+}
+
+impl Default for SimConfig {
+    /// A CB3 UR3 (software 3.15.8) on 127.0.0.1 at the real ports, powered, brakes released,
+    /// at the home pose of [`crate::RegionToGrid::HOME_Q`].
+    fn default() -> Self {
+        Self {
+            address: Ipv4Addr::LOCALHOST,
+            dashboard_port: 29999,
+            script_port: 30003,
+            rtde_port: 30004,
+            model: UrModel::ur3(),
+            initial_q: crate::RegionToGrid::HOME_Q,
+            initial_mode: robot_mode::RUNNING,
+            control_period: Duration::from_millis(8),
+            controller_version: (3, 15, 8, 106_339),
+            max_frequency_hz: 125.0,
+        }
+    }
+}
+
+/// State every server thread shares.
+pub(crate) struct Shared {
+    config: SimConfig,
+    controller: Mutex<Controller>,
+    stop: AtomicBool,
+    streams: Mutex<Vec<TcpStream>>,
+    threads: Mutex<Vec<JoinHandle<()>>>,
+    input_claims: Mutex<HashMap<String, u64>>,
+    next_id: AtomicU64,
+}
+
+impl Shared {
+    pub(crate) fn lock(&self) -> MutexGuard<'_, Controller> {
+        self.controller.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    pub(crate) fn stopped(&self) -> bool {
+        self.stop.load(Ordering::SeqCst)
+    }
+
+    pub(crate) fn spawn(&self, f: impl FnOnce() + Send + 'static) {
+        let handle = std::thread::spawn(f);
+        self.threads
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(handle);
+    }
+
+    /// Claims RTDE input variables for connection `id`; false where another connection holds one.
+    pub(crate) fn claim_inputs(&self, id: u64, names: &[String]) -> Vec<bool> {
+        let mut claims = self.input_claims.lock().unwrap_or_else(|e| e.into_inner());
+        let free: Vec<bool> = names
+            .iter()
+            .map(|n| claims.get(n).is_none_or(|owner| *owner == id))
+            .collect();
+        if free.iter().all(|f| *f) {
+            for n in names {
+                claims.insert(n.clone(), id);
+            }
+        }
+        free
+    }
+
+    pub(crate) fn release_inputs(&self, id: u64) {
+        self.input_claims
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .retain(|_, owner| *owner != id);
+    }
+}
+
+/// A running simulated controller; dropping it is [`UrSim::kill`].
+pub struct UrSim {
+    shared: Arc<Shared>,
+    addrs: Vec<SocketAddr>,
+}
+
+impl core::fmt::Debug for UrSim {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("UrSim")
+            .field("addrs", &self.addrs)
+            .finish_non_exhaustive()
+    }
+}
+
+type Handler = fn(&Arc<Shared>, TcpStream, u64) -> std::io::Result<()>;
+
+impl UrSim {
+    /// Binds the three ports and starts the control loop.
+    pub fn start(config: SimConfig) -> std::io::Result<Self> {
+        let controller =
+            Controller::new(config.model.clone(), config.initial_q, config.initial_mode);
+        let ports: [(u16, Handler); 3] = [
+            (config.dashboard_port, |s, stream, _| {
+                dashboard::serve(s, stream)
+            }),
+            (config.script_port, |s, stream, _| serve_script(s, stream)),
+            (config.rtde_port, rtde::serve),
+        ];
+        let listeners = ports
+            .iter()
+            .map(|(port, _)| TcpListener::bind((config.address, *port)))
+            .collect::<std::io::Result<Vec<_>>>()?;
+        let shared = Arc::new(Shared {
+            config,
+            controller: Mutex::new(controller),
+            stop: AtomicBool::new(false),
+            streams: Mutex::new(Vec::new()),
+            threads: Mutex::new(Vec::new()),
+            input_claims: Mutex::new(HashMap::new()),
+            next_id: AtomicU64::new(1),
+        });
+        let mut addrs = Vec::new();
+        for (listener, (_, handler)) in listeners.into_iter().zip(ports) {
+            addrs.push(listener.local_addr()?);
+            let s = shared.clone();
+            shared.spawn(move || accept_loop(&s, &listener, handler));
+        }
+        let s = shared.clone();
+        shared.spawn(move || control_loop(&s));
+        Ok(Self { shared, addrs })
+    }
+
+    /// The bound addresses: dashboard, script, RTDE.
+    pub fn addresses(&self) -> &[SocketAddr] {
+        &self.addrs
+    }
+
+    /// The present joint angles.
+    pub fn joints(&self) -> Joints {
+        self.shared.lock().q
+    }
+
+    /// The script's `textmsg` lines and the safety events, oldest first.
+    pub fn log(&self) -> Vec<String> {
+        self.shared.lock().log.iter().cloned().collect()
+    }
+
+    /// Stops the controller at once: every connection and listener closes, no goodbye.
+    pub fn kill(self) {
+        drop(self);
+    }
+
+    fn shutdown(&self) {
+        if self.shared.stop.swap(true, Ordering::SeqCst) {
+            return;
+        }
+        for s in self
+            .shared
+            .streams
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .drain(..)
+        {
+            let _ = s.shutdown(Shutdown::Both);
+        }
+        // Wake the blocking accepts so their threads see the stop flag.
+        for a in &self.addrs {
+            let _ = TcpStream::connect_timeout(a, Duration::from_millis(200));
+        }
+        let threads: Vec<_> = self
+            .shared
+            .threads
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .drain(..)
+            .collect();
+        for t in threads {
+            let _ = t.join();
+        }
+    }
+}
+
+impl Drop for UrSim {
+    fn drop(&mut self) {
+        self.shutdown();
+    }
+}
+
+fn accept_loop(shared: &Arc<Shared>, listener: &TcpListener, handler: Handler) {
+    for stream in listener.incoming() {
+        if shared.stopped() {
+            break;
+        }
+        let Ok(stream) = stream else { continue };
+        let Ok(clone) = stream.try_clone() else {
+            continue;
+        };
+        shared
+            .streams
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(clone);
+        let id = shared.next_id.fetch_add(1, Ordering::SeqCst);
+        let s = shared.clone();
+        // A client's I/O error ends its own connection only.
+        shared.spawn(move || {
+            let _ = handler(&s, stream, id);
+        });
+    }
+}
+
+/// Steps the controller every control period, paced against the start time.
+fn control_loop(shared: &Shared) {
+    let period = shared.config.control_period;
+    let dt = period.as_secs_f64();
+    let start = Instant::now();
+    let mut n: u32 = 0;
+    while !shared.stopped() {
+        shared.lock().tick(dt);
+        n = n.wrapping_add(1);
+        if let Some(wait) = (start + period * n).checked_duration_since(Instant::now()) {
+            std::thread::sleep(wait);
+        }
+    }
+}
+
+/// Port 30003: collects `def …():` … `end` programs and hands each to the controller.
+fn serve_script(shared: &Arc<Shared>, mut stream: TcpStream) -> std::io::Result<()> {
+    let mut text = String::new();
+    let mut buf = [0_u8; 16 * 1024];
+    loop {
+        let n = stream.read(&mut buf)?;
+        if n == 0 || shared.stopped() {
+            return Ok(());
+        }
+        text.push_str(&String::from_utf8_lossy(&buf[..n]));
+        // A program ends with an unindented `end` line.
+        while let Some(end) = program_end(&text) {
+            let program: String = text.drain(..end).collect();
+            shared.lock().receive_script(&program);
+        }
+    }
+}
+
+/// The byte index just past the `end` line closing the first top-level `def`, if it arrived.
+fn program_end(text: &str) -> Option<usize> {
+    let mut pos = 0;
+    for line in text.split_inclusive('\n') {
+        pos += line.len();
+        if line.ends_with('\n') && line.trim_end() == "end" {
+            return Some(pos);
+        }
+    }
+    None
+}
