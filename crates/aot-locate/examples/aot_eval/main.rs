@@ -188,7 +188,7 @@ fn section(rep: &Report) -> Result<String, std::fmt::Error> {
          `L_k = −ln(1 − θ/P_k)` is how long a first-order rise of size `P_k` takes to cross \
          the detector's threshold θ = 30 Pa. `a`, `b`, `c` are fitted per OSR on repeat 0 \
          only (`RangingFit`, least squares on the true centroid distances); each arrived \
-         sensor then gives a range, from the linearised three-range fix two damped Gauss–Newton steps find the pad point that \
+         sensor then gives a range, from the linearised three-range fix one damped Gauss–Newton step finds the pad point that \
          matches them, and area `n` scores `−|p − centre_n|²`. It is translation-aware, and \
          it is where the OSR trade shows: one three-sensor cycle is 1.2 ms at OSR 256 and \
          18 ms at OSR 4096, against ≈ 2.5 ms of arrival delay per mm, so from OSR 1024 on the \
