@@ -9,7 +9,8 @@
 //! Jobs run on two threads; each is seeded by what it is, so the results do not depend on
 //! the thread count or order.
 
-use std::path::PathBuf;
+mod common;
+
 use std::sync::Mutex;
 use std::time::Instant;
 use tactile_nets::cnn_eval::{
@@ -29,11 +30,7 @@ const THREADS: usize = 2;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let root = args
-        .first()
-        .filter(|a| !a.starts_with("--"))
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.."));
+    let root = common::workspace_root(&args);
     let opt = |name: &str| {
         args.iter()
             .position(|a| a == name)

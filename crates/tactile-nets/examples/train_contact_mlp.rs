@@ -7,18 +7,15 @@
 //! `[WORKSPACE_ROOT] [--epochs N]` (`--epochs` only for quick experiments: no search, paper
 //! recipe only, it writes nothing).
 
-use std::path::PathBuf;
+mod common;
+
 use std::time::Instant;
 use tactile_nets::contact_eval::{self, MODEL_DIR, SEED, SELECTION_FILE, SELECTION_OSR};
 use tactile_nets::data::fingertip;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let root = args
-        .first()
-        .filter(|a| !a.starts_with("--"))
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.."));
+    let root = common::workspace_root(&args);
     let epochs: Option<usize> = args
         .iter()
         .position(|a| a == "--epochs")

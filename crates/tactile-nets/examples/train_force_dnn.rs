@@ -5,16 +5,15 @@
 //! Run through `cargo xtask train force-dnn` (which also draws the curve and writes the docs
 //! section); argument: `[WORKSPACE_ROOT]`.
 
-use std::path::PathBuf;
+mod common;
+
 use std::time::Instant;
 use tactile_nets::data::weights;
 use tactile_nets::force_eval::{self, MODEL_DIR, SEED};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let root = std::env::args()
-        .nth(1)
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.."));
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let root = common::workspace_root(&args);
     let rows: Vec<(f64, [f64; 3])> = paper_fixtures::seed000::table1_weight()?
         .iter()
         .map(|r| (r.weight_gf, r.pressure_hpa))

@@ -5,18 +5,15 @@
 //! Run through `cargo xtask train softness` (which also draws the figures and writes the
 //! report section); arguments: `[WORKSPACE_ROOT] [--dry-run]` (`--dry-run` writes nothing).
 
+mod common;
+
 use indicatif::{ProgressBar, ProgressStyle};
-use std::path::PathBuf;
 use tactile_nets::data::underactuated;
 use tactile_nets::softness_eval::{self, MODEL_DIR, OPTIMISERS, SEEDS};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let root = args
-        .first()
-        .filter(|a| !a.starts_with("--"))
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.."));
+    let root = common::workspace_root(&args);
     let grasps = underactuated::load(&root)?;
     let bar = ProgressBar::new((OPTIMISERS.len() * SEEDS.len()) as u64);
     if let Ok(style) =

@@ -75,15 +75,12 @@ fn training_is_deterministic_save_load_bit_identical_and_frozen_matches_dfdx()
         let (b, log_b) = ContactCnn::train(&w, &r, variant, &tiny(3))?;
         let (c, _) = ContactCnn::train(&w, &r, variant, &tiny(4))?;
         assert_eq!(bits(&log_a.epoch_loss), bits(&log_b.epoch_loss));
-        let bytes = a.to_file()?.to_bytes()?;
-        assert_eq!(bytes, b.to_file()?.to_bytes()?, "same seed, same weights");
-        assert_ne!(
-            bytes,
-            c.to_file()?.to_bytes()?,
-            "another seed, other weights"
+        common::assert_seeded(
+            &a.to_file()?.to_bytes()?,
+            &b.to_file()?.to_bytes()?,
+            &c.to_file()?.to_bytes()?,
         );
-        let dir = std::env::temp_dir().join(format!("tactile-nets-cnn-{}", std::process::id()));
-        std::fs::create_dir_all(&dir)?;
+        let dir = common::temp_dir("cnn")?;
         let path = dir.join(format!("{}.safetensors", variant.name()));
         a.save(&path)?;
         let loaded = ContactCnn::load(&path)?;

@@ -31,15 +31,12 @@ fn training_is_deterministic_and_save_load_is_bit_identical() -> Result<(), NetE
         let (b, log_b) = ContactMlp::train(&train, head, &tiny(3))?;
         let (c, _) = ContactMlp::train(&train, head, &tiny(4))?;
         assert_eq!(bits(&log_a.epoch_loss), bits(&log_b.epoch_loss));
-        let bytes = a.to_file()?.to_bytes()?;
-        assert_eq!(bytes, b.to_file()?.to_bytes()?, "same seed, same weights");
-        assert_ne!(
-            bytes,
-            c.to_file()?.to_bytes()?,
-            "another seed, other weights"
+        common::assert_seeded(
+            &a.to_file()?.to_bytes()?,
+            &b.to_file()?.to_bytes()?,
+            &c.to_file()?.to_bytes()?,
         );
-        let dir = std::env::temp_dir().join(format!("tactile-nets-{}", std::process::id()));
-        std::fs::create_dir_all(&dir)?;
+        let dir = common::temp_dir("mlp")?;
         let path = dir.join(format!("{}.safetensors", head.name()));
         a.save(&path)?;
         let loaded = ContactMlp::load(&path)?;

@@ -2,9 +2,11 @@
 //! input, frozen inference against dfdx, stable outputs for any input, and the drift check of
 //! the committed metrics.
 
+mod common;
+
+use common::root;
 use hand_traits::ForceEstimator;
 use proptest::prelude::*;
-use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use tactile_nets::NetError;
 use tactile_nets::data::weights::{self, WeightSample};
@@ -13,10 +15,6 @@ use tactile_nets::force_eval::{self, METRICS_FILE, MODEL_DIR, RATED_RANGE_GF, SE
 use tactile_nets::frozen::{HyperbolicTangent, Layer, Logistic};
 use tactile_nets::metrics::MetricsFile;
 use tactile_nets::train::TrainConfig;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 /// Table 1 tared on its 0 gf row.
 fn table() -> Vec<WeightSample> {
@@ -71,15 +69,12 @@ fn training_is_deterministic_and_save_load_is_bit_identical() -> Result<(), NetE
             .map(|&v| bits(v))
             .collect::<Vec<_>>()
     );
-    let bytes = a.to_file()?.to_bytes()?;
-    assert_eq!(bytes, b.to_file()?.to_bytes()?, "same seed, same weights");
-    assert_ne!(
-        bytes,
-        c.to_file()?.to_bytes()?,
-        "another seed, other weights"
+    common::assert_seeded(
+        &a.to_file()?.to_bytes()?,
+        &b.to_file()?.to_bytes()?,
+        &c.to_file()?.to_bytes()?,
     );
-    let dir = std::env::temp_dir().join(format!("tactile-nets-force-{}", std::process::id()));
-    std::fs::create_dir_all(&dir)?;
+    let dir = common::temp_dir("force")?;
     let path = dir.join("force.safetensors");
     a.save(&path)?;
     let loaded = ForceDnn::load(&path)?;

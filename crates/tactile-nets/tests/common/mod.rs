@@ -1,5 +1,8 @@
 //! Helpers the integration tests share.
 
+// Each test binary compiles this module and uses a different subset of it.
+#![allow(dead_code)]
+
 use std::path::{Path, PathBuf};
 use tactile_nets::train::TrainConfig;
 
@@ -30,4 +33,18 @@ pub(crate) fn quick(
 /// The bit patterns of `v`, to compare floats exactly.
 pub(crate) fn bits(v: &[f32]) -> Vec<u32> {
     v.iter().map(|x| x.to_bits()).collect()
+}
+
+/// The seeded-training contract on three runs' weight files: two runs with one seed give the
+/// same bytes, a run with another seed gives other bytes.
+pub(crate) fn assert_seeded(same_a: &[u8], same_b: &[u8], other: &[u8]) {
+    assert_eq!(same_a, same_b, "same seed, same weights");
+    assert_ne!(same_a, other, "another seed, other weights");
+}
+
+/// A fresh temporary directory for this test process's model files.
+pub(crate) fn temp_dir(tag: &str) -> std::io::Result<PathBuf> {
+    let dir = std::env::temp_dir().join(format!("tactile-nets-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    Ok(dir)
 }
