@@ -166,6 +166,13 @@ impl Tally {
     }
 }
 
+/// `84.8 % (173/204)`, as every table of the report prints a tally.
+impl std::fmt::Display for Tally {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:.1} % ({}/{})", self.percent(), self.hits, self.n)
+    }
+}
+
 /// Accuracy of each rule by OSR, by (OSR, shape) and by (OSR, force); plus how often a
 /// sensor never arrived.
 #[derive(Debug, Default)]

@@ -71,7 +71,7 @@ fn section(rep: &Report) -> Result<String, std::fmt::Error> {
         write!(s, "| {osr} |")?;
         for r in Rule::ALL {
             let t = rep.by_osr.get(&(r, *osr)).copied().unwrap_or_default();
-            write!(s, " {:.1} % ({}/{}) |", t.percent(), t.hits, t.n)?;
+            write!(s, " {t} |")?;
         }
         let m = rep.missing_sensor.get(osr).copied().unwrap_or_default();
         writeln!(s, " {}/{} |", m.hits, m.n)?;
@@ -130,31 +130,13 @@ fn section(rep: &Report) -> Result<String, std::fmt::Error> {
     for sh in shapes {
         let p = |r| rep.by_shape[&(r, best, sh.clone())];
         let (a, b) = (p(Rule::Eq3Rise), p(Rule::Ranging));
-        writeln!(
-            s,
-            "| {sh} | {:.1} % ({}/{}) | {:.1} % ({}/{}) |",
-            a.percent(),
-            a.hits,
-            a.n,
-            b.percent(),
-            b.hits,
-            b.n
-        )?;
+        writeln!(s, "| {sh} | {a} | {b} |")?;
     }
     writeln!(s, "\n| force | eq. 3 | ranging |\n|---|---|---|")?;
     for f in [5, 7, 9] {
         let p = |r| rep.by_force.get(&(r, best, f)).copied().unwrap_or_default();
         let (a, b) = (p(Rule::Eq3Rise), p(Rule::Ranging));
-        writeln!(
-            s,
-            "| {f} kgf | {:.1} % ({}/{}) | {:.1} % ({}/{}) |",
-            a.percent(),
-            a.hits,
-            a.n,
-            b.percent(),
-            b.hits,
-            b.n
-        )?;
+        writeln!(s, "| {f} kgf | {a} | {b} |")?;
     }
     let picked = rep.picked.get(&Rule::Eq3Rise).copied().unwrap_or_default();
     let reached: Vec<String> = (0..9)
