@@ -5,6 +5,8 @@
 //! centre. Areas are numbered 0…8 row-major from the top-left (the paper's `Arr_1…Arr_9`
 //! minus one); sensors 0…2 are the paper's sensors 1…3.
 
+use crate::trilateration::Trilateration;
+
 /// Sensors on a fingertip (seed 000 §3: three MS5611 in an inverted triangle).
 pub const SENSORS: usize = 3;
 /// Areas of the 3 × 3 Arrival-of-Time grid.
@@ -92,6 +94,8 @@ pub struct Geometry {
     // Stored inverted and in f64: eq. 3 divides by r, and f64 keeps the products of any finite
     // f32 pressure, any r > 0 and any timing ratio finite.
     inv_r: [[f64; SENSORS]; AREAS],
+    // The ranging scorer's pad-only work, done once here rather than per localisation.
+    fix: Trilateration,
 }
 
 impl Geometry {
@@ -149,6 +153,7 @@ impl Geometry {
             sensors_mm,
             centres_mm,
             inv_r,
+            fix: Trilateration::new(&sensors_mm, &centres_mm),
         }
     }
 
@@ -167,6 +172,11 @@ impl Geometry {
         self.inv_r.get(area)?.get(sensor).map(|inv| 1.0 / inv)
     }
 
+    /// The ranging scorer's precomputed, pad-only part of the position fix.
+    pub(crate) fn trilateration(&self) -> &Trilateration {
+        &self.fix
+    }
+
     /// `1 / r_{n,k}` for every area and sensor, as eq. 3 uses it.
     pub fn inverse_distances(&self) -> &[[f64; SENSORS]; AREAS] {
         &self.inv_r
@@ -182,10 +192,12 @@ impl Geometry {
         if !seen.iter().all(|&s| s) {
             return None;
         }
+        let sensors_mm = core::array::from_fn(|i| self.sensors_mm[order[i]]);
         Some(Geometry {
-            sensors_mm: core::array::from_fn(|i| self.sensors_mm[order[i]]),
+            sensors_mm,
             centres_mm: self.centres_mm,
             inv_r: core::array::from_fn(|n| core::array::from_fn(|i| self.inv_r[n][order[i]])),
+            fix: Trilateration::new(&sensors_mm, &self.centres_mm),
         })
     }
 }

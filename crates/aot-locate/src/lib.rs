@@ -8,6 +8,7 @@ mod label;
 mod locator;
 mod ranging;
 mod score;
+mod trilateration;
 
 pub use arrival::{ArrivalDetector, ChannelDetector, DetectorConfig};
 pub use geometry::{AREAS, AreaGrid, Geometry, GeometryError, SENSORS};

@@ -20,6 +20,7 @@
 
 use crate::geometry::{AREAS, Geometry, SENSORS};
 use crate::score::{AotError, ArrivalEvent, Scores};
+use crate::trilateration::BOUND_MM;
 
 /// `θ / P` is clamped below this before `ln(1 − θ/P)`: a sensor that arrived although its
 /// held rise is at or under the threshold (noise pushed it over) gets the largest lag the
@@ -35,9 +36,6 @@ const ITERATIONS_FROM_LINEAR: usize = 1;
 /// Levenberg damping of the 2 × 2 normal matrix: keeps a step defined when fewer than two
 /// sensors (or collinear ones) constrain the position.
 const DAMPING: f64 = 1e-3;
-/// The position search stays within this many mm of the pad centre (far beyond any pad), so
-/// absurd ranges still give finite scores.
-const BOUND_MM: f64 = 1e4;
 
 /// The fitted range model of arrival times (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -151,30 +149,28 @@ impl Ranging {
         if event.arrival_us.iter().all(Option::is_none) {
             return Err(AotError::NoArrival);
         }
-        // Sensors in a canonical order (by position, then by their inputs): every sum below
-        // runs in that order, so renumbering the sensors cannot change a bit. The order
-        // depends on the fixed geometry alone unless two sensors share a position, so it
-        // costs a few well-predicted compares, off the arithmetic's critical path.
-        let sensor_mm = geometry.sensors_mm();
-        let order = canonical_order(sensor_mm, event);
+        // Sensors in a canonical order (by position, fixed per pad and precomputed with it;
+        // by the inputs too only where two sensors share a position): every sum below runs
+        // in that order, so renumbering the sensors cannot change a bit.
+        let fix = geometry.trilateration();
+        let order = fix.order(geometry.sensors_mm(), &event.arrival_us, &event.pressure_pa);
         let range_of = |k: usize| {
             event.arrival_us[k].map(|t| {
                 let lag = self.lag_us * self.lag(event.pressure_pa[k]);
                 (f64::from(t) - self.delay_us - lag) * self.mm_per_us
             })
         };
-        let range = [range_of(order[0]), range_of(order[1]), range_of(order[2])];
-        let sensor = |k: usize| [f64::from(sensor_mm[k][0]), f64::from(sensor_mm[k][1])];
-        let sensors = [sensor(order[0]), sensor(order[1]), sensor(order[2])];
-        let centres = geometry.centres_mm();
+        let range = order.map(range_of);
+        let sensors = &fix.sensors;
         // Start: with three ranges the closed-form (linearised) fix, else the pad's centre;
         // either is the same for any sensor order.
-        let (mut p, iterations) = match linear_fix(&sensors, &range) {
+        let linear = match (fix.linear, range) {
+            (Some(l), [Some(r0), Some(r1), Some(r2)]) => l.solve([r0, r1, r2]),
+            _ => None,
+        };
+        let (mut p, iterations) = match linear {
             Some(p) => (p, ITERATIONS_FROM_LINEAR),
-            None => (
-                [0, 1].map(|j| centres.iter().map(|c| f64::from(c[j])).sum::<f64>() / 9.0),
-                ITERATIONS_FROM_CENTRE,
-            ),
+            None => (fix.centre, ITERATIONS_FROM_CENTRE),
         };
         for _ in 0..iterations {
             // Per sensor: the unit vector from it to p and the range residual; sums in the
@@ -226,74 +222,6 @@ impl Ranging {
     fn lag(&self, pressure_pa: f32) -> f64 {
         lag(self.threshold_pa, pressure_pa)
     }
-}
-
-/// The linearised fix from three ranges: `|p − s_k|² = ρ_k²` minus the same for sensor 0 is
-/// linear in `p`, `2(s_k − s_0)·p = (|s_k|² − ρ_k²) − (|s_0|² − ρ_0²)`; solved by least squares
-/// in the centred form `p = Σ_k m_k (q_k − q_0)`, `m_k = H⁻¹ a_k`, `a_k = 2(s_k − s̄)`,
-/// `H = Σ a_k a_kᵀ` (`Σ_k m_k = 0`, so any reference `q_0` gives the same fix). The `m_k`
-/// depend on the geometry alone, so the ranges only pass through two products and sums.
-/// `None` with fewer than three ranges, collinear sensors or a non-finite result. Sums in the
-/// order given (the caller's canonical one).
-fn linear_fix(sensors: &[[f64; 2]; SENSORS], range: &[Option<f64>; SENSORS]) -> Option<[f64; 2]> {
-    let rho = [range[0]?, range[1]?, range[2]?];
-    let mean = |v: [f64; 3]| ((v[0] + v[1]) + v[2]) / 3.0;
-    let sbar = [0, 1].map(|j| mean(sensors.map(|s| s[j])));
-    let a: [[f64; 2]; 3] =
-        core::array::from_fn(|k| [0, 1].map(|j| 2.0 * (sensors[k][j] - sbar[j])));
-    let (hxx, hxy, hyy) = (
-        sum3(|k| a[k][0] * a[k][0]),
-        sum3(|k| a[k][0] * a[k][1]),
-        sum3(|k| a[k][1] * a[k][1]),
-    );
-    let det = hxx * hyy - hxy * hxy;
-    // Collinear sensors (or a NaN) leave the fix undetermined.
-    if det.is_nan() || det <= 1e-9 * (hxx * hyy) {
-        return None;
-    }
-    let m: [[f64; 2]; 3] = core::array::from_fn(|k| {
-        [
-            (hyy * a[k][0] - hxy * a[k][1]) / det,
-            (hxx * a[k][1] - hxy * a[k][0]) / det,
-        ]
-    });
-    let norm2 = |k: usize| sensors[k][0] * sensors[k][0] + sensors[k][1] * sensors[k][1];
-    let dq = [1, 2].map(|k| (norm2(k) - norm2(0)) - (rho[k] * rho[k] - rho[0] * rho[0]));
-    let p = [0, 1].map(|j| m[1][j] * dq[0] + m[2][j] * dq[1]);
-    (p[0].is_finite() && p[1].is_finite()).then(|| p.map(|v| v.clamp(-BOUND_MM, BOUND_MM)))
-}
-
-/// `f(0) + f(1) + f(2)`, in that order.
-fn sum3(f: impl Fn(usize) -> f64) -> f64 {
-    (f(0) + f(1)) + f(2)
-}
-
-/// The sensors' indices sorted by position (x, then y, by `total_cmp`), ties broken by
-/// arrival time and then pressure: the same sequence of (position, input) pairs whatever
-/// numbering the sensors come in. Sensors equal in every key give identical terms, so their
-/// relative order cannot matter.
-fn canonical_order(sensors: &[[f32; 2]; SENSORS], event: &ArrivalEvent) -> [usize; SENSORS] {
-    let after = |i: usize, j: usize| {
-        let key = |k: usize| (sensors[k], event.arrival_us[k], event.pressure_pa[k]);
-        let ((si, ti, pi), (sj, tj, pj)) = (key(i), key(j));
-        si[0]
-            .total_cmp(&sj[0])
-            .then(si[1].total_cmp(&sj[1]))
-            .then(ti.cmp(&tj))
-            .then(pi.total_cmp(&pj))
-            .is_gt()
-    };
-    let mut o = [0, 1, 2];
-    if after(o[0], o[1]) {
-        o.swap(0, 1);
-    }
-    if after(o[1], o[2]) {
-        o.swap(1, 2);
-    }
-    if after(o[0], o[1]) {
-        o.swap(0, 1);
-    }
-    o
 }
 
 fn lag(threshold_pa: f64, pressure_pa: f32) -> f64 {
