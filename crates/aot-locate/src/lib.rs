@@ -5,6 +5,7 @@
 mod arrival;
 mod geometry;
 mod label;
+mod lag;
 mod locator;
 mod ranging;
 mod score;

@@ -19,13 +19,10 @@
 //! `−|p − centre_n|²` (mm²), so the argmax is the area holding the point on a regular grid.
 
 use crate::geometry::{AREAS, Geometry, SENSORS};
+use crate::lag::threshold_lag;
 use crate::score::{AotError, ArrivalEvent, Scores};
 use crate::trilateration::BOUND_MM;
 
-/// `θ / P` is clamped below this before `ln(1 − θ/P)`: a sensor that arrived although its
-/// held rise is at or under the threshold (noise pushed it over) gets the largest lag the
-/// model allows, `ln 100 ≈ 4.6` time constants, instead of an infinite one.
-const MAX_THRESHOLD_SHARE: f64 = 0.99;
 /// Gauss–Newton steps from the pad centre (fewer than three ranges, or collinear sensors):
 /// six converge on the simulated pad.
 const ITERATIONS_FROM_CENTRE: usize = 6;
@@ -45,7 +42,7 @@ pub struct Ranging {
     // 1 / `us_per_mm`: a range is a product, not a division, on the critical path.
     mm_per_us: f64,
     lag_us: f64,
-    threshold_pa: f64,
+    threshold_pa: f32,
 }
 
 /// Why a [`Ranging`] model was refused.
@@ -105,7 +102,7 @@ impl Ranging {
             us_per_mm: f64::from(us_per_mm),
             mm_per_us: 1.0 / f64::from(us_per_mm),
             lag_us: f64::from(lag_us),
-            threshold_pa: f64::from(threshold_pa),
+            threshold_pa,
         })
     }
 
@@ -160,7 +157,8 @@ impl Ranging {
                 (f64::from(t) - self.delay_us - lag) * self.mm_per_us
             })
         };
-        let range = order.map(range_of);
+        // Written out: `order.map` compiles to three out-of-line calls here.
+        let range = [range_of(order[0]), range_of(order[1]), range_of(order[2])];
         let sensors = &fix.sensors;
         // Start: with three ranges the closed-form (linearised) fix, else the pad's centre;
         // either is the same for any sensor order.
@@ -179,13 +177,23 @@ impl Ranging {
             for (k, term) in terms.iter_mut().enumerate() {
                 let Some(rho) = range[k] else { continue };
                 let (dx, dy) = (p[0] - sensors[k][0], p[1] - sensors[k][1]);
-                let d = libm::sqrt(dx * dx + dy * dy);
-                if d <= 0.0 {
+                let d2 = dx * dx + dy * dy;
+                // On (or within 1e-154 mm of) the sensor: no direction from it.
+                if d2 <= f64::MIN_POSITIVE {
                     continue;
                 }
-                let inv = 1.0 / d;
-                let (ux, uy, r) = (dx * inv, dy * inv, d - rho);
-                *term = [ux * ux, ux * uy, uy * uy, ux * r, uy * r];
+                // The square root and the division run side by side, not one after the
+                // other: u uᵀ = (dx, dy)(dx, dy)ᵀ / d², u·(d − ρ) = (dx, dy)·(1 − ρ/d).
+                let inv_d2 = 1.0 / d2;
+                let inv_d = libm::sqrt(d2) * inv_d2;
+                let w = 1.0 - rho * inv_d;
+                *term = [
+                    dx * dx * inv_d2,
+                    dx * dy * inv_d2,
+                    dy * dy * inv_d2,
+                    dx * w,
+                    dy * w,
+                ];
             }
             let sum = |j: usize| (terms[0][j] + terms[1][j]) + terms[2][j];
             let (hxx, hxy, hyy) = (sum(0) + DAMPING, sum(1), sum(2) + DAMPING);
@@ -208,11 +216,11 @@ impl Ranging {
     /// grid the argmax is the area holding `p`.
     pub fn scores(&self, geometry: &Geometry, event: &ArrivalEvent) -> Result<Scores, AotError> {
         let p = self.position_mm(geometry, event)?;
-        let centres = geometry.centres_mm();
+        let centres = &geometry.trilateration().centres;
         Ok(Scores::from_values(core::array::from_fn::<f64, AREAS, _>(
             |n| {
-                let dx = p[0] - f64::from(centres[n][0]);
-                let dy = p[1] - f64::from(centres[n][1]);
+                let dx = p[0] - centres[n][0];
+                let dy = p[1] - centres[n][1];
                 -(dx * dx + dy * dy)
             },
         )))
@@ -220,20 +228,8 @@ impl Ranging {
 
     /// `L = −ln(1 − θ/P)` for a held rise `P` (see the module docs).
     fn lag(&self, pressure_pa: f32) -> f64 {
-        lag(self.threshold_pa, pressure_pa)
+        f64::from(threshold_lag(self.threshold_pa, pressure_pa))
     }
-}
-
-fn lag(threshold_pa: f64, pressure_pa: f32) -> f64 {
-    let p = f64::from(pressure_pa);
-    let share = if p > 0.0 {
-        (threshold_pa / p).min(MAX_THRESHOLD_SHARE)
-    } else {
-        MAX_THRESHOLD_SHARE
-    };
-    // f32 is ample (a lag of ≤ 4.6 time constants to 1e-7) and log1pf costs half of log1p,
-    // which matters: three of them are most of a localisation's cost.
-    f64::from(-libm::log1pf(-share as f32))
 }
 
 /// Least-squares fit of [`Ranging`]'s `a`, `b` and `c` from taps whose contact position is
@@ -241,7 +237,7 @@ fn lag(threshold_pa: f64, pressure_pa: f32) -> f64 {
 /// over every arrived sensor.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RangingFit {
-    threshold_pa: f64,
+    threshold_pa: f32,
     // Normal matrix of the rows (1, r, L) and right-hand side Σ (1, r, L)·t.
     xx: [[f64; 3]; 3],
     xt: [f64; 3],
@@ -252,7 +248,7 @@ impl RangingFit {
     /// An empty fit for a detector with threshold `threshold_pa`.
     pub fn new(threshold_pa: f32) -> RangingFit {
         RangingFit {
-            threshold_pa: f64::from(threshold_pa),
+            threshold_pa,
             xx: [[0.0; 3]; 3],
             xt: [0.0; 3],
             taps: 0,
@@ -277,7 +273,11 @@ impl RangingFit {
             .zip(event.pressure_pa);
         for ((t, d), p) in sensors {
             let Some(t) = t else { continue };
-            let row = [1.0, f64::from(d), lag(self.threshold_pa, p)];
+            let row = [
+                1.0,
+                f64::from(d),
+                f64::from(threshold_lag(self.threshold_pa, p)),
+            ];
             for (xx, ri) in self.xx.iter_mut().zip(row) {
                 for (x, rj) in xx.iter_mut().zip(row) {
                     *x += ri * rj;
@@ -319,7 +319,7 @@ impl RangingFit {
             solve(0) as f32,
             solve(1) as f32,
             solve(2) as f32,
-            self.threshold_pa as f32,
+            self.threshold_pa,
         )
         .ok()
     }

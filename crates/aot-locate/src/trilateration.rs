@@ -1,6 +1,6 @@
 //! The pad-only half of the ranging scorer's position fix, computed once when a [`Geometry`]
 //! is built instead of on every localisation: the sensors' canonical order, their positions in
-//! that order, the linearised fix's coefficients and the pad centre.
+//! that order, the linearised fix's coefficients, the pad centre and the area centres in f64.
 //!
 //! [`Geometry`]: crate::Geometry
 
@@ -23,6 +23,8 @@ pub(crate) struct Trilateration {
     pub(crate) linear: Option<LinearFix>,
     /// The mean of the area centres: the search's start with fewer than three ranges.
     pub(crate) centre: [f64; 2],
+    /// The area centres in f64, as the scores use them.
+    pub(crate) centres: [[f64; 2]; AREAS],
 }
 
 /// The linearised fix from three ranges in canonical order: `|p − s_k|² = ρ_k²` minus the same
@@ -65,12 +67,14 @@ impl Trilateration {
         let same = |i: usize, j: usize| !after(i, j) && !after(j, i);
         let distinct = !(same(sorted[0], sorted[1]) || same(sorted[1], sorted[2]));
         let sensors = sorted.map(|k| sensors_mm[k].map(f64::from));
-        let centre = [0, 1].map(|j| centres_mm.iter().map(|c| f64::from(c[j])).sum::<f64>() / 9.0);
+        let centres = centres_mm.map(|c| c.map(f64::from));
+        let centre = [0, 1].map(|j| centres.iter().map(|c| c[j]).sum::<f64>() / 9.0);
         Trilateration {
             order: distinct.then_some(sorted),
             sensors,
             linear: linear_fix(&sensors),
             centre,
+            centres,
         }
     }
 
