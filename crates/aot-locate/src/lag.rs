@@ -16,8 +16,10 @@ pub(crate) const MAX_THRESHOLD_SHARE: f32 = 0.99;
 /// rise at or under `θ` (or not positive, or NaN).
 #[inline]
 pub(crate) fn threshold_lag(threshold_pa: f32, pressure_pa: f32) -> f32 {
+    // Both sides computed, then selected: no branch to mispredict on the sign of `P`.
+    let share = (threshold_pa / pressure_pa.max(f32::MIN_POSITIVE)).min(MAX_THRESHOLD_SHARE);
     let share = if pressure_pa > 0.0 {
-        (threshold_pa / pressure_pa).min(MAX_THRESHOLD_SHARE)
+        share
     } else {
         MAX_THRESHOLD_SHARE
     };
@@ -39,13 +41,12 @@ fn ln_unit(x: f32) -> f32 {
         0.223_255_19,
         -0.142_303_8,
     ];
-    let bits = x.to_bits();
-    let mut e = ((bits >> 23) & 0xff) as i32 - 127;
-    let mut m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000);
-    if m > core::f32::consts::SQRT_2 {
-        m *= 0.5;
-        e += 1;
-    }
+    // Branch-free reduction (as musl's logf): offsetting the bits by those of √½ makes the
+    // exponent field count from √½, so the mantissa lands in [√½, √2) directly.
+    const SQRT_HALF_BITS: u32 = 0x3f35_04f3;
+    let offset = x.to_bits().wrapping_sub(SQRT_HALF_BITS);
+    let e = (offset as i32) >> 23;
+    let m = f32::from_bits((offset & 0x007f_ffff) + SQRT_HALF_BITS);
     let f = m - 1.0;
     let f2 = f * f;
     let q = (C[0] + C[1] * f) + f2 * ((C[2] + C[3] * f) + f2 * (C[4] + C[5] * f));
@@ -65,6 +66,23 @@ mod tests {
         }
         assert!(worst < 2.5e-6, "max |error| {worst}");
         assert_eq!(ln_unit(1.0), 0.0);
+        // Across the √½ / √2 seams of the reduction and powers of two.
+        for x in [
+            0.5f32,
+            0.707_106_7,
+            0.707_106_8,
+            1.414_213_5,
+            1.414_213_7,
+            2.0,
+            0.25,
+            1e-30,
+            1e30,
+        ] {
+            assert!(
+                (ln_unit(x) - libm::logf(x)).abs() < 1e-5 * (1.0 + libm::logf(x).abs()),
+                "{x}"
+            );
+        }
     }
 
     #[test]
