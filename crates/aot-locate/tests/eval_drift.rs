@@ -28,6 +28,23 @@ fn doc_row(doc: &str, osr: u16) -> Option<Vec<(u32, u32)>> {
     )
 }
 
+/// The doc's border-tap row for `osr`: the `a/b` counts (even splits, eq. 4 ties, ranging on
+/// the label's side).
+fn border_row(doc: &str, osr: u16) -> Option<Vec<(u32, u32)>> {
+    let section = &doc[doc.find("**Does a border tap have a side?**")?..];
+    let line = section
+        .lines()
+        .find(|l| l.starts_with(&format!("| {osr} |")))?;
+    Some(
+        line.split('|')
+            .filter_map(|cell| {
+                let (h, n) = cell.trim().split_once('/')?;
+                Some((h.parse().ok()?, n.parse().ok()?))
+            })
+            .collect(),
+    )
+}
+
 #[test]
 fn doc_table_matches_a_rerun_of_one_osr() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
@@ -44,4 +61,14 @@ fn doc_table_matches_a_rerun_of_one_osr() {
         })
         .collect();
     assert_eq!(stated, measured);
+    let b = &rep.border[&OSR];
+    let n = b.taps;
+    assert_eq!(
+        border_row(&doc, OSR).expect("the doc has a border row for OSR 4096"),
+        vec![
+            (b.even_cells, n),
+            (b.eq4_tie, n),
+            (b.on_label_side() as u32, b.offsets_mm.len() as u32)
+        ]
+    );
 }

@@ -191,6 +191,78 @@ pub(crate) struct Report {
     /// Hits when any area whose closed rectangle holds the centroid counts (a centroid on a
     /// border belongs to both sides), per rule and OSR.
     pub(crate) tolerant: BTreeMap<(Rule, u16), Tally>,
+    /// What the held-out taps whose centroid lies on a border carry about a side, per OSR.
+    pub(crate) border: BTreeMap<u16, Border>,
+}
+
+/// The held-out taps whose patch centroid lies on a border between two areas: whether the
+/// contact itself favours a side, and where the ranging scorer places them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Border {
+    /// Border taps.
+    pub(crate) taps: u32,
+    /// Of them, taps whose cells (by cell centre; none lies on a border) split evenly between
+    /// the two sides of the border.
+    pub(crate) even_cells: u32,
+    /// Of them, taps whose eq. 4 column (or row) mean is a half-integer: rounding the label to a
+    /// cell is a tie too.
+    pub(crate) eq4_tie: u32,
+    /// The labelled area's offset from the centroid along the border's normal, by the side of
+    /// the pad the border is on (`x < 0` first): `+1` when the label is the area towards +x.
+    pub(crate) label_side: [Option<i8>; 2],
+    /// The ranging position's offset from the border towards the labelled area, mm, per tap.
+    pub(crate) offsets_mm: Vec<f64>,
+}
+
+impl Border {
+    /// Mean and sample standard deviation of [`Border::offsets_mm`].
+    pub(crate) fn offset_stats(&self) -> (f64, f64) {
+        let n = self.offsets_mm.len() as f64;
+        let mean = self.offsets_mm.iter().sum::<f64>() / n;
+        let var = self
+            .offsets_mm
+            .iter()
+            .map(|o| (o - mean).powi(2))
+            .sum::<f64>()
+            / (n - 1.0);
+        (mean, var.sqrt())
+    }
+
+    /// Ranging positions on the labelled side of the border.
+    pub(crate) fn on_label_side(&self) -> usize {
+        self.offsets_mm.iter().filter(|o| **o > 0.0).count()
+    }
+
+    fn add(&mut self, tap: &Tap, centroid: [f32; 2], holding: &[usize], ranging: Option<[f64; 2]>) {
+        let grid = aot_locate::AreaGrid::SIMULATED_PAD;
+        let centres = grid.centres_mm();
+        let (a, b) = (holding[0], holding[1]);
+        self.taps += 1;
+        // The border's normal: the axis along which the two areas' centres differ.
+        let axis = usize::from(centres[a][0] == centres[b][0]);
+        let line = (centres[a][axis] + centres[b][axis]) / 2.0;
+        let cells = aot_locate::CellSet::from_bits(tap.mask).unwrap_or_default();
+        let mut sides = [0u32; 2];
+        for i in (0..aot_locate::CELLS).filter(|i| cells.bits() & (1 << i) != 0) {
+            sides[usize::from(cell_centre_mm(i)[axis] > line)] += 1;
+        }
+        self.even_cells += u32::from(sides[0] == sides[1]);
+        let [r, c] = cells.centroid().unwrap_or([0.0, 0.0]);
+        let half = |v: f32| (v - v.floor() - 0.5).abs() < 1e-4;
+        self.eq4_tie += u32::from(half(r) || half(c));
+        let label = centres[tap.aot_region][axis] - centroid[axis];
+        let side = if label > 0.0 { 1 } else { -1 };
+        self.label_side[usize::from(centroid[axis] > 0.0)] = Some(side);
+        if let Some(p) = ranging {
+            self.offsets_mm
+                .push((p[axis] - f64::from(centroid[axis])) * f64::from(side));
+        }
+    }
+}
+
+/// The centre of 4 × 6 cell `i` (row-major), pad millimetres.
+fn cell_centre_mm(i: usize) -> [f32; 2] {
+    grid_mm([(i / 6 + 1) as f32, (i % 6 + 1) as f32])
 }
 
 /// The areas (0…8) whose closed rectangle on the simulated pad holds the point `c` (mm).
@@ -255,7 +327,17 @@ pub(crate) fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConf
         if event.arrival_us.iter().all(Option::is_none) {
             *rep.no_arrival.entry(tap.osr).or_default() += 1;
         }
-        let holding = centroid_mm(tap.mask).map(areas_holding).unwrap_or_default();
+        let centroid = centroid_mm(tap.mask);
+        let holding = centroid.map(areas_holding).unwrap_or_default();
+        if let (Some(c), 2) = (centroid, holding.len()) {
+            let p = fits
+                .get(&tap.osr)
+                .and_then(|m| m.position_mm(geometry, &event).ok());
+            rep.border
+                .entry(tap.osr)
+                .or_default()
+                .add(tap, c, &holding, p);
+        }
         for rule in Rule::ALL {
             let pick = rule.predict(geometry, fits.get(&tap.osr), tap, &event);
             rep.tolerant
@@ -287,5 +369,10 @@ pub(crate) fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConf
 /// The patch centroid in pad millimetres (x right, y up, origin at the centre; 3 mm cells).
 pub(crate) fn centroid_mm(mask: u32) -> Option<[f32; 2]> {
     let [r, c] = aot_locate::CellSet::from_bits(mask)?.centroid()?;
-    Some([(c - 0.5) * 3.0 - 9.0, 6.0 - (r - 0.5) * 3.0])
+    Some(grid_mm([r, c]))
+}
+
+/// 1-based (row, column) on the 4 × 6 grid, cell centres at whole numbers, to pad millimetres.
+fn grid_mm([r, c]: [f32; 2]) -> [f32; 2] {
+    [(c - 0.5) * 3.0 - 9.0, 6.0 - (r - 0.5) * 3.0]
 }
