@@ -39,8 +39,11 @@ const DAMPING: f64 = 1e-3;
 pub struct Ranging {
     delay_us: f64,
     us_per_mm: f64,
-    // 1 / `us_per_mm`: a range is a product, not a division, on the critical path.
+    // 1 / `us_per_mm`, `a / b` and `c / b`: a range is `t/b − a/b − (c/b)·L`, products and
+    // differences only, with the lag's term last on the critical path.
     mm_per_us: f64,
+    delay_mm: f64,
+    lag_mm: f64,
     lag_us: f64,
     threshold_pa: f32,
 }
@@ -101,6 +104,8 @@ impl Ranging {
             delay_us: f64::from(delay_us),
             us_per_mm: f64::from(us_per_mm),
             mm_per_us: 1.0 / f64::from(us_per_mm),
+            delay_mm: f64::from(delay_us) / f64::from(us_per_mm),
+            lag_mm: f64::from(lag_us) / f64::from(us_per_mm),
             lag_us: f64::from(lag_us),
             threshold_pa,
         })
@@ -153,8 +158,8 @@ impl Ranging {
         let order = fix.order(geometry.sensors_mm(), &event.arrival_us, &event.pressure_pa);
         let range_of = |k: usize| {
             event.arrival_us[k].map(|t| {
-                let lag = self.lag_us * self.lag(event.pressure_pa[k]);
-                (f64::from(t) - self.delay_us - lag) * self.mm_per_us
+                (f64::from(t) * self.mm_per_us - self.delay_mm)
+                    - self.lag_mm * self.lag(event.pressure_pa[k])
             })
         };
         // Written out: `order.map` compiles to three out-of-line calls here.
