@@ -11,19 +11,26 @@ use std::path::PathBuf;
 /// The OSR re-run: 4096 has the shortest series, so the test stays fast.
 const OSR: u16 = 4096;
 
-/// The doc's row for `osr`: each rule's `hits/n` cells, in column order.
-fn doc_row(doc: &str, osr: u16) -> Option<Vec<(u32, u32)>> {
-    let section = &doc[doc.find("## Arrival-of-Time (3 × 3)")?..];
-    let line = section
+/// The first line after `marker` in `doc` that is the table row for `osr`.
+fn osr_row<'a>(doc: &'a str, marker: &str, osr: u16) -> Option<&'a str> {
+    doc[doc.find(marker)?..]
         .lines()
-        .find(|l| l.starts_with(&format!("| {osr} |")))?;
+        .find(|l| l.starts_with(&format!("| {osr} |")))
+}
+
+/// `hits/n` as numbers.
+fn fraction(cell: &str) -> Option<(u32, u32)> {
+    let (h, n) = cell.trim().split_once('/')?;
+    Some((h.parse().ok()?, n.parse().ok()?))
+}
+
+/// The doc's AoT row for `osr`: each rule's `hits/n` cells (written `x % (hits/n)`), in
+/// column order.
+fn doc_row(doc: &str, osr: u16) -> Option<Vec<(u32, u32)>> {
+    let line = osr_row(doc, "## Arrival-of-Time (3 × 3)", osr)?;
     Some(
         line.split('|')
-            .filter_map(|cell| {
-                let inner = cell.trim().split('(').nth(1)?.strip_suffix(')')?;
-                let (h, n) = inner.split_once('/')?;
-                Some((h.parse().ok()?, n.parse().ok()?))
-            })
+            .filter_map(|cell| fraction(cell.trim().split('(').nth(1)?.strip_suffix(')')?))
             .collect(),
     )
 }
@@ -31,18 +38,8 @@ fn doc_row(doc: &str, osr: u16) -> Option<Vec<(u32, u32)>> {
 /// The doc's border-tap row for `osr`: the `a/b` counts (even splits, eq. 4 ties, ranging on
 /// the label's side).
 fn border_row(doc: &str, osr: u16) -> Option<Vec<(u32, u32)>> {
-    let section = &doc[doc.find("**Does a border tap have a side?**")?..];
-    let line = section
-        .lines()
-        .find(|l| l.starts_with(&format!("| {osr} |")))?;
-    Some(
-        line.split('|')
-            .filter_map(|cell| {
-                let (h, n) = cell.trim().split_once('/')?;
-                Some((h.parse().ok()?, n.parse().ok()?))
-            })
-            .collect(),
-    )
+    let line = osr_row(doc, "**Does a border tap have a side?**", osr)?;
+    Some(line.split('|').filter_map(fraction).collect())
 }
 
 #[test]
