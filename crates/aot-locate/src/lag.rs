@@ -56,6 +56,7 @@ fn ln_unit(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use core::f32::consts::{FRAC_1_SQRT_2, SQRT_2};
 
     #[test]
     fn ln_matches_libm_over_the_clamped_range() {
@@ -69,10 +70,12 @@ mod tests {
         // Across the √½ / √2 seams of the reduction and powers of two.
         for x in [
             0.5f32,
-            0.707_106_7,
-            0.707_106_8,
-            1.414_213_5,
-            1.414_213_7,
+            FRAC_1_SQRT_2.next_down(),
+            FRAC_1_SQRT_2,
+            FRAC_1_SQRT_2.next_up(),
+            SQRT_2.next_down(),
+            SQRT_2,
+            SQRT_2.next_up(),
             2.0,
             0.25,
             1e-30,
