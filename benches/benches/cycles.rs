@@ -3,6 +3,7 @@
 //! the full cycle over a recorded stretch of the same schedule — including the cycles in
 //! which it had nothing to do — so the stages' means add up to the cycle's.
 //!
+//! Ids: `cycle_<scene>/full` for the whole cycle, `cycle_<scene>/<stage>` for a stage.
 //! `cargo xtask bench cycles [-- --quick]`; `cargo xtask bench cycles --write` also writes
 //! `docs/benchmarks.md`.
 
@@ -24,9 +25,9 @@ fn replay<T>(items: Vec<T>) -> Replay<T> {
 }
 
 fn weight(c: &mut Criterion) {
-    let mut g = c.benchmark_group("weight");
+    let mut g = c.benchmark_group("cycle_weight");
     let mut full = WeightCycle::new().expect("weight cycle");
-    g.bench_function("cycle", |b| {
+    g.bench_function("full", |b| {
         b.iter(|| black_box(full.cycle().expect("cycle")))
     });
     let mut rec = WeightCycle::new().expect("weight cycle");
@@ -48,9 +49,9 @@ fn weight(c: &mut Criterion) {
 }
 
 fn contact(c: &mut Criterion) {
-    let mut g = c.benchmark_group("contact");
+    let mut g = c.benchmark_group("cycle_contact");
     let mut full = ContactCycle::new().expect("contact cycle");
-    g.bench_function("cycle", |b| {
+    g.bench_function("full", |b| {
         b.iter(|| black_box(full.cycle().expect("cycle")))
     });
     let mut rec = ContactCycle::new().expect("contact cycle");
@@ -82,9 +83,9 @@ fn contact(c: &mut Criterion) {
 }
 
 fn grasp(c: &mut Criterion) {
-    let mut g = c.benchmark_group("grasp");
+    let mut g = c.benchmark_group("cycle_grasp");
     let mut full = GraspCycle::new().expect("grasp cycle");
-    g.bench_function("cycle", |b| {
+    g.bench_function("full", |b| {
         b.iter(|| black_box(full.cycle().expect("cycle").packets.len()))
     });
     let mut rec = GraspCycle::new().expect("grasp cycle");
@@ -137,9 +138,9 @@ fn grasp(c: &mut Criterion) {
 }
 
 fn softness(c: &mut Criterion) {
-    let mut g = c.benchmark_group("softness");
+    let mut g = c.benchmark_group("cycle_softness");
     let mut full = SoftnessCycle::new().expect("softness cycle");
-    g.bench_function("cycle", |b| {
+    g.bench_function("full", |b| {
         b.iter(|| black_box(full.cycle().expect("cycle")))
     });
     let mut rec = SoftnessCycle::new().expect("softness cycle");
@@ -166,9 +167,9 @@ fn softness(c: &mut Criterion) {
 }
 
 fn tap(c: &mut Criterion) {
-    let mut g = c.benchmark_group("tap");
+    let mut g = c.benchmark_group("cycle_tap");
     let mut full = TapCycle::new().expect("tap cycle");
-    g.bench_function("cycle", |b| {
+    g.bench_function("full", |b| {
         b.iter(|| black_box(full.cycle().expect("cycle")))
     });
     let mut rec = TapCycle::new().expect("tap cycle");
@@ -217,9 +218,9 @@ fn tap(c: &mut Criterion) {
 }
 
 fn full_hand(c: &mut Criterion) {
-    let mut g = c.benchmark_group("full_hand");
+    let mut g = c.benchmark_group("cycle_full_hand");
     let mut full = FullHandCycle::new().expect("full-hand cycle");
-    g.bench_function("cycle", |b| {
+    g.bench_function("full", |b| {
         b.iter(|| black_box(full.cycle().expect("cycle")))
     });
     g.finish();

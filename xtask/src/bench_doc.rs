@@ -92,7 +92,12 @@ pub fn utc_date(t: SystemTime) -> String {
     format!("{y:04}-{m:02}-{d:02}")
 }
 
-/// One scene's cycle and stages, from ids `<scene>/cycle` and `<scene>/<stage>`.
+/// Group prefix of the control-cycle benches (`benches/benches/cycles.rs`).
+const CYCLE_GROUP: &str = "cycle_";
+/// Function name of a whole cycle within its group.
+const FULL: &str = "/full";
+
+/// One scene's cycle and stages, from ids `cycle_<scene>/full` and `cycle_<scene>/<stage>`.
 fn scene_rows(measurements: &[Measurement]) -> String {
     let mut out = String::from(
         "| scene | cycle (mean) | 95 % CI | share of the 10 ms budget | stages (mean) | stages summed |\n\
@@ -115,7 +120,7 @@ fn scene_rows(measurements: &[Measurement]) -> String {
             })
             .collect::<Vec<_>>()
             .join(" + ");
-        let sum: f64 = stages.iter().map(|m| m.mean_ns).sum();
+        let sum: f64 = stages.iter().map(|(_, m)| m.mean_ns).sum();
         let _ = writeln!(
             out,
             "| {scene} | {} | {} … {} | {:.3} % (1 : {:.0}) | {} | {} |",
@@ -151,7 +156,10 @@ pub fn document(command: &str, machine: &Machine, measurements: &[Measurement]) 
          machine;\n- date: {} (UTC); commit: `{}`.\n",
         machine.cores, machine.cpu, machine.load.0, machine.load.1, machine.date, machine.commit
     );
-    if measurements.iter().any(|m| m.id.ends_with("/cycle")) {
+    if measurements
+        .iter()
+        .any(|m| m.id.starts_with(CYCLE_GROUP) && m.id.ends_with(FULL))
+    {
         let _ = writeln!(
             s,
             "## Control cycles (`benches/`, `cargo xtask bench cycles`)\n\n\
@@ -199,13 +207,13 @@ mod tests {
     #[test]
     fn scene_rows_put_each_cycle_against_the_budget_with_its_stages() {
         let ms = [
-            m("grasp/cycle", 20_000.0),
-            m("grasp/decode", 12_000.0),
-            m("grasp/encode", 1_000.0),
-            m("grasp/estimate", 2_000.0),
-            m("grasp/policy", 4_000.0),
-            m("tap/cycle", 1_000_000.0),
-            m("other/bench", 5.0),
+            m("cycle_grasp/full", 20_000.0),
+            m("cycle_grasp/decode", 12_000.0),
+            m("cycle_grasp/encode", 1_000.0),
+            m("cycle_grasp/estimate", 2_000.0),
+            m("cycle_grasp/policy", 4_000.0),
+            m("cycle_tap/full", 1_000_000.0),
+            m("grasp_cycle/full", 5.0),
         ];
         let rows = scene_rows(&ms);
         assert!(rows.contains(
@@ -215,6 +223,9 @@ mod tests {
         assert!(
             rows.contains("| tap | 1.00 ms | 900.00 µs … 1.10 ms | 10.000 % (1 : 10) | — | — |")
         );
-        assert!(!rows.contains("other"));
+        assert!(
+            !rows.contains("5.0 ns"),
+            "a bench outside the cycle groups: {rows}"
+        );
     }
 }
