@@ -103,21 +103,22 @@ fn scene_rows(measurements: &[Measurement]) -> String {
         "| scene | cycle (mean) | 95 % CI | share of the 10 ms budget | stages (mean) | stages summed |\n\
          |---|---:|---:|---:|---|---:|\n",
     );
-    for cycle in measurements.iter().filter(|m| m.id.ends_with("/cycle")) {
-        let scene = cycle.id.trim_end_matches("/cycle");
-        let stages: Vec<&Measurement> = STAGES
+    let cycles = measurements
+        .iter()
+        .filter(|m| m.id.starts_with(CYCLE_GROUP) && m.id.ends_with(FULL));
+    for cycle in cycles {
+        let group = cycle.id.trim_end_matches(FULL);
+        let scene = group.trim_start_matches(CYCLE_GROUP);
+        let stages: Vec<(&str, &Measurement)> = STAGES
             .iter()
-            .filter_map(|s| measurements.iter().find(|m| m.id == format!("{scene}/{s}")))
+            .filter_map(|&s| {
+                let id = format!("{group}/{s}");
+                measurements.iter().find(|m| m.id == id).map(|m| (s, m))
+            })
             .collect();
         let split = stages
             .iter()
-            .map(|m| {
-                format!(
-                    "{} {}",
-                    m.id.trim_start_matches(&format!("{scene}/")),
-                    human(m.mean_ns)
-                )
-            })
+            .map(|(s, m)| format!("{s} {}", human(m.mean_ns)))
             .collect::<Vec<_>>()
             .join(" + ");
         let sum: f64 = stages.iter().map(|(_, m)| m.mean_ns).sum();
