@@ -28,18 +28,22 @@ pub struct Measurement {
     pub ci_ns: (f64, f64),
 }
 
-/// `args`: an optional FILTER (bench targets whose name contains it), then `--` and arguments
-/// passed to every criterion bench (e.g. `-- --quick`).
+/// `args`: an optional FILTER (bench targets whose name contains it) and `--write` (also write
+/// `docs/benchmarks.md` from this run), then `--` and arguments passed to every criterion bench
+/// (e.g. `-- --quick`).
 pub fn run(root: &Path, args: &[String]) -> Result<()> {
     let (ours, passthrough) = match args.iter().position(|a| a == "--") {
         Some(i) => (&args[..i], &args[i + 1..]),
         None => (args, &[][..]),
     };
-    let filter = match ours {
+    let write = ours.iter().any(|a| a == "--write");
+    let ours: Vec<&String> = ours.iter().filter(|a| *a != "--write").collect();
+    let filter = match ours[..] {
         [] => None,
         [f] => Some(f.as_str()),
-        _ => bail!("bench takes at most one FILTER before `--`"),
+        _ => bail!("bench takes at most one FILTER (and --write) before `--`"),
     };
+    let machine = write.then(crate::bench_doc::Machine::probe);
     let (target_dir, targets) = bench_targets(root)?;
     let targets: Vec<_> = targets
         .into_iter()
@@ -66,6 +70,16 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     std::fs::write(&out, &table).with_context(|| format!("writing {}", out.display()))?;
     println!("bench: summary written to {}", out.display());
     crate::fuzzy_peers::write_report(root, &measurements)?;
+    if let Some(machine) = machine {
+        let command = std::iter::once("cargo xtask bench")
+            .chain(args.iter().map(String::as_str))
+            .collect::<Vec<_>>()
+            .join(" ");
+        let doc = crate::bench_doc::document(&command, &machine.finish(root), &measurements);
+        let out = root.join(crate::bench_doc::DOC);
+        std::fs::write(&out, doc).with_context(|| format!("writing {}", out.display()))?;
+        println!("bench: wrote {}", crate::bench_doc::DOC);
+    }
     Ok(())
 }
 

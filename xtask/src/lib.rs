@@ -3,7 +3,9 @@
 //! - `test`: sets up `.venv`, then fmt check, clippy `-D warnings`, every test, docs, and
 //!   `fixtures --check`: the one command CI runs.
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
-//! - `bench [FILTER] [-- CRITERION ARGS]`: runs the criterion benches and prints a summary table.
+//! - `bench [FILTER] [--write] [-- CRITERION ARGS]`: runs the criterion benches and prints a
+//!   summary table; `--write` also writes `docs/benchmarks.md` (machine, date, commit, every
+//!   bench, and each scene's control cycle against the 10 ms loop budget).
 //! - `train contact-mlp`: trains the contact-area MLP, writes its weights, metrics and plot.
 //! - `train contact-cnn`: runs the contact CNN's Table I protocol, writes weights, metrics,
 //!   plots and its section of `docs/learning.md`.
@@ -14,6 +16,7 @@
 //! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
 
 pub mod bench;
+pub mod bench_doc;
 pub mod demo;
 pub mod docs_section;
 pub mod fixtures;

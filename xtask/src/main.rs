@@ -8,7 +8,9 @@ const USAGE: &str = "usage: cargo xtask <command>
 commands:
   test                      set up .venv, then fmt, clippy, every test, docs, fixtures --check
   fixtures [--check]        regenerate the generated fixtures, or check the committed ones
-  bench [FILTER] [-- ARGS]  run the criterion benches (names containing FILTER), print a summary
+  bench [FILTER] [--write] [-- ARGS]
+                            run the criterion benches (names containing FILTER), print a summary;
+                            --write: also write docs/benchmarks.md (`bench cycles --write`)
   train contact-mlp         train the contact-area MLP, write its weights, metrics and plot
   train force-dnn           train the force / weight DNN, write its weights, metrics, curve, docs
   train softness            train the softness classifier (LM, Adam), write weights, metrics, report

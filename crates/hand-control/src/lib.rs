@@ -43,4 +43,4 @@ mod servo_hand;
 pub mod sim;
 
 pub use error::{Error, InstructionError, faults_from_hardware_error};
-pub use servo_hand::{DEFAULT_REPLY_LATENCY, RawGoals, RawServoState, ServoHand};
+pub use servo_hand::{DEFAULT_REPLY_LATENCY, RawGoals, RawServoState, ServoHand, encode_goals};

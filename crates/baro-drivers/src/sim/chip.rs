@@ -62,6 +62,8 @@ pub struct Ms5611Sim<Env> {
     answer_len: usize,
     answer_pos: usize,
     commands: Vec<u8>,
+    /// Whether `commands` records (off for long runs: an unbounded log grows the heap).
+    log_commands: bool,
 }
 
 impl<Env: Environment> Ms5611Sim<Env> {
@@ -84,6 +86,7 @@ impl<Env: Environment> Ms5611Sim<Env> {
             answer_len: 0,
             answer_pos: 0,
             commands: Vec::new(),
+            log_commands: true,
         }
     }
 
@@ -140,7 +143,25 @@ impl<Env: Environment> Ms5611Sim<Env> {
         &self.clock
     }
 
-    /// Every command byte received so far, in order.
+    /// Records every command byte for [`commands`](Self::commands) (on by default), or not:
+    /// a control loop that runs for hours turns it off so the model's heap stays constant.
+    ///
+    /// ```
+    /// # use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock};
+    /// use baro_drivers::Ms5611;
+    /// let clock = SimClock::new();
+    /// let air = Conditions { pressure_mbar: 1000.0, temperature_celsius: 20.0 };
+    /// let chip = Ms5611Sim::new(air, clock.clone()).with_command_log(false);
+    /// let baro = Ms5611::new_with_spi(chip).init(&mut clock.delay()).map_err(|e| e.error)?;
+    /// assert!(baro.destroy().commands().is_empty()); // reset and PROM reads went unrecorded
+    /// # Ok::<(), baro_drivers::Error<baro_drivers::sim::SimError>>(())
+    /// ```
+    pub fn with_command_log(mut self, on: bool) -> Self {
+        self.log_commands = on;
+        self
+    }
+
+    /// Every command byte received so far, in order (empty with the log off).
     pub fn commands(&self) -> &[u8] {
         &self.commands
     }
@@ -154,7 +175,9 @@ impl<Env: Environment> Ms5611Sim<Env> {
     /// Executes one command byte.
     pub(super) fn command(&mut self, byte: u8) -> Result<(), SimError> {
         let decoded = command::decode(byte).ok_or(SimError::UnknownCommand(byte))?;
-        self.commands.push(byte);
+        if self.log_commands {
+            self.commands.push(byte);
+        }
         self.set_answer(&[]);
         match decoded {
             Decoded::Reset => self.pending = None,

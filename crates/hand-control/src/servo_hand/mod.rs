@@ -322,29 +322,13 @@ impl ServoHand {
         Ok(())
     }
 
-    /// Raw goals for `cmd`, validated against the model's position limits.
+    /// Raw goals for `cmd`, validated against the model's position limits
+    /// ([`encode_goals`] with this hand's control table).
     ///
     /// # Errors
     /// [`Error::OutOfRange`] for a non-finite position or one outside Min / Max Position Limit.
     pub fn encode_command(&self, cmd: &hand_traits::GripperCommand) -> Result<RawGoals, Error> {
-        let t = self.table;
-        let (min, max) = position_limits(t);
-        let unit = f64::from(t.position_unit_rad);
-        let (lo, hi) = (f64::from(min) * unit, f64::from(max) * unit);
-        let p = f64::from(cmd.position_rad);
-        if !p.is_finite() || p < lo - unit / 2.0 || p > hi + unit / 2.0 {
-            return Err(Error::OutOfRange {
-                what: "goal position (rad)",
-                value: p,
-                min: lo,
-                max: hi,
-            });
-        }
-        let position = ((p / unit).round() as i32).clamp(min, max);
-        Ok(RawGoals {
-            position,
-            effort: t.effort_raw(cmd.effort.fraction()),
-        })
+        encode_goals(self.table, cmd)
     }
 
     /// Sync-writes raw goals to every servo (two broadcast packets: effort, then position).
@@ -468,6 +452,46 @@ impl ServoHand {
 }
 
 /// Min / Max Position Limit defaults of the model (the Goal Position's run-time limit).
+/// Raw goals of `table`'s model for `cmd`: the effort on the Goal PWM / Goal Current scale,
+/// the position in Goal Position units, validated against the model's position limits. No
+/// bus needed, so an in-process loop can encode exactly what [`ServoHand`] would send.
+///
+/// ```
+/// use hand_control::{control_table::MX_28, encode_goals};
+/// use hand_traits::{Effort, GripperCommand};
+/// let cmd = GripperCommand { position_rad: 3.5, effort: Effort::from_torque_limit_raw(400) };
+/// let goals = encode_goals(&MX_28, &cmd)?;
+/// assert_eq!(goals.effort, 346); // the paper's 400 of 1023 → Goal PWM 346 of 885
+/// assert!(encode_goals(&MX_28, &GripperCommand { position_rad: f32::NAN, ..cmd }).is_err());
+/// # Ok::<(), hand_control::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::OutOfRange`] for a non-finite position or one outside Min / Max Position Limit.
+pub fn encode_goals(
+    table: &ControlTable,
+    cmd: &hand_traits::GripperCommand,
+) -> Result<RawGoals, Error> {
+    let t = table;
+    let (min, max) = position_limits(t);
+    let unit = f64::from(t.position_unit_rad);
+    let (lo, hi) = (f64::from(min) * unit, f64::from(max) * unit);
+    let p = f64::from(cmd.position_rad);
+    if !p.is_finite() || p < lo - unit / 2.0 || p > hi + unit / 2.0 {
+        return Err(Error::OutOfRange {
+            what: "goal position (rad)",
+            value: p,
+            min: lo,
+            max: hi,
+        });
+    }
+    let position = ((p / unit).round() as i32).clamp(min, max);
+    Ok(RawGoals {
+        position,
+        effort: t.effort_raw(cmd.effort.fraction()),
+    })
+}
+
 fn position_limits(t: &ControlTable) -> (i32, i32) {
     match t.goal_position.limit {
         LimitBy::Between { min, max } => (

@@ -138,6 +138,8 @@ pub struct Fingertip {
     clock: SimClock,
     scheduler: Scheduler,
     frames: Vec<PressureFrame<SENSORS>>,
+    /// Whether `read_frame` appends to `frames` (off for endless control loops).
+    keep_frames: bool,
     steps: u64,
 }
 
@@ -176,10 +178,13 @@ impl Fingertip {
                 sensor,
                 temperature_c: config.temperature_c,
             };
-            let chip = Ms5611Sim::new(env, clock.clone()).with_seed(crate::seed::derive(
-                seed,
-                &format!("fingertip/ms5611/{sensor}"),
-            ));
+            // Nothing reads the chips' command logs here: off, so the heap stays flat.
+            let chip = Ms5611Sim::new(env, clock.clone())
+                .with_seed(crate::seed::derive(
+                    seed,
+                    &format!("fingertip/ms5611/{sensor}"),
+                ))
+                .with_command_log(false);
             let ready = Ms5611::new_with_spi(chip)
                 .init(&mut clock.delay())
                 .map_err(|e| driver_error(e.error))?;
@@ -191,6 +196,7 @@ impl Fingertip {
             clock,
             scheduler: Scheduler::new(osr),
             frames: Vec::new(),
+            keep_frames: true,
             steps: 0,
         })
     }
@@ -220,7 +226,13 @@ impl Fingertip {
         }
     }
 
-    /// Every frame read so far.
+    /// Keeps every frame read for [`frames`](Self::frames) (the default), or not: a control
+    /// loop that runs indefinitely turns the log off so reading a frame never allocates.
+    pub fn set_frame_log(&mut self, keep: bool) {
+        self.keep_frames = keep;
+    }
+
+    /// Every frame read so far (while the frame log was on).
     pub fn frames(&self) -> &[PressureFrame<SENSORS>] {
         &self.frames
     }
@@ -251,7 +263,9 @@ impl TactileSource for Fingertip {
             t_us: self.clock.now_ns() / 1000,
             pressure_pa: out.map(|m| m.pressure_pa as f32),
         };
-        self.frames.push(frame);
+        if self.keep_frames {
+            self.frames.push(frame);
+        }
         Ok(frame)
     }
 }

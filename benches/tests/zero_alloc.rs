@@ -1,0 +1,96 @@
+//! Heap blocks allocated per control cycle, after warm-up, for every scene (dhat's counting
+//! global allocator, as `crates/fuzzy-mamdani/tests/zero_alloc.rs`). One test, scenes in turn:
+//! the allocator is global, so parallel tests would count each other's blocks.
+//!
+//! Zero for every stage but one: `tactile_nets::contact_mlp::ContactMlp::predict` allocates
+//! [`MLP_BLOCKS_PER_CALL`] blocks per call (its outputs copied into a `Vec`, the
+//! per-catalogue log-likelihoods and their softmax, both `Vec`s sized by the catalogue), so the
+//! contact and full-hand cycles allocate exactly that in every cycle that runs the MLP.
+
+use handstack_benches::CycleError;
+use handstack_benches::contact::ContactCycle;
+use handstack_benches::full_hand::FullHandCycle;
+use handstack_benches::grasp::GraspCycle;
+use handstack_benches::softness::SoftnessCycle;
+use handstack_benches::tap::TapCycle;
+use handstack_benches::weight::WeightCycle;
+
+#[global_allocator]
+static ALLOC: dhat::Alloc = dhat::Alloc;
+
+const WARM_UP: usize = 200;
+/// Blocks one `ContactMlp::predict` (cell-set head) allocates; see the module docs.
+const MLP_BLOCKS_PER_CALL: u64 = 3;
+const CYCLES: usize = 500;
+
+/// Blocks allocated by `CYCLES` cycles after `WARM_UP` of them.
+fn blocks(mut cycle: impl FnMut() -> Result<(), CycleError>) -> u64 {
+    for _ in 0..WARM_UP {
+        cycle().expect("warm-up cycle");
+    }
+    let before = dhat::HeapStats::get().total_blocks;
+    for _ in 0..CYCLES {
+        cycle().expect("cycle");
+    }
+    dhat::HeapStats::get().total_blocks - before
+}
+
+#[test]
+fn cycles_allocate_nothing_in_steady_state() {
+    let _profiler = dhat::Profiler::builder().testing().build();
+    let mut weight = WeightCycle::new().expect("weight");
+    let mut grasp = GraspCycle::new().expect("grasp");
+    let mut softness = SoftnessCycle::new().expect("softness");
+    let mut tap = TapCycle::new().expect("tap");
+    let mut contact = ContactCycle::new().expect("contact");
+    let mut full = FullHandCycle::new().expect("full hand");
+    // Contact, stage by stage: the MLP's blocks counted apart from the rest of the cycle.
+    for _ in 0..WARM_UP {
+        contact.cycle().expect("warm-up cycle");
+    }
+    let (mut mlp_calls, mut mlp_blocks) = (0, 0);
+    let start = dhat::HeapStats::get().total_blocks;
+    for _ in 0..CYCLES {
+        let frame = contact.decode().expect("frame");
+        let e = contact.estimate(&frame);
+        if let (Some(event), Some(reading)) = (e.event, e.reading) {
+            contact.aot(&event).expect("arrived");
+            let before = dhat::HeapStats::get().total_blocks;
+            contact.mlp(&reading).expect("finite");
+            mlp_blocks += dhat::HeapStats::get().total_blocks - before;
+            mlp_calls += 1;
+        }
+    }
+    let contact_rest = dhat::HeapStats::get().total_blocks - start - mlp_blocks;
+    for _ in 0..WARM_UP {
+        full.cycle().expect("warm-up cycle");
+    }
+    let mut full_mlp_calls = 0;
+    let start = dhat::HeapStats::get().total_blocks;
+    for _ in 0..CYCLES {
+        let (d, _) = full.cycle().expect("cycle");
+        full_mlp_calls += u64::from(d.mlp.is_some());
+    }
+    let full_blocks = dhat::HeapStats::get().total_blocks - start;
+    let counts = [
+        ("weight", blocks(|| weight.cycle().map(drop))),
+        ("grasp", blocks(|| grasp.cycle().map(drop))),
+        ("softness", blocks(|| softness.cycle().map(drop))),
+        ("tap", blocks(|| tap.cycle().map(drop))),
+        ("contact without the MLP", contact_rest),
+    ];
+    for (scene, n) in counts {
+        println!("{scene}: {n} blocks in {CYCLES} cycles");
+    }
+    println!("contact MLP: {mlp_blocks} blocks in {mlp_calls} calls");
+    println!("full_hand: {full_blocks} blocks in {CYCLES} cycles, {full_mlp_calls} MLP calls");
+    for (scene, n) in counts {
+        assert_eq!(n, 0, "{scene}: {n} blocks in {CYCLES} cycles after warm-up");
+    }
+    assert!(
+        mlp_calls > 0,
+        "the schedule presses the pad: the MLP must run"
+    );
+    assert_eq!(mlp_blocks, MLP_BLOCKS_PER_CALL * mlp_calls);
+    assert_eq!(full_blocks, MLP_BLOCKS_PER_CALL * full_mlp_calls);
+}
