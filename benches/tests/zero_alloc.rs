@@ -2,10 +2,9 @@
 //! global allocator, as `crates/fuzzy-mamdani/tests/zero_alloc.rs`). One test, scenes in turn:
 //! the allocator is global, so parallel tests would count each other's blocks.
 //!
-//! Zero for every stage but one: `tactile_nets::contact_mlp::ContactMlp::predict` allocates
-//! [`MLP_BLOCKS_PER_CALL`] blocks per call (its outputs copied into a `Vec`, the
-//! per-catalogue log-likelihoods and their softmax, both `Vec`s sized by the catalogue), so the
-//! contact and full-hand cycles allocate exactly that in every cycle that runs the MLP.
+//! Target zero for every scene. The contact MLP is counted on its own as well, because it used
+//! to allocate three blocks per call (outputs, log-likelihoods and their softmax in `Vec`s); it
+//! now decodes into a fixed buffer with a streaming log-sum-exp, and this test keeps it so.
 
 use handstack_benches::CycleError;
 use handstack_benches::contact::ContactCycle;
@@ -19,8 +18,6 @@ use handstack_benches::weight::WeightCycle;
 static ALLOC: dhat::Alloc = dhat::Alloc;
 
 const WARM_UP: usize = 200;
-/// Blocks one `ContactMlp::predict` (cell-set head) allocates; see the module docs.
-const MLP_BLOCKS_PER_CALL: u64 = 3;
 const CYCLES: usize = 500;
 
 /// Blocks allocated by `CYCLES` cycles after `WARM_UP` of them.
@@ -91,6 +88,13 @@ fn cycles_allocate_nothing_in_steady_state() {
         mlp_calls > 0,
         "the schedule presses the pad: the MLP must run"
     );
-    assert_eq!(mlp_blocks, MLP_BLOCKS_PER_CALL * mlp_calls);
-    assert_eq!(full_blocks, MLP_BLOCKS_PER_CALL * full_mlp_calls);
+    assert_eq!(
+        mlp_blocks, 0,
+        "contact MLP: {mlp_blocks} blocks in {mlp_calls} calls"
+    );
+    assert!(full_mlp_calls > 0, "the full hand runs the MLP too");
+    assert_eq!(
+        full_blocks, 0,
+        "full hand: {full_blocks} blocks in {CYCLES} cycles"
+    );
 }

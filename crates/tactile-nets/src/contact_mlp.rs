@@ -27,7 +27,7 @@
 //! with the weights. Both heads report as region the cell nearest the decoded contact's
 //! centroid (ties: the lower row, then column), so `regions` = 24.
 
-use crate::activations::{log_sigmoid, sigmoid, softmax};
+use crate::activations::{log_sigmoid, sigmoid};
 use crate::data::fingertip::{TapReading, TapRecord};
 use crate::error::{NetError, check_output};
 use crate::frozen::{self, Freeze, Layer};
@@ -177,10 +177,6 @@ fn build<const O: usize>(dev: &Cpu) -> Net<O> {
     net
 }
 
-fn run<const O: usize>(fast: &Fast<O>, z: [f32; N_FEATURES]) -> Vec<f32> {
-    fast.forward(z).to_vec()
-}
-
 /// Cell nearest a mask's centroid (ties: the lower row, then column).
 fn region_of(mask: u32) -> u16 {
     let (r, c) = pad::centroid(mask).unwrap_or((0.0, 0.0));
@@ -259,23 +255,37 @@ impl ContactMlp {
     /// [`NetError::NonFinite`] for a NaN or infinite value, [`NetError::NonFiniteOutput`] when
     /// an input far outside the training range overflows the network.
     pub fn outputs(&self, input: &[f32]) -> Result<Vec<f32>, NetError> {
+        let (out, n) = self.raw_outputs(input)?;
+        Ok(out[..n].to_vec())
+    }
+
+    /// [`ContactMlp::outputs`] in a fixed buffer (the first `n` slots hold the head's outputs):
+    /// localisation runs inside control cycles, where it must not allocate.
+    fn raw_outputs(&self, input: &[f32]) -> Result<([f32; CELLS], usize), NetError> {
         let z: [f32; N_FEATURES] = standardise(&frozen::input(input)?, &self.mean, &self.scale);
         // A finite input can still overflow the standardisation: report it as the overflow it is.
         check_output(&z)?;
-        let out = match &self.body {
-            Body::Area(_, fast) => run(fast, z),
-            Body::Cells(_, fast) => run(fast, z),
+        let mut out = [0.0f32; CELLS];
+        let n = match &self.body {
+            Body::Area(_, fast) => {
+                out[..1].copy_from_slice(&fast.forward(z));
+                1
+            }
+            Body::Cells(_, fast) => {
+                out = fast.forward(z);
+                CELLS
+            }
         };
-        check_output(&out)?;
-        Ok(out)
+        check_output(&out[..n])?;
+        Ok((out, n))
     }
 
     /// Locates the contact for raw features (see [`ContactMlp::outputs`] for the errors).
     pub fn predict(&self, input: &[f32]) -> Result<Prediction, NetError> {
-        let out = self.outputs(input)?;
+        let (out, n) = self.raw_outputs(input)?;
         let (contact, confidence) = match self.head {
             Head::AverageArea => self.decode_label(out[0]),
-            Head::CellSet => self.decode_cells(&out),
+            Head::CellSet => self.decode_cells(&out[..n]),
         }
         .ok_or_else(|| NetError::Training("empty contact catalogue".into()))?;
         Ok(Prediction {
@@ -296,31 +306,39 @@ impl ContactMlp {
         best.map(|(m, d)| (m, (1.0 - d / REGRESSION_CONFIDENCE_SPAN).max(0.0)))
     }
 
+    /// The catalogue entry of highest likelihood and its posterior share, in one streaming
+    /// log-sum-exp pass (no buffer: this runs in control cycles); `None` for an empty catalogue
+    /// or a NaN likelihood. Ties keep the first entry.
     fn decode_cells(&self, logits: &[f32]) -> Option<(u32, f32)> {
-        let ll: Vec<f32> = self
-            .catalogue
-            .iter()
-            .map(|&m| {
-                logits
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &z)| {
-                        if m & (1 << i) != 0 {
-                            log_sigmoid(z)
-                        } else {
-                            log_sigmoid(-z)
-                        }
-                    })
-                    .sum()
-            })
-            .collect();
-        let post = softmax(&ll)?;
-        let (k, p) =
-            post.iter().enumerate().fold(
-                (0, f32::NEG_INFINITY),
-                |b, (k, &p)| if p > b.1 { (k, p) } else { b },
-            );
-        Some((self.catalogue[k], p))
+        let mut best = (0usize, f32::NEG_INFINITY);
+        // Σ_j exp(ll_j − best.1): the posterior of `best` is its inverse.
+        let mut sum = 0.0f32;
+        for (k, &m) in self.catalogue.iter().enumerate() {
+            let ll: f32 = logits
+                .iter()
+                .enumerate()
+                .map(|(i, &z)| {
+                    if m & (1 << i) != 0 {
+                        log_sigmoid(z)
+                    } else {
+                        log_sigmoid(-z)
+                    }
+                })
+                .sum();
+            if ll.is_nan() {
+                return None;
+            }
+            if ll > best.1 {
+                sum = sum * (best.1 - ll).exp() + 1.0;
+                best = (k, ll);
+            } else if ll == best.1 {
+                // Equal (also both −∞): an equal share, as softmax gives it.
+                sum += 1.0;
+            } else {
+                sum += (ll - best.1).exp();
+            }
+        }
+        (sum > 0.0).then(|| (self.catalogue[best.0], 1.0 / sum))
     }
 
     /// Per-cell contact probabilities (the [`Head::CellSet`] outputs through a sigmoid);
