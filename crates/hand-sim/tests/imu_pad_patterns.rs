@@ -151,7 +151,10 @@ fn imu_amplitude_grows_with_depth() {
     // §III-C / Table I: larger depths give stronger accelerometer and gyroscope signals. Each
     // signal is read where its tilt is large: acc x and gyro y at column 1 row 1, acc y and
     // gyro x at column 1 row 24.
-    let p = [TapPosition::new(1, 1).unwrap(), TapPosition::new(1, 24).unwrap()];
+    let p = [
+        TapPosition::new(1, 1).unwrap(),
+        TapPosition::new(1, 24).unwrap(),
+    ];
     let depths = [0.2, 0.4, 0.8, 1.6];
     let recs = taps(&p, &depths, 5, 23);
     let amp = |d: f64, s: usize, at: usize| {

@@ -55,7 +55,7 @@ pub fn pressure_counts(p: &PressureCoupling, depth_mm: f64, k: f64, force_n: f64
 /// the silicone walls and the PCB overhang make the measured pad stiffer across).
 pub const ALONG_ARM_MM: f64 = 11.5;
 
-/// The pad's tilt, per unit amplitude, from a tap at offset (`dx`, `dy`) mm from the chip:
+/// The arm's share of the pad's tilt (the tilt is this times the tap's force), from a tap at offset (`dx`, `dy`) mm from the chip:
 /// `[a, c]`, `a` about the across axis (set by the arm along the rows, −1.09 at row 1 … +0.91 at
 /// row 24) and `c` about the along axis (set by the arm across, −1 at column 1 … +1 at
 /// column 3). A lever, not a normalised grid place: the two arms have their own scales, so a

@@ -132,8 +132,9 @@ impl RealisedTap {
         let counts = pattern::pressure_counts(p, depth_mm, k, force_n);
         let tilt = pattern::tilt(dx_mm, dy_mm);
         let gain = |e: f64| (1.0 + var.gain_sd * e).max(0.0);
-        let acc = config.motion.accel_mps2_per_mm * depth_mm * gain(e_acc);
-        let gyro = config.motion.gyro_rps_per_mm * depth_mm * gain(e_gyro);
+        // The tilt follows the tap's moment about the chip: force × arm (the arm is in `tilt`).
+        let acc = config.motion.accel_mps2_per_n * force_n * gain(e_acc);
+        let gyro = config.motion.gyro_rps_per_n * force_n * gain(e_gyro);
         let period_s = 1.0 / config.sample_rate_hz;
         let jitter = if var.onset_jitter {
             phase * period_s
