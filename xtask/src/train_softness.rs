@@ -129,13 +129,8 @@ fn ours_section(
             .find(|r| r.test_set == set)
             .map_or(f64::NAN, |r| r.accuracy_pct);
         let key = format!("{set}_accuracy");
-        let v: Vec<f64> = SEEDS
-            .iter()
-            .map(|&sd| 100.0 * value(m, &label(sd), &key))
-            .collect();
-        let mean = v.iter().sum::<f64>() / v.len() as f64;
-        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        // Our labels are `ours/<features>/lm/seed<N>`: `spread` over that prefix.
+        let (mean, lo, hi) = spread(m, &format!("ours/{chosen}/lm"), &key);
         let sel = 100.0 * value(m, &label(seed), &key);
         writeln!(
             s,

@@ -319,12 +319,15 @@ pub fn save_all(dir: &Path, runs: &[Run]) -> Result<Vec<PathBuf>, NetError> {
     let path = dir.join(METRICS_FILE);
     std::fs::write(&path, metrics_file(runs).to_json()?)?;
     written.push(path);
-    let path = dir.join(TRAINING_FILE);
-    let text =
-        serde_json::to_string_pretty(&training).map_err(|e| NetError::Metrics(e.to_string()))?;
-    std::fs::write(&path, text + "\n")?;
-    written.push(path);
+    written.push(write_json(&dir.join(TRAINING_FILE), &training)?);
     Ok(written)
+}
+
+/// Writes `value` as pretty JSON (with a final newline) to `path`; returns the path.
+fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<PathBuf, NetError> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| NetError::Metrics(e.to_string()))?;
+    std::fs::write(path, text + "\n")?;
+    Ok(path.to_path_buf())
 }
 
 /// Our variant: the paper's network (and training) on finger-order-invariant inputs
@@ -578,11 +581,7 @@ pub fn save_ours(
         "chosen": runs.first().map(|r| r.model.features.name()),
         "train_seconds": seconds,
     });
-    let path = dir.join(VALIDATION_FILE);
-    let text =
-        serde_json::to_string_pretty(&record).map_err(|e| NetError::Metrics(e.to_string()))?;
-    std::fs::write(&path, text + "\n")?;
-    written.push(path);
+    written.push(write_json(&dir.join(VALIDATION_FILE), &record)?);
     Ok(written)
 }
 
