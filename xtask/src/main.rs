@@ -13,7 +13,9 @@ commands:
                             --write: also write docs/benchmarks.md (`bench cycles --write`)
   train contact-mlp         train the contact-area MLP, write its weights, metrics and plot
   train force-dnn           train the force / weight DNN, write its weights, metrics, curve, docs
-  train softness            train the softness classifier (LM, Adam), write weights, metrics, report
+  train softness [--docs-only]
+                            train the softness classifier (LM, Adam, our variant), write weights,
+                            metrics, report (--docs-only: redraw from the committed files)
   train contact-cnn [--docs-only]
                             run the contact CNN's Table I protocol, write weights, metrics, plots,
                             docs (--docs-only: redraw plots and docs from the committed metrics)

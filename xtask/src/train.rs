@@ -29,9 +29,12 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
         [model, flag] if model == "contact-cnn" && flag == "--docs-only" => {
             crate::train_cnn::run(root, true)
         }
-        [model] if model == "softness" => crate::train_softness::run(root),
+        [model] if model == "softness" => crate::train_softness::run(root, false),
+        [model, flag] if model == "softness" && flag == "--docs-only" => {
+            crate::train_softness::run(root, true)
+        }
         _ => bail!(
-            "usage: cargo xtask train contact-mlp | force-dnn | softness | contact-cnn [--docs-only]"
+            "usage: cargo xtask train contact-mlp | force-dnn | softness [--docs-only] | contact-cnn [--docs-only]"
         ),
     }
 }

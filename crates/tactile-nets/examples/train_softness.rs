@@ -10,6 +10,7 @@ mod common;
 use indicatif::{ProgressBar, ProgressStyle};
 use tactile_nets::data::underactuated;
 use tactile_nets::softness_eval::{self, MODEL_DIR, OPTIMISERS, SEEDS};
+use tactile_nets::softness_features::Features;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -51,8 +52,47 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     bar.finish();
+    // Our variant: inputs chosen on the validation split of the training objects.
+    let mut validation = Vec::new();
+    for features in Features::ALL {
+        let acc = softness_eval::validate_features(&grasps, features)?;
+        println!("validation {:<16} {:>5.1} %", features.name(), 100.0 * acc);
+        validation.push((features.name().to_owned(), acc));
+    }
+    let chosen = Features::CANDIDATES
+        .into_iter()
+        .fold(None::<(Features, f64)>, |best, f| {
+            let acc = validation
+                .iter()
+                .find(|(n, _)| n == f.name())
+                .map_or(0.0, |v| v.1);
+            match best {
+                Some((_, b)) if b >= acc => best,
+                _ => Some((f, acc)),
+            }
+        })
+        .map(|(f, _)| f)
+        .ok_or("no candidate")?;
+    let mut ours = Vec::new();
+    for seed in SEEDS {
+        let run = softness_eval::train_ours(&grasps, chosen, seed)?;
+        let e = &run.evaluation;
+        println!(
+            "ours {} seed {seed}: train {:>5.1} %  regular {:>5.1} %  irregular {:>5.1} %  mse {:.4}  {:>6.2} s",
+            chosen.name(),
+            100.0 * e.train.accuracy(),
+            100.0 * e.regular.accuracy(),
+            100.0 * e.irregular.accuracy(),
+            e.train_mse,
+            run.seconds,
+        );
+        ours.push(run);
+    }
     if !args.iter().any(|a| a == "--dry-run") {
-        for path in softness_eval::save_all(&root.join(MODEL_DIR), &runs)? {
+        let dir = root.join(MODEL_DIR);
+        let mut written = softness_eval::save_all(&dir, &runs)?;
+        written.extend(softness_eval::save_ours(&dir, &ours, &validation)?);
+        for path in written {
             println!("wrote {}", path.display());
         }
     }

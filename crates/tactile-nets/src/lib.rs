@@ -24,7 +24,8 @@
 //! - [`softness`]: the 8 → 4 → 4 → 3 softness classifier (seed 001) and its
 //!   [`hand_traits::SoftnessClassifier`];
 //! - [`softness_train`]: its Levenberg–Marquardt (and Adam) training;
-//! - [`softness_eval`]: the paper's protocol, confusion matrices and committed models.
+//! - [`softness_eval`]: the paper's protocol, confusion matrices and committed models;
+//! - [`softness_features`]: our variant's finger-order-invariant inputs.
 //!
 //! ```
 //! use tactile_nets::contact_mlp::{ContactMlp, Head, features};
@@ -70,6 +71,7 @@ pub mod norm;
 pub mod pad;
 pub mod softness;
 pub mod softness_eval;
+pub mod softness_features;
 pub mod softness_train;
 pub mod train;
 

@@ -14,8 +14,9 @@ use crate::data::underactuated::{Grasp, GraspSet, N_VARIABLES};
 use crate::error::NetError;
 use crate::metrics::{MetricsFile, MetricsRow};
 use crate::softness::{CLASSES, SoftnessNet};
+use crate::softness_features::Features;
 use crate::softness_train::{Optimiser, SoftnessTrainConfig, TrainReport, train};
-use hand_traits::Softness;
+use hand_traits::{Softness, SoftnessClassifier};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -93,9 +94,18 @@ pub fn training_mse(
     net: &SoftnessNet,
     pairs: &[(&[[f32; N_VARIABLES]], Softness)],
 ) -> Result<f64, NetError> {
+    rows_mse(net, pairs, STRIDE)
+}
+
+/// The mean squared error over every `stride`-th row of `pairs`.
+fn rows_mse(
+    net: &SoftnessNet,
+    pairs: &[(&[[f32; N_VARIABLES]], Softness)],
+    stride: usize,
+) -> Result<f64, NetError> {
     let (mut sum, mut n) = (0.0f64, 0usize);
     for (series, truth) in pairs {
-        for s in series.iter().step_by(STRIDE) {
+        for s in series.iter().step_by(stride.max(1)) {
             let y = net.sample_outputs(s)?;
             for (k, v) in y.iter().enumerate() {
                 let t = if k == truth.index() { 1.0 } else { 0.0 };
@@ -309,10 +319,294 @@ pub fn save_all(dir: &Path, runs: &[Run]) -> Result<Vec<PathBuf>, NetError> {
     let path = dir.join(METRICS_FILE);
     std::fs::write(&path, metrics_file(runs).to_json()?)?;
     written.push(path);
-    let path = dir.join(TRAINING_FILE);
-    let text =
-        serde_json::to_string_pretty(&training).map_err(|e| NetError::Metrics(e.to_string()))?;
-    std::fs::write(&path, text + "\n")?;
-    written.push(path);
+    written.push(write_json(&dir.join(TRAINING_FILE), &training)?);
     Ok(written)
+}
+
+/// Writes `value` as pretty JSON (with a final newline) to `path`; returns the path.
+fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<PathBuf, NetError> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| NetError::Metrics(e.to_string()))?;
+    std::fs::write(path, text + "\n")?;
+    Ok(path.to_path_buf())
+}
+
+/// Our variant: the paper's network (and training) on finger-order-invariant inputs
+/// ([`Features`]); classifies a series by the mean output over its feature rows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pooled {
+    /// Which inputs.
+    pub features: Features,
+    /// The 8 → 4 → 4 → 3 network trained on them.
+    pub net: SoftnessNet,
+}
+
+impl Pooled {
+    /// The class of one grasp's series.
+    pub fn predict(&self, series: &[[f32; N_VARIABLES]]) -> Result<Softness, NetError> {
+        self.net.predict(self.features.rows(series).as_flattened())
+    }
+}
+
+/// Input: a grasp's series, flat, [`N_VARIABLES`] readings per sample, as [`SoftnessNet`].
+impl SoftnessClassifier for Pooled {
+    type Input = [f32];
+    type Error = NetError;
+
+    fn classify(&mut self, series: &[f32]) -> Result<Softness, NetError> {
+        if series.is_empty() || series.len() % N_VARIABLES != 0 {
+            return Err(NetError::Shape {
+                expected: series.len().div_ceil(N_VARIABLES).max(1) * N_VARIABLES,
+                got: series.len(),
+            });
+        }
+        if let Some(index) = series.iter().position(|v| !v.is_finite()) {
+            return Err(NetError::NonFinite { index });
+        }
+        let samples: Vec<[f32; N_VARIABLES]> = series
+            .chunks_exact(N_VARIABLES)
+            .map(|c| core::array::from_fn(|j| c[j]))
+            .collect();
+        self.predict(&samples)
+    }
+}
+
+/// Folds of the validation split: the 18 household objects of the training set, every
+/// [`VALIDATION_FOLDS`]-th in one fold (the model objects always train). The test objects
+/// are never read.
+pub const VALIDATION_FOLDS: usize = 3;
+/// Seed of the validation trainings.
+pub const VALIDATION_SEED: u64 = 1;
+
+/// The labelled grasps of `set` as (feature rows, class).
+fn feature_pairs<'a>(
+    grasps: impl IntoIterator<Item = &'a Grasp>,
+    features: Features,
+) -> Vec<(Vec<[f32; N_VARIABLES]>, Softness)> {
+    grasps
+        .into_iter()
+        .filter_map(|g| Some((features.rows(&g.series), g.label?)))
+        .collect()
+}
+
+fn refs(pairs: &[(Vec<[f32; N_VARIABLES]>, Softness)]) -> Vec<(&[[f32; N_VARIABLES]], Softness)> {
+    pairs.iter().map(|(r, l)| (r.as_slice(), *l)).collect()
+}
+
+/// Trains the variant with LM and `seed` on `train` grasps.
+fn train_pooled(
+    fit: &[&Grasp],
+    features: Features,
+    seed: u64,
+) -> Result<(Pooled, TrainReport), NetError> {
+    let pairs = feature_pairs(fit.iter().copied(), features);
+    let config = SoftnessTrainConfig {
+        optimiser: Optimiser::lm(),
+        seed,
+        stride: features.stride(),
+    };
+    let (net, report) = train(&refs(&pairs), &config)?;
+    Ok((Pooled { features, net }, report))
+}
+
+/// Validation accuracy of `features`: trained with LM, seed
+/// [`VALIDATION_SEED`], on the training grasps less one fold of household objects and tested
+/// on that fold, over [`VALIDATION_FOLDS`] folds; the test sets are never read.
+pub fn validate_features(grasps: &[Grasp], features: Features) -> Result<f64, NetError> {
+    let train_set: Vec<&Grasp> = grasps
+        .iter()
+        .filter(|g| g.set == GraspSet::Train && g.label.is_some())
+        .collect();
+    let household: Vec<u32> = train_set
+        .iter()
+        .filter(|g| g.kind == "household")
+        .map(|g| g.id)
+        .collect();
+    let mut c = Confusion::default();
+    for fold in 0..VALIDATION_FOLDS {
+        let held: Vec<u32> = household
+            .iter()
+            .copied()
+            .skip(fold)
+            .step_by(VALIDATION_FOLDS)
+            .collect();
+        let (val, fit): (Vec<&Grasp>, Vec<&Grasp>) =
+            train_set.iter().partition(|g| held.contains(&g.id));
+        let model = train_pooled(&fit, features, VALIDATION_SEED)?.0;
+        for g in val {
+            let truth = g
+                .label
+                .ok_or_else(|| NetError::Training("unlabelled".into()))?;
+            c.add(truth, model.predict(&g.series)?);
+        }
+    }
+    Ok(c.accuracy())
+}
+
+/// One trained (or loaded) model of our variant.
+#[derive(Debug, Clone)]
+pub struct PooledRun {
+    /// Its seed.
+    pub seed: u64,
+    /// The model.
+    pub model: Pooled,
+    /// Its evaluation (training MSE on the variant's own training rows).
+    pub evaluation: Evaluation,
+    /// Training report (`None` for a loaded model).
+    pub report: Option<TrainReport>,
+    /// Training wall time, s (0 for a loaded model).
+    pub seconds: f64,
+}
+
+/// Evaluates our variant on the dataset's three sets.
+pub fn evaluate_pooled(model: &Pooled, grasps: &[Grasp]) -> Result<Evaluation, NetError> {
+    let on = |set: GraspSet| -> Result<Confusion, NetError> {
+        let mut c = Confusion::default();
+        for g in grasps.iter().filter(|g| g.set == set) {
+            if let Some(truth) = g.label {
+                c.add(truth, model.predict(&g.series)?);
+            }
+        }
+        Ok(c)
+    };
+    let pairs = feature_pairs(
+        grasps.iter().filter(|g| g.set == GraspSet::Train),
+        model.features,
+    );
+    Ok(Evaluation {
+        train: on(GraspSet::Train)?,
+        regular: on(GraspSet::TestRegular)?,
+        irregular: on(GraspSet::TestIrregular)?,
+        train_mse: rows_mse(&model.net, &refs(&pairs), model.features.stride())?,
+    })
+}
+
+/// Trains and evaluates our variant with `features` and `seed` on every labelled training
+/// grasp (LM, the committed settings).
+pub fn train_ours(grasps: &[Grasp], features: Features, seed: u64) -> Result<PooledRun, NetError> {
+    let fit: Vec<&Grasp> = grasps
+        .iter()
+        .filter(|g| g.set == GraspSet::Train && g.label.is_some())
+        .collect();
+    let start = Instant::now();
+    let (model, report) = train_pooled(&fit, features, seed)?;
+    let seconds = start.elapsed().as_secs_f64();
+    Ok(PooledRun {
+        seed,
+        evaluation: evaluate_pooled(&model, grasps)?,
+        model,
+        report: Some(report),
+        seconds,
+    })
+}
+
+/// Our variant's metrics file inside [`MODEL_DIR`] (drift-checked like [`METRICS_FILE`]).
+pub const OURS_METRICS_FILE: &str = "ours_metrics.json";
+/// The validation accuracies that chose the variant's inputs (a record of the choice,
+/// regenerated by `cargo xtask train softness`; not drift-checked: it retrains).
+pub const VALIDATION_FILE: &str = "validation.json";
+
+/// File name of one of our variant's models inside [`MODEL_DIR`].
+pub fn ours_file(features: Features, seed: u64) -> String {
+    format!("ours-{}-lm-seed{seed}.safetensors", features.name())
+}
+
+/// Metrics row label of one of our variant's models.
+pub fn ours_label(features: Features, seed: u64) -> String {
+    format!("ours/{}/lm/seed{seed}", features.name())
+}
+
+/// The metrics file of our variant's runs: one row per seed and a `selected` row (seed of
+/// lowest training MSE).
+pub fn ours_metrics_file(runs: &[PooledRun]) -> MetricsFile {
+    let mut rows: Vec<MetricsRow> = runs
+        .iter()
+        .map(|r| MetricsRow {
+            label: ours_label(r.model.features, r.seed),
+            values: r.evaluation.values(),
+        })
+        .collect();
+    if let Some(best) = runs
+        .iter()
+        .min_by(|a, b| a.evaluation.train_mse.total_cmp(&b.evaluation.train_mse))
+    {
+        rows.push(MetricsRow {
+            label: "ours/selected".into(),
+            values: BTreeMap::from([("lm_seed".to_owned(), best.seed as f64)]),
+        });
+    }
+    let features = runs.first().map_or("none", |r| r.model.features.name());
+    MetricsFile {
+        model: "softness-ours".into(),
+        description: format!(
+            "Our softness variant: the paper's 8 → 4 → 4 → 3 network and LM on the \
+             finger-order-invariant inputs `{features}` (tactile_nets::softness_features), \
+             chosen on a validation split of the training objects; per seed, accuracies, \
+             training MSE and confusion counts as metrics.json."
+        ),
+        split: "train: the 153 labelled training grasps; test: test_regular (24), \
+                test_irregular (30)"
+            .into(),
+        seed: SEEDS[0],
+        rows,
+    }
+}
+
+/// Saves our variant's models, metrics and the validation record into `dir`.
+pub fn save_ours(
+    dir: &Path,
+    runs: &[PooledRun],
+    validation: &[(String, f64)],
+) -> Result<Vec<PathBuf>, NetError> {
+    std::fs::create_dir_all(dir)?;
+    let mut written = Vec::new();
+    for r in runs {
+        let path = dir.join(ours_file(r.model.features, r.seed));
+        let meta = serde_json::json!({ "optimiser": "lm", "seed": r.seed,
+                                        "features": r.model.features.name(),
+                                        "stride": r.model.features.stride() });
+        r.model.net.save(&path, meta)?;
+        written.push(path);
+    }
+    let path = dir.join(OURS_METRICS_FILE);
+    std::fs::write(&path, ours_metrics_file(runs).to_json()?)?;
+    written.push(path);
+    let seconds: Vec<f64> = runs
+        .iter()
+        .map(|r| (r.seconds * 1000.0).round() / 1000.0)
+        .collect();
+    let record = serde_json::json!({
+        "folds": VALIDATION_FOLDS, "seed": VALIDATION_SEED,
+        "accuracy": validation.iter().map(|(n, a)| (n.clone(), serde_json::json!(a)))
+            .collect::<serde_json::Map<_, _>>(),
+        "chosen": runs.first().map(|r| r.model.features.name()),
+        "train_seconds": seconds,
+    });
+    written.push(write_json(&dir.join(VALIDATION_FILE), &record)?);
+    Ok(written)
+}
+
+/// Loads our variant's committed models below the workspace root `root` and evaluates them;
+/// the features are read from the committed metrics file.
+pub fn load_ours(root: &Path, grasps: &[Grasp]) -> Result<Vec<PooledRun>, NetError> {
+    let dir = root.join(MODEL_DIR);
+    let committed = MetricsFile::from_json(&std::fs::read_to_string(dir.join(OURS_METRICS_FILE))?)?;
+    let features = Features::ALL
+        .into_iter()
+        .find(|f| committed.row(&ours_label(*f, SEEDS[0])).is_some())
+        .ok_or_else(|| NetError::Metrics("no variant rows in ours_metrics.json".into()))?;
+    let mut out = Vec::new();
+    for seed in SEEDS {
+        let model = Pooled {
+            features,
+            net: SoftnessNet::load(&dir.join(ours_file(features, seed)))?,
+        };
+        out.push(PooledRun {
+            seed,
+            evaluation: evaluate_pooled(&model, grasps)?,
+            model,
+            report: None,
+            seconds: 0.0,
+        });
+    }
+    Ok(out)
 }

@@ -238,3 +238,44 @@ proptest! {
         prop_assert!(net.classify(&sample).is_ok());
     }
 }
+
+#[test]
+fn committed_variant_matches_its_metrics_and_ignores_finger_order() -> Result<(), NetError> {
+    let grasps = grasps();
+    let runs = softness_eval::load_ours(&root(), &grasps)?;
+    let fresh = softness_eval::ours_metrics_file(&runs);
+    let path = root()
+        .join(MODEL_DIR)
+        .join(softness_eval::OURS_METRICS_FILE);
+    let committed = MetricsFile::from_json(&std::fs::read_to_string(&path)?)?;
+    let drift = committed.drift(&fresh, 1e-9);
+    assert!(
+        drift.is_empty(),
+        "committed variant metrics drifted:\n{}",
+        drift.join("\n")
+    );
+    // Swapping which finger met which side changes nothing the variant reads.
+    let mut model = runs[0].model.clone();
+    for (series, _) in labelled(&grasps, GraspSet::TestIrregular) {
+        let swapped: Vec<[f32; N_VARIABLES]> = series
+            .iter()
+            .map(|s| [s[2], s[0], s[3], s[1], s[6], s[4], s[7], s[5]])
+            .collect();
+        assert_eq!(model.predict(series)?, model.predict(&swapped)?);
+    }
+    // Bad input: typed errors, as the paper net.
+    assert!(matches!(
+        model.classify(&[1.0; 12]),
+        Err(NetError::Shape {
+            expected: 16,
+            got: 12
+        })
+    ));
+    let mut series = vec![1.0f32; 3 * N_VARIABLES];
+    series[9] = f32::NAN;
+    assert!(matches!(
+        model.classify(&series),
+        Err(NetError::NonFinite { index: 9 })
+    ));
+    Ok(())
+}

@@ -250,23 +250,26 @@ impl PressureCoupling {
 
 /// How big the accelerometer and gyroscope patterns of Fig. 5 are.
 ///
-/// The paper's Fig. 5 axes are not in its text, so these are simulation choices: amplitudes
-/// proportional to depth, sized so that a 0.2 mm tap is a few noise deviations of the chip
-/// model and a 1.6 mm tap is well above it (Table I: 84.7 % at 0.2 mm, 98.9 % at 1.6 mm).
+/// The pad tilts under the tap's moment about the chip, force × arm ([`crate::imu_pad::pattern::tilt`]
+/// gives the arm's share), so the amplitudes are per newton of the tap's force (the Yeoh
+/// curve times the position's force factor). The paper's Fig. 5 axes are not in its text, so
+/// the size is a simulation choice: a 1.6 mm tap on the chip (11.5 N) reads 0.4 m/s² and
+/// 64 mrad/s at the pattern's extreme, well above the chip noise (0.02 m/s², 1.5 mrad/s).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Motion {
-    /// Accelerometer x / y during the hold, m/s² per mm of depth at the pattern's extreme.
-    pub accel_mps2_per_mm: f64,
-    /// Peak gyroscope x / y rate during press and release, rad/s per mm at the extreme.
-    pub gyro_rps_per_mm: f64,
+    /// Accelerometer x / y during the hold, m/s² per N of tap force at the pattern's extreme.
+    pub accel_mps2_per_n: f64,
+    /// Peak gyroscope x / y rate during press and release, rad/s per N at the extreme.
+    pub gyro_rps_per_n: f64,
 }
 
 impl Default for Motion {
     fn default() -> Self {
         Motion {
-            accel_mps2_per_mm: 0.25,
-            gyro_rps_per_mm: 0.04,
+            // 0.4 m/s² and 0.064 rad/s at 11.52 N (1.6 mm on the chip).
+            accel_mps2_per_n: 0.0347,
+            gyro_rps_per_n: 0.00555,
         }
     }
 }
@@ -393,7 +396,7 @@ impl ImuPadConfig {
         }
         self.mechanics.validate()?;
         self.pressure.validate()?;
-        let m = [self.motion.accel_mps2_per_mm, self.motion.gyro_rps_per_mm];
+        let m = [self.motion.accel_mps2_per_n, self.motion.gyro_rps_per_n];
         let v = [
             self.variation.depth_sd_mm,
             self.variation.position_sd_mm,

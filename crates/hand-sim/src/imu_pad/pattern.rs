@@ -5,7 +5,7 @@
 //! mm) or its normalised place on the grid, so a jittered repeat moves smoothly between rows.
 
 use crate::imu_pad::config::{Mechanics, PressureCoupling};
-use crate::imu_pad::grid::{COLUMN_STEP_MM, ROW_STEP_MM, ROWS};
+use crate::imu_pad::grid::COLUMN_STEP_MM;
 
 /// Distance along the pad at which [`Mechanics::edge_force_drop`] is reached, mm.
 const EDGE_REACH_MM: f64 = 12.0;
@@ -46,33 +46,44 @@ pub fn pressure_counts(p: &PressureCoupling, depth_mm: f64, k: f64, force_n: f64
     p.eq1.counts(force_n) * contact
 }
 
-/// Place along the rows, −1 at row 1 … +1 at row 24, from the offset along the pad from row 1.
-pub fn along(y_mm: f64) -> f64 {
-    let half = 0.5 * f64::from(ROWS - 1) * ROW_STEP_MM;
-    ((y_mm - half) / half).clamp(-1.5, 1.5)
-}
+/// Moment arm, mm, that tilts the pad as much about the across axis as a tap one column
+/// (3.5 mm) off the chip tilts it about the along axis: the mean arm of the end rows (row 1 is
+/// 12.5 mm, row 24 10.5 mm from the chip at row 13.5). Fig. 5 puts acc x of column 1 near zero at
+/// row 24 and of column 3 near zero at row 1, i.e. one column's arm across balances an end
+/// row's arm along; so, per mm, a tap tilts the 11.5 mm-wide pad 11.5 / 3.5 = 3.3 times more
+/// about its long axis than about its short one (a plate on an elastic bed: 4.4 = (24 / 11.5)²;
+/// the silicone walls and the PCB overhang make the measured pad stiffer across).
+pub const ALONG_ARM_MM: f64 = 11.5;
 
-/// Place across the columns, −1 at column 1 … +1 at column 3.
-pub fn across(x_mm: f64) -> f64 {
-    (x_mm / COLUMN_STEP_MM).clamp(-1.5, 1.5)
-}
-
-/// Accelerometer x / y during the hold, per unit amplitude (§III-C, Fig. 5):
-/// x goes positive → ~0 along the rows in column 1, positive → negative in column 2, ~0 →
-/// negative in column 3; y is the opposite. Both are `∓(u + v) / 2`: the chip tilts about the
-/// pad diagonal, more the farther the tap from the column-3/row-1 … column-1/row-24 line.
-pub fn accel_pattern(u: f64, v: f64) -> [f64; 2] {
-    let s = 0.5 * (u + v);
-    [-s, s]
-}
-
-/// Gyroscope x / y rate magnitude, per unit amplitude (§III-C, Fig. 5): x grows from zero
-/// along the rows in column 1, stays mid-size in column 2 and falls to zero in column 3;
-/// y is the opposite in columns 1 and 3 and the same in column 2. The sign comes from the
-/// motion: positive while pressing, negative while releasing ("positive and negative values").
-pub fn gyro_pattern(u: f64, v: f64) -> [f64; 2] {
+/// The arm's share of the pad's tilt (the tilt is this times the tap's force), from a tap at offset (`dx`, `dy`) mm from the chip:
+/// `[a, c]`, `a` about the across axis (set by the arm along the rows, −1.09 at row 1 … +0.91 at
+/// row 24) and `c` about the along axis (set by the arm across, −1 at column 1 … +1 at
+/// column 3). A lever, not a normalised grid place: the two arms have their own scales, so a
+/// tap and its row / column mirror do not tilt the chip alike.
+pub fn tilt(dx_mm: f64, dy_mm: f64) -> [f64; 2] {
     [
-        (0.5 * (1.0 - u * v)).max(0.0),
-        (0.5 * (1.0 + u * v)).max(0.0),
+        (dy_mm / ALONG_ARM_MM).clamp(-1.5, 1.5),
+        (dx_mm / COLUMN_STEP_MM).clamp(-1.5, 1.5),
     ]
+}
+
+/// Accelerometer x / y during the hold, per unit amplitude: gravity seen by the tilted chip,
+/// whose axes sit at 45° to the pad's (§III-C, Fig. 5: acc x changes along the rows in the
+/// centre column *and* shifts between columns, which an axis-aligned chip cannot show).
+/// A tilt `θ'` in the chip frame reads `acc = g·(−θ'_y, θ'_x)`; with
+/// `θ' = ((a − c), (a + c)) / 2`: acc x = `−(a + c) / 2` (col 1 + → ~0, col 2 + → −, col 3
+/// ~0 → −, as Fig. 5) and acc y = `(a − c) / 2`, the same traces run from row 24 to row 1 —
+/// Fig. 5's "opposite" (col 2 − → +; col 1 ~0 → +, col 3 − → ~0). A rigid tilt gives two
+/// independent readings: a law with acc y = −acc x at every place would see one.
+pub fn accel_pattern([a, c]: [f64; 2]) -> [f64; 2] {
+    [-0.5 * (a + c), 0.5 * (a - c)]
+}
+
+/// Gyroscope x / y rate per unit amplitude and unit press rate: the rate of the same tilt
+/// `θ'` (signed: the press tilts one way, the release back). |gyro x| = `|a − c| / 2` grows from
+/// ~0 along the rows in column 1, runs between + and − in column 2 and falls to ~0 in column 3;
+/// |gyro y| = `|a + c| / 2` does the opposite in columns 1 and 3 and the same in column 2
+/// (Fig. 5).
+pub fn gyro_pattern([a, c]: [f64; 2]) -> [f64; 2] {
+    [0.5 * (a - c), 0.5 * (a + c)]
 }

@@ -130,10 +130,11 @@ impl RealisedTap {
             curve.force_n(depth_mm) * pattern::force_factor(&config.mechanics, dx_mm, dy_mm);
         let k = pattern::chip_coupling(p, dx_mm, dy_mm);
         let counts = pattern::pressure_counts(p, depth_mm, k, force_n);
-        let (u, v) = (pattern::along(y_mm), pattern::across(x_mm));
+        let tilt = pattern::tilt(dx_mm, dy_mm);
         let gain = |e: f64| (1.0 + var.gain_sd * e).max(0.0);
-        let acc = config.motion.accel_mps2_per_mm * depth_mm * gain(e_acc);
-        let gyro = config.motion.gyro_rps_per_mm * depth_mm * gain(e_gyro);
+        // The tilt follows the tap's moment about the chip: force × arm (the arm is in `tilt`).
+        let acc = config.motion.accel_mps2_per_n * force_n * gain(e_acc);
+        let gyro = config.motion.gyro_rps_per_n * force_n * gain(e_gyro);
         let period_s = 1.0 / config.sample_rate_hz;
         let jitter = if var.onset_jitter {
             phase * period_s
@@ -150,8 +151,8 @@ impl RealisedTap {
             start_s: config.timing.start_s + index as f64 * config.timing.tap_s + jitter,
             force_n,
             counts,
-            accel_mps2: pattern::accel_pattern(u, v).map(|a| a * acc),
-            gyro_rps: pattern::gyro_pattern(u, v).map(|g| g * gyro),
+            accel_mps2: pattern::accel_pattern(tilt).map(|a| a * acc),
+            gyro_rps: pattern::gyro_pattern(tilt).map(|g| g * gyro),
         })
     }
 }
