@@ -1,5 +1,5 @@
 //! `cargo xtask train softness`: trains the softness classifier of seed 001 (LM and Adam, one
-//! model per seed) through `tactile-nets`'s `train_softness` example under the optimised `test`
+//! model per seed) through `handstack train softness` (`tactile_nets::jobs::softness`) under the optimised `test`
 //! profile, then draws the confusion matrices and training curves into `docs/learning/` and
 //! rewrites section 2 of `docs/learning.md` (only that section) from the committed
 //! `metrics.json` and `training.json`.
@@ -33,7 +33,7 @@ const SETS: [(&str, &str, u32); 2] = [
 
 /// Runs `cargo xtask train softness`.
 pub fn run(root: &Path) -> Result<()> {
-    crate::train::run_example(root, "train_softness")?;
+    crate::train::run_handstack_train(root, "softness")?;
     let paper = softness_accuracy_in(&root.join("fixtures"))?;
     let dir = root.join(MODEL_DIR);
     let metrics = MetricsFile::from_json(&std::fs::read_to_string(dir.join(METRICS_FILE))?)?;

@@ -7,5 +7,7 @@
 //! publishes one) and the data its report draws.
 
 pub mod outcome;
+pub mod trade;
+pub mod train;
 
 pub use outcome::{Figure, Line, Outcome, Plot};

@@ -24,7 +24,8 @@
 //! - [`softness`]: the 8 → 4 → 4 → 3 softness classifier (seed 001) and its
 //!   [`hand_traits::SoftnessClassifier`];
 //! - [`softness_train`]: its Levenberg–Marquardt (and Adam) training;
-//! - [`softness_eval`]: the paper's protocol, confusion matrices and committed models.
+//! - [`softness_eval`]: the paper's protocol, confusion matrices and committed models;
+//! - [`jobs`]: the training commands (`handstack train MODEL`, `cargo xtask train MODEL`).
 //!
 //! ```
 //! use tactile_nets::contact_mlp::{ContactMlp, Head, features};
@@ -65,6 +66,7 @@ pub mod force_dnn;
 pub mod force_eval;
 pub mod frozen;
 pub mod io;
+pub mod jobs;
 pub mod metrics;
 pub mod norm;
 pub mod pad;
