@@ -237,7 +237,7 @@ The paper's pad has no such symmetry (its Fig. 5 traces differ per column): this
 calibration limit of the simulator's IMU model, not something to tune a test or the net \
 for.\n\
 - **Training length.** One epoch is the budget; the paper's MATLAB run length is not stated. \
-With 8 epochs (`train_contact_cnn --only paper/samples/kfold/0.2mm --epochs 8`, not \
+With 8 epochs (`handstack train contact-cnn --only paper/samples/kfold/0.2mm --epochs 8`, not \
 committed) the *samples* 5-fold figure is 100.0 % at 0.2 mm and 97.0 % at 1.6 mm — the net \
 memorises the leaked copies — while the leak-free one is 61.7 % and 87.0 %: longer training \
 overshoots Table I at small depths and still misses it at large ones, so we keep the \

@@ -24,6 +24,15 @@ pub(crate) fn draw(task: &Task, points: &[&Point], path: &Path) -> Result<(), Tr
     root.present().map_err(|x| err(path)(x.to_string()))
 }
 
+/// A cost tick without trailing `.0` noise: 12000, 2.5, 0.15.
+fn tick(x: f64) -> String {
+    match x.abs() {
+        a if a >= 100.0 || a == 0.0 => format!("{x:.0}"),
+        a if a >= 1.0 => format!("{x:.1}"),
+        _ => format!("{x:.2}"),
+    }
+}
+
 /// `(lo, hi)` padded so single values and flat sets still get an axis.
 fn span(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
@@ -69,6 +78,7 @@ fn chart(
             chart
                 .configure_mesh()
                 .x_desc(task.cost_label)
+                .x_label_formatter(&|x: &f64| tick(*x))
                 .y_desc(format!("{} — {direction}", task.unit))
                 .axis_desc_style(("sans-serif", 14))
                 .draw()
