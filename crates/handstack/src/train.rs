@@ -31,7 +31,7 @@ impl Model {
     ///
     /// ```
     /// use handstack::train::Model;
-    /// assert_eq!(Model::from_name("force-dnn"), Ok(Model::ForceDnn));
+    /// assert_eq!(Model::from_name("force-dnn").ok(), Some(Model::ForceDnn));
     /// assert!(Model::from_name("cnn").unwrap_err().to_string().contains("contact-cnn"));
     /// ```
     pub fn from_name(name: &str) -> Result<Model, TrainError> {
@@ -138,6 +138,21 @@ pub fn run(root: &Path, model: Model, options: &TrainOptions) -> Result<Vec<Path
     })
 }
 
+/// The workspace root for the committed data: `start` or its nearest ancestor holding
+/// `fixtures/models` (so the commands work from any directory of a checkout).
+///
+/// ```
+/// let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+/// let root = handstack::train::find_root(here).unwrap();
+/// assert!(root.join("fixtures/models").is_dir());
+/// ```
+pub fn find_root(start: &Path) -> Option<PathBuf> {
+    start
+        .ancestors()
+        .find(|d| d.join("fixtures/models").is_dir())
+        .map(Path::to_path_buf)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -174,19 +189,4 @@ mod tests {
             Err(TrainError::Net(_))
         ));
     }
-}
-
-/// The workspace root for the committed data: `start` or its nearest ancestor holding
-/// `fixtures/models` (so the commands work from any directory of a checkout).
-///
-/// ```
-/// let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-/// let root = handstack::train::find_root(here).unwrap();
-/// assert!(root.join("fixtures/models").is_dir());
-/// ```
-pub fn find_root(start: &Path) -> Option<PathBuf> {
-    start
-        .ancestors()
-        .find(|d| d.join("fixtures/models").is_dir())
-        .map(Path::to_path_buf)
 }

@@ -42,7 +42,11 @@ fn icm_noise_and_osr_frame_periods_match_the_committed_points() {
     let rows = committed();
     for (mode, rms) in icm_mode::noise_pa().unwrap() {
         let r = row(&rows, icm_mode::TASK, &icm_mode::setting(mode));
-        assert!((r.accuracy - rms).abs() < TOLERANCE, "{mode:?}: {} vs {rms}", r.accuracy);
+        assert!(
+            (r.accuracy - rms).abs() < TOLERANCE,
+            "{mode:?}: {} vs {rms}",
+            r.accuracy
+        );
         assert_eq!(r.cost_us, f64::from(mode.conversion_time_max_us()));
     }
     // The wire cost of the OSR tasks is the scheduler's bound, not a timing.

@@ -77,7 +77,10 @@ pub fn tasks() -> Vec<Task> {
                    method buys per µs', not as one method beating another on the same labels. \
                    Cost: one localisation from the already-extracted features (arrival event / \
                    9 MLP features / window), median of repeats; MLP and CNN run their frozen \
-                   (plain-array) forward."
+                   (plain-array) forward. The MLP's figure is `ContactMlp::predict` with the \
+                   chosen cell-set head: the forward plus decoding its 24 cell logits into the \
+                   most likely contact of its catalogue (a log-likelihood per catalogue entry), \
+                   which dominates the cost."
                 .into(),
         },
         Task {
@@ -105,27 +108,25 @@ pub fn frame_us(ratio: u16) -> Option<f64> {
     osr_of(ratio).map(|o| Scheduler::new(o).cycle_bound_ns() as f64 / 1e3)
 }
 
-/// The AoT rules' held-out 3 × 3 accuracy per OSR, %: `(rule name, osr, percent)`, and the
-/// evaluator's report (for timing).
-pub(crate) fn aot_accuracy(
-    root: &Path,
-) -> Result<
-    (
-        Vec<(&'static str, u16, f64)>,
-        aot_eval::Report,
-        aot_eval::Dataset,
-    ),
-    TradeError,
-> {
+/// The AoT evaluator's run over every OSR.
+pub(crate) struct AotRun {
+    /// `(rule name, osr, percent correct)`, rules in order, OSRs ascending.
+    rows: Vec<(&'static str, u16, f64)>,
+    report: aot_eval::Report,
+    data: aot_eval::Dataset,
+}
+
+/// The AoT rules' held-out 3 × 3 accuracy per OSR (and what timing them needs).
+pub(crate) fn aot_accuracy(root: &Path) -> Result<AotRun, TradeError> {
     let data = aot_eval::Dataset::load(&root.join("fixtures/datasets/fingertip"), |_| true)
         .map_err(|e| TradeError::input("fingertip dataset", e))?;
-    let rep = aot_eval::evaluate(&data, &Geometry::simulated_pad(), DetectorConfig::DEFAULT);
-    let rows = rep
+    let report = aot_eval::evaluate(&data, &Geometry::simulated_pad(), DetectorConfig::DEFAULT);
+    let rows = report
         .by_osr
         .iter()
         .map(|(&(rule, osr), t)| (rule.name(), osr, t.percent()))
         .collect();
-    Ok((rows, rep, data))
+    Ok(AotRun { rows, report, data })
 }
 
 /// The committed chosen MLPs' held-out 24-area accuracy per OSR, %, with the models.
@@ -139,21 +140,37 @@ pub fn mlp_accuracy(root: &Path) -> Result<(Vec<Trained>, Vec<fingertip::TapReco
     Ok((models, records))
 }
 
-/// The committed CNNs' held-out accuracy, %: `(variant, percent, model)`.
+/// A committed CNN and its re-evaluated held-out accuracy.
+pub struct CommittedCnn {
+    /// Its variant.
+    pub variant: Variant,
+    /// Held-out accuracy, %.
+    pub percent: f64,
+    /// The model.
+    pub model: ContactCnn,
+}
+
+/// The committed CNNs, re-evaluated on their held-out split.
 pub fn cnn_accuracy(
     root: &Path,
-) -> Result<(Vec<(Variant, f64, ContactCnn)>, Vec<imu_pad::ImuTap>), TradeError> {
-    let taps = imu_pad::load(root).map_err(|e| TradeError::input("ICM pad dataset", e))?;
+    taps: &[imu_pad::ImuTap],
+) -> Result<Vec<CommittedCnn>, TradeError> {
     let mut out = Vec::new();
-    for v in Variant::ALL {
-        let (acc, _) = cnn_eval::evaluate_committed(root, &taps, v)
+    for variant in Variant::ALL {
+        let (acc, _) = cnn_eval::evaluate_committed(root, taps, variant)
             .map_err(|e| TradeError::input("committed contact CNN", e))?;
-        let path = root.join(cnn_eval::MODEL_DIR).join(cnn_eval::model_file(v));
+        let path = root
+            .join(cnn_eval::MODEL_DIR)
+            .join(cnn_eval::model_file(variant));
         let model =
             ContactCnn::load(&path).map_err(|e| TradeError::input("committed contact CNN", e))?;
-        out.push((v, 100.0 * acc, model));
+        out.push(CommittedCnn {
+            variant,
+            percent: 100.0 * acc,
+            model,
+        });
     }
-    Ok((out, taps))
+    Ok(out)
 }
 
 /// Setting label of a CNN variant.
@@ -173,7 +190,11 @@ pub fn points(root: &Path) -> Result<Vec<Point>, TradeError> {
         frame_us(osr).ok_or_else(|| TradeError::input("fingertip dataset", format!("OSR {osr}")))
     };
     // AoT per OSR, and each rule's best OSR for the method task.
-    let (aot, rep, data) = aot_accuracy(root)?;
+    let AotRun {
+        rows: aot,
+        report: rep,
+        data,
+    } = aot_accuracy(root)?;
     for &(rule, osr, pct) in &aot {
         out.push(Point {
             task: OSR_AOT,
@@ -260,8 +281,13 @@ pub fn points(root: &Path) -> Result<Vec<Point>, TradeError> {
         });
     }
     // The CNNs: both tasks.
-    let (cnns, taps) = cnn_accuracy(root)?;
-    for (v, pct, model) in &cnns {
+    let taps = imu_pad::load(root).map_err(|e| TradeError::input("ICM pad dataset", e))?;
+    for CommittedCnn {
+        variant: v,
+        percent: pct,
+        model,
+    } in &cnn_accuracy(root, &taps)?
+    {
         let mut k = 0;
         let cost = median_us(CALLS, || {
             k = (k + 1) % taps.len().max(1);

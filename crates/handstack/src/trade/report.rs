@@ -25,14 +25,17 @@ pub fn markdown(trade: &Trade) -> String {
          held-out data. `crates/handstack/tests/trade_drift.rs` recomputes the cheap ones \
          (ICM-20789 noise, defuzzifier errors) and compares them with the committed CSV.\n\
          - **CPU costs** are one-run wall-clock figures from a small timing loop inside this \
-         run (median of 15 batches, `black_box`ed) on: {}. They move with the machine and its \
+         run (median of {} batches, `black_box`ed) on: {}. They move with the machine and its \
          load; the criterion benches (`cargo xtask bench`) are the reference.\n\
          - **Wire / conversion costs** (MS5611 OSR, ICM-20789 mode) are datasheet conversion \
          times: the time a sensor reading takes, not CPU time (the CPU is free meanwhile). \
          They are not comparable with the CPU costs of other tasks.\n\
          - **Pareto front**: a point is on it when no other point of the same task costs no \
          more and is no worse while being strictly better on one of the two (ties stay).\n",
-        trade.wall_s, POINTS, trade.machine
+        trade.wall_s,
+        POINTS,
+        super::timing::REPEATS,
+        trade.machine
     );
     for task in &trade.tasks {
         let pts: Vec<&Point> = task_points(trade, task);
@@ -44,7 +47,8 @@ pub fn markdown(trade: &Trade) -> String {
         let _ = writeln!(
             s,
             "| # | knob | setting | cost ({kind}) | {} | Pareto |\n|---:|---|---|---:|---:|:---:|",
-            task.unit
+            // A `|` inside a cell would end it.
+            task.unit.replace('|', "\\|")
         );
         for (i, p) in pts.iter().enumerate() {
             let _ = writeln!(

@@ -5,7 +5,7 @@ use std::hint::black_box;
 use std::time::Instant;
 
 /// How many times each measurement is repeated (the median is kept).
-pub const REPEATS: usize = 15;
+pub const REPEATS: usize = 31;
 
 /// Median wall time of one call of `f`, in µs: `REPEATS` batches of `calls` calls each, after
 /// one warm-up batch. The closure's result goes through [`black_box`] so it is not optimised
