@@ -14,6 +14,7 @@ mod aot_eval;
 
 pub mod defuzz;
 mod error;
+pub mod force_width;
 pub mod icm_mode;
 pub mod location;
 mod pareto;
@@ -55,6 +56,7 @@ pub struct Trade {
 /// Every task, report order.
 pub fn tasks() -> Vec<Task> {
     let mut t = location::tasks();
+    t.push(force_width::task());
     t.push(icm_mode::task());
     t.push(defuzz::task());
     t
@@ -71,11 +73,17 @@ pub fn run(root: &Path, mut progress: impl FnMut(&str)) -> Result<Trade, TradeEr
     let mut points = Vec::new();
     progress("contact location: AoT and MLP per OSR, CNN variants");
     points.extend(location::points(root)?);
+    progress("force DNN widths: 13 leave-one-out models per width");
+    let (force, force_note) = force_width::points(root)?;
+    points.extend(force);
     progress("ICM-20789 pressure modes");
     points.extend(icm_mode::points()?);
     progress("grasp controller defuzzifiers, f32 and f64");
     points.extend(defuzz::points()?);
-    let notes = vec![(defuzz::TASK, defuzz::precision_note()?)];
+    let notes = vec![
+        (force_width::TASK, force_note),
+        (defuzz::TASK, defuzz::precision_note()?),
+    ];
     mark_fronts(&tasks, &mut points)?;
     Ok(Trade {
         tasks,

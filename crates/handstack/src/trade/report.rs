@@ -70,9 +70,6 @@ pub fn markdown(trade: &Trade) -> String {
         let _ = writeln!(s, "\n![{}]({rel})\n", task.title);
     }
     s += "## Not measured here\n\n\
-          - **Force DNN hidden width.** `tactile_nets::force_dnn` fixes its width at compile time \
-          (`HIDDEN = 16` inside a dfdx type); a width sweep needs that network made generic over \
-          the width first, which this run does not do.\n\
           - **f32 vs f64 in the frozen nets.** The frozen forwards (`tactile_nets::frozen`, \
           `cnn_frozen`) are f32-only; f32 vs f64 is measured where the code is generic: the \
           fuzzy controller (`fuzzy_mamdani::Real`), above.\n\
