@@ -16,6 +16,7 @@ pub mod outcome;
 pub mod progress;
 pub mod runs;
 pub mod scene;
+pub mod stack;
 pub mod summary;
 
 pub use error::RunError;
