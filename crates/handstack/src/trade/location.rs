@@ -2,11 +2,11 @@
 //! method (AoT eq. 3 / ranging vs MLP vs CNN) and the CNN's size. Accuracies are recomputed
 //! from the committed models and datasets (held-out taps); CPU costs are timed here.
 
-use super::aot_eval;
 use super::error::TradeError;
 use super::pareto::Better;
 use super::point::{CostKind, Point, Task};
 use super::timing::median_us;
+use aot_locate::eval as aot_eval;
 use aot_locate::{DetectorConfig, Geometry};
 use baro_drivers::{Osr, Scheduler};
 use std::path::Path;
@@ -42,8 +42,8 @@ pub fn tasks() -> Vec<Task> {
             note: "Cost: `Scheduler::cycle_bound_ns` — the three sensors convert in parallel, \
                    D2 then D1, each the datasheet's maximum conversion time (MS5611-01BA03 p. 3), \
                    so one fingertip frame takes 2 × t_conv whatever the sensor count; the CPU is \
-                   free meanwhile. Accuracy: `aot_eval`'s evaluator (aot-locate's example, the \
-                   one that writes docs/contact-location.md) on the held-out repeat of \
+                   free meanwhile. Accuracy: `aot_locate::eval` (the evaluator behind \
+                   docs/contact-location.md) on the held-out repeat of \
                    `fixtures/datasets/fingertip/`, ranging constants fitted on repeat 0. The \
                    dataset was simulated per OSR (chip noise and sample period of that OSR)."
                 .into(),

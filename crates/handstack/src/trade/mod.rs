@@ -6,12 +6,6 @@
 //! are one-run wall-clock medians on whatever machine runs it (the criterion benches, `cargo
 //! xtask bench`, are the reference); wire / conversion costs come from the datasheets.
 
-// The AoT evaluator lives beside aot-locate's `aot_eval` example (which writes
-// docs/contact-location.md) and its drift test includes it the same way: one evaluator, no copy.
-#[allow(dead_code, unreachable_pub)]
-#[path = "../../../aot-locate/examples/aot_eval/eval.rs"]
-mod aot_eval;
-
 pub mod defuzz;
 mod error;
 pub mod force_width;
