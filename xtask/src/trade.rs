@@ -11,10 +11,21 @@ pub fn run(root: &Path) -> Result<()> {
     step(
         "trade",
         cargo(root)
-            .args(["run", "--quiet", "--profile", "test", "-p", "handstack", "--"])
+            .args([
+                "run",
+                "--quiet",
+                "--profile",
+                "test",
+                "-p",
+                "handstack",
+                "--",
+            ])
             .args(["trade", "--root"])
             .arg(root),
     )?;
-    println!("trade: report written to {}", root.join("docs/trade.md").display());
+    println!(
+        "trade: report written to {}",
+        root.join("docs/trade.md").display()
+    );
     Ok(())
 }

@@ -78,6 +78,7 @@ fn chart(
             chart
                 .configure_mesh()
                 .x_desc(task.cost_label)
+                .x_labels(8)
                 .x_label_formatter(&|x: &f64| tick(*x))
                 .y_desc(format!("{} — {direction}", task.unit))
                 .axis_desc_style(("sans-serif", 14))
