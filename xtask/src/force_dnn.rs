@@ -3,7 +3,7 @@
 //! `fixtures/models/force_dnn/` (weights, `metrics.json`, `training_curve.csv`), draws
 //! [`PLOT`] and rewrites the section [`SECTION`] of `docs/learning.md` from those files.
 
-use crate::train::{plot_err, run_example};
+use crate::train::{plot_err, run_handstack_train};
 use anyhow::{Context, Result};
 use paper_fixtures::seed000::WeightRow;
 use plotters::prelude::*;
@@ -31,9 +31,9 @@ const BENCH: &str = "\
 | `force_dnn/train/sim_epoch`: one epoch of the simulated recipe (4 644 frames, 73 batches of 64); the recipe runs 200 | 6.0 ms | 5.8 … 6.1 ms |
 ";
 
-/// Runs the training example, then the plot and the docs section.
+/// Trains (`handstack train force-dnn`), then the plot and the docs section.
 pub fn train(root: &Path) -> Result<()> {
-    run_example(root, "train_force_dnn")?;
+    run_handstack_train(root, "force-dnn")?;
     let dir = root.join(MODEL_DIR);
     let metrics = MetricsFile::from_json(
         &std::fs::read_to_string(dir.join(METRICS_FILE)).context("reading the metrics")?,

@@ -13,6 +13,7 @@
 //!   curve and its section of `docs/learning.md`.
 //! - `train softness`: trains the softness classifier (LM and Adam), writes its weights,
 //!   metrics, figures and section 2 of `docs/learning.md`.
+//! - `trade`: the speed / accuracy trade report (`handstack trade`) into `docs/trade.md`.
 //! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
 
 pub mod bench;
@@ -24,6 +25,7 @@ pub mod force_dnn;
 pub mod fuzzy_peers;
 pub mod run;
 pub mod test;
+pub mod trade;
 pub mod train;
 pub mod train_cnn;
 pub mod train_softness;

@@ -1,7 +1,7 @@
 //! `cargo xtask`: the handstack workspace's developer commands (see the `xtask` library docs).
 
 use std::process::ExitCode;
-use xtask::{bench, demo, fixtures, test, train, workspace_root};
+use xtask::{bench, demo, fixtures, test, trade, train, workspace_root};
 
 const USAGE: &str = "usage: cargo xtask <command>
 
@@ -19,6 +19,7 @@ commands:
   train contact-cnn [--docs-only]
                             run the contact CNN's Table I protocol, write weights, metrics, plots,
                             docs (--docs-only: redraw plots and docs from the committed metrics)
+  trade                     measure every speed / accuracy knob, write docs/trade.md (+ docs/trade/)
   demo tap-to-move          seed 002 §IV-B on the simulated UR3 via ur_rtde, into docs/arm-tap-to-move.md";
 
 fn main() -> ExitCode {
@@ -34,6 +35,7 @@ fn main() -> ExitCode {
         Some("bench") => bench::run(&root, &args[1..]),
         Some("train") => train::run(&root, &args[1..]),
         Some("demo") => demo::run(&root, &args[1..]),
+        Some("trade") if args.len() == 1 => trade::run(&root),
         Some("help" | "-h" | "--help") => {
             println!("{USAGE}");
             Ok(())

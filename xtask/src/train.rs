@@ -6,7 +6,7 @@
 //!   `docs/contact-location.md`;
 //! - `force-dnn`: see [`crate::force_dnn`].
 //!
-//! Training runs as a `tactile-nets` example under the optimised `test` profile (dfdx at
+//! Training runs as `handstack train MODEL` under the optimised `test` profile (dfdx at
 //! `opt-level = 0`, the xtask's own profile, is several times slower).
 
 use crate::run::{cargo, step};
@@ -39,20 +39,28 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     }
 }
 
-/// Runs `tactile-nets`'s example `name` under the `test` profile, the workspace root as its
-/// argument.
-pub fn run_example(root: &Path, name: &str) -> Result<()> {
+/// Runs `handstack train MODEL --root ROOT` (the training code, `tactile_nets::jobs`) under
+/// the optimised `test` profile: it writes the weights and metrics this command then draws.
+pub fn run_handstack_train(root: &Path, model: &str) -> Result<()> {
     step(
-        &format!("train ({name})"),
+        &format!("train ({model})"),
         cargo(root)
-            .args(["run", "--quiet", "--profile", "test", "-p", "tactile-nets"])
-            .args(["--example", name, "--"])
+            .args([
+                "run",
+                "--quiet",
+                "--profile",
+                "test",
+                "-p",
+                "handstack",
+                "--",
+            ])
+            .args(["train", model, "--root"])
             .arg(root),
     )
 }
 
 fn contact_mlp(root: &Path) -> Result<()> {
-    run_example(root, "train_contact_mlp")?;
+    run_handstack_train(root, "contact-mlp")?;
     let path = root.join(MODEL_DIR).join(METRICS_FILE);
     let metrics = MetricsFile::from_json(
         &std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?,

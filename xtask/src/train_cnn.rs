@@ -1,5 +1,5 @@
 //! `cargo xtask train contact-cnn`: runs seed 002 §IV-A's protocol for the contact CNN
-//! (`tactile-nets`'s `train_contact_cnn` example under the optimised `test` profile), which
+//! (`handstack train contact-cnn`, i.e. `tactile_nets::jobs::contact_cnn`, under the optimised `test` profile), which
 //! writes `fixtures/models/contact_cnn/` (weights + `metrics.json`); then draws
 //! `docs/learning/contact-cnn-table1.svg` and `docs/learning/contact-cnn-confusion.svg` and
 //! rewrites the section "## 3. Contact CNN …" of `docs/learning.md` (only that section).
@@ -34,7 +34,7 @@ pub fn run(root: &Path, docs_only: bool) -> Result<()> {
 }
 
 fn train(root: &Path) -> Result<()> {
-    crate::train::run_example(root, "train_contact_cnn")
+    crate::train::run_handstack_train(root, "contact-cnn")
 }
 
 fn docs(root: &Path) -> Result<()> {

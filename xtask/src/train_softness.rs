@@ -1,5 +1,5 @@
 //! `cargo xtask train softness`: trains the softness classifier of seed 001 (LM and Adam, one
-//! model per seed) through `tactile-nets`'s `train_softness` example under the optimised `test`
+//! model per seed) through `handstack train softness` (`tactile_nets::jobs::softness`) under the optimised `test`
 //! profile, then draws the confusion matrices and training curves into `docs/learning/` and
 //! rewrites section 2 of `docs/learning.md` (only that section) from the committed
 //! `metrics.json` and `training.json`.
@@ -36,7 +36,7 @@ const SETS: [(&str, &str, u32); 2] = [
 /// section from the committed files).
 pub fn run(root: &Path, docs_only: bool) -> Result<()> {
     if !docs_only {
-        crate::train::run_example(root, "train_softness")?;
+        crate::train::run_handstack_train(root, "softness")?;
     }
     let paper = softness_accuracy_in(&root.join("fixtures"))?;
     let dir = root.join(MODEL_DIR);

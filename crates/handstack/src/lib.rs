@@ -5,7 +5,28 @@
 //! `handstack run SCENE` builds exactly those parts and runs the scene's experiment. Every run
 //! ends in an [`Outcome`]: the figures the scene measured (beside the paper's, where the paper
 //! publishes one) and the data its report draws.
+//!
+//! - [`scene`]: the scene schema, parsed with spans and validated (errors name file, line,
+//!   column, key and what is allowed);
+//! - [`runs`]: one runner per experiment, joined into the scene's [`Outcome`];
+//! - [`progress`]: where a run reports its stages;
+//! - [`trade`]: `handstack trade`, the speed / accuracy trade report;
+//! - [`train`]: `handstack train MODEL`.
 
+pub mod error;
 pub mod outcome;
+pub mod progress;
+pub mod runs;
+pub mod scene;
+pub mod stack;
+pub mod summary;
+pub mod trade;
+pub mod train;
 
+pub use error::RunError;
 pub use outcome::{Figure, Line, Outcome, Plot};
+
+/// Loads the scene file at `path` and runs it.
+pub fn run_file(path: &std::path::Path, cx: &runs::RunContext<'_>) -> Result<Outcome, RunError> {
+    runs::run(&scene::Scene::load(path)?, cx)
+}

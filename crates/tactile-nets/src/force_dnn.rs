@@ -51,18 +51,85 @@ pub const HIDDEN: usize = 16;
 /// The sigmoid output values the lightest and heaviest training weights map to.
 pub const OUTPUT_SPAN: [f32; 2] = [0.1, 0.9];
 
-type Arch = (
-    (Linear<N_INPUTS, HIDDEN>, Sigmoid),
-    (Linear<HIDDEN, HIDDEN>, ReLU),
-    (Linear<HIDDEN, HIDDEN>, Sigmoid),
-    (Linear<HIDDEN, 1>, Sigmoid),
+/// Hidden widths a force DNN can be built with: the committed models use [`HIDDEN`]; the
+/// others are the model-size knob of the trade report (`handstack trade`).
+pub const WIDTHS: [usize; 4] = [4, 8, HIDDEN, 32];
+
+type Arch<const H: usize> = (
+    (Linear<N_INPUTS, H>, Sigmoid),
+    (Linear<H, H>, ReLU),
+    (Linear<H, H>, Sigmoid),
+    (Linear<H, 1>, Sigmoid),
 );
-type Net = <Arch as BuildOnDevice<Cpu, f32>>::Built;
-type Fast = <Net as Freeze>::Frozen;
+type Net<const H: usize> = <Arch<H> as BuildOnDevice<Cpu, f32>>::Built;
+type Frozen<const H: usize> = <Net<H> as Freeze>::Frozen;
+
+/// The dfdx network at one of the [`WIDTHS`].
+enum Body {
+    W4(Net<4>),
+    W8(Net<8>),
+    W16(Net<HIDDEN>),
+    W32(Net<32>),
+}
+
+/// Its frozen (plain-array) form.
+enum Fast {
+    W4(Frozen<4>),
+    W8(Frozen<8>),
+    W16(Frozen<HIDDEN>),
+    W32(Frozen<32>),
+}
+
+/// Runs `$e` with `$n` bound to the concrete network (or frozen network) inside `$body`.
+macro_rules! with_width {
+    ($kind:ident, $body:expr, $n:ident => $e:expr) => {
+        match $body {
+            $kind::W4($n) => $e,
+            $kind::W8($n) => $e,
+            $kind::W16($n) => $e,
+            $kind::W32($n) => $e,
+        }
+    };
+}
+
+impl Body {
+    /// A freshly initialised network of width `hidden` on `dev`.
+    fn build(hidden: usize, dev: &Cpu) -> Result<Body, NetError> {
+        Ok(match hidden {
+            4 => Body::W4(dev.build_module::<Arch<4>, f32>()),
+            8 => Body::W8(dev.build_module::<Arch<8>, f32>()),
+            HIDDEN => Body::W16(dev.build_module::<Arch<HIDDEN>, f32>()),
+            32 => Body::W32(dev.build_module::<Arch<32>, f32>()),
+            _ => {
+                return Err(NetError::Training(format!(
+                    "hidden width {hidden} is not one of {WIDTHS:?}"
+                )));
+            }
+        })
+    }
+
+    fn hidden(&self) -> usize {
+        match self {
+            Body::W4(_) => 4,
+            Body::W8(_) => 8,
+            Body::W16(_) => HIDDEN,
+            Body::W32(_) => 32,
+        }
+    }
+
+    fn freeze(&self) -> Result<Fast, NetError> {
+        Ok(match self {
+            Body::W4(n) => Fast::W4(n.freeze()?),
+            Body::W8(n) => Fast::W8(n.freeze()?),
+            Body::W16(n) => Fast::W16(n.freeze()?),
+            Body::W32(n) => Fast::W32(n.freeze()?),
+        })
+    }
+}
 
 /// A trained force / weight DNN.
 pub struct ForceDnn {
-    net: Net,
+    net: Body,
     fast: Fast,
     mean: [f32; N_INPUTS],
     scale: [f32; N_INPUTS],
@@ -81,6 +148,20 @@ impl ForceDnn {
         samples: &[WeightSample],
         range_gf: [f32; 2],
         stages: &[TrainConfig],
+    ) -> Result<(ForceDnn, TrainLog), NetError> {
+        Self::train_width(samples, range_gf, stages, HIDDEN)
+    }
+
+    /// [`ForceDnn::train`] with `hidden` units in each hidden layer (one of [`WIDTHS`]; the
+    /// committed models use [`HIDDEN`]).
+    ///
+    /// Errors: as [`ForceDnn::train`], and [`NetError::Training`] for a width not in
+    /// [`WIDTHS`].
+    pub fn train_width(
+        samples: &[WeightSample],
+        range_gf: [f32; 2],
+        stages: &[TrainConfig],
+        hidden: usize,
     ) -> Result<(ForceDnn, TrainLog), NetError> {
         let first = stages
             .first()
@@ -104,10 +185,12 @@ impl ForceDnn {
             );
         }
         let dev = Cpu::seed_from_u64(first.seed);
-        let mut net = dev.build_module::<Arch, f32>();
+        let mut net = Body::build(hidden, &dev)?;
         let mut log = TrainLog::default();
         for stage in stages {
-            let part = fit::<_, N_INPUTS, 1>(&dev, &mut net, &data, Loss::Mse, stage)?;
+            let part = with_width!(Body, &mut net, n => {
+                fit::<_, N_INPUTS, 1>(&dev, n, &data, Loss::Mse, stage)?
+            });
             log.epoch_loss.extend(part.epoch_loss);
         }
         let fast = net.freeze()?;
@@ -120,6 +203,11 @@ impl ForceDnn {
             dev,
         };
         Ok((model, log))
+    }
+
+    /// Units in each hidden layer.
+    pub fn hidden(&self) -> usize {
+        self.net.hidden()
     }
 
     /// The rated range (lightest, heaviest weight), gf.
@@ -148,21 +236,22 @@ impl ForceDnn {
     /// a NaN or infinite value, [`NetError::NonFiniteOutput`] when a finite input overflows.
     pub fn estimate_gf(&self, rise_hpa: &[f32]) -> Result<f32, NetError> {
         let z = self.standardised(rise_hpa)?;
-        self.decoded(self.fast.forward(z)[0])
+        self.decoded(with_width!(Fast, &self.fast, f => f.forward(z)[0]))
     }
 
     /// [`ForceDnn::estimate_gf`] through dfdx's forward (the reference the frozen copy is
     /// checked against; ~10 µs slower per call).
     pub fn estimate_gf_dfdx(&self, rise_hpa: &[f32]) -> Result<f32, NetError> {
         let z = self.standardised(rise_hpa)?;
-        let out = self.net.try_forward(self.dev.tensor(z))?.array();
-        self.decoded(out[0])
+        let out = with_width!(Body, &self.net, n => n.try_forward(self.dev.tensor(z))?.array()[0]);
+        self.decoded(out)
     }
 
     /// Weights, input standardisation and output range as a [`TensorFile`].
     pub fn to_file(&self) -> Result<TensorFile, NetError> {
         let mut f = TensorFile::new();
-        f.add_module("net.", &self.net)?;
+        with_width!(Body, &self.net, n => f.add_module("net.", n)?);
+        let h = self.hidden();
         f.insert("input.mean", &[N_INPUTS], &self.mean)?;
         f.insert("input.scale", &[N_INPUTS], &self.scale)?;
         f.insert("output.range_gf", &[2], &self.range_gf)?;
@@ -170,10 +259,10 @@ impl ForceDnn {
             "model": "force_dnn",
             "inputs": ["rise1_hpa", "rise2_hpa", "rise3_hpa"],
             "layers": [
-                format!("linear 3->{HIDDEN}, sigmoid"),
-                format!("linear {HIDDEN}->{HIDDEN}, relu"),
-                format!("linear {HIDDEN}->{HIDDEN}, sigmoid"),
-                format!("linear {HIDDEN}->1, sigmoid"),
+                format!("linear 3->{h}, sigmoid"),
+                format!("linear {h}->{h}, relu"),
+                format!("linear {h}->{h}, sigmoid"),
+                format!("linear {h}->1, sigmoid"),
             ],
             "output_span": OUTPUT_SPAN,
         });
@@ -188,8 +277,21 @@ impl ForceDnn {
             return Err(NetError::SafeTensors("metadata names no force DNN".into()));
         }
         let dev = Cpu::seed_from_u64(0);
-        let mut net = dev.build_module::<Arch, f32>();
-        file.load_module("net.", &mut net)?;
+        // The width is the one whose shapes the stored tensors fit (the committed width first).
+        let mut found = Err(NetError::SafeTensors(
+            "no force DNN width fits the tensors".into(),
+        ));
+        for hidden in [HIDDEN, 4, 8, 32] {
+            let mut net = Body::build(hidden, &dev)?;
+            match with_width!(Body, &mut net, n => file.load_module("net.", n)) {
+                Ok(()) => {
+                    found = Ok(net);
+                    break;
+                }
+                Err(e) => found = Err(e),
+            }
+        }
+        let net = found?;
         let vec3 = |name: &str| -> Result<[f32; N_INPUTS], NetError> {
             let v = file.get(name, &[N_INPUTS])?;
             Ok(core::array::from_fn(|j| v[j]))

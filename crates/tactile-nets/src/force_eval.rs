@@ -14,7 +14,7 @@
 
 use crate::data::weights::{self, WeightFrame, WeightSample};
 use crate::error::NetError;
-use crate::force_dnn::ForceDnn;
+use crate::force_dnn::{ForceDnn, HIDDEN};
 use crate::metrics::{MetricsFile, MetricsRow};
 use crate::train::{TrainConfig, TrainLog};
 use std::collections::BTreeMap;
@@ -121,17 +121,7 @@ pub fn train_all(
         RATED_RANGE_GF,
         &table_recipe(seed, progress, "table1"),
     )?;
-    let mut loo = Vec::new();
-    for i in 0..table.len() {
-        let rest: Vec<WeightSample> = table
-            .iter()
-            .enumerate()
-            .filter(|&(j, _)| j != i)
-            .map(|(_, s)| *s)
-            .collect();
-        let label = format!("loo {:>3} gf", table[i].weight_gf);
-        loo.push(ForceDnn::train(&rest, RATED_RANGE_GF, &table_recipe(seed, progress, &label))?.0);
-    }
+    let loo = loo_models(table, seed, progress, HIDDEN)?;
     let (train, _) = sim_split(frames)?;
     let (sim, sim_log) = ForceDnn::train(&train, RATED_RANGE_GF, &sim_recipe(seed, progress))?;
     Ok(Models {
@@ -140,6 +130,38 @@ pub fn train_all(
         sim,
         logs: vec![("table1".into(), table_log), ("sim".into(), sim_log)],
     })
+}
+
+/// The leave-one-out models of `table` at hidden width `hidden`: model `i` trained with the
+/// Table 1 recipe on every row but row `i`.
+pub fn loo_models(
+    table: &[WeightSample],
+    seed: u64,
+    progress: bool,
+    hidden: usize,
+) -> Result<Vec<ForceDnn>, NetError> {
+    (0..table.len())
+        .map(|i| {
+            let rest: Vec<WeightSample> = table
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .map(|(_, s)| *s)
+                .collect();
+            let label = format!("loo {:>3} gf", table[i].weight_gf);
+            let recipe = table_recipe(seed, progress, &label);
+            Ok(ForceDnn::train_width(&rest, RATED_RANGE_GF, &recipe, hidden)?.0)
+        })
+        .collect()
+}
+
+/// Each leave-one-out model's `(estimate, truth)` on the row it did not see.
+pub fn loo_pairs(loo: &[ForceDnn], table: &[WeightSample]) -> Result<Vec<(f32, f32)>, NetError> {
+    table
+        .iter()
+        .zip(loo)
+        .map(|(s, m)| Ok((m.estimate_gf(&s.rise_hpa)?, s.weight_gf)))
+        .collect()
 }
 
 /// Loads the committed models below the workspace root `root`; `table` gives the weights of
@@ -200,11 +222,7 @@ pub fn metrics_file(
     seed: u64,
 ) -> Result<MetricsFile, NetError> {
     let fit = estimates(&models.table, table)?;
-    let loo = table
-        .iter()
-        .zip(&models.loo)
-        .map(|(s, m)| Ok((m.estimate_gf(&s.rise_hpa)?, s.weight_gf)))
-        .collect::<Result<Vec<_>, NetError>>()?;
+    let loo = loo_pairs(&models.loo, table)?;
     let table_row = |label: &str, pairs: &[(f32, f32)]| {
         let mut values = error_values(pairs);
         for &(e, t) in pairs {

@@ -26,6 +26,7 @@
 //! - [`softness_train`]: its Levenberg–Marquardt (and Adam) training;
 //! - [`softness_eval`]: the paper's protocol, confusion matrices and committed models;
 //! - [`softness_features`]: our variant's finger-order-invariant inputs.
+//! - [`jobs`]: the training commands (`handstack train MODEL`, `cargo xtask train MODEL`).
 //!
 //! ```
 //! use tactile_nets::contact_mlp::{ContactMlp, Head, features};
@@ -66,6 +67,7 @@ pub mod force_dnn;
 pub mod force_eval;
 pub mod frozen;
 pub mod io;
+pub mod jobs;
 pub mod metrics;
 pub mod norm;
 pub mod pad;

@@ -10,7 +10,7 @@ use proptest::prelude::*;
 use std::sync::OnceLock;
 use tactile_nets::NetError;
 use tactile_nets::data::weights::{self, WeightSample};
-use tactile_nets::force_dnn::{ForceDnn, OUTPUT_SPAN};
+use tactile_nets::force_dnn::{ForceDnn, HIDDEN, OUTPUT_SPAN, WIDTHS};
 use tactile_nets::force_eval::{self, METRICS_FILE, MODEL_DIR, RATED_RANGE_GF, SEED};
 use tactile_nets::frozen::{HyperbolicTangent, Layer, Logistic};
 use tactile_nets::metrics::MetricsFile;
@@ -94,6 +94,26 @@ fn training_is_deterministic_and_save_load_is_bit_identical() -> Result<(), NetE
     }
     // A contact-MLP file is not a force DNN.
     assert!(ForceDnn::from_file(&tactile_nets::io::TensorFile::new()).is_err());
+    Ok(())
+}
+
+#[test]
+fn every_width_trains_and_round_trips_and_others_are_refused() -> Result<(), NetError> {
+    let table = table();
+    assert_eq!(committed().hidden(), HIDDEN);
+    for w in WIDTHS {
+        let (m, _) = ForceDnn::train_width(&table, RATED_RANGE_GF, &tiny(5), w)?;
+        assert_eq!(m.hidden(), w);
+        // The width is read back from the tensors' shapes.
+        let back = ForceDnn::from_file(&m.to_file()?)?;
+        assert_eq!(back.hidden(), w);
+        let x = &table[3].rise_hpa;
+        assert_eq!(bits(m.estimate_gf(x)?), bits(back.estimate_gf(x)?));
+    }
+    assert!(matches!(
+        ForceDnn::train_width(&table, RATED_RANGE_GF, &tiny(5), 5),
+        Err(NetError::Training(_))
+    ));
     Ok(())
 }
 

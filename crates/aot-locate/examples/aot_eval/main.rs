@@ -5,8 +5,7 @@
 //! `docs/contact-location.md` (keeping the rest of the file) and draws
 //! `docs/contact-location/aot-accuracy-vs-osr.svg`.
 
-mod eval;
-
+use aot_locate::eval;
 use aot_locate::{DetectorConfig, Geometry};
 use eval::{Report, Rule};
 use plotters::prelude::*;

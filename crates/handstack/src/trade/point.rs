@@ -1,0 +1,235 @@
+//! Trade points and tasks, and `points.csv` (columns
+//! `task,knob,setting,cost_us,accuracy,accuracy_unit,pareto`).
+
+use super::error::TradeError;
+use super::pareto::{Better, pareto_front};
+
+/// What a cost figure is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CostKind {
+    /// CPU time per call, measured in this run (median of repeats).
+    Cpu,
+    /// Time on the wire / in the sensor's conversion, from the datasheet: no CPU involved.
+    Wire,
+}
+
+/// One task: points that answer the same question and may be compared.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Task {
+    /// Stable identifier (CSV `task` column, plot file stem).
+    pub id: &'static str,
+    /// Heading in `docs/trade.md`.
+    pub title: &'static str,
+    /// What the cost is.
+    pub cost: CostKind,
+    /// What the cost axis measures, for the table and the plot.
+    pub cost_label: &'static str,
+    /// Which way the quality figure improves.
+    pub better: Better,
+    /// The quality figure's unit (CSV `accuracy_unit`).
+    pub unit: &'static str,
+    /// How the points were obtained and what they can and cannot be compared with.
+    pub note: String,
+}
+
+/// One measured setting.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    /// The [`Task::id`] it belongs to.
+    pub task: &'static str,
+    /// The knob turned.
+    pub knob: String,
+    /// The knob's setting.
+    pub setting: String,
+    /// Cost per control cycle (see the task's [`CostKind`]), µs.
+    pub cost_us: f64,
+    /// Quality (accuracy, error or noise: see the task's unit and [`Better`]).
+    pub accuracy: f64,
+    /// Whether it is on its task's Pareto front (set by [`mark_fronts`]).
+    pub pareto: bool,
+}
+
+/// Sets [`Point::pareto`] task by task.
+///
+/// Errors: [`TradeError::NotFinite`] for a NaN / infinite point (its index in `points`), or
+/// [`TradeError::Input`] for a point whose task is not in `tasks`.
+pub fn mark_fronts(tasks: &[Task], points: &mut [Point]) -> Result<(), TradeError> {
+    if let Some(p) = points
+        .iter()
+        .find(|p| !tasks.iter().any(|t| t.id == p.task))
+    {
+        return Err(TradeError::input(
+            "trade points",
+            format!("unknown task {}", p.task),
+        ));
+    }
+    for task in tasks {
+        let idx: Vec<usize> = (0..points.len())
+            .filter(|&i| points[i].task == task.id)
+            .collect();
+        let xy: Vec<(f64, f64)> = idx
+            .iter()
+            .map(|&i| (points[i].cost_us, points[i].accuracy))
+            .collect();
+        let front = pareto_front(&xy, task.better).map_err(|e| match e {
+            TradeError::NotFinite { index } => TradeError::NotFinite { index: idx[index] },
+            e => e,
+        })?;
+        for (&i, on) in idx.iter().zip(front) {
+            points[i].pareto = on;
+        }
+    }
+    Ok(())
+}
+
+/// The CSV header.
+pub const CSV_HEADER: &str = "task,knob,setting,cost_us,accuracy,accuracy_unit,pareto";
+
+/// `points.csv`: one row per point (fields never contain commas: settings use `;`).
+pub fn to_csv(tasks: &[Task], points: &[Point]) -> String {
+    let mut s = format!("{CSV_HEADER}\n");
+    for p in points {
+        let unit = tasks.iter().find(|t| t.id == p.task).map_or("", |t| t.unit);
+        s += &format!(
+            "{},{},{},{:.4},{:.6},{},{}\n",
+            p.task,
+            p.knob.replace(',', ";"),
+            p.setting.replace(',', ";"),
+            p.cost_us,
+            p.accuracy,
+            unit,
+            p.pareto
+        );
+    }
+    s
+}
+
+/// One parsed row of `points.csv`: (task, knob, setting, cost µs, accuracy, unit, pareto).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CsvRow {
+    /// Task id.
+    pub task: String,
+    /// Knob.
+    pub knob: String,
+    /// Setting.
+    pub setting: String,
+    /// Cost, µs.
+    pub cost_us: f64,
+    /// Quality figure.
+    pub accuracy: f64,
+    /// Its unit.
+    pub unit: String,
+    /// On the Pareto front.
+    pub pareto: bool,
+}
+
+/// Parses `points.csv` (what the drift test and the report read back).
+///
+/// Errors: [`TradeError::Csv`] with the line number for a wrong header, field count or number.
+pub fn parse_csv(text: &str) -> Result<Vec<CsvRow>, TradeError> {
+    let mut lines = text.lines();
+    if lines.next() != Some(CSV_HEADER) {
+        return Err(TradeError::Csv {
+            line: 1,
+            detail: format!("expected the header `{CSV_HEADER}`"),
+        });
+    }
+    lines
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(i, l)| {
+            let line = i + 2;
+            let bad = |detail: String| TradeError::Csv { line, detail };
+            let f: Vec<&str> = l.split(',').collect();
+            let [task, knob, setting, cost, acc, unit, pareto] = f[..] else {
+                return Err(bad(format!("{} fields, expected 7", f.len())));
+            };
+            let num = |s: &str| {
+                s.parse::<f64>()
+                    .map_err(|e| bad(format!("`{s}` is not a number: {e}")))
+            };
+            Ok(CsvRow {
+                task: task.into(),
+                knob: knob.into(),
+                setting: setting.into(),
+                cost_us: num(cost)?,
+                accuracy: num(acc)?,
+                unit: unit.into(),
+                pareto: pareto
+                    .parse()
+                    .map_err(|_| bad(format!("pareto `{pareto}` is not true / false")))?,
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn task(id: &'static str, better: Better) -> Task {
+        Task {
+            id,
+            title: id,
+            cost: CostKind::Cpu,
+            cost_label: "µs",
+            better,
+            unit: "%",
+            note: String::new(),
+        }
+    }
+
+    fn point(task: &'static str, cost_us: f64, accuracy: f64) -> Point {
+        Point {
+            task,
+            knob: "k".into(),
+            setting: "a, b".into(),
+            cost_us,
+            accuracy,
+            pareto: false,
+        }
+    }
+
+    #[test]
+    fn fronts_are_per_task_and_round_trip_through_csv() {
+        let tasks = [task("a", Better::Higher), task("b", Better::Lower)];
+        let mut pts = vec![
+            point("a", 1.0, 50.0),
+            point("b", 1.0, 50.0),
+            point("a", 2.0, 40.0),
+            point("b", 2.0, 40.0),
+        ];
+        mark_fronts(&tasks, &mut pts).unwrap();
+        assert_eq!(
+            pts.iter().map(|p| p.pareto).collect::<Vec<_>>(),
+            [true, true, false, true]
+        );
+        let rows = parse_csv(&to_csv(&tasks, &pts)).unwrap();
+        assert_eq!(rows.len(), 4);
+        assert_eq!(rows[3].setting, "a; b");
+        assert_eq!(
+            (rows[3].cost_us, rows[3].accuracy, rows[3].pareto),
+            (2.0, 40.0, true)
+        );
+    }
+
+    #[test]
+    fn bad_points_and_bad_csv_are_named() {
+        let tasks = [task("a", Better::Higher)];
+        let mut pts = vec![point("a", 1.0, 1.0), point("a", 1.0, f64::NAN)];
+        assert_eq!(
+            mark_fronts(&tasks, &mut pts),
+            Err(TradeError::NotFinite { index: 1 })
+        );
+        assert!(mark_fronts(&tasks, &mut [point("zz", 1.0, 1.0)]).is_err());
+        let bad = format!("{CSV_HEADER}\na,k,s,1.0,x,%,true\n");
+        assert!(matches!(
+            parse_csv(&bad),
+            Err(TradeError::Csv { line: 2, .. })
+        ));
+        assert!(matches!(
+            parse_csv("nope"),
+            Err(TradeError::Csv { line: 1, .. })
+        ));
+    }
+}
