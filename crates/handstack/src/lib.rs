@@ -7,5 +7,6 @@
 //! publishes one) and the data its report draws.
 
 pub mod outcome;
+pub mod report;
 
 pub use outcome::{Figure, Line, Outcome, Plot};

@@ -1,0 +1,368 @@
+//! The page: header, summary, one section per scene, the trade section. Every text that comes
+//! from data goes through [`escape`]; plots come from [`plot_svg`] (plotters escapes its text).
+
+use super::plot_svg::{self, Drawn};
+use super::trade_points::{self, TradePoint};
+use super::{Provenance, ReportError, TradeSection, escape, fmt_num};
+use crate::{Figure, Outcome, Plot};
+use std::fmt::Write as _;
+
+const STYLE: &str = "
+body { font: 15px/1.45 system-ui, -apple-system, 'Segoe UI', 'DejaVu Sans', sans-serif;
+       color: #1d2330; background: #f4f5f7; margin: 0; }
+main { max-width: 1320px; margin: 0 auto; padding: 0 24px 40px; }
+header { background: #1d2a44; color: #fff; padding: 18px 24px; }
+header h1 { margin: 0 0 4px; font-size: 24px; }
+header .meta { margin: 0; color: #c9d3e6; font-size: 13px; }
+header code { color: #fff; }
+h2 { margin: 0 0 2px; font-size: 20px; }
+h3 { margin: 18px 0 6px; font-size: 16px; }
+section { background: #fff; border: 1px solid #dde1e8; border-radius: 6px; padding: 16px 20px;
+          margin: 18px 0; }
+.sub { color: #5b6475; margin: 0 0 10px; font-size: 13px; }
+table { border-collapse: collapse; margin: 6px 0 10px; font-size: 14px; }
+th, td { border-bottom: 1px solid #e4e7ec; padding: 4px 10px; text-align: left;
+         vertical-align: top; }
+th { background: #f0f2f5; font-weight: 600; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.met { font-weight: 600; white-space: nowrap; }
+td.met.yes { color: #11602a; background: #e3f5e8; }
+td.met.no { color: #9c1c1c; background: #fbe4e4; }
+td.met.none { color: #8a8f99; }
+.src { color: #5b6475; font-size: 12px; }
+.plots { display: flex; flex-wrap: wrap; gap: 14px; }
+figure.plot { margin: 0; border: 1px solid #e4e7ec; border-radius: 4px; padding: 6px;
+              background: #fff; }
+figure.plot svg { display: block; max-width: 100%; height: auto; }
+figcaption { font-size: 13px; padding: 4px 4px 0; max-width: 640px; }
+.swatch { display: inline-block; width: 14px; height: 4px; margin: 0 4px 3px 10px;
+          vertical-align: middle; }
+.note { color: #7a4b00; background: #fff6e0; border-left: 4px solid #e0a800;
+        padding: 6px 10px; }
+a { color: #1d4f91; }
+";
+
+/// The whole page for `outcomes`, the `trade` section and the `header`.
+pub fn render(
+    outcomes: &[Outcome],
+    trade: &TradeSection,
+    header: &Provenance,
+) -> Result<String, ReportError> {
+    let mut page = String::new();
+    let w = &mut page;
+    let _ = write!(
+        w,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <title>handstack demo report</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
+         <header><h1>handstack — demo report</h1>\n\
+         <p class=\"meta\">commit <code>{}</code> · {} · {} cores, {}</p></header>\n<main>\n",
+        escape(&header.commit),
+        escape(&header.date_utc),
+        header.cores,
+        escape(&header.machine),
+    );
+    summary(w, outcomes);
+    for outcome in outcomes {
+        scene(w, outcome)?;
+    }
+    trade_section(w, trade)?;
+    w.push_str("</main>\n</body>\n</html>\n");
+    Ok(page)
+}
+
+fn scene_id(outcome: &Outcome) -> String {
+    format!("scene-{}", escape(&outcome.scene))
+}
+
+/// `(met, with a target)` over the outcome's figures.
+fn tally(outcome: &Outcome) -> (usize, usize) {
+    let targeted = outcome.figures.iter().filter(|f| f.target.is_some());
+    let with_target = targeted.clone().count();
+    (
+        targeted.filter(|f| f.met == Some(true)).count(),
+        with_target,
+    )
+}
+
+fn summary(w: &mut String, outcomes: &[Outcome]) {
+    w.push_str(
+        "<section class=\"summary\" id=\"summary\"><h2>Scenes</h2>\n\
+         <table><thead><tr><th>scene</th><th>what it reproduces</th><th>targets met</th>\
+         <th>figures</th><th>plots</th><th>wall time</th></tr></thead><tbody>\n",
+    );
+    for o in outcomes {
+        let (met, with_target) = tally(o);
+        let class = if met == with_target { "yes" } else { "no" };
+        let _ = writeln!(
+            w,
+            "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td>\
+             <td class=\"met {class}\">{met} / {with_target}</td><td class=\"num\">{}</td>\
+             <td class=\"num\">{}</td><td class=\"num\">{} s</td></tr>",
+            scene_id(o),
+            escape(&o.scene),
+            escape(&o.title),
+            o.figures.len(),
+            o.plots.len(),
+            fmt_num(o.wall_s),
+        );
+    }
+    if outcomes.is_empty() {
+        w.push_str("<tr><td colspan=\"6\">no scenes were run</td></tr>\n");
+    }
+    w.push_str("</tbody></table></section>\n");
+}
+
+fn scene(w: &mut String, o: &Outcome) -> Result<(), ReportError> {
+    let (met, with_target) = tally(o);
+    let _ = write!(
+        w,
+        "<section class=\"scene\" id=\"{}\" data-scene=\"{}\">\n<h2>{}</h2>\n\
+         <p class=\"sub\">scene <code>{}</code> · {} of {} targets met · {} s</p>\n",
+        scene_id(o),
+        escape(&o.scene),
+        escape(&o.title),
+        escape(&o.scene),
+        met,
+        with_target,
+        fmt_num(o.wall_s),
+    );
+    figures_table(w, &o.figures);
+    plots(w, &o.plots)?;
+    w.push_str("</section>\n");
+    Ok(())
+}
+
+fn figures_table(w: &mut String, figures: &[Figure]) {
+    if figures.is_empty() {
+        w.push_str("<p class=\"note\">This run measured no figures.</p>\n");
+        return;
+    }
+    w.push_str(
+        "<table class=\"figures\"><thead><tr><th>figure</th><th>value</th><th>paper</th>\
+         <th>target</th><th>met</th></tr></thead><tbody>\n",
+    );
+    for f in figures {
+        let unit = if f.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", escape(&f.unit))
+        };
+        let paper = match (&f.paper, &f.source) {
+            (Some(p), Some(s)) => format!(
+                "{}{unit} <span class=\"src\">({})</span>",
+                fmt_num(*p),
+                escape(s)
+            ),
+            (Some(p), None) => format!("{}{unit}", fmt_num(*p)),
+            (None, _) => "—".into(),
+        };
+        // Honest marking: only `Some(true)` is met; a target without a verdict says so.
+        let met = match (&f.target, f.met) {
+            (_, Some(true)) => "<td class=\"met yes\">✔ met</td>",
+            (_, Some(false)) => "<td class=\"met no\">✘ not met</td>",
+            (Some(_), None) => "<td class=\"met none\">not assessed</td>",
+            (None, None) => "<td class=\"met none\">no target</td>",
+        };
+        let _ = writeln!(
+            w,
+            "<tr class=\"figure\" data-figure=\"{}\"><td>{}</td><td class=\"num\">{}{unit}</td>\
+             <td class=\"num\">{paper}</td><td>{}</td>{met}</tr>",
+            escape(&f.name),
+            escape(&f.label),
+            fmt_num(f.value),
+            f.target.as_deref().map_or("—".into(), escape),
+        );
+    }
+    w.push_str("</tbody></table>\n");
+}
+
+fn plots(w: &mut String, plots: &[Plot]) -> Result<(), ReportError> {
+    if plots.is_empty() {
+        return Ok(());
+    }
+    w.push_str("<div class=\"plots\">\n");
+    for (i, plot) in plots.iter().enumerate() {
+        let Drawn { svg, legend } = plot_svg::draw(plot)?;
+        let _ = write!(w, "<figure class=\"plot\" data-plot=\"{i}\">\n{svg}\n");
+        if !legend.is_empty() {
+            w.push_str("<figcaption>");
+            for (label, colour) in legend {
+                let _ = write!(
+                    w,
+                    "<span class=\"swatch\" style=\"background:{colour}\"></span>{}",
+                    escape(&label)
+                );
+            }
+            w.push_str("</figcaption>\n");
+        }
+        w.push_str("</figure>\n");
+    }
+    w.push_str("</div>\n");
+    Ok(())
+}
+
+fn trade_section(w: &mut String, trade: &TradeSection) -> Result<(), ReportError> {
+    w.push_str("<section class=\"trade\" id=\"trade\">\n<h2>Speed / accuracy trade</h2>\n");
+    match trade {
+        TradeSection::NotRequested => {
+            w.push_str("<p class=\"note\">No trade points were given to this report.</p>\n")
+        }
+        TradeSection::Absent(path) => {
+            let _ = writeln!(
+                w,
+                "<p class=\"note\">The trade points file <code>{}</code> is absent: \
+                 run <code>cargo xtask trade</code> to measure them.</p>",
+                escape(&path.display().to_string())
+            );
+        }
+        TradeSection::Points { path, points } => {
+            let _ = writeln!(
+                w,
+                "<p class=\"sub\">{} points from <code>{}</code>; the lines join each \
+                 knob's settings by cost, and the Pareto front.</p>",
+                points.len(),
+                escape(&path.display().to_string())
+            );
+            let tasks = trade_points::tasks(points);
+            let task_plots: Vec<Plot> = tasks
+                .iter()
+                .map(|t| trade_points::task_plot(points, t))
+                .collect();
+            plots(w, &task_plots)?;
+            pareto_table(w, points, &tasks);
+        }
+    }
+    w.push_str("</section>\n");
+    Ok(())
+}
+
+fn pareto_table(w: &mut String, points: &[TradePoint], tasks: &[&str]) {
+    w.push_str(
+        "<h3>Pareto front per task</h3>\n<table class=\"pareto\"><thead><tr><th>task</th>\
+         <th>knob</th><th>setting</th><th>cost per cycle</th><th>accuracy</th></tr>\
+         </thead><tbody>\n",
+    );
+    for task in tasks {
+        let mut front: Vec<&TradePoint> = points
+            .iter()
+            .filter(|p| p.task == *task && p.pareto)
+            .collect();
+        front.sort_by(|a, b| a.cost_us.total_cmp(&b.cost_us));
+        for p in front {
+            let _ = writeln!(
+                w,
+                "<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"num\">{} µs</td>\
+                 <td class=\"num\">{} {}</td></tr>",
+                escape(&p.task),
+                escape(&p.knob),
+                escape(&p.setting),
+                fmt_num(p.cost_us),
+                fmt_num(p.accuracy),
+                escape(&p.accuracy_unit),
+            );
+        }
+    }
+    w.push_str("</tbody></table>\n");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Line;
+
+    fn figure(name: &str, target: Option<&str>, met: Option<bool>) -> Figure {
+        Figure {
+            name: name.into(),
+            label: format!("{name} <label>"),
+            value: 1.25,
+            unit: "%".into(),
+            paper: Some(2.0),
+            source: Some("seed 000 Table 1".into()),
+            target: target.map(Into::into),
+            met,
+        }
+    }
+
+    fn outcome() -> Outcome {
+        Outcome {
+            scene: "s&t".into(),
+            title: "Title <script>alert(1)</script>".into(),
+            figures: vec![
+                figure("a", Some("≥ 1"), Some(true)),
+                figure("b", Some("≥ 9"), Some(false)),
+                figure("c", None, None),
+            ],
+            plots: vec![Plot::Lines {
+                title: "trace <1>".into(),
+                x_label: "t, s".into(),
+                y_label: "F, N".into(),
+                lines: vec![Line {
+                    label: "finger & thumb".into(),
+                    points: vec![(0.0, 1.0), (1.0, 2.0)],
+                }],
+            }],
+            wall_s: 0.5,
+        }
+    }
+
+    #[test]
+    fn data_text_is_escaped_everywhere() {
+        let html = render(
+            &[outcome()],
+            &TradeSection::NotRequested,
+            &Provenance::fixed("<c>"),
+        )
+        .unwrap();
+        assert!(!html.contains("<script>"));
+        assert!(html.contains("Title &lt;script&gt;alert(1)&lt;/script&gt;"));
+        assert!(html.contains("a &lt;label&gt;"));
+        assert!(html.contains("finger &amp; thumb"));
+        assert!(html.contains("id=\"scene-s&amp;t\""));
+        assert!(html.contains("<code>&lt;c&gt;</code>"));
+        assert!(html.contains("trace &lt;1&gt;")); // plotters' own escaping
+    }
+
+    #[test]
+    fn met_and_unmet_targets_are_marked_as_they_are() {
+        let html = render(
+            &[outcome()],
+            &TradeSection::NotRequested,
+            &Provenance::fixed("x"),
+        )
+        .unwrap();
+        assert_eq!(html.matches("class=\"met yes\">✔ met").count(), 1);
+        assert_eq!(html.matches("class=\"met no\">✘ not met").count(), 1);
+        assert_eq!(html.matches("no target").count(), 1);
+        // The summary shows 1 of 2 targets met, in the "no" colour.
+        assert!(html.contains("<td class=\"met no\">1 / 2</td>"));
+        assert_eq!(html.matches("<svg").count(), 1);
+    }
+
+    #[test]
+    fn trade_section_says_why_it_is_empty() {
+        let absent = TradeSection::Absent("docs/trade/points.csv".into());
+        let html = render(&[], &absent, &Provenance::fixed("x")).unwrap();
+        assert!(html.contains("<code>docs/trade/points.csv</code> is absent"));
+        assert!(html.contains("no scenes were run"));
+    }
+
+    #[test]
+    fn trade_points_give_a_plot_per_task_and_the_front_table() {
+        let points = trade_points::parse(
+            "task,knob,setting,cost_us,accuracy,accuracy_unit,pareto\n\
+             force,osr,256,1.5,80,%,true\nforce,osr,4096,9.0,97,%,true\n\
+             location,method,aot,0.4,60,%,true\nlocation,method,cnn,300,93,%,false\n",
+            "points.csv".as_ref(),
+        )
+        .unwrap();
+        let section = TradeSection::Points {
+            path: "points.csv".into(),
+            points,
+        };
+        let html = render(&[], &section, &Provenance::fixed("x")).unwrap();
+        assert_eq!(html.matches("<svg").count(), 2);
+        let table = &html[html.find("class=\"pareto\"").unwrap()..];
+        assert_eq!(table.matches("<tr><td>").count(), 3); // the three Pareto points
+        assert!(html.contains("(log scale)")); // location spans 0.4–300 µs
+    }
+}
