@@ -1,6 +1,6 @@
 //! Developer workflows for the handstack workspace, run as `cargo xtask <command>`.
 //!
-//! - `test`: sets up `.venv`, then fmt check, clippy `-D warnings`, every test, docs, and
+//! - `test`: sets up `.venv` and Chromium, then fmt check, clippy `-D warnings`, every test, docs, and
 //!   `fixtures --check`: the one command CI runs.
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
 //! - `bench [FILTER] [-- CRITERION ARGS]`: runs the criterion benches and prints a summary table.
@@ -11,9 +11,12 @@
 //!   curve and its section of `docs/learning.md`.
 //! - `train softness`: trains the softness classifier (LM and Adam), writes its weights,
 //!   metrics, figures and section 2 of `docs/learning.md`.
+//! - `demo [--screenshot]`: runs every scene in `fixtures/scenes/` on the simulated default
+//!   and writes `target/demo/report.html` (`--screenshot`: also `docs/demo-report.png`).
 //! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
 
 pub mod bench;
+pub mod chromium;
 pub mod demo;
 pub mod docs_section;
 pub mod fixtures;

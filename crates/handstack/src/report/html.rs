@@ -92,11 +92,15 @@ fn summary(w: &mut String, outcomes: &[Outcome]) {
     );
     for o in outcomes {
         let (met, with_target) = tally(o);
-        let class = if met == with_target { "yes" } else { "no" };
+        let verdict = match (met, with_target) {
+            (_, 0) => "<td class=\"met none\">no targets</td>".to_owned(),
+            (m, t) if m == t => format!("<td class=\"met yes\">{m} / {t}</td>"),
+            (m, t) => format!("<td class=\"met no\">{m} / {t}</td>"),
+        };
         let _ = writeln!(
             w,
             "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td>\
-             <td class=\"met {class}\">{met} / {with_target}</td><td class=\"num\">{}</td>\
+             {verdict}<td class=\"num\">{}</td>\
              <td class=\"num\">{}</td><td class=\"num\">{} s</td></tr>",
             scene_id(o),
             escape(&o.scene),

@@ -129,6 +129,15 @@ fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
     }
 }
 
+/// An axis tick: [`fmt_num`], with rounding noise around zero (`-2.2e-16`) shown as `0`.
+fn fmt_tick(v: f64, axis: &std::ops::Range<f64>) -> String {
+    if v.abs() <= 1e-9 * (axis.end - axis.start).abs() {
+        "0".into()
+    } else {
+        fmt_num(v)
+    }
+}
+
 fn padded((lo, hi): (f64, f64)) -> std::ops::Range<f64> {
     let pad = 0.04 * (hi - lo);
     lo - pad..hi + pad
@@ -155,6 +164,7 @@ fn lines(
     let tx = |x: f64| if log_x { x.log10() } else { x };
     let x_range = padded(span(all.iter().map(|p| tx(p.0))));
     let y_range = padded(span(all.iter().map(|p| p.1)));
+    let (x_axis, y_axis) = (x_range.clone(), y_range.clone());
     let x_desc = if log_x {
         format!("{x_label} (log scale)")
     } else {
@@ -165,10 +175,16 @@ fn lines(
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(60)
-        .build_cartesian_2d(x_range, y_range)
+        .build_cartesian_2d(x_axis, y_axis)
         .map_err(e)?;
-    let x_fmt = |v: &f64| fmt_num(if log_x { 10f64.powf(*v) } else { *v });
-    let y_fmt = |v: &f64| fmt_num(*v);
+    let x_fmt = |v: &f64| {
+        if log_x {
+            fmt_num(10f64.powf(*v))
+        } else {
+            fmt_tick(*v, &x_range)
+        }
+    };
+    let y_fmt = |v: &f64| fmt_tick(*v, &y_range);
     chart
         .configure_mesh()
         .x_desc(x_desc)
@@ -176,6 +192,8 @@ fn lines(
         .x_label_formatter(&x_fmt)
         .y_label_formatter(&y_fmt)
         .light_line_style(RGBColor(235, 235, 235))
+        .label_style((FONT, 12))
+        .axis_desc_style((FONT, 13))
         .draw()
         .map_err(e)?;
     let mut legend = Vec::new();
@@ -241,7 +259,7 @@ fn colour_bar(
         .y_label_area_size(62)
         .build_cartesian_2d(0.0..1.0, lo..hi)
         .map_err(e)?;
-    let y_fmt = |v: &f64| fmt_num(*v);
+    let y_fmt = |v: &f64| fmt_tick(*v, &(lo..hi));
     bar.configure_mesh()
         .disable_x_mesh()
         .disable_x_axis()
@@ -249,6 +267,8 @@ fn colour_bar(
         .y_desc(label)
         .y_labels(6)
         .y_label_formatter(&y_fmt)
+        .label_style((FONT, 12))
+        .axis_desc_style((FONT, 13))
         .draw()
         .map_err(e)?;
     let steps = 48;
@@ -261,6 +281,81 @@ fn colour_bar(
     Ok(())
 }
 
+/// Draws a `cols × rows` matrix of coloured, labelled cells on `area`: cell `(c, r)` (row 0 at
+/// the top, as matrices and seed 000 Figure 11 are printed) centred on `(c, rows - 1 - r)`.
+struct Cells<'a> {
+    title: &'a str,
+    cols: usize,
+    rows: usize,
+    x_desc: &'a str,
+    y_desc: &'a str,
+    col_name: &'a dyn Fn(usize) -> String,
+    row_name: &'a dyn Fn(usize) -> String,
+    label_px: (u32, u32),
+}
+
+impl Cells<'_> {
+    /// `cell(c, r)` gives each cell's colour and text.
+    fn draw(
+        &self,
+        area: &Area<'_>,
+        cell: &dyn Fn(usize, usize) -> (RGBColor, String),
+    ) -> DrawResult<()> {
+        let (cols, rows) = (self.cols.max(1), self.rows.max(1));
+        let mut chart = ChartBuilder::on(area)
+            .caption(self.title, (FONT, 18))
+            .margin(12)
+            .x_label_area_size(self.label_px.0)
+            .y_label_area_size(self.label_px.1)
+            .build_cartesian_2d(-0.5..cols as f64 - 0.5, -0.5..rows as f64 - 0.5)
+            .map_err(e)?;
+        // Labels only at cell centres (whole numbers inside the matrix).
+        let centre = |v: f64, n: usize| {
+            let i = v.round();
+            ((v - i).abs() < 1e-6 && i >= 0.0 && i < n as f64).then_some(i as usize)
+        };
+        let x_fmt = |v: &f64| centre(*v, cols).map(self.col_name).unwrap_or_default();
+        let y_fmt = |v: &f64| {
+            centre(*v, rows)
+                .map(|i| (self.row_name)(rows - 1 - i))
+                .unwrap_or_default()
+        };
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(self.x_desc)
+            .y_desc(self.y_desc)
+            .x_labels(cols + 1)
+            .y_labels(rows + 1)
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&y_fmt)
+            .label_style((FONT, 12))
+            .axis_desc_style((FONT, 13))
+            .draw()
+            .map_err(e)?;
+        for r in 0..rows {
+            for c in 0..cols {
+                let (bg, text) = cell(c, r);
+                let (x, y) = (c as f64, (rows - 1 - r) as f64);
+                chart
+                    .draw_series(std::iter::once(Rectangle::new(
+                        [(x - 0.5, y - 0.5), (x + 0.5, y + 0.5)],
+                        bg.filled(),
+                    )))
+                    .map_err(e)?;
+                chart
+                    .draw_series(std::iter::once(Text::new(
+                        text,
+                        (x, y),
+                        (FONT, 12).into_font().color(&ink(bg)).pos(text_centre()),
+                    )))
+                    .map_err(e)?;
+            }
+        }
+        Ok(())
+    }
+}
+
 fn confusion(
     area: &Area<'_>,
     title: &str,
@@ -270,39 +365,7 @@ fn confusion(
     let n = labels.len().max(counts.len()).max(1);
     let (main, bar) = area.split_horizontally(area.dim_in_pixel().0 - 90);
     let name = |i: usize| labels.get(i).cloned().unwrap_or_else(|| i.to_string());
-    let label_px = 8 * (0..n).map(|i| name(i).chars().count()).max().unwrap_or(1) as u32 + 30;
-    let mut chart = ChartBuilder::on(&main)
-        .caption(title, (FONT, 18))
-        .margin(12)
-        .x_label_area_size(label_px.min(120))
-        .y_label_area_size(label_px.min(160))
-        .build_cartesian_2d(
-            (0..n as i32).into_segmented(),
-            (0..n as i32).into_segmented(),
-        )
-        .map_err(e)?;
-    // Row `t` (true class) is drawn top-down, as the matrix is printed.
-    let at = |v: &SegmentValue<i32>, flip: bool| match v {
-        // plotters may ask for labels outside 0..n; those stay blank.
-        SegmentValue::CenterOf(i) if (0..n as i32).contains(i) => {
-            let i = *i as usize;
-            name(if flip { n - 1 - i } else { i })
-        }
-        _ => String::new(),
-    };
-    let x_fmt = |v: &SegmentValue<i32>| at(v, false);
-    let y_fmt = |v: &SegmentValue<i32>| at(v, true);
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("predicted")
-        .y_desc("true")
-        .x_labels(n)
-        .y_labels(n)
-        .x_label_formatter(&x_fmt)
-        .y_label_formatter(&y_fmt)
-        .draw()
-        .map_err(e)?;
+    let longest = (0..n).map(|i| name(i).chars().count()).max().unwrap_or(1) as u32;
     // Colour = share of the true class's samples (so rare classes read as well as common ones).
     let share_colour = |s: f64| {
         let s = if s.is_finite() {
@@ -316,36 +379,27 @@ fn confusion(
             (255.0 - 148.0 * s) as u8,
         )
     };
-    for t in 0..n {
+    let cells = Cells {
+        title,
+        cols: n,
+        rows: n,
+        x_desc: "predicted",
+        y_desc: "true",
+        col_name: &name,
+        row_name: &name,
+        label_px: ((7 * longest + 30).min(120), (7 * longest + 40).min(160)),
+    };
+    cells.draw(&main, &|p, t| {
         let row = counts.get(t).map_or(&[][..], Vec::as_slice);
         let total: u64 = row.iter().map(|&c| u64::from(c)).sum();
-        for p in 0..n {
-            let count = row.get(p).copied().unwrap_or(0);
-            let share = if total == 0 {
-                0.0
-            } else {
-                f64::from(count) / total as f64
-            };
-            let bg = share_colour(share);
-            let (x, y) = (p as i32, (n - 1 - t) as i32);
-            chart
-                .draw_series(std::iter::once(Rectangle::new(
-                    [
-                        (SegmentValue::Exact(x), SegmentValue::Exact(y)),
-                        (SegmentValue::Exact(x + 1), SegmentValue::Exact(y + 1)),
-                    ],
-                    bg.filled(),
-                )))
-                .map_err(e)?;
-            chart
-                .draw_series(std::iter::once(Text::new(
-                    count.to_string(),
-                    (SegmentValue::CenterOf(x), SegmentValue::CenterOf(y)),
-                    (FONT, 13).into_font().color(&ink(bg)).pos(text_centre()),
-                )))
-                .map_err(e)?;
-        }
-    }
+        let count = row.get(p).copied().unwrap_or(0);
+        let share = if total == 0 {
+            0.0
+        } else {
+            f64::from(count) / total as f64
+        };
+        (share_colour(share), count.to_string())
+    })?;
     colour_bar(&bar, 0.0, 1.0, "share of true class", &share_colour)
 }
 
@@ -362,62 +416,23 @@ fn grid(
     values: &[f64],
     unit: &str,
 ) -> DrawResult<()> {
-    let (rows, cols) = (rows.max(1), cols.max(1));
     let (main, bar) = area.split_horizontally(area.dim_in_pixel().0 - 100);
     let (lo, hi) = span(values.iter().copied());
-    let mut chart = ChartBuilder::on(&main)
-        .caption(title, (FONT, 18))
-        .margin(12)
-        .x_label_area_size(30)
-        .y_label_area_size(40)
-        .build_cartesian_2d(
-            (0..cols as i32).into_segmented(),
-            (0..rows as i32).into_segmented(),
-        )
-        .map_err(e)?;
-    // Row 0 at the top, as the pad is drawn in seed 000 Figure 11.
-    let x_fmt = |v: &SegmentValue<i32>| match v {
-        SegmentValue::CenterOf(c) if (0..cols as i32).contains(c) => format!("c{c}"),
-        _ => String::new(),
+    let cells = Cells {
+        title,
+        cols,
+        rows,
+        x_desc: "column",
+        y_desc: "row",
+        col_name: &|c| c.to_string(),
+        row_name: &|r| r.to_string(),
+        label_px: (40, 50),
     };
-    let y_fmt = |v: &SegmentValue<i32>| match v {
-        SegmentValue::CenterOf(r) if (0..rows as i32).contains(r) => {
-            format!("r{}", rows as i32 - 1 - r)
-        }
-        _ => String::new(),
-    };
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_labels(cols)
-        .y_labels(rows)
-        .x_label_formatter(&x_fmt)
-        .y_label_formatter(&y_fmt)
-        .draw()
-        .map_err(e)?;
-    for r in 0..rows {
-        for c in 0..cols {
-            let v = values.get(r * cols + c).copied().unwrap_or(f64::NAN);
-            let bg = heat(v, lo, hi);
-            let (x, y) = (c as i32, (rows - 1 - r) as i32);
-            chart
-                .draw_series(std::iter::once(Rectangle::new(
-                    [
-                        (SegmentValue::Exact(x), SegmentValue::Exact(y)),
-                        (SegmentValue::Exact(x + 1), SegmentValue::Exact(y + 1)),
-                    ],
-                    bg.filled(),
-                )))
-                .map_err(e)?;
-            chart
-                .draw_series(std::iter::once(Text::new(
-                    fmt_num(v),
-                    (SegmentValue::CenterOf(x), SegmentValue::CenterOf(y)),
-                    (FONT, 12).into_font().color(&ink(bg)).pos(text_centre()),
-                )))
-                .map_err(e)?;
-        }
-    }
+    let cols = cols.max(1);
+    cells.draw(&main, &|c, r| {
+        let v = values.get(r * cols + c).copied().unwrap_or(f64::NAN);
+        (heat(v, lo, hi), fmt_num(v))
+    })?;
     colour_bar(&bar, lo, hi, unit, &|v| heat(v, lo, hi))
 }
 
@@ -467,14 +482,17 @@ fn surface(
         .y_label_area_size(60)
         .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
         .map_err(e)?;
-    let fmt = |v: &f64| fmt_num(*v);
+    let x_fmt = |v: &f64| fmt_tick(*v, &(xr.0..xr.1));
+    let y_fmt = |v: &f64| fmt_tick(*v, &(yr.0..yr.1));
     chart
         .configure_mesh()
         .disable_mesh()
         .x_desc(x_label)
         .y_desc(y_label)
-        .x_label_formatter(&fmt)
-        .y_label_formatter(&fmt)
+        .x_label_formatter(&x_fmt)
+        .y_label_formatter(&y_fmt)
+        .label_style((FONT, 12))
+        .axis_desc_style((FONT, 13))
         .draw()
         .map_err(e)?;
     for (iy, row) in z.iter().enumerate() {
