@@ -311,6 +311,12 @@ impl Image {
     }
 
     /// How many distinct RGBA colours the image holds (a blank page has one).
+    ///
+    /// ```
+    /// use handstack::report::browser::Image;
+    /// let white_and_red = Image { width: 2, height: 1, rgba: vec![255, 255, 255, 255, 255, 0, 0, 255] };
+    /// assert_eq!(white_and_red.distinct_colours(), 2);
+    /// ```
     pub fn distinct_colours(&self) -> usize {
         let mut seen: Vec<u32> = self
             .rgba

@@ -243,7 +243,7 @@ fn trade_section(w: &mut String, trade: &TradeSection) -> Result<(), ReportError
 fn pareto_table(w: &mut String, points: &[TradePoint], tasks: &[&str]) {
     w.push_str(
         "<h3>Pareto front per task</h3>\n<table class=\"pareto\"><thead><tr><th>task</th>\
-         <th>knob</th><th>setting</th><th>cost per cycle</th><th>accuracy</th></tr>\
+         <th>knob</th><th>setting</th><th>cost per cycle</th><th>quality figure</th></tr>\
          </thead><tbody>\n",
     );
     for task in tasks {
@@ -262,7 +262,7 @@ fn pareto_table(w: &mut String, points: &[TradePoint], tasks: &[&str]) {
                 escape(&p.setting),
                 fmt_num(p.cost_us),
                 fmt_num(p.accuracy),
-                escape(&p.accuracy_unit),
+                escape(&p.unit),
             );
         }
     }

@@ -144,7 +144,24 @@ fn escape(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{escape, fmt_num};
+    use super::{ReportError, escape, fmt_num, write_html};
+    use std::path::Path;
+
+    #[test]
+    fn write_html_creates_the_directory_and_names_an_unwritable_path() {
+        let dir = std::env::temp_dir().join(format!("handstack-report-{}", std::process::id()));
+        let out = dir.join("a/b/report.html");
+        write_html(&[], Some(Path::new("/nonexistent/points.csv")), &out).unwrap();
+        let html = std::fs::read_to_string(&out).unwrap();
+        assert!(html.starts_with("<!DOCTYPE html>") && html.contains("is absent"));
+        // A file where the directory should be.
+        let blocked = dir.join("a/b/report.html/inner.html");
+        match write_html(&[], None, &blocked) {
+            Err(ReportError::Io { path, .. }) => assert!(path.ends_with("report.html")),
+            other => panic!("{other:?}"),
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn numbers_keep_four_significant_digits() {

@@ -17,10 +17,11 @@ pub struct TradePoint {
     pub setting: String,
     /// Cost per control cycle, µs.
     pub cost_us: f64,
-    /// Accuracy on the task, in `accuracy_unit`.
+    /// The task's quality figure (an accuracy, or an error / noise where lower is better),
+    /// in `unit`.
     pub accuracy: f64,
-    /// Unit of `accuracy` (`%`, `gf`, …).
-    pub accuracy_unit: String,
+    /// Unit of `accuracy` (`%`, `gf`, …): the CSV's `accuracy_unit`.
+    pub unit: String,
     /// Whether the point is on its task's Pareto front.
     pub pareto: bool,
 }
@@ -137,7 +138,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Vec<TradePoint>, ReportError> {
             setting: cells[index[2]].to_owned(),
             cost_us: num(3)?,
             accuracy: num(4)?,
-            accuracy_unit: cells[index[5]].to_owned(),
+            unit: cells[index[5]].to_owned(),
             pareto,
         })
     })
@@ -195,11 +196,11 @@ pub(super) fn task_plot(points: &[TradePoint], task: &str) -> Plot {
             points: front,
         });
     }
-    let unit = of_task.first().map_or("", |p| p.accuracy_unit.as_str());
+    let unit = of_task.first().map_or("", |p| p.unit.as_str());
     Plot::Lines {
-        title: format!("{task}: accuracy vs cost per cycle"),
+        title: format!("{task}: quality figure vs cost per cycle"),
         x_label: "cost per cycle, µs".into(),
-        y_label: format!("accuracy, {unit}"),
+        y_label: format!("quality figure, {unit}"),
         lines,
     }
 }
@@ -274,7 +275,7 @@ mod tests {
         let Plot::Lines { lines, y_label, .. } = task_plot(&p, "force") else {
             panic!("not lines")
         };
-        assert_eq!(y_label, "accuracy, %");
+        assert_eq!(y_label, "quality figure, %");
         let labels: Vec<&str> = lines.iter().map(|l| l.label.as_str()).collect();
         assert_eq!(labels, ["osr", "width", "Pareto front"]);
         // Sorted by cost.
