@@ -114,7 +114,7 @@ fn report_renders_in_headless_chromium() {
     let page = dir.join("report.html");
     let outcomes = outcomes();
     let points = workspace_root().join("docs/trade/points.csv");
-    write_html(&outcomes, Some(&points), &page).unwrap();
+    write_html(&outcomes, &[], Some(&points), &page).unwrap();
 
     // 1. The browser parsed what we wrote.
     let dom = chromium.dump_dom(&page, &dir).unwrap();

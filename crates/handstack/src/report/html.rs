@@ -3,7 +3,7 @@
 
 use super::plot_svg::{self, Drawn};
 use super::trade_points::{self, TradePoint};
-use super::{Provenance, ReportError, TradeSection, escape, fmt_num};
+use super::{Failed, Provenance, ReportError, TradeSection, escape, fmt_num};
 use crate::{Figure, Outcome, Plot};
 use std::fmt::Write as _;
 
@@ -42,9 +42,10 @@ figcaption { font-size: 13px; padding: 4px 4px 0; max-width: 640px; }
 a { color: #1d4f91; }
 ";
 
-/// The whole page for `outcomes`, the `trade` section and the `header`.
+/// The whole page for `outcomes`, the `failed` scenes, the `trade` section and the `header`.
 pub fn render(
     outcomes: &[Outcome],
+    failed: &[Failed],
     trade: &TradeSection,
     header: &Provenance,
 ) -> Result<String, ReportError> {
@@ -61,9 +62,18 @@ pub fn render(
         header.cores,
         escape(&header.machine),
     );
-    summary(w, outcomes);
+    summary(w, outcomes, failed);
     for outcome in outcomes {
         scene(w, outcome)?;
+    }
+    for f in failed {
+        let _ = writeln!(
+            w,
+            "<section class=\"scene-failed\" id=\"failed-{0}\"><h2>{0}: failed</h2>\
+             <pre class=\"note\">{1}</pre></section>",
+            escape(&f.scene),
+            escape(&f.error),
+        );
     }
     trade_section(w, trade)?;
     w.push_str("</main>\n</body>\n</html>\n");
@@ -84,7 +94,7 @@ fn tally(outcome: &Outcome) -> (usize, usize) {
     )
 }
 
-fn summary(w: &mut String, outcomes: &[Outcome]) {
+fn summary(w: &mut String, outcomes: &[Outcome], failed: &[Failed]) {
     w.push_str(
         "<section class=\"summary\" id=\"summary\"><h2>Scenes</h2>\n\
          <table><thead><tr><th>scene</th><th>what it reproduces</th><th>targets met</th>\
@@ -110,7 +120,15 @@ fn summary(w: &mut String, outcomes: &[Outcome]) {
             fmt_num(o.wall_s),
         );
     }
-    if outcomes.is_empty() {
+    for f in failed {
+        let _ = writeln!(
+            w,
+            "<tr><td><a href=\"#failed-{0}\">{0}</a></td><td>—</td>\
+             <td class=\"met no\">run failed</td><td></td><td></td><td></td></tr>",
+            escape(&f.scene)
+        );
+    }
+    if outcomes.is_empty() && failed.is_empty() {
         w.push_str("<tr><td colspan=\"6\">no scenes were run</td></tr>\n");
     }
     w.push_str("</tbody></table></section>\n");
@@ -313,6 +331,7 @@ mod tests {
     fn data_text_is_escaped_everywhere() {
         let html = render(
             &[outcome()],
+            &[],
             &TradeSection::NotRequested,
             &Provenance::fixed("<c>"),
         )
@@ -330,6 +349,7 @@ mod tests {
     fn met_and_unmet_targets_are_marked_as_they_are() {
         let html = render(
             &[outcome()],
+            &[],
             &TradeSection::NotRequested,
             &Provenance::fixed("x"),
         )
@@ -343,9 +363,27 @@ mod tests {
     }
 
     #[test]
+    fn failed_scenes_are_listed_with_their_error() {
+        let failed = [Failed {
+            scene: "tap-to-ur3".into(),
+            error: "ur_rtde: <no venv>".into(),
+        }];
+        let html = render(
+            &[outcome()],
+            &failed,
+            &TradeSection::NotRequested,
+            &Provenance::fixed("x"),
+        )
+        .unwrap();
+        assert!(html.contains("<td class=\"met no\">run failed</td>"));
+        assert!(html.contains("<h2>tap-to-ur3: failed</h2>"));
+        assert!(html.contains("ur_rtde: &lt;no venv&gt;"));
+    }
+
+    #[test]
     fn trade_section_says_why_it_is_empty() {
         let absent = TradeSection::Absent("docs/trade/points.csv".into());
-        let html = render(&[], &absent, &Provenance::fixed("x")).unwrap();
+        let html = render(&[], &[], &absent, &Provenance::fixed("x")).unwrap();
         assert!(html.contains("<code>docs/trade/points.csv</code> is absent"));
         assert!(html.contains("no scenes were run"));
     }
@@ -363,7 +401,7 @@ mod tests {
             path: "points.csv".into(),
             points,
         };
-        let html = render(&[], &section, &Provenance::fixed("x")).unwrap();
+        let html = render(&[], &[], &section, &Provenance::fixed("x")).unwrap();
         assert_eq!(html.matches("<svg").count(), 2);
         let table = &html[html.find("class=\"pareto\"").unwrap()..];
         assert_eq!(table.matches("<tr><td>").count(), 3); // the three Pareto points

@@ -26,7 +26,8 @@
 //!     plots: vec![],
 //!     wall_s: 1.5,
 //! };
-//! let html = render(&[outcome], &TradeSection::NotRequested, &Provenance::fixed("abc123"))?;
+//! let trade = TradeSection::NotRequested;
+//! let html = render(&[outcome], &[], &trade, &Provenance::fixed("abc123"))?;
 //! assert!(html.contains("Seed 000 Table 1 &lt;weights&gt;")); // text is escaped
 //! assert!(html.contains(r#"data-figure="mae_gf""#));
 //! # Ok::<(), handstack::report::ReportError>(())
@@ -76,14 +77,25 @@ pub enum ReportError {
     },
 }
 
-/// Renders `outcomes` (and the trade points at `trade_points`, when given) with the
-/// [`Provenance`] detected from the current directory's git checkout, and writes the page to
-/// `out`, creating its directory.
+/// A scene that did not produce an [`Outcome`]: the report lists it with its error, so a
+/// failed run is not silently missing from the page.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Failed {
+    /// The scene (file name or stem).
+    pub scene: String,
+    /// The error, as the run reported it.
+    pub error: String,
+}
+
+/// Renders `outcomes`, the `failed` scenes and the trade points at `trade_points` (when
+/// given) with the [`Provenance`] detected from the current directory's git checkout, and
+/// writes the page to `out`, creating its directory.
 ///
 /// A missing `trade_points` file is not an error (the page says it is absent); a malformed
 /// one is.
 pub fn write_html(
     outcomes: &[Outcome],
+    failed: &[Failed],
     trade_points: Option<&Path>,
     out: &Path,
 ) -> Result<(), ReportError> {
@@ -91,7 +103,7 @@ pub fn write_html(
         None => TradeSection::NotRequested,
         Some(path) => TradeSection::load(path)?,
     };
-    let html = render(outcomes, &trade, &Provenance::detect())?;
+    let html = render(outcomes, failed, &trade, &Provenance::detect())?;
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
             path: dir.to_path_buf(),
@@ -151,12 +163,12 @@ mod tests {
     fn write_html_creates_the_directory_and_names_an_unwritable_path() {
         let dir = std::env::temp_dir().join(format!("handstack-report-{}", std::process::id()));
         let out = dir.join("a/b/report.html");
-        write_html(&[], Some(Path::new("/nonexistent/points.csv")), &out).unwrap();
+        write_html(&[], &[], Some(Path::new("/nonexistent/points.csv")), &out).unwrap();
         let html = std::fs::read_to_string(&out).unwrap();
         assert!(html.starts_with("<!DOCTYPE html>") && html.contains("is absent"));
         // A file where the directory should be.
         let blocked = dir.join("a/b/report.html/inner.html");
-        match write_html(&[], None, &blocked) {
+        match write_html(&[], &[], None, &blocked) {
             Err(ReportError::Io { path, .. }) => assert!(path.ends_with("report.html")),
             other => panic!("{other:?}"),
         }
