@@ -4,13 +4,13 @@
 use super::plot_svg::{self, Drawn};
 use super::trade_points::{self, TradePoint};
 use super::{Failed, Provenance, ReportError, TradeSection, escape, fmt_num};
-use crate::{Figure, Outcome, Plot};
+use crate::{Figure, Line, Outcome, Plot};
 use std::fmt::Write as _;
 
 const STYLE: &str = "
 body { font: 15px/1.45 system-ui, -apple-system, 'Segoe UI', 'DejaVu Sans', sans-serif;
        color: #1d2330; background: #f4f5f7; margin: 0; }
-main { max-width: 1320px; margin: 0 auto; padding: 0 24px 40px; }
+main { max-width: 1400px; margin: 0 auto; padding: 0 24px 40px; }
 header { background: #1d2a44; color: #fff; padding: 18px 24px; }
 header h1 { margin: 0 0 4px; font-size: 24px; }
 header .meta { margin: 0; color: #c9d3e6; font-size: 13px; }
@@ -35,7 +35,8 @@ figure.plot { margin: 0; border: 1px solid #e4e7ec; border-radius: 4px; padding:
               background: #fff; }
 figure.plot svg { display: block; max-width: 100%; height: auto; }
 figcaption { font-size: 13px; padding: 4px 4px 0; max-width: 640px; }
-.swatch { display: inline-block; width: 14px; height: 4px; margin: 0 4px 3px 10px;
+.entry { white-space: nowrap; margin-right: 12px; }
+.swatch { display: inline-block; width: 14px; height: 5px; margin: 0 4px 3px 0;
           vertical-align: middle; }
 .note { color: #7a4b00; background: #fff6e0; border-left: 4px solid #e0a800;
         padding: 6px 10px; }
@@ -199,19 +200,25 @@ fn figures_table(w: &mut String, figures: &[Figure]) {
 }
 
 fn plots(w: &mut String, plots: &[Plot]) -> Result<(), ReportError> {
+    let with_no_front: Vec<(&Plot, Option<&Line>)> = plots.iter().map(|p| (p, None)).collect();
+    plots_with_fronts(w, &with_no_front)
+}
+
+fn plots_with_fronts(w: &mut String, plots: &[(&Plot, Option<&Line>)]) -> Result<(), ReportError> {
     if plots.is_empty() {
         return Ok(());
     }
     w.push_str("<div class=\"plots\">\n");
-    for (i, plot) in plots.iter().enumerate() {
-        let Drawn { svg, legend } = plot_svg::draw(plot)?;
+    for (i, (plot, front)) in plots.iter().enumerate() {
+        let Drawn { svg, legend } = plot_svg::draw_with_front(plot, *front)?;
         let _ = write!(w, "<figure class=\"plot\" data-plot=\"{i}\">\n{svg}\n");
         if !legend.is_empty() {
             w.push_str("<figcaption>");
             for (label, colour) in legend {
                 let _ = write!(
                     w,
-                    "<span class=\"swatch\" style=\"background:{colour}\"></span>{}",
+                    "<span class=\"entry\"><span class=\"swatch\" \
+                     style=\"background:{colour}\"></span>{}</span> ",
                     escape(&label)
                 );
             }
@@ -234,28 +241,39 @@ fn trade_section(w: &mut String, trade: &TradeSection) -> Result<(), ReportError
                 w,
                 "<p class=\"note\">The trade points file <code>{}</code> is absent: \
                  run <code>cargo xtask trade</code> to measure them.</p>",
-                escape(&path.display().to_string())
+                escape(&shown(path))
             );
         }
         TradeSection::Points { path, points } => {
             let _ = writeln!(
                 w,
-                "<p class=\"sub\">{} points from <code>{}</code>; the lines join each \
-                 knob's settings by cost, and the Pareto front.</p>",
+                "<p class=\"sub\">{} points from <code>{}</code>: one plot per task, a line \
+                 per knob through its settings by cost, the task's Pareto front as the amber \
+                 band (higher is better for accuracies, lower for errors and noise).</p>",
                 points.len(),
-                escape(&path.display().to_string())
+                escape(&shown(path))
             );
             let tasks = trade_points::tasks(points);
-            let task_plots: Vec<Plot> = tasks
+            let task_plots: Vec<(Plot, Line)> = tasks
                 .iter()
                 .map(|t| trade_points::task_plot(points, t))
                 .collect();
-            plots(w, &task_plots)?;
+            let refs: Vec<(&Plot, Option<&Line>)> =
+                task_plots.iter().map(|(p, f)| (p, Some(f))).collect();
+            plots_with_fronts(w, &refs)?;
             pareto_table(w, points, &tasks);
         }
     }
     w.push_str("</section>\n");
     Ok(())
+}
+
+/// `path` for people: resolved, and relative to the working directory when inside it.
+fn shown(path: &std::path::Path) -> String {
+    let full = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    let cwd = std::env::current_dir().ok();
+    cwd.and_then(|d| full.strip_prefix(d).ok().map(|p| p.display().to_string()))
+        .unwrap_or_else(|| full.display().to_string())
 }
 
 fn pareto_table(w: &mut String, points: &[TradePoint], tasks: &[&str]) {
@@ -290,7 +308,6 @@ fn pareto_table(w: &mut String, points: &[TradePoint], tasks: &[&str]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Line;
 
     fn figure(name: &str, target: Option<&str>, met: Option<bool>) -> Figure {
         Figure {

@@ -43,6 +43,12 @@ pub(super) fn title(plot: &Plot) -> &str {
 
 /// Draws `plot` into an SVG string.
 pub(super) fn draw(plot: &Plot) -> Result<Drawn, ReportError> {
+    draw_with_front(plot, None)
+}
+
+/// Draws `plot`; a [`Plot::Lines`] gets `front` (a Pareto front) as a wide translucent band
+/// under its lines, so points on the front stay visible on their own line.
+pub(super) fn draw_with_front(plot: &Plot, front: Option<&Line>) -> Result<Drawn, ReportError> {
     let err = |e: &dyn std::fmt::Display| ReportError::Plot {
         title: title(plot).to_owned(),
         message: e.to_string(),
@@ -59,7 +65,7 @@ pub(super) fn draw(plot: &Plot) -> Result<Drawn, ReportError> {
                 x_label,
                 y_label,
                 lines: ls,
-            } => lines(&area, title, x_label, y_label, ls).map(|l| legend = l),
+            } => lines(&area, title, (x_label, y_label), ls, front).map(|l| legend = l),
             Plot::Confusion {
                 title,
                 labels,
@@ -91,7 +97,7 @@ pub(super) fn draw(plot: &Plot) -> Result<Drawn, ReportError> {
 /// Pixel size per plot kind: heat maps grow with their cell count, within bounds.
 fn size(plot: &Plot) -> (u32, u32) {
     match plot {
-        Plot::Lines { .. } => (640, 400),
+        Plot::Lines { .. } => (620, 400),
         Plot::Confusion { labels, counts, .. } => {
             let n = labels.len().max(counts.len()).clamp(2, 24) as u32;
             let side = 140 + 44 * n;
@@ -143,12 +149,15 @@ fn padded((lo, hi): (f64, f64)) -> std::ops::Range<f64> {
     lo - pad..hi + pad
 }
 
+/// The Pareto-front band: amber, translucent, under the lines.
+const FRONT: RGBAColor = RGBAColor(255, 179, 0, 0.45);
+
 fn lines(
     area: &Area<'_>,
     title: &str,
-    x_label: &str,
-    y_label: &str,
+    (x_label, y_label): (&str, &str),
     lines: &[Line],
+    front: Option<&Line>,
 ) -> DrawResult<Vec<(String, String)>> {
     let finite = |l: &Line| {
         l.points
@@ -157,7 +166,7 @@ fn lines(
             .filter(|(x, y)| x.is_finite() && y.is_finite())
             .collect::<Vec<_>>()
     };
-    let all: Vec<(f64, f64)> = lines.iter().flat_map(finite).collect();
+    let all: Vec<(f64, f64)> = lines.iter().chain(front).flat_map(finite).collect();
     // Costs spanning two decades or more read better on a log axis.
     let (xlo, xhi) = span(all.iter().map(|p| p.0));
     let log_x = xlo > 0.0 && xhi / xlo >= 100.0;
@@ -179,7 +188,12 @@ fn lines(
         .map_err(e)?;
     let x_fmt = |v: &f64| {
         if log_x {
-            fmt_num(10f64.powf(*v))
+            // Label whole decades only (0.1, 1, 10 …), not plotters' half-decade steps.
+            if (v - v.round()).abs() < 1e-6 {
+                fmt_num(10f64.powf(v.round()))
+            } else {
+                String::new()
+            }
         } else {
             fmt_tick(*v, &x_range)
         }
@@ -197,6 +211,14 @@ fn lines(
         .draw()
         .map_err(e)?;
     let mut legend = Vec::new();
+    if let Some(front) = front {
+        let pts = finite(front).into_iter().map(|(x, y)| (tx(x), y));
+        chart
+            .draw_series(LineSeries::new(pts, FRONT.stroke_width(10)))
+            .map_err(e)?;
+        let RGBAColor(r, g, b, a) = FRONT;
+        legend.push((front.label.clone(), format!("rgba({r},{g},{b},{a})")));
+    }
     for (i, line) in lines.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
         let pts: Vec<(f64, f64)> = finite(line).into_iter().map(|(x, y)| (tx(x), y)).collect();

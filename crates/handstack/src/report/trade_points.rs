@@ -156,11 +156,16 @@ pub(super) fn tasks(points: &[TradePoint]) -> Vec<&str> {
     tasks
 }
 
-/// One task's curves as a [`Plot::Lines`]: a line per knob through its settings by cost, and
-/// the Pareto front.
-pub(super) fn task_plot(points: &[TradePoint], task: &str) -> Plot {
+/// One task's curves as a [`Plot::Lines`] (a line per knob through its settings by cost)
+/// and its Pareto front, by cost.
+pub(super) fn task_plot(points: &[TradePoint], task: &str) -> (Plot, Line) {
     let of_task: Vec<&TradePoint> = points.iter().filter(|p| p.task == task).collect();
-    let by_cost = |mut pts: Vec<(f64, f64)>| {
+    let by_cost = |pred: &dyn Fn(&TradePoint) -> bool| {
+        let mut pts: Vec<(f64, f64)> = of_task
+            .iter()
+            .filter(|p| pred(p))
+            .map(|p| (p.cost_us, p.accuracy))
+            .collect();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         pts
     };
@@ -170,39 +175,26 @@ pub(super) fn task_plot(points: &[TradePoint], task: &str) -> Plot {
             knobs.push(&p.knob);
         }
     }
-    let mut lines: Vec<Line> = knobs
+    let lines = knobs
         .iter()
         .map(|k| Line {
             label: (*k).to_owned(),
-            points: by_cost(
-                of_task
-                    .iter()
-                    .filter(|p| p.knob == *k)
-                    .map(|p| (p.cost_us, p.accuracy))
-                    .collect(),
-            ),
+            points: by_cost(&|p| p.knob == *k),
         })
         .collect();
-    let front = by_cost(
-        of_task
-            .iter()
-            .filter(|p| p.pareto)
-            .map(|p| (p.cost_us, p.accuracy))
-            .collect(),
-    );
-    if !front.is_empty() {
-        lines.push(Line {
-            label: "Pareto front".into(),
-            points: front,
-        });
-    }
+    let front = Line {
+        label: "Pareto front".into(),
+        points: by_cost(&|p| p.pareto),
+    };
     let unit = of_task.first().map_or("", |p| p.unit.as_str());
-    Plot::Lines {
+    let plot = Plot::Lines {
         title: format!("{task}: quality figure vs cost per cycle"),
         x_label: "cost per cycle, µs".into(),
-        y_label: format!("quality figure, {unit}"),
+        // The unit names the figure (`% correct (24 areas)`, `pressure rms error (Pa)`).
+        y_label: unit.to_owned(),
         lines,
-    }
+    };
+    (plot, front)
 }
 
 #[cfg(test)]
@@ -265,21 +257,21 @@ mod tests {
     }
 
     #[test]
-    fn task_plot_has_a_line_per_knob_and_the_front() {
+    fn task_plot_has_a_line_per_knob_and_the_front_apart() {
         let csv = format!(
             "{HEADER}\nforce,osr,4096,9,97,%,true\nforce,osr,256,1,80,%,true\n\
              force,width,8,5,85,%,false\nloc,osr,256,1,50,%,true\n"
         );
         let p = parse(&csv, Path::new("p.csv")).unwrap();
         assert_eq!(tasks(&p), ["force", "loc"]);
-        let Plot::Lines { lines, y_label, .. } = task_plot(&p, "force") else {
+        let (Plot::Lines { lines, y_label, .. }, front) = task_plot(&p, "force") else {
             panic!("not lines")
         };
-        assert_eq!(y_label, "quality figure, %");
+        assert_eq!(y_label, "%");
         let labels: Vec<&str> = lines.iter().map(|l| l.label.as_str()).collect();
-        assert_eq!(labels, ["osr", "width", "Pareto front"]);
+        assert_eq!(labels, ["osr", "width"]);
         // Sorted by cost.
         assert_eq!(lines[0].points, [(1.0, 80.0), (9.0, 97.0)]);
-        assert_eq!(lines[2].points, [(1.0, 80.0), (9.0, 97.0)]);
+        assert_eq!(front.points, [(1.0, 80.0), (9.0, 97.0)]);
     }
 }
