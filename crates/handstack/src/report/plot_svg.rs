@@ -4,6 +4,7 @@
 use super::{ReportError, fmt_num};
 use crate::{Line, Plot};
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 /// A drawn plot: the `<svg>` element and, for line plots, the legend (label, CSS colour) the
@@ -119,6 +120,37 @@ fn e<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
+/// How a chart's axes are drawn: descriptions, tick formatters, a light grid or none, and
+/// how many ticks (plotters picks when `None`).
+struct Axes<'a> {
+    desc: (&'a str, &'a str),
+    fmt: (&'a dyn Fn(&f64) -> String, &'a dyn Fn(&f64) -> String),
+    grid: bool,
+    labels: Option<(usize, usize)>,
+}
+
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws `chart`'s axes in the report's one style.
+fn axes(chart: &mut Chart<'_, '_>, a: Axes<'_>) -> DrawResult<()> {
+    let mut mesh = chart.configure_mesh();
+    mesh.x_desc(a.desc.0)
+        .y_desc(a.desc.1)
+        .x_label_formatter(a.fmt.0)
+        .y_label_formatter(a.fmt.1)
+        .label_style((FONT, 12))
+        .axis_desc_style((FONT, 13));
+    if a.grid {
+        mesh.light_line_style(RGBColor(235, 235, 235));
+    } else {
+        mesh.disable_mesh();
+    }
+    if let Some((x, y)) = a.labels {
+        mesh.x_labels(x).y_labels(y);
+    }
+    mesh.draw().map_err(e)
+}
+
 /// `lo..hi` of the finite values, widened when empty or a single value.
 fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
@@ -199,17 +231,15 @@ fn lines(
         }
     };
     let y_fmt = |v: &f64| fmt_tick(*v, &y_range);
-    chart
-        .configure_mesh()
-        .x_desc(x_desc)
-        .y_desc(y_label)
-        .x_label_formatter(&x_fmt)
-        .y_label_formatter(&y_fmt)
-        .light_line_style(RGBColor(235, 235, 235))
-        .label_style((FONT, 12))
-        .axis_desc_style((FONT, 13))
-        .draw()
-        .map_err(e)?;
+    axes(
+        &mut chart,
+        Axes {
+            desc: (&x_desc, y_label),
+            fmt: (&x_fmt, &y_fmt),
+            grid: true,
+            labels: None,
+        },
+    )?;
     let mut legend = Vec::new();
     if let Some(front) = front {
         let pts = finite(front).into_iter().map(|(x, y)| (tx(x), y));
@@ -342,19 +372,15 @@ impl Cells<'_> {
                 .map(|i| (self.row_name)(rows - 1 - i))
                 .unwrap_or_default()
         };
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .x_desc(self.x_desc)
-            .y_desc(self.y_desc)
-            .x_labels(cols + 1)
-            .y_labels(rows + 1)
-            .x_label_formatter(&x_fmt)
-            .y_label_formatter(&y_fmt)
-            .label_style((FONT, 12))
-            .axis_desc_style((FONT, 13))
-            .draw()
-            .map_err(e)?;
+        axes(
+            &mut chart,
+            Axes {
+                desc: (self.x_desc, self.y_desc),
+                fmt: (&x_fmt, &y_fmt),
+                grid: false,
+                labels: Some((cols + 1, rows + 1)),
+            },
+        )?;
         for r in 0..rows {
             for c in 0..cols {
                 let (bg, text) = cell(c, r);
@@ -506,17 +532,15 @@ fn surface(
         .map_err(e)?;
     let x_fmt = |v: &f64| fmt_tick(*v, &(xr.0..xr.1));
     let y_fmt = |v: &f64| fmt_tick(*v, &(yr.0..yr.1));
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(x_label)
-        .y_desc(y_label)
-        .x_label_formatter(&x_fmt)
-        .y_label_formatter(&y_fmt)
-        .label_style((FONT, 12))
-        .axis_desc_style((FONT, 13))
-        .draw()
-        .map_err(e)?;
+    axes(
+        &mut chart,
+        Axes {
+            desc: (x_label, y_label),
+            fmt: (&x_fmt, &y_fmt),
+            grid: false,
+            labels: None,
+        },
+    )?;
     for (iy, row) in z.iter().enumerate() {
         chart
             .draw_series(row.iter().enumerate().map(|(ix, &v)| {
