@@ -210,7 +210,7 @@ fn plots_with_fronts(w: &mut String, plots: &[(&Plot, Option<&Line>)]) -> Result
     }
     w.push_str("<div class=\"plots\">\n");
     for (i, (plot, front)) in plots.iter().enumerate() {
-        let Drawn { svg, legend } = plot_svg::draw_with_front(plot, *front)?;
+        let Drawn { svg, legend } = plot_svg::draw(plot, *front)?;
         let _ = write!(w, "<figure class=\"plot\" data-plot=\"{i}\">\n{svg}\n");
         if !legend.is_empty() {
             w.push_str("<figcaption>");

@@ -42,14 +42,10 @@ pub(super) fn title(plot: &Plot) -> &str {
     }
 }
 
-/// Draws `plot` into an SVG string.
-pub(super) fn draw(plot: &Plot) -> Result<Drawn, ReportError> {
-    draw_with_front(plot, None)
-}
-
-/// Draws `plot`; a [`Plot::Lines`] gets `front` (a Pareto front) as a wide translucent band
-/// under its lines, so points on the front stay visible on their own line.
-pub(super) fn draw_with_front(plot: &Plot, front: Option<&Line>) -> Result<Drawn, ReportError> {
+/// Draws `plot` into an SVG string; a [`Plot::Lines`] gets `front` (a Pareto front), if any,
+/// as a wide translucent band under its lines, so points on the front stay visible on their
+/// own line.
+pub(super) fn draw(plot: &Plot, front: Option<&Line>) -> Result<Drawn, ReportError> {
     let err = |e: &dyn std::fmt::Display| ReportError::Plot {
         title: title(plot).to_owned(),
         message: e.to_string(),
@@ -124,10 +120,13 @@ fn e<E: std::fmt::Display>(e: E) -> String {
 /// how many ticks (plotters picks when `None`).
 struct Axes<'a> {
     desc: (&'a str, &'a str),
-    fmt: (&'a dyn Fn(&f64) -> String, &'a dyn Fn(&f64) -> String),
+    fmt: (Ticks<'a>, Ticks<'a>),
     grid: bool,
     labels: Option<(usize, usize)>,
 }
+
+/// A tick label formatter.
+type Ticks<'a> = &'a dyn Fn(&f64) -> String;
 
 type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
@@ -658,7 +657,7 @@ mod tests {
             },
         ];
         for plot in &plots {
-            let drawn = draw(plot).unwrap();
+            let drawn = draw(plot, None).unwrap();
             assert_eq!(drawn.svg.matches("<svg").count(), 1, "{}", title(plot));
             assert!(drawn.svg.trim_end().ends_with("</svg>"));
         }
