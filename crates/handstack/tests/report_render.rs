@@ -4,94 +4,19 @@
 //! Needs Chromium: `$HANDSTACK_CHROMIUM` (set by `cargo xtask test`) or `/usr/bin/chromium`.
 //! Without it this test fails, saying what to install; it never passes silently.
 
+mod common;
+
+use common::run_scene;
+use handstack::Outcome;
 use handstack::report::browser::{Chromium, Image};
-use handstack::report::{TradeSection, write_html};
-use handstack::{Figure, Line, Outcome, Plot};
+use handstack::report::{TRADE_POINTS, TradeSection, write_html};
 use std::path::{Path, PathBuf};
 
-/// The outcomes the report is built from.
-fn outcomes() -> Vec<Outcome> {
-    let figure = |name: &str, met: Option<bool>| Figure {
-        name: name.into(),
-        label: name.into(),
-        value: 1.0,
-        unit: "%".into(),
-        paper: Some(2.0),
-        source: Some("seed".into()),
-        target: met.map(|_| "≥ 1".into()),
-        met,
-    };
-    vec![
-        Outcome {
-            scene: "synthetic".into(),
-            title: "Synthetic".into(),
-            figures: vec![
-                figure("a", Some(true)),
-                figure("b", Some(false)),
-                figure("c", None),
-            ],
-            plots: vec![
-                Plot::Lines {
-                    title: "l".into(),
-                    x_label: "x".into(),
-                    y_label: "y".into(),
-                    lines: vec![Line {
-                        label: "q".into(),
-                        points: vec![(0.0, 0.0), (1.0, 1.0)],
-                    }],
-                },
-                Plot::Grid {
-                    title: "g".into(),
-                    rows: 4,
-                    cols: 6,
-                    values: (0..24).map(f64::from).collect(),
-                    unit: "taps".into(),
-                },
-            ],
-            wall_s: 0.1,
-        },
-        Outcome {
-            scene: "synthetic2".into(),
-            title: "Synthetic 2".into(),
-            figures: vec![],
-            plots: vec![
-                Plot::Confusion {
-                    title: "conf".into(),
-                    labels: (0..9).map(|i| format!("R{i}")).collect(),
-                    counts: (0..9)
-                        .map(|t| {
-                            (0..9)
-                                .map(|p| if t == p { 20 } else { (t * p % 3) as u32 })
-                                .collect()
-                        })
-                        .collect(),
-                },
-                Plot::Surface {
-                    title: "surface".into(),
-                    x_label: "e".into(),
-                    y_label: "de".into(),
-                    z_label: "torque".into(),
-                    xs: (0..41).map(|i| -1.0 + i as f64 / 20.0).collect(),
-                    ys: (0..41).map(|i| -1.0 + i as f64 / 20.0).collect(),
-                    z: (0..41)
-                        .map(|j| {
-                            (0..41)
-                                .map(|i| {
-                                    let (x, y) = (-1.0 + i as f64 / 20.0, -1.0 + j as f64 / 20.0);
-                                    511.5 + 400.0 * (2.0 * x + y).tanh()
-                                })
-                                .collect()
-                        })
-                        .collect(),
-                },
-            ],
-            wall_s: 0.2,
-        },
-    ]
-}
+/// The committed scenes the report is built from: real runs, the cheapest ones.
+const SCENES: [&str; 1] = ["weight-estimation"];
 
 fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+    common::root()
 }
 
 /// The slice of `dom` from the element with `id` to the end of its `<section>`.
@@ -112,8 +37,8 @@ fn report_renders_in_headless_chromium() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let page = dir.join("report.html");
-    let outcomes = outcomes();
-    let points = workspace_root().join("docs/trade/points.csv");
+    let outcomes: Vec<Outcome> = SCENES.iter().map(|s| run_scene(s)).collect();
+    let points = workspace_root().join(TRADE_POINTS);
     write_html(&outcomes, &[], Some(&points), &page).unwrap();
 
     // 1. The browser parsed what we wrote.
@@ -160,10 +85,10 @@ fn report_renders_in_headless_chromium() {
     // 2. A screenshot of the window size that is a picture, not a blank page.
     let png = dir.join("report.png");
     chromium
-        .screenshot(&page, &png, (1024, 2600), &dir)
+        .screenshot(&page, &png, (1024, 1400), &dir)
         .unwrap();
     let image = Image::read(&png).unwrap();
-    assert_eq!((image.width, image.height), (1024, 2600));
+    assert_eq!((image.width, image.height), (1024, 1400));
     let colours = image.distinct_colours();
     assert!(
         colours > 32,

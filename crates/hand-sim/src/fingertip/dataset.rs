@@ -113,29 +113,68 @@ pub fn taps(seed: u64) -> Result<(String, String), SimError> {
     Ok((taps, series))
 }
 
+/// How long each weight of the series is held, ns (Table 1's experiment: one step every 2 s).
+pub const WEIGHT_STEP_NS: u64 = 2_000_000_000;
+/// Weight added per step, gf.
+pub const WEIGHT_STEP_GF: f64 = 10.0;
+/// Steps after the unloaded one: 0 → 200 gf.
+pub const WEIGHT_STEPS: u32 = 20;
+
+/// The seed of weight-series run `run` of a dataset seeded `seed`.
+pub fn weight_run_seed(seed: u64, run: u32) -> u64 {
+    crate::seed::derive(seed, &format!("fingertip/weights/{run}"))
+}
+
+/// One frame of a weight-series run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WeightReading {
+    /// Bus time when the frame was read, µs since the run started.
+    pub t_us: u64,
+    /// The weight on the pad, gf.
+    pub weight_gf: f64,
+    /// Sensors 1–3 as the MS5611 driver decoded them, Pa.
+    pub pressure_pa: [f32; 3],
+}
+
+/// One run of Table 1's experiment on `tip`: 0 gf, then `steps` steps of
+/// [`WEIGHT_STEP_GF`] on the whole pad, each held [`WEIGHT_STEP_NS`]; every frame the driver
+/// read, in time order. `on_step(step)` is called as each step starts (progress).
+pub fn weight_run(
+    tip: &mut Fingertip,
+    steps: u32,
+    mut on_step: impl FnMut(u32),
+) -> Result<Vec<WeightReading>, SimError> {
+    let all = Cell::all().fold(CellSet::EMPTY, CellSet::with);
+    let mut out = Vec::new();
+    for step in 0..=steps {
+        on_step(step);
+        let weight_gf = f64::from(step) * WEIGHT_STEP_GF;
+        tip.set_contact(super::ContactPatch::from_kgf(all, weight_gf / 1000.0))?;
+        let end = u64::from(step + 1) * WEIGHT_STEP_NS;
+        while tip.now_ns() < end {
+            let f = tip.read_frame()?;
+            out.push(WeightReading {
+                t_us: f.t_us,
+                weight_gf,
+                pressure_pa: f.pressure_pa,
+            });
+        }
+    }
+    Ok(out)
+}
+
 /// The weight-series dataset (`weights.csv`).
 pub fn weights(seed: u64) -> Result<String, SimError> {
-    const STEP_NS: u64 = 2_000_000_000;
     let mut out = String::from(
         "# hand-sim fingertip weight series (seed 000 Table 1's experiment): 0 -> 200 gf in 10 gf steps\n\
          # on the whole pad, one step every 2 s, read at OSR 4096 with 0.1 hPa/min drift; three runs.\n\
          run,t_us,weight_gf,p1_pa,p2_pa,p3_pa\n",
     );
-    let all = Cell::all().fold(CellSet::EMPTY, CellSet::with);
     for run in 0..3u32 {
-        let mut tip = Fingertip::new(
-            &FingertipConfig::default(),
-            crate::seed::derive(seed, &format!("fingertip/weights/{run}")),
-        )?;
-        for step in 0..=20u32 {
-            let weight_gf = f64::from(step * 10);
-            tip.set_contact(super::ContactPatch::from_kgf(all, weight_gf / 1000.0))?;
-            let end = u64::from(step + 1) * STEP_NS;
-            while tip.now_ns() < end {
-                let f = tip.read_frame()?;
-                let [a, b, c] = f.pressure_pa;
-                writeln!(out, "{run},{},{weight_gf},{a},{b},{c}", f.t_us).map_err(fmt_error)?;
-            }
+        let mut tip = Fingertip::new(&FingertipConfig::default(), weight_run_seed(seed, run))?;
+        for r in weight_run(&mut tip, WEIGHT_STEPS, |_| {})? {
+            let [a, b, c] = r.pressure_pa;
+            writeln!(out, "{run},{},{},{a},{b},{c}", r.t_us, r.weight_gf).map_err(fmt_error)?;
         }
     }
     Ok(out)

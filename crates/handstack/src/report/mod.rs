@@ -46,6 +46,9 @@ pub use trade_points::{TradePoint, TradeSection};
 use crate::Outcome;
 use std::path::{Path, PathBuf};
 
+/// Where `handstack trade` writes the trade points, relative to the workspace root.
+pub const TRADE_POINTS: &str = "docs/trade/points.csv";
+
 /// What can go wrong while writing a report.
 #[derive(Debug, thiserror::Error)]
 pub enum ReportError {

@@ -1,0 +1,61 @@
+//! Building [`Figure`]s: a measured value, the paper's beside it, a target and whether it is met.
+
+use crate::Figure;
+
+/// A target a figure is checked against.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Target {
+    /// value ≤ bound.
+    AtMost(f64),
+    /// |value − centre| ≤ tol.
+    Within(f64, f64),
+}
+
+impl Target {
+    fn text(self, unit: &str) -> String {
+        let u = if unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {unit}")
+        };
+        match self {
+            Target::AtMost(b) => format!("≤ {b}{u}"),
+            Target::Within(c, t) => format!("{c} ± {t}{u}"),
+        }
+    }
+
+    fn met(self, v: f64) -> bool {
+        match self {
+            Target::AtMost(b) => v <= b,
+            Target::Within(c, t) => (v - c).abs() <= t,
+        }
+    }
+}
+
+/// A figure without paper value or target.
+pub(crate) fn measured(name: &str, label: &str, value: f64, unit: &str) -> Figure {
+    Figure {
+        name: name.to_owned(),
+        label: label.to_owned(),
+        value,
+        unit: unit.to_owned(),
+        paper: None,
+        source: None,
+        target: None,
+        met: None,
+    }
+}
+
+/// Adds the paper's value and its source.
+pub(crate) fn paper(mut f: Figure, value: f64, source: &str) -> Figure {
+    f.paper = Some(value);
+    f.source = Some(source.to_owned());
+    f
+}
+
+/// Adds a target and whether the value meets it.
+pub(crate) fn target(mut f: Figure, t: Target) -> Figure {
+    f.target = Some(t.text(&f.unit));
+    f.met = Some(t.met(f.value));
+    f
+}

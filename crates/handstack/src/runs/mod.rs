@@ -1,0 +1,65 @@
+//! The experiment runners: each runs one `[experiment.*]` of a scene on the stack the scene
+//! names and returns its figures and plot data; [`run`] joins them into the scene's
+//! [`Outcome`].
+
+mod figure;
+pub mod weight;
+
+use crate::error::RunError;
+use crate::progress::Progress;
+use crate::scene::Scene;
+use crate::{Figure, Outcome, Plot};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// What every runner needs besides its scene.
+pub struct RunContext<'a> {
+    /// The workspace root: committed models under `fixtures/models/`, datasets under
+    /// `fixtures/datasets/`.
+    pub root: PathBuf,
+    /// Where progress goes.
+    pub progress: &'a dyn Progress,
+}
+
+impl<'a> RunContext<'a> {
+    /// The workspace this crate was built in (the parent of `paper_fixtures::fixtures_dir()`,
+    /// so `$HANDSTACK_FIXTURES` moves both), reporting to `progress`.
+    pub fn new(progress: &'a dyn Progress) -> Self {
+        let fixtures = paper_fixtures::fixtures_dir();
+        Self {
+            root: fixtures.parent().map_or(fixtures.clone(), PathBuf::from),
+            progress,
+        }
+    }
+}
+
+/// Figures and plots of one experiment.
+#[derive(Debug, Default)]
+pub struct Part {
+    /// Measured figures, report order.
+    pub figures: Vec<Figure>,
+    /// Plot data, report order.
+    pub plots: Vec<Plot>,
+}
+
+/// Runs every experiment `scene` names, in order, and joins their figures and plots.
+pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
+    let start = Instant::now();
+    let x = scene.file.experiment.get_ref();
+    let mut parts = Vec::new();
+    if let Some(w) = &x.weight {
+        parts.push(weight::run(scene, w.get_ref(), cx)?);
+    }
+    let (mut figures, mut plots) = (Vec::new(), Vec::new());
+    for p in parts {
+        figures.extend(p.figures);
+        plots.extend(p.plots);
+    }
+    Ok(Outcome {
+        scene: scene.name.clone(),
+        title: scene.file.title.clone(),
+        figures,
+        plots,
+        wall_s: start.elapsed().as_secs_f64(),
+    })
+}

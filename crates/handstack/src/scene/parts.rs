@@ -1,0 +1,183 @@
+//! The parts a scene file names: sensors, estimators, controller, hand and arm. Each device is
+//! simulated unless the scene names its hardware (`i2c_bus`, `serial_port`, `host`).
+
+use hand_sim::imu_pad::config::BaroModeName;
+use serde::Deserialize;
+use toml::Spanned;
+
+/// `[sensors]`: the tactile sensors of the stack.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sensors {
+    /// `[sensors.fingertip]`: three MS5611 under the silicone pad (seed 000).
+    pub fingertip: Option<Spanned<Fingertip>>,
+    /// `[sensors.imu_pad]`: the ICM-20789 under Ecoflex (seed 002).
+    pub imu_pad: Option<Spanned<ImuPad>>,
+    /// `[sensors.underactuated]`: FSR + distal potentiometer per finger (seed 001).
+    pub underactuated: Option<Spanned<Underactuated>>,
+}
+
+/// The barometric fingertip's three MS5611.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Fingertip {
+    /// Oversampling ratio: 256, 512, 1024, 2048 or 4096 (the speed / noise knob).
+    pub osr: Spanned<u16>,
+    /// Real chips: one Linux I2C bus per sensor (the MS5611 has two addresses, so three
+    /// sensors need three buses), e.g. `["/dev/i2c-1", "/dev/i2c-3", "/dev/i2c-4"]`.
+    /// Absent: the chip models of `baro-drivers` under hand-sim's pad.
+    pub i2c_buses: Option<Spanned<Vec<String>>>,
+    /// The MS5611's I2C address on each bus: 0x76 (CSB high) or 0x77 (CSB low, default).
+    pub address: Option<Spanned<u8>>,
+}
+
+/// The ICM-20789 pad.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImuPad {
+    /// Barometer mode: `LowPower`, `Normal`, `LowNoise` (the paper's) or `UltraLowNoise`.
+    #[serde(default)]
+    pub pressure_mode: BaroModeName,
+    /// Real chip: the Linux I2C bus (accel / gyro at 0x68, barometer at 0x63).
+    pub i2c_bus: Option<Spanned<String>>,
+}
+
+/// The underactuated hand's FSRs and potentiometers (simulated only: seed 001 does not name
+/// its ADC board, so there is no real driver to open).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Underactuated {}
+
+/// `[estimators]`: what turns readings into force, contact and softness.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Estimators {
+    /// `[estimators.force]`: the force / weight DNN (seed 000 §2.2).
+    pub force: Option<Spanned<Force>>,
+    /// `[estimators.contact]`: contact locators.
+    pub contact: Option<Spanned<Contact>>,
+    /// `[estimators.softness]`: the softness classifier (seed 001).
+    pub softness: Option<Spanned<Softness>>,
+}
+
+/// Which committed force DNN.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ForceModel {
+    /// Trained on the 13 Table 1 rows.
+    Table1,
+    /// Trained on the simulated weight series (runs 0 and 1).
+    Sim,
+}
+
+/// The force / weight DNN.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Force {
+    /// The committed model the stack's live readings go through (`sim` or `table1`).
+    pub model: ForceModel,
+}
+
+/// A contact locator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Locator {
+    /// Arrival-of-Time, seed 000 eq. 3, on the 3 × 3 grid (fingertip).
+    Aot,
+    /// Arrival-of-Time ranging scorer (aot-locate), 3 × 3 (fingertip).
+    Ranging,
+    /// The contact-area MLP, 4 × 6 (fingertip, seed 000 §4).
+    Mlp,
+    /// The contact CNN, 9 regions (ICM-20789 pad, seed 002 §IV-A).
+    Cnn,
+}
+
+impl Locator {
+    /// Its name in a scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            Locator::Aot => "aot",
+            Locator::Ranging => "ranging",
+            Locator::Mlp => "mlp",
+            Locator::Cnn => "cnn",
+        }
+    }
+}
+
+/// The contact locators the stack runs.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Contact {
+    /// One or more of `aot`, `ranging`, `mlp`, `cnn`.
+    pub locators: Spanned<Vec<Locator>>,
+}
+
+/// The softness classifier.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Softness {}
+
+/// A defuzzifier choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Defuzz {
+    /// Wang's center average, the paper's (seed 000 §6).
+    #[default]
+    CenterAverage,
+    /// Centroid on `resolution` samples.
+    Centroid,
+}
+
+/// `[controller]`: the grasp policy.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Controller {
+    /// `grasp`: the Mamdani preset of seed 000 §6 (9 MFs NH…PH).
+    pub preset: Spanned<String>,
+    /// `center_average` (default) or `centroid`.
+    #[serde(default)]
+    pub defuzzifier: Defuzz,
+    /// Samples of the centroid (2…10 000); only with `centroid`.
+    pub resolution: Option<Spanned<usize>>,
+}
+
+/// A servo hand model (hand-control's control tables).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HandModel {
+    /// Two ROBOTIS MX-28 (Protocol 2.0 firmware), the paper's hand.
+    Mx28,
+    /// ROBOTIS XM430-W350.
+    Xm430,
+    /// ROBOTIS RH-P12-RN gripper.
+    RhP12Rn,
+}
+
+/// `[hand]`: the Dynamixel hand.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Hand {
+    /// `mx28`, `xm430` or `rh_p12_rn`.
+    pub model: HandModel,
+    /// Servo IDs on the bus (default `[1, 2]`).
+    #[serde(default = "default_ids")]
+    pub ids: Vec<u8>,
+    /// Real bus: the serial port of the RS-485 adapter. Absent: hand-control's pty simulator.
+    pub serial_port: Option<Spanned<String>>,
+    /// Baud rate (default 1 000 000, the paper's).
+    pub baud: Option<Spanned<u32>>,
+}
+
+fn default_ids() -> Vec<u8> {
+    vec![1, 2]
+}
+
+/// `[arm]`: the Universal Robots arm.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Arm {
+    /// `ur3` (seed 002's arm).
+    pub model: Spanned<String>,
+    /// The controller's host name or address. Absent: ur-bridge's simulator on 127.0.0.1.
+    pub host: Option<Spanned<String>>,
+}

@@ -1,0 +1,79 @@
+//! The summary table `handstack run` prints after the runs: figure, value, paper, target, met.
+
+use crate::Outcome;
+use std::fmt::Write as _;
+
+/// A number as the table shows it: 4 significant digits, no trailing noise.
+fn num(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    if v.fract() == 0.0 && v.abs() < 1e9 {
+        return format!("{v:.0}");
+    }
+    let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
+    format!("{v:.digits$}")
+}
+
+/// The summary of `outcome` as an aligned text table.
+///
+/// ```
+/// use handstack::{Figure, Outcome};
+/// let o = Outcome { scene: "s".into(), title: "t".into(), plots: vec![], wall_s: 0.5,
+///     figures: vec![Figure { name: "err".into(), label: "max error".into(), value: 0.25,
+///         unit: "gf".into(), paper: Some(1.17), source: None, target: Some("≤ 0.5 gf".into()),
+///         met: Some(true) }] };
+/// let table = handstack::summary::table(&o);
+/// assert!(table.contains("max error") && table.contains("0.2500") && table.contains("yes"));
+/// ```
+pub fn table(outcome: &Outcome) -> String {
+    let mut rows = vec![[
+        "figure".to_owned(),
+        "value".to_owned(),
+        "paper".to_owned(),
+        "target".to_owned(),
+        "met".to_owned(),
+    ]];
+    for f in &outcome.figures {
+        let unit = if f.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", f.unit)
+        };
+        rows.push([
+            f.label.clone(),
+            format!("{}{unit}", num(f.value)),
+            f.paper
+                .map_or_else(|| "—".to_owned(), |p| format!("{}{unit}", num(p))),
+            f.target.clone().unwrap_or_else(|| "—".to_owned()),
+            match f.met {
+                Some(true) => "yes".to_owned(),
+                Some(false) => "NO".to_owned(),
+                None => "—".to_owned(),
+            },
+        ]);
+    }
+    let widths: Vec<usize> = (0..5)
+        .map(|i| rows.iter().map(|r| r[i].chars().count()).max().unwrap_or(0))
+        .collect();
+    let mut out = format!(
+        "{} — {} ({:.1} s)\n",
+        outcome.scene, outcome.title, outcome.wall_s
+    );
+    for (n, r) in rows.iter().enumerate() {
+        for (i, cell) in r.iter().enumerate() {
+            let pad = widths[i] - cell.chars().count();
+            if i == 0 {
+                let _ = write!(out, "  {cell}{}", " ".repeat(pad));
+            } else {
+                let _ = write!(out, "  {}{cell}", " ".repeat(pad));
+            }
+        }
+        out.push('\n');
+        if n == 0 {
+            let total: usize = widths.iter().sum::<usize>() + 2 * widths.len();
+            let _ = writeln!(out, "  {}", "-".repeat(total - 2));
+        }
+    }
+    out
+}
