@@ -1,10 +1,7 @@
 //! Drift check: re-runs the evaluator on one OSR's taps and compares with the table that
 //! `docs/contact-location.md` states (regenerate it with the `aot_eval` example on change).
 
-#[allow(dead_code)]
-#[path = "../examples/aot_eval/eval.rs"]
-mod eval;
-
+use aot_locate::eval;
 use aot_locate::{DetectorConfig, Geometry};
 use std::path::PathBuf;
 

@@ -17,6 +17,7 @@ pub mod progress;
 pub mod report;
 pub mod runs;
 pub mod scene;
+pub mod stack;
 pub mod summary;
 
 pub use error::RunError;

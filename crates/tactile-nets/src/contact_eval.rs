@@ -50,6 +50,9 @@ pub struct Evaluation {
     pub cell_error_sum: u64,
     /// Sum over taps of the centroid distance, cells.
     pub centroid_error_sum: f64,
+    /// Per cell (row-major, 24): held-out single-cell taps on it and how many were located on
+    /// it (the per-area map of seed 000 Figure 11).
+    pub per_cell: [(u32, u32); 24],
 }
 
 fn ratio(a: f64, b: usize) -> f64 {
@@ -96,7 +99,10 @@ pub fn evaluate(model: &ContactMlp, records: &[&TapRecord]) -> Result<Evaluation
         e.taps += 1;
         if truth.count_ones() == 1 {
             e.single_cell_taps += 1;
-            e.area_hits += usize::from(1u32 << p.region == truth);
+            let hit = 1u32 << p.region == truth;
+            e.area_hits += usize::from(hit);
+            let cell = &mut e.per_cell[truth.trailing_zeros() as usize % 24];
+            *cell = (cell.0 + 1, cell.1 + u32::from(hit));
         }
         e.exact_hits += usize::from(p.contact == truth);
         e.cell_error_sum += u64::from(pad::cell_difference(p.contact, truth));

@@ -18,6 +18,8 @@ mod python;
 #[cfg(feature = "sim")]
 pub mod sim;
 pub mod status;
+#[cfg(feature = "pad-sim")]
+pub mod tap_run;
 
 pub use bridge::{JointMotion, MoveHandle, MoveProgress, UrArm, UrConfig};
 pub use error::UrError;

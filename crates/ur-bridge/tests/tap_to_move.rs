@@ -1,10 +1,8 @@
-//! The tap-to-move run (examples/tap_to_move/run.rs) with the stand-in locator, one round of 9
+//! The tap-to-move run (`ur_bridge::tap_run`) with the stand-in locator, one round of 9
 //! taps: every trigger inside its tap, the scheduled region moved to, the final TCP within
 //! 0.1 mm of its grid pose. (The CNN's own figures come from `cargo xtask demo tap-to-move`.)
 
-#[path = "../examples/tap_to_move/run.rs"]
-#[allow(dead_code)]
-mod run;
+use ur_bridge::tap_run as run;
 
 use hand_sim::imu_pad::TapSpec;
 use hand_traits::{Contact, ContactLocator};

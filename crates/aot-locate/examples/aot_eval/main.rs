@@ -4,8 +4,7 @@
 //! replaces the `## Arrival-of-Time (3 × 3)` section of `docs/contact-location.md` (keeping the
 //! rest of the file) and draws `docs/contact-location/aot-accuracy-vs-osr.svg`.
 
-mod eval;
-
+use aot_locate::eval;
 use aot_locate::{DetectorConfig, Geometry};
 use eval::{Report, Rule};
 use plotters::prelude::*;

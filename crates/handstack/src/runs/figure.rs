@@ -7,6 +7,8 @@ use crate::Figure;
 pub(crate) enum Target {
     /// value ≤ bound.
     AtMost(f64),
+    /// value ≥ bound.
+    AtLeast(f64),
     /// |value − centre| ≤ tol.
     Within(f64, f64),
 }
@@ -20,6 +22,7 @@ impl Target {
         };
         match self {
             Target::AtMost(b) => format!("≤ {b}{u}"),
+            Target::AtLeast(b) => format!("≥ {b}{u}"),
             Target::Within(c, t) => format!("{c} ± {t}{u}"),
         }
     }
@@ -27,6 +30,7 @@ impl Target {
     fn met(self, v: f64) -> bool {
         match self {
             Target::AtMost(b) => v <= b,
+            Target::AtLeast(b) => v >= b,
             Target::Within(c, t) => (v - c).abs() <= t,
         }
     }

@@ -2,7 +2,10 @@
 //! names and returns its figures and plot data; [`run`] joins them into the scene's
 //! [`Outcome`].
 
+pub mod contact;
 mod figure;
+pub mod softness;
+pub mod tap;
 pub mod weight;
 
 use crate::error::RunError;
@@ -49,6 +52,15 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
     let mut parts = Vec::new();
     if let Some(w) = &x.weight {
         parts.push(weight::run(scene, w.get_ref(), cx)?);
+    }
+    if let Some(c) = &x.contact {
+        parts.push(contact::run(scene, c.get_ref(), cx)?);
+    }
+    if let Some(s) = &x.softness {
+        parts.push(softness::run(s.get_ref(), cx)?);
+    }
+    if let Some(t) = &x.tap {
+        parts.push(tap::run(scene, t.get_ref(), cx)?);
     }
     let (mut figures, mut plots) = (Vec::new(), Vec::new());
     for p in parts {

@@ -10,6 +10,12 @@ use toml::Spanned;
 pub struct Experiments {
     /// `[experiment.weight]`: seed 000 Table 1 (force DNN).
     pub weight: Option<Spanned<Weight>>,
+    /// `[experiment.contact]`: seed 000 §3–4 contact location on the fingertip.
+    pub contact: Option<Spanned<Contact>>,
+    /// `[experiment.softness]`: seed 001 softness classification.
+    pub softness: Option<Spanned<Softness>>,
+    /// `[experiment.tap]`: seed 002 §IV-B, pad taps move the UR3.
+    pub tap: Option<Spanned<Tap>>,
 }
 
 impl Experiments {
@@ -18,6 +24,15 @@ impl Experiments {
         let mut v = Vec::new();
         if self.weight.is_some() {
             v.push("weight");
+        }
+        if self.contact.is_some() {
+            v.push("contact");
+        }
+        if self.softness.is_some() {
+            v.push("softness");
+        }
+        if self.tap.is_some() {
+            v.push("tap");
         }
         v
     }
@@ -48,4 +63,106 @@ fn twenty() -> Spanned<u32> {
 }
 fn yes() -> bool {
     true
+}
+
+/// Which committed contact MLP of an OSR.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MlpChoice {
+    /// The validation-chosen configuration (docs/contact-location.md).
+    #[default]
+    Chosen,
+    /// The paper's recipe, cell-set head.
+    CellSet,
+    /// The paper's recipe, eq. 4 average-area regression.
+    AverageArea,
+}
+
+impl MlpChoice {
+    /// Its file inside `fixtures/models/contact_mlp/` and its metrics row label at `osr`.
+    pub fn file_and_label(self, osr: u16) -> (String, String) {
+        use tactile_nets::contact_eval as ce;
+        use tactile_nets::contact_mlp::Head;
+        match self {
+            MlpChoice::Chosen => (ce::chosen_file(osr), ce::chosen_label(osr)),
+            MlpChoice::CellSet => (
+                ce::model_file(osr, Head::CellSet),
+                ce::row_label(osr, Head::CellSet),
+            ),
+            MlpChoice::AverageArea => (
+                ce::model_file(osr, Head::AverageArea),
+                ce::row_label(osr, Head::AverageArea),
+            ),
+        }
+    }
+}
+
+/// Seed 000 §3–4: the held-out simulated taps (every Figure 7 shape × position × 5 / 7 / 9
+/// kgf, repeat 1) at the fingertip's OSR, located by each fingertip locator the scene names.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Contact {
+    /// Which committed MLP runs when the scene names `mlp` (default `chosen`).
+    #[serde(default)]
+    pub mlp: MlpChoice,
+}
+
+/// The optimiser whose selected committed softness model runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Optimiser {
+    /// Levenberg–Marquardt, the paper's (seed 001 §3.3).
+    #[default]
+    Lm,
+    /// Adam (ours, for comparison).
+    Adam,
+}
+
+impl Optimiser {
+    /// Its name in the committed models (`lm`, `adam`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Optimiser::Lm => "lm",
+            Optimiser::Adam => "adam",
+        }
+    }
+}
+
+/// Seed 001 §3.3–4: the underactuated hand's grasps of the 24 regular and 30 irregular test
+/// objects, classified soft / moderate / hard.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Softness {
+    /// The optimiser whose selected model (lowest training MSE over the committed seeds) runs.
+    #[serde(default)]
+    pub optimiser: Optimiser,
+}
+
+/// Where the CNN's 38-frame window sits relative to the pressure trigger.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WindowPlacement {
+    /// Where hand-sim's training windows are centred (docs/arm.md): the CNN sees what it
+    /// was trained on.
+    #[default]
+    Aligned,
+    /// 19 frames before and 19 from the trigger (§IV-A read literally).
+    Trigger,
+}
+
+/// Seed 002 §IV-B: taps on the ICM-20789 pad, each located by the CNN, move the UR3 to the
+/// grid pose of the touched region.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tap {
+    /// Rounds of nine taps (regions 0…8), 1…3 (rows of `ur_bridge::tap_run::ROUNDS`).
+    #[serde(default = "three")]
+    pub rounds: Spanned<usize>,
+    /// The window placement (default `aligned`).
+    #[serde(default)]
+    pub window: WindowPlacement,
+}
+
+fn three() -> Spanned<usize> {
+    Spanned::new(0..0, 3)
 }

@@ -328,7 +328,7 @@ pub(crate) fn check(scene: &SceneFile, file: &str, text: &str) -> Result<SceneCo
             scene.experiment.span(),
             "experiment",
             "names no experiment",
-            "one or more of [experiment.weight]",
+            "one or more of [experiment.weight], [experiment.contact], [experiment.softness], [experiment.tap]",
         ));
     }
     if let Some(w) = &x.weight {
@@ -347,6 +347,62 @@ pub(crate) fn check(scene: &SceneFile, file: &str, text: &str) -> Result<SceneCo
                 "experiment.weight.steps",
                 format!("is {}", steps.get_ref()),
                 "1…20 (10 gf each, Table 1's 0–200 gf)",
+            ));
+        }
+    }
+    if let Some(c) = &x.contact {
+        let fingertip_locators = e.contact.as_ref().is_some_and(|l| {
+            l.get_ref()
+                .locators
+                .get_ref()
+                .iter()
+                .any(|l| *l != Locator::Cnn)
+        });
+        if s.fingertip.is_none() || !fingertip_locators {
+            return Err(cx.err(c.span(), "experiment.contact", "needs the fingertip and a fingertip locator", "[sensors.fingertip] and [estimators.contact] locators with \"aot\", \"ranging\" or \"mlp\""));
+        }
+    }
+    if let Some(sx) = &x.softness {
+        if s.underactuated.is_none() || e.softness.is_none() {
+            return Err(cx.err(
+                sx.span(),
+                "experiment.softness",
+                "needs the underactuated hand and the softness classifier",
+                "[sensors.underactuated] and [estimators.softness] with it",
+            ));
+        }
+    }
+    if let Some(t) = &x.tap {
+        let cnn = e
+            .contact
+            .as_ref()
+            .is_some_and(|l| l.get_ref().locators.get_ref().contains(&Locator::Cnn));
+        if s.imu_pad.is_none() || !cnn || scene.arm.is_none() {
+            return Err(cx.err(
+                t.span(),
+                "experiment.tap",
+                "needs the ICM-20789 pad, the CNN locator and the arm",
+                "[sensors.imu_pad], [estimators.contact] locators with \"cnn\", and [arm]",
+            ));
+        }
+        if s.imu_pad
+            .as_ref()
+            .is_some_and(|p| p.get_ref().i2c_bus.is_some())
+        {
+            return Err(cx.err(
+                t.span(),
+                "experiment.tap",
+                "schedules its taps on the simulated pad",
+                "sensors.imu_pad without i2c_bus",
+            ));
+        }
+        let rounds = &t.get_ref().rounds;
+        if !(1..=3).contains(rounds.get_ref()) {
+            return Err(cx.err(
+                rounds.span(),
+                "experiment.tap.rounds",
+                format!("is {}", rounds.get_ref()),
+                "1…3 rounds of nine taps",
             ));
         }
     }

@@ -2,7 +2,7 @@
 //! on the simulated UR3 and writes its report (to the path given, else stdout).
 //! `cargo xtask demo tap-to-move` runs it into `docs/arm-tap-to-move.md`.
 
-mod run;
+use ur_bridge::tap_run as run;
 
 use std::path::Path;
 use tactile_nets::cnn_eval::{MODEL_DIR, model_file};

@@ -1,38 +1,54 @@
-//! Evaluates Arrival-of-Time on the simulated fingertip taps (`fixtures/datasets/fingertip/`).
+//! Evaluates Arrival-of-Time on the simulated fingertip taps (`fixtures/datasets/fingertip/`)
+//! (feature `std`).
 //!
-//! Shared by the `aot_eval` example (which writes `docs/contact-location.md`) and the drift
-//! test (which re-runs one OSR and compares with the doc).
+//! Shared by the `aot_eval` example (which writes `docs/contact-location.md`), the drift test
+//! (which re-runs one OSR and compares with the doc) and handstack's contact-location scene.
 
-use aot_locate::{
+use crate::{
     ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, Ranging, RangingFit, Scores, eq3,
 };
 use std::collections::BTreeMap;
+use std::format;
 use std::path::Path;
+use std::string::String;
+use std::vec::Vec;
 
 /// One row of `taps.csv`.
 #[derive(Debug, Clone)]
-pub(crate) struct Tap {
-    pub(crate) id: u32,
-    pub(crate) osr: u16,
-    pub(crate) shape: String,
-    pub(crate) mask: u32,
-    pub(crate) force_kgf: u32,
-    pub(crate) repeat: u32,
-    pub(crate) aot_region: usize,
-    pub(crate) held_pa: [f32; 3],
+pub struct Tap {
+    /// Tap id (joins `series.csv`).
+    pub id: u32,
+    /// MS5611 oversampling ratio the tap was read at.
+    pub osr: u16,
+    /// Figure 7 shape name.
+    pub shape: String,
+    /// Touched cells, bit i = cell i of the 4 × 6 grid.
+    pub mask: u32,
+    /// Press force, kgf.
+    pub force_kgf: u32,
+    /// Repeat index (0 trains the ranging fit, 1 is held out).
+    pub repeat: u32,
+    /// The 3 × 3 area (0…8, row-major) of the patch centroid: the label.
+    pub aot_region: usize,
+    /// Mean held pressure per sensor, Pa.
+    pub held_pa: [f32; 3],
 }
 
 /// One frame of `series.csv`.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Frame {
-    pub(crate) t_us: i64,
-    pub(crate) p_pa: [f32; 3],
+pub struct Frame {
+    /// Time from contact onset, µs.
+    pub t_us: i64,
+    /// Sensors 1–3 as the driver decoded them, Pa.
+    pub p_pa: [f32; 3],
 }
 
 /// The tap table and each tap's frames.
-pub(crate) struct Dataset {
-    pub(crate) taps: Vec<Tap>,
-    pub(crate) series: BTreeMap<u32, Vec<Frame>>,
+pub struct Dataset {
+    /// The taps kept.
+    pub taps: Vec<Tap>,
+    /// Each kept tap's frames, by id.
+    pub series: BTreeMap<u32, Vec<Frame>>,
 }
 
 fn rows(text: &str) -> impl Iterator<Item = Vec<&str>> {
@@ -52,7 +68,7 @@ fn field<T: std::str::FromStr>(row: &[&str], i: usize) -> Result<T, String> {
 
 impl Dataset {
     /// Reads `taps.csv` and `series.csv` from `dir`, keeping the taps `keep` accepts.
-    pub(crate) fn load(dir: &Path, keep: impl Fn(&Tap) -> bool) -> Result<Dataset, String> {
+    pub fn load(dir: &Path, keep: impl Fn(&Tap) -> bool) -> Result<Dataset, String> {
         let read = |f: &str| std::fs::read_to_string(dir.join(f)).map_err(|e| format!("{f}: {e}"));
         let mut taps = Vec::new();
         for r in rows(&read("taps.csv")?) {
@@ -88,7 +104,7 @@ impl Dataset {
 /// What one tap gives eq. 3: arrival times from the series (detected sample by sample, onset
 /// at t = 0 as the dataset defines it) and the held pressures read against the baseline the
 /// detector tracked before arrival (the steady rise, as Table 2 reports pressures while held).
-pub(crate) fn tap_event(tap: &Tap, frames: &[Frame], config: DetectorConfig) -> ArrivalEvent {
+pub fn tap_event(tap: &Tap, frames: &[Frame], config: DetectorConfig) -> ArrivalEvent {
     let mut d = ArrivalDetector::new(config);
     for f in frames {
         d.push(f.t_us, f.p_pa);
@@ -98,7 +114,7 @@ pub(crate) fn tap_event(tap: &Tap, frames: &[Frame], config: DetectorConfig) -> 
 
 /// The scoring rules compared.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub(crate) enum Rule {
+pub enum Rule {
     /// Eq. 3 as written, `P_k` = held rise above the tracked baseline.
     Eq3Rise,
     /// Eq. 3 as written, `P_k` = absolute held pressure (Table 2's columns are absolute hPa).
@@ -110,9 +126,11 @@ pub(crate) enum Rule {
 }
 
 impl Rule {
-    pub(crate) const ALL: [Rule; 3] = [Rule::Eq3Rise, Rule::Eq3Absolute, Rule::Ranging];
+    /// Every rule, in report order.
+    pub const ALL: [Rule; 3] = [Rule::Eq3Rise, Rule::Eq3Absolute, Rule::Ranging];
 
-    pub(crate) fn name(self) -> &'static str {
+    /// Its name in the report.
+    pub fn name(self) -> &'static str {
         match self {
             Rule::Eq3Rise => "eq. 3, P = held rise",
             Rule::Eq3Absolute => "eq. 3, P = absolute held",
@@ -121,7 +139,7 @@ impl Rule {
     }
 
     /// The area this rule picks, `None` if eq. 3 refuses the input (no sensor arrived).
-    pub(crate) fn predict(
+    pub fn predict(
         self,
         geometry: &Geometry,
         ranging: Option<&Ranging>,
@@ -145,19 +163,22 @@ impl Rule {
 
 /// Hits and trials.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub(crate) struct Tally {
-    pub(crate) hits: u32,
-    pub(crate) n: u32,
+pub struct Tally {
+    /// Correct answers.
+    pub hits: u32,
+    /// Trials.
+    pub n: u32,
 }
 
 impl Tally {
-    pub(crate) fn add(&mut self, hit: bool) {
+    /// Counts one trial.
+    pub fn add(&mut self, hit: bool) {
         self.hits += u32::from(hit);
         self.n += 1;
     }
 
     /// Accuracy in percent (0 for no trials).
-    pub(crate) fn percent(&self) -> f64 {
+    pub fn percent(&self) -> f64 {
         if self.n == 0 {
             0.0
         } else {
@@ -176,26 +197,34 @@ impl std::fmt::Display for Tally {
 /// Accuracy of each rule by OSR, by (OSR, shape) and by (OSR, force); plus how often a
 /// sensor never arrived.
 #[derive(Debug, Default)]
-pub(crate) struct Report {
-    pub(crate) by_osr: BTreeMap<(Rule, u16), Tally>,
-    pub(crate) by_shape: BTreeMap<(Rule, u16, String), Tally>,
-    pub(crate) by_force: BTreeMap<(Rule, u16, u32), Tally>,
-    pub(crate) missing_sensor: BTreeMap<u16, Tally>,
-    pub(crate) no_arrival: BTreeMap<u16, u32>,
-    pub(crate) fits: BTreeMap<u16, Ranging>,
+pub struct Report {
+    /// Accuracy per (rule, OSR).
+    pub by_osr: BTreeMap<(Rule, u16), Tally>,
+    /// Accuracy per (rule, OSR, shape).
+    pub by_shape: BTreeMap<(Rule, u16, String), Tally>,
+    /// Accuracy per (rule, OSR, force kgf).
+    pub by_force: BTreeMap<(Rule, u16, u32), Tally>,
+    /// Taps with a sensor that never arrived, per OSR.
+    pub missing_sensor: BTreeMap<u16, Tally>,
+    /// Taps where no sensor arrived, per OSR.
+    pub no_arrival: BTreeMap<u16, u32>,
+    /// The ranging fit per OSR.
+    pub fits: BTreeMap<u16, Ranging>,
     /// How often each rule picked each area (all OSRs): which areas a rule can reach at all.
-    pub(crate) picked: BTreeMap<Rule, [u32; 9]>,
+    pub picked: BTreeMap<Rule, [u32; 9]>,
     /// Taps whose centroid lies inside one area (`true`) or on a border between areas:
     /// hits against the strict label, per rule and OSR.
-    pub(crate) by_interior: BTreeMap<(Rule, u16, bool), Tally>,
+    pub by_interior: BTreeMap<(Rule, u16, bool), Tally>,
     /// Hits when any area whose closed rectangle holds the centroid counts (a centroid on a
     /// border belongs to both sides), per rule and OSR.
-    pub(crate) tolerant: BTreeMap<(Rule, u16), Tally>,
+    pub tolerant: BTreeMap<(Rule, u16), Tally>,
+    /// Accuracy per (rule, OSR, labelled area 0…8): the per-area map of seed 000 Figure 11.
+    pub by_region: BTreeMap<(Rule, u16, usize), Tally>,
 }
 
 /// The areas (0…8) whose closed rectangle on the simulated pad holds the point `c` (mm).
-pub(crate) fn areas_holding(c: [f32; 2]) -> Vec<usize> {
-    let g = aot_locate::AreaGrid::SIMULATED_PAD;
+pub fn areas_holding(c: [f32; 2]) -> Vec<usize> {
+    let g = crate::AreaGrid::SIMULATED_PAD;
     let (hw, hh) = (g.width_mm / 6.0, g.height_mm / 6.0);
     g.centres_mm()
         .iter()
@@ -206,10 +235,10 @@ pub(crate) fn areas_holding(c: [f32; 2]) -> Vec<usize> {
 }
 
 /// The repeat the time-of-flight variant is fitted on; the other is held out.
-pub(crate) const TRAIN_REPEAT: u32 = 0;
+pub const TRAIN_REPEAT: u32 = 0;
 
 /// Each sensor's distance to the patch centroid of `mask`, mm (`None` for an empty mask).
-pub(crate) fn distances_mm(mask: u32) -> Option<[f32; 3]> {
+pub fn distances_mm(mask: u32) -> Option<[f32; 3]> {
     let c = centroid_mm(mask)?;
     let s = Geometry::SIMULATED_SENSORS_MM;
     Some(std::array::from_fn(|k| {
@@ -219,7 +248,7 @@ pub(crate) fn distances_mm(mask: u32) -> Option<[f32; 3]> {
 
 /// Runs every rule on the held-out taps of `data` (repeat 1), after fitting the ranging
 /// model on the training taps (repeat 0) only.
-pub(crate) fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> Report {
+pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> Report {
     let mut rep = Report::default();
     let events: Vec<(&Tap, ArrivalEvent)> = data
         .taps
@@ -271,6 +300,10 @@ pub(crate) fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConf
                 .or_default()
                 .add(hit);
             rep.by_osr.entry((rule, tap.osr)).or_default().add(hit);
+            rep.by_region
+                .entry((rule, tap.osr, tap.aot_region))
+                .or_default()
+                .add(hit);
             rep.by_shape
                 .entry((rule, tap.osr, tap.shape.clone()))
                 .or_default()
@@ -285,7 +318,7 @@ pub(crate) fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConf
 }
 
 /// The patch centroid in pad millimetres (x right, y up, origin at the centre; 3 mm cells).
-pub(crate) fn centroid_mm(mask: u32) -> Option<[f32; 2]> {
-    let [r, c] = aot_locate::CellSet::from_bits(mask)?.centroid()?;
+pub fn centroid_mm(mask: u32) -> Option<[f32; 2]> {
+    let [r, c] = crate::CellSet::from_bits(mask)?.centroid()?;
     Some([(c - 0.5) * 3.0 - 9.0, 6.0 - (r - 0.5) * 3.0])
 }

@@ -1,33 +1,34 @@
-//! Seed 002 §IV-B end to end: ICM-20789 pad taps (hand-sim, simulated time) → pressure trigger
-//! → 4 × 38 accelerometer / gyroscope window → contact locator → region → moveL on the simulated
-//! UR3, through the real ur_rtde. Shared by the `tap_to_move` example (the committed CNN as the
-//! locator; it writes `docs/arm-tap-to-move.md`) and the `tap_to_move` test (with a stand-in
-//! locator, to check the trigger, the window and the moves on their own).
+//! Seed 002 §IV-B end to end (feature `pad-sim`): ICM-20789 pad taps (hand-sim, simulated time)
+//! → pressure trigger → 4 × 38 accelerometer / gyroscope window → contact locator → region →
+//! moveL on the UR3 (the simulated one on loopback, or any controller `UrArm` reaches), through
+//! the real ur_rtde. Shared by the `tap_to_move` example (the committed CNN as the locator; it
+//! writes `docs/arm-tap-to-move.md`), the `tap_to_move` test (with a stand-in locator, to check
+//! the trigger, the window and the moves on their own) and handstack's tap-to-UR3 scene.
 
 use std::borrow::Borrow;
 use std::net::Ipv4Addr;
 use std::time::Duration;
 
+use crate::experiment::{TapToMove, TapToMoveConfig};
+use crate::sim::{SimConfig, UrSim};
+use crate::{RegionToGrid, UrArm, UrConfig};
 use hand_sim::imu_pad::{ImuPad, ImuPadConfig, TapSpec, TapWindow, WINDOW_SAMPLES, WINDOW_SIGNALS};
 use hand_traits::{ContactLocator, ImuFrame};
-use ur_bridge::experiment::{TapToMove, TapToMoveConfig};
-use ur_bridge::sim::{SimConfig, UrSim};
-use ur_bridge::{RegionToGrid, UrArm, UrConfig};
 
 /// The 4 × 38 window of §IV-A: acc x, acc y (m/s²), gyro x, gyro y (rad/s).
-pub(crate) type Window = [[f32; WINDOW_SAMPLES]; WINDOW_SIGNALS];
+pub type Window = [[f32; WINDOW_SAMPLES]; WINDOW_SIGNALS];
 
 /// Rows tapped for region groups 0 / 1 / 2, one triple per round. In hand-sim's pad a 1.2 mm
 /// tap on rows 1–5 or 23–24 raises the pressure by ≤ 5.5 Pa (0.8 Pa rms noise), under any
 /// usable trigger threshold (docs/arm.md); rows 6–22 rise ≥ 55 Pa.
-pub(crate) const ROUNDS: [[u8; 3]; 3] = [[8, 12, 18], [7, 13, 19], [6, 10, 20]];
+pub const ROUNDS: [[u8; 3]; 3] = [[8, 12, 18], [7, 13, 19], [6, 10, 20]];
 /// Tap depth: the real-time CNN's training depth (§IV-B), mm.
-pub(crate) const DEPTH_MM: f64 = 1.2;
+pub const DEPTH_MM: f64 = 1.2;
 /// The pad's scene seed.
-pub(crate) const PAD_SEED: u64 = 10;
+pub const PAD_SEED: u64 = 10;
 
 /// Nine taps a round, regions 0…8 in order, on the rows of `rounds`.
-pub(crate) fn schedule(rounds: &[[u8; 3]]) -> Vec<TapSpec> {
+pub fn schedule(rounds: &[[u8; 3]]) -> Vec<TapSpec> {
     rounds
         .iter()
         .flat_map(|rows| {
@@ -41,7 +42,7 @@ pub(crate) fn schedule(rounds: &[[u8; 3]]) -> Vec<TapSpec> {
 }
 
 /// The 38 frames around the trigger as hand-sim cuts a training window (trigger = frame 19).
-pub(crate) fn window(frames: &[ImuFrame]) -> Window {
+pub fn window(frames: &[ImuFrame]) -> Window {
     let centre = frames.get(WINDOW_SAMPLES / 2).map_or(0, |f| f.t_us);
     TapWindow::extract(frames, centre)
         .map(|w| w.signals)
@@ -50,7 +51,7 @@ pub(crate) fn window(frames: &[ImuFrame]) -> Window {
 
 /// The window as the CNN reads it: channel-major, acc in mm/s², gyro in mrad/s (the units of
 /// hand-sim's tap dataset it was trained on).
-pub(crate) fn cnn_window(frames: &[ImuFrame]) -> [f32; WINDOW_SAMPLES * WINDOW_SIGNALS] {
+pub fn cnn_window(frames: &[ImuFrame]) -> [f32; WINDOW_SAMPLES * WINDOW_SIGNALS] {
     let w = window(frames);
     core::array::from_fn(|i| w[i / WINDOW_SAMPLES][i % WINDOW_SAMPLES] * 1e3)
 }
@@ -58,7 +59,7 @@ pub(crate) fn cnn_window(frames: &[ImuFrame]) -> [f32; WINDOW_SAMPLES * WINDOW_S
 /// Frames from the trigger to the centre hand-sim's training windows are cut around (the middle
 /// of press + hold + release, `TapTiming::centre_s`), less the ~1 frame the trigger lags the
 /// press: where a window must sit to look like the CNN's training data.
-pub(crate) fn training_centre_frames() -> usize {
+pub fn training_centre_frames() -> usize {
     let c = ImuPadConfig::default();
     let t = c.timing;
     let centre_after_press_s = 0.5 * (t.press_s + t.hold_s + t.release_s);
@@ -67,7 +68,7 @@ pub(crate) fn training_centre_frames() -> usize {
 
 /// The experiment with its window placed like the training windows: `training_centre_frames`
 /// after the trigger at frame 19 of 38.
-pub(crate) fn training_aligned() -> TapToMoveConfig {
+pub fn training_aligned() -> TapToMoveConfig {
     let shift = training_centre_frames().min(WINDOW_SAMPLES / 2);
     TapToMoveConfig {
         frames_before: WINDOW_SAMPLES / 2 - shift,
@@ -78,29 +79,29 @@ pub(crate) fn training_aligned() -> TapToMoveConfig {
 
 /// One cycle's outcome.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Row {
+pub struct Row {
     /// The tapped region.
-    pub(crate) region: u16,
+    pub region: u16,
     /// The region the locator named.
-    pub(crate) located: u16,
+    pub located: u16,
     /// The locator's confidence.
-    pub(crate) confidence: f32,
+    pub confidence: f32,
     /// Trigger time minus the start of the press, s (simulated pad time).
-    pub(crate) trigger_after_press_s: f64,
+    pub trigger_after_press_s: f64,
     /// Whether the trigger fell inside the tap's press / hold / release.
-    pub(crate) trigger_in_tap: bool,
+    pub trigger_in_tap: bool,
     /// Trigger to the window's last frame, s (simulated pad time).
-    pub(crate) window_s: f64,
+    pub window_s: f64,
     /// Wall time of the locator, s.
-    pub(crate) locate_s: f64,
+    pub locate_s: f64,
     /// Wall time of the moveL to the grid pose, s.
-    pub(crate) move_s: f64,
+    pub move_s: f64,
     /// Final TCP distance from the located region's grid pose, m.
-    pub(crate) tcp_error_m: f64,
+    pub tcp_error_m: f64,
 }
 
 /// Runs one cycle per tap of `taps` with `locator` against a simulator on 127.0.0.`octet`.
-pub(crate) fn run<L, B>(
+pub fn run<L, B>(
     octet: u8,
     taps: Vec<TapSpec>,
     experiment_config: TapToMoveConfig,
@@ -111,20 +112,50 @@ where
     L: ContactLocator,
     B: Borrow<L::Input>,
 {
-    let mut to_input = to_input;
-    let pad_config = ImuPadConfig {
-        taps,
-        ..ImuPadConfig::default()
-    };
-    let mut pad = ImuPad::new(&pad_config, PAD_SEED).map_err(|e| e.to_string())?;
     let sim = UrSim::start(SimConfig {
         address: Ipv4Addr::new(127, 0, 0, octet),
         ..SimConfig::default()
     })
     .map_err(|e| e.to_string())?;
-    let mut config = UrConfig::new(format!("127.0.0.{octet}"));
+    let mut arm = connect(&format!("127.0.0.{octet}"))?;
+    let pad = ImuPadConfig {
+        taps,
+        ..ImuPadConfig::default()
+    };
+    run_on(
+        &mut arm,
+        &pad,
+        PAD_SEED,
+        experiment_config,
+        locator,
+        to_input,
+    )
+    .map_err(|e| format!("{e}; sim log {:?}", sim.log()))
+}
+
+/// Connects to the UR controller at `host` with the experiment's move timeout.
+pub fn connect(host: &str) -> Result<UrArm, String> {
+    let mut config = UrConfig::new(host);
     config.move_timeout = Duration::from_secs(20);
-    let mut arm = UrArm::connect(config).map_err(|e| e.to_string())?;
+    UrArm::connect(config).map_err(|e| e.to_string())
+}
+
+/// Runs one cycle per tap of `pad_config` on a pad seeded `pad_seed` with `locator`, moving
+/// `arm`.
+pub fn run_on<L, B>(
+    arm: &mut UrArm,
+    pad_config: &ImuPadConfig,
+    pad_seed: u64,
+    experiment_config: TapToMoveConfig,
+    locator: &mut L,
+    to_input: impl FnMut(&[ImuFrame]) -> B,
+) -> Result<Vec<Row>, String>
+where
+    L: ContactLocator,
+    B: Borrow<L::Input>,
+{
+    let mut to_input = to_input;
+    let mut pad = ImuPad::new(pad_config, pad_seed).map_err(|e| e.to_string())?;
     let grid = RegionToGrid::ur3_default().map_err(|e| e.to_string())?;
     let mut experiment = TapToMove::new(&grid, experiment_config);
 
@@ -132,8 +163,8 @@ where
     let mut rows = Vec::with_capacity(pad.taps().len());
     for k in 0..pad.taps().len() {
         let report = experiment
-            .cycle(&mut pad, locator, &mut arm, &mut to_input)
-            .map_err(|e| format!("cycle {k}: {e}; sim log {:?}", sim.log()))?;
+            .cycle(&mut pad, locator, arm, &mut to_input)
+            .map_err(|e| format!("cycle {k}: {e}"))?;
         let tap = &pad.taps()[k];
         let press_s = tap.start_s + timing.lead_s;
         let t = report.trigger_t_us as f64 * 1e-6;
@@ -156,7 +187,7 @@ where
 }
 
 /// The rows as a markdown report, with `locator` named in its header.
-pub(crate) fn markdown(rows: &[Row], locator: &str, window: &str) -> String {
+pub fn markdown(rows: &[Row], locator: &str, window: &str) -> String {
     let correct = rows.iter().filter(|r| r.located == r.region).count();
     let mut md = format!(
         "## {window}\n\n\
