@@ -8,7 +8,7 @@ use std::process::ExitCode;
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (page, png, width) = match args.as_slice() {
-        [page, png] => (page, png, 1280),
+        [page, png] => (page, png, 1400),
         [page, png, w] => match w.parse() {
             Ok(w) => (page, png, w),
             Err(_) => return usage(),

@@ -268,9 +268,18 @@ fn trade_section(w: &mut String, trade: &TradeSection) -> Result<(), ReportError
     Ok(())
 }
 
-/// `path` for people: resolved, and relative to the working directory when inside it.
+/// `path` for people: `..` folded away, and relative to the working directory when inside it.
 fn shown(path: &std::path::Path) -> String {
-    let full = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    use std::path::Component;
+    let mut full = std::path::PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::ParentDir if full.file_name().is_some() => {
+                full.pop();
+            }
+            c => full.push(c),
+        }
+    }
     let cwd = std::env::current_dir().ok();
     cwd.and_then(|d| full.strip_prefix(d).ok().map(|p| p.display().to_string()))
         .unwrap_or_else(|| full.display().to_string())
@@ -423,5 +432,6 @@ mod tests {
         let table = &html[html.find("class=\"pareto\"").unwrap()..];
         assert_eq!(table.matches("<tr><td>").count(), 3); // the three Pareto points
         assert!(html.contains("(log scale)")); // location spans 0.4–300 µs
+        assert_eq!(shown("a/b/../../docs/x.csv".as_ref()), "docs/x.csv");
     }
 }

@@ -42,9 +42,9 @@ pub(super) fn title(plot: &Plot) -> &str {
     }
 }
 
-/// Draws `plot` into an SVG string; a [`Plot::Lines`] gets `front` (a Pareto front), if any,
-/// as a wide translucent band under its lines, so points on the front stay visible on their
-/// own line.
+/// Draws `plot` into an SVG string. A trade plot passes its Pareto `front`: drawn as a wide
+/// translucent band under the lines (so points on the front stay visible on their own line),
+/// with a log cost axis when the costs span two decades.
 pub(super) fn draw(plot: &Plot, front: Option<&Line>) -> Result<Drawn, ReportError> {
     let err = |e: &dyn std::fmt::Display| ReportError::Plot {
         title: title(plot).to_owned(),
@@ -91,19 +91,21 @@ pub(super) fn draw(plot: &Plot, front: Option<&Line>) -> Result<Drawn, ReportErr
     Ok(Drawn { svg, legend })
 }
 
-/// Pixel size per plot kind: heat maps grow with their cell count, within bounds.
+/// Pixel size per plot kind: heat maps grow with their cell count, within bounds, and are
+/// never narrower than their title.
 fn size(plot: &Plot) -> (u32, u32) {
+    let title_px = 10 * title(plot).chars().count().min(90) as u32 + 60;
     match plot {
         Plot::Lines { .. } => (620, 400),
         Plot::Confusion { labels, counts, .. } => {
             let n = labels.len().max(counts.len()).clamp(2, 24) as u32;
             let side = 140 + 44 * n;
-            (side + 90, side)
+            ((side + 90).max(title_px), side)
         }
         Plot::Grid { rows, cols, .. } => {
             let cell = 64;
             let (r, c) = ((*rows).clamp(1, 16) as u32, (*cols).clamp(1, 24) as u32);
-            (c * cell + 200, r * cell + 90)
+            ((c * cell + 200).max(title_px), r * cell + 90)
         }
         Plot::Surface { .. } => (640, 520),
     }
@@ -198,9 +200,10 @@ fn lines(
             .collect::<Vec<_>>()
     };
     let all: Vec<(f64, f64)> = lines.iter().chain(front).flat_map(finite).collect();
-    // Costs spanning two decades or more read better on a log axis.
+    // Trade plots (those with a front) whose costs span two decades or more read better on a
+    // log axis; time and weight axes stay linear.
     let (xlo, xhi) = span(all.iter().map(|p| p.0));
-    let log_x = xlo > 0.0 && xhi / xlo >= 100.0;
+    let log_x = front.is_some() && xlo > 0.0 && xhi / xlo >= 100.0;
     let tx = |x: f64| if log_x { x.log10() } else { x };
     let x_range = padded(span(all.iter().map(|p| tx(p.0))));
     let y_range = padded(span(all.iter().map(|p| p.1)));
@@ -434,7 +437,8 @@ fn confusion(
         y_desc: "true",
         col_name: &name,
         row_name: &name,
-        label_px: ((7 * longest + 30).min(120), (7 * longest + 40).min(160)),
+        // x labels run horizontally: one text line; y labels need the longest name.
+        label_px: (40, (7 * longest + 40).min(160)),
     };
     cells.draw(&main, &|p, t| {
         let row = counts.get(t).map_or(&[][..], Vec::as_slice);
@@ -613,6 +617,22 @@ mod tests {
         for (a, b) in segs {
             assert!((a.0 - 0.5).abs() < 1e-12 && (b.0 - 0.5).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn only_trade_plots_get_a_log_cost_axis() {
+        let line = Line {
+            label: "l".into(),
+            points: vec![(0.03, 1.0), (30.0, 2.0)],
+        };
+        let plot = Plot::Lines {
+            title: "t".into(),
+            x_label: "time, s".into(),
+            y_label: "y".into(),
+            lines: vec![line.clone()],
+        };
+        assert!(!draw(&plot, None).unwrap().svg.contains("log scale"));
+        assert!(draw(&plot, Some(&line)).unwrap().svg.contains("log scale"));
     }
 
     #[test]
