@@ -7,13 +7,19 @@
 mod common;
 
 use common::run_scene;
-use handstack::Outcome;
 use handstack::report::browser::{Chromium, Image};
 use handstack::report::{TRADE_POINTS, TradeSection, write_html};
+use handstack::{Outcome, Plot};
 use std::path::{Path, PathBuf};
 
-/// The committed scenes the report is built from: real runs, the cheapest ones.
-const SCENES: [&str; 1] = ["weight-estimation"];
+/// The committed scenes the report is built from: real runs, the cheap ones (≈ 1.3 s in all),
+/// which between them draw every plot kind (lines, grids, confusion matrices, the surface).
+const SCENES: [&str; 4] = [
+    "weight-estimation",
+    "contact-location",
+    "softness",
+    "grasp-table5",
+];
 
 fn workspace_root() -> PathBuf {
     common::root()
@@ -38,6 +44,19 @@ fn report_renders_in_headless_chromium() {
     std::fs::create_dir_all(&dir).unwrap();
     let page = dir.join("report.html");
     let outcomes: Vec<Outcome> = SCENES.iter().map(|s| run_scene(s)).collect();
+    let kinds: Vec<&str> = outcomes
+        .iter()
+        .flat_map(|o| &o.plots)
+        .map(|p| match p {
+            Plot::Lines { .. } => "lines",
+            Plot::Confusion { .. } => "confusion",
+            Plot::Grid { .. } => "grid",
+            Plot::Surface { .. } => "surface",
+        })
+        .collect();
+    for kind in ["lines", "confusion", "grid", "surface"] {
+        assert!(kinds.contains(&kind), "no {kind} plot among {SCENES:?}");
+    }
     let points = workspace_root().join(TRADE_POINTS);
     write_html(&outcomes, &[], Some(&points), &page).unwrap();
 

@@ -100,14 +100,14 @@ fn size(plot: &Plot) -> (u32, u32) {
         Plot::Confusion { labels, counts, .. } => {
             let n = labels.len().max(counts.len()).clamp(2, 24) as u32;
             let side = 140 + 44 * n;
-            ((side + 90).max(title_px), side)
+            ((side + 112).max(title_px), side)
         }
         Plot::Grid { rows, cols, .. } => {
             let cell = 64;
             let (r, c) = ((*rows).clamp(1, 16) as u32, (*cols).clamp(1, 24) as u32);
-            ((c * cell + 200).max(title_px), r * cell + 90)
+            ((c * cell + 222).max(title_px), r * cell + 90)
         }
-        Plot::Surface { .. } => (640, 520),
+        Plot::Surface { .. } => (660, 520),
     }
 }
 
@@ -217,7 +217,7 @@ fn lines(
         .caption(title, (FONT, 18))
         .margin(12)
         .x_label_area_size(40)
-        .y_label_area_size(60)
+        .y_label_area_size(72)
         .build_cartesian_2d(x_axis, y_axis)
         .map_err(e)?;
     let x_fmt = |v: &f64| {
@@ -310,7 +310,7 @@ fn colour_bar(
         .margin_top(40)
         .margin_bottom(45)
         .margin_right(8)
-        .y_label_area_size(62)
+        .y_label_area_size(74)
         .build_cartesian_2d(0.0..1.0, lo..hi)
         .map_err(e)?;
     let y_fmt = |v: &f64| fmt_tick(*v, &(lo..hi));
@@ -413,7 +413,7 @@ fn confusion(
     counts: &[Vec<u32>],
 ) -> DrawResult<()> {
     let n = labels.len().max(counts.len()).max(1);
-    let (main, bar) = area.split_horizontally(area.dim_in_pixel().0 - 90);
+    let (main, bar) = area.split_horizontally(area.dim_in_pixel().0 - 112);
     let name = |i: usize| labels.get(i).cloned().unwrap_or_else(|| i.to_string());
     let longest = (0..n).map(|i| name(i).chars().count()).max().unwrap_or(1) as u32;
     // Colour = share of the true class's samples (so rare classes read as well as common ones).
@@ -467,7 +467,7 @@ fn grid(
     values: &[f64],
     unit: &str,
 ) -> DrawResult<()> {
-    let (main, bar) = area.split_horizontally(area.dim_in_pixel().0 - 100);
+    let (main, bar) = area.split_horizontally(area.dim_in_pixel().0 - 112);
     let (lo, hi) = span(values.iter().copied());
     let cells = Cells {
         title,
@@ -508,7 +508,7 @@ fn surface(
     ys: &[f64],
     z: &[Vec<f64>],
 ) -> DrawResult<()> {
-    let (main, bar) = area.split_horizontally(area.dim_in_pixel().0 - 100);
+    let (main, bar) = area.split_horizontally(area.dim_in_pixel().0 - 112);
     let usable = !xs.is_empty()
         && !ys.is_empty()
         && xs.iter().chain(ys).all(|v| v.is_finite())
@@ -530,7 +530,7 @@ fn surface(
         .caption(title, (FONT, 18))
         .margin(12)
         .x_label_area_size(40)
-        .y_label_area_size(60)
+        .y_label_area_size(72)
         .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
         .map_err(e)?;
     let x_fmt = |v: &f64| fmt_tick(*v, &(xr.0..xr.1));
