@@ -1,6 +1,6 @@
 //! Developer workflows for the handstack workspace, run as `cargo xtask <command>`.
 //!
-//! - `test`: sets up `.venv`, then fmt check, clippy `-D warnings`, every test, docs, and
+//! - `test`: sets up `.venv` and Chromium, then fmt check, clippy `-D warnings`, every test, docs, and
 //!   `fixtures --check`: the one command CI runs.
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
 //! - `bench [FILTER] [--write] [-- CRITERION ARGS]`: runs the criterion benches and prints a
@@ -14,10 +14,13 @@
 //! - `train softness`: trains the softness classifier (LM and Adam), writes its weights,
 //!   metrics, figures and section 2 of `docs/learning.md`.
 //! - `trade`: the speed / accuracy trade report (`handstack trade`) into `docs/trade.md`.
+//! - `demo [--screenshot]`: runs every scene in `fixtures/scenes/` on the simulated default
+//!   and writes `target/demo/report.html` (`--screenshot`: also `docs/demo-report.png`).
 //! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
 
 pub mod bench;
 pub mod bench_doc;
+pub mod chromium;
 pub mod demo;
 pub mod docs_section;
 pub mod fixtures;

@@ -6,7 +6,7 @@ use xtask::{bench, demo, fixtures, test, trade, train, workspace_root};
 const USAGE: &str = "usage: cargo xtask <command>
 
 commands:
-  test                      set up .venv, then fmt, clippy, every test, docs, fixtures --check
+  test                      set up .venv and chromium, then fmt, clippy, every test, docs, fixtures --check
   fixtures [--check]        regenerate the generated fixtures, or check the committed ones
   bench [FILTER] [--write] [-- ARGS]
                             run the criterion benches (names containing FILTER), print a summary;
@@ -20,6 +20,8 @@ commands:
                             run the contact CNN's Table I protocol, write weights, metrics, plots,
                             docs (--docs-only: redraw plots and docs from the committed metrics)
   trade                     measure every speed / accuracy knob, write docs/trade.md (+ docs/trade/)
+  demo [--screenshot]       run every scene (fixtures/scenes/) into target/demo/report.html
+                            (--screenshot: and its full-page picture, docs/demo-report.png)
   demo tap-to-move          seed 002 §IV-B on the simulated UR3 via ur_rtde, into docs/arm-tap-to-move.md";
 
 fn main() -> ExitCode {

@@ -1,14 +1,15 @@
 //! `cargo xtask test`: everything CI checks, in the order that fails fastest.
 
 use crate::run::{cargo, step};
-use crate::{fixtures, venv};
+use crate::{chromium, fixtures, venv};
 use anyhow::Result;
 use std::path::Path;
 
-/// Sets up `.venv`, then runs fmt check, clippy `-D warnings`, every test with every feature,
+/// Sets up `.venv` and Chromium (the report render test), then runs fmt check, clippy `-D warnings`, every test with every feature,
 /// the docs with warnings denied, and `fixtures --check`.
 pub fn run(root: &Path) -> Result<()> {
     let python = venv::ensure(root)?;
+    let chromium = chromium::ensure()?;
     step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
     step(
         "clippy",
@@ -26,7 +27,8 @@ pub fn run(root: &Path) -> Result<()> {
         "test",
         cargo(root)
             .args(["test", "--workspace", "--all-features"])
-            .env("HANDSTACK_PYTHON", &python),
+            .env("HANDSTACK_PYTHON", &python)
+            .env("HANDSTACK_CHROMIUM", &chromium),
     )?;
     step(
         "doc",

@@ -3,8 +3,7 @@
 //! position, pad pressure and motor current over the first 10 s (as seed 000 Figures 23–24).
 //! Run: `cargo run --release -p hand-control --example grasp_report`.
 
-#[path = "../tests/support/mod.rs"]
-mod support;
+use hand_control::sim::rig as support;
 
 use hand_control::grasp_loop::TorqueBand;
 use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams, random_objects};

@@ -4,7 +4,7 @@
 //! objects, lifts at 3 s and holds 120 s: no slip, no damage, no fault, settled torque inside
 //! the object's range.
 
-mod support;
+use hand_control::sim::rig as support;
 
 use hand_control::grasp_loop::{Mode, TorqueBand};
 use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams, random_objects};

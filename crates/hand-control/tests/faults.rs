@@ -5,7 +5,7 @@
 //! The actuator here is the in-process rig (see `support`); the overload is the rig's own
 //! physics (seed 000 §7: full torque on a stiff object), the transport faults are injected.
 
-mod support;
+use hand_control::sim::rig as support;
 
 use hand_control::grasp_loop::{FaultKind, LoopFault, Mode, Recovery, TorqueBand};
 use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};

@@ -6,7 +6,7 @@
 //! One closed-loop grasp, then the fault cases on the wire: a dropped status packet, a
 //! corrupted CRC, a servo that stops answering, the servo's own overload, an out-of-range goal.
 
-mod support;
+use hand_control::sim::rig as support;
 
 use hand_control::grasp_loop::{
     FaultKind, GraspLoop, LoopClock, LoopConfig, LoopFault, Mode, Recovery, TorqueBand,

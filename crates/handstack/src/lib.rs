@@ -16,6 +16,7 @@
 pub mod error;
 pub mod outcome;
 pub mod progress;
+pub mod report;
 pub mod runs;
 pub mod scene;
 pub mod stack;

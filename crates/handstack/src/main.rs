@@ -27,6 +27,9 @@ enum Command {
         /// Print the outcomes as JSON on stdout (no progress, no table).
         #[arg(long)]
         json: bool,
+        /// Also write the HTML report of the outcomes (and docs/trade/points.csv) here.
+        #[arg(long, value_name = "PATH")]
+        report: Option<PathBuf>,
     },
     /// Train one committed model family and write its weights and metrics.
     Train {
@@ -70,7 +73,11 @@ impl Progress for Bars {
 
 fn main() -> ExitCode {
     match Cli::parse().command {
-        Command::Run { scenes, json } => run(&scenes, json),
+        Command::Run {
+            scenes,
+            json,
+            report: html,
+        } => run(&scenes, json, html.as_deref()),
         Command::Train {
             model,
             root,
@@ -82,7 +89,7 @@ fn main() -> ExitCode {
     }
 }
 
-fn run(scenes: &[PathBuf], json: bool) -> ExitCode {
+fn run(scenes: &[PathBuf], json: bool, report: Option<&std::path::Path>) -> ExitCode {
     let live = !json && std::io::stderr().is_terminal();
     let bars = Bars(if live {
         let bar = ProgressBar::new(0).with_style(
@@ -100,6 +107,7 @@ fn run(scenes: &[PathBuf], json: bool) -> ExitCode {
     let progress: &dyn Progress = if live { &bars } else { &quiet };
     let cx = RunContext::new(progress);
     let (mut outcomes, mut failed) = (Vec::new(), false);
+    let mut failures = Vec::new();
     for path in scenes {
         bars.0.set_prefix(path.display().to_string());
         match handstack::run_file(path, &cx) {
@@ -114,6 +122,10 @@ fn run(scenes: &[PathBuf], json: bool) -> ExitCode {
                 bars.0
                     .suspend(|| eprintln!("error: {}: {e}", path.display()));
                 failed = true;
+                failures.push(handstack::report::Failed {
+                    scene: path.display().to_string(),
+                    error: e.to_string(),
+                });
             }
         }
     }
@@ -123,6 +135,16 @@ fn run(scenes: &[PathBuf], json: bool) -> ExitCode {
             Ok(s) => println!("{s}"),
             Err(e) => {
                 eprintln!("error: cannot write JSON: {e}");
+                failed = true;
+            }
+        }
+    }
+    if let Some(out) = report {
+        let points = cx.root.join(handstack::report::TRADE_POINTS);
+        match handstack::report::write_html(&outcomes, &failures, Some(&points), out) {
+            Ok(()) => eprintln!("report: {}", out.display()),
+            Err(e) => {
+                eprintln!("error: report: {e}");
                 failed = true;
             }
         }

@@ -38,6 +38,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+#[cfg(feature = "rig")]
+pub mod rig;
 mod servo;
 
 pub use servo::{Plant, ServoParams, SimServo};

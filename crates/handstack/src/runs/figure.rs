@@ -9,6 +9,8 @@ pub(crate) enum Target {
     AtMost(f64),
     /// value ≥ bound.
     AtLeast(f64),
+    /// lo ≤ value ≤ hi.
+    Between(f64, f64),
     /// |value − centre| ≤ tol.
     Within(f64, f64),
 }
@@ -23,6 +25,7 @@ impl Target {
         match self {
             Target::AtMost(b) => format!("≤ {b}{u}"),
             Target::AtLeast(b) => format!("≥ {b}{u}"),
+            Target::Between(lo, hi) => format!("{lo}…{hi}{u}"),
             Target::Within(c, t) => format!("{c} ± {t}{u}"),
         }
     }
@@ -31,6 +34,7 @@ impl Target {
         match self {
             Target::AtMost(b) => v <= b,
             Target::AtLeast(b) => v >= b,
+            Target::Between(lo, hi) => (lo..=hi).contains(&v),
             Target::Within(c, t) => (v - c).abs() <= t,
         }
     }

@@ -4,6 +4,8 @@
 
 pub mod contact;
 mod figure;
+pub mod grasp;
+pub mod readout;
 pub mod softness;
 pub mod tap;
 pub mod weight;
@@ -49,6 +51,8 @@ pub struct Part {
 pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
     let start = Instant::now();
     let x = scene.file.experiment.get_ref();
+    cx.progress.stage("opening real devices", 0);
+    crate::stack::check_real_devices(scene)?;
     let mut parts = Vec::new();
     if let Some(w) = &x.weight {
         parts.push(weight::run(scene, w.get_ref(), cx)?);
@@ -56,11 +60,17 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
     if let Some(c) = &x.contact {
         parts.push(contact::run(scene, c.get_ref(), cx)?);
     }
+    if let Some(g) = &x.grasp {
+        parts.push(grasp::run(scene, g.get_ref(), cx)?);
+    }
     if let Some(s) = &x.softness {
         parts.push(softness::run(s.get_ref(), cx)?);
     }
     if let Some(t) = &x.tap {
         parts.push(tap::run(scene, t.get_ref(), cx)?);
+    }
+    if let Some(r) = &x.readout {
+        parts.push(readout::run(scene, r.get_ref(), cx)?);
     }
     let (mut figures, mut plots) = (Vec::new(), Vec::new());
     for p in parts {

@@ -12,10 +12,15 @@ pub struct Experiments {
     pub weight: Option<Spanned<Weight>>,
     /// `[experiment.contact]`: seed 000 §3–4 contact location on the fingertip.
     pub contact: Option<Spanned<Contact>>,
+    /// `[experiment.grasp]`: seed 000 Table 5 objects held by the fuzzy loop.
+    pub grasp: Option<Spanned<Grasp>>,
     /// `[experiment.softness]`: seed 001 softness classification.
     pub softness: Option<Spanned<Softness>>,
     /// `[experiment.tap]`: seed 002 §IV-B, pad taps move the UR3.
     pub tap: Option<Spanned<Tap>>,
+    /// `[experiment.readout]`: read the fingertip, report its rate and noise (hardware
+    /// bring-up; runs on a real or a simulated fingertip).
+    pub readout: Option<Spanned<Readout>>,
 }
 
 impl Experiments {
@@ -28,11 +33,17 @@ impl Experiments {
         if self.contact.is_some() {
             v.push("contact");
         }
+        if self.grasp.is_some() {
+            v.push("grasp");
+        }
         if self.softness.is_some() {
             v.push("softness");
         }
         if self.tap.is_some() {
             v.push("tap");
+        }
+        if self.readout.is_some() {
+            v.push("readout");
         }
         v
     }
@@ -165,4 +176,39 @@ pub struct Tap {
 
 fn three() -> Spanned<usize> {
     Spanned::new(0..0, 3)
+}
+
+/// Seed 000 §7, Table 5: each object closed on, lifted at 3 s and held by the fuzzy grasp loop
+/// inside its published torque band.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Grasp {
+    /// Table 5 objects, in order (default: all six).
+    #[serde(default = "table5_objects")]
+    pub objects: Spanned<Vec<String>>,
+    /// Hold after the lift, s (Table 5: "more than 2 min", 120).
+    #[serde(default = "hold_120")]
+    pub hold_s: Spanned<f64>,
+    /// The fingertip's seed in each hold (docs/grasping used 7).
+    #[serde(default = "seven")]
+    pub seed: u64,
+}
+
+fn table5_objects() -> Spanned<Vec<String>> {
+    let names = hand_sim::grasp::ObjectKind::ALL.map(|k| k.name().to_owned());
+    Spanned::new(0..0, names.to_vec())
+}
+fn hold_120() -> Spanned<f64> {
+    Spanned::new(0..0, hand_control::sim::rig::HOLD_S)
+}
+fn seven() -> u64 {
+    7
+}
+
+/// Reads the fingertip at rest: frame period and per-sensor noise at its OSR.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Readout {
+    /// Frames to read, 2…100 000.
+    pub frames: Spanned<usize>,
 }

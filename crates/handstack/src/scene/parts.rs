@@ -117,28 +117,13 @@ pub struct Contact {
 #[serde(deny_unknown_fields)]
 pub struct Softness {}
 
-/// A defuzzifier choice.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Defuzz {
-    /// Wang's center average, the paper's (seed 000 §6).
-    #[default]
-    CenterAverage,
-    /// Centroid on `resolution` samples.
-    Centroid,
-}
-
 /// `[controller]`: the grasp policy.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Controller {
-    /// `grasp`: the Mamdani preset of seed 000 §6 (9 MFs NH…PH).
+    /// `grasp`: the Mamdani preset of seed 000 §6 (9 MFs NH…PH, 9 × 9 rules, Wang's center
+    /// average defuzzifier as the paper).
     pub preset: Spanned<String>,
-    /// `center_average` (default) or `centroid`.
-    #[serde(default)]
-    pub defuzzifier: Defuzz,
-    /// Samples of the centroid (2…10 000); only with `centroid`.
-    pub resolution: Option<Spanned<usize>>,
 }
 
 /// A servo hand model (hand-control's control tables).
@@ -166,6 +151,9 @@ pub struct Hand {
     pub serial_port: Option<Spanned<String>>,
     /// Baud rate (default 1 000 000, the paper's).
     pub baud: Option<Spanned<u32>>,
+    /// How long to wait for a status packet, ms (default: the servo's 34 ms; USB adapters or
+    /// a simulator on a loaded machine may need more).
+    pub reply_timeout_ms: Option<u64>,
 }
 
 fn default_ids() -> Vec<u8> {

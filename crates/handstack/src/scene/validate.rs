@@ -249,25 +249,6 @@ pub(crate) fn check(scene: &SceneFile, file: &str, text: &str) -> Result<SceneCo
                 "\"grasp\" (seed 000 §6)",
             ));
         }
-        match (&c_ref.defuzzifier, &c_ref.resolution) {
-            (super::parts::Defuzz::CenterAverage, Some(r)) => {
-                return Err(cx.err(
-                    r.span(),
-                    "controller.resolution",
-                    "is set for the center-average defuzzifier, which has none",
-                    "resolution only with defuzzifier = \"centroid\"",
-                ));
-            }
-            (super::parts::Defuzz::Centroid, Some(r)) if !(2..=10_000).contains(r.get_ref()) => {
-                return Err(cx.err(
-                    r.span(),
-                    "controller.resolution",
-                    format!("is {}", r.get_ref()),
-                    "2…10 000 samples",
-                ));
-            }
-            _ => {}
-        }
         if scene.hand.is_none() {
             return Err(cx.err(
                 c.span(),
@@ -328,7 +309,7 @@ pub(crate) fn check(scene: &SceneFile, file: &str, text: &str) -> Result<SceneCo
             scene.experiment.span(),
             "experiment",
             "names no experiment",
-            "one or more of [experiment.weight], [experiment.contact], [experiment.softness], [experiment.tap]",
+            "one or more of [experiment.weight], [experiment.contact], [experiment.grasp], [experiment.softness], [experiment.tap], [experiment.readout]",
         ));
     }
     if let Some(w) = &x.weight {
@@ -403,6 +384,98 @@ pub(crate) fn check(scene: &SceneFile, file: &str, text: &str) -> Result<SceneCo
                 "experiment.tap.rounds",
                 format!("is {}", rounds.get_ref()),
                 "1…3 rounds of nine taps",
+            ));
+        }
+    }
+    if let Some(g) = &x.grasp {
+        let Some(h) = &scene.hand else {
+            return Err(cx.err(
+                g.span(),
+                "experiment.grasp",
+                "needs a hand",
+                "[hand] with it",
+            ));
+        };
+        if scene.controller.is_none() || s.fingertip.is_none() {
+            return Err(cx.err(
+                g.span(),
+                "experiment.grasp",
+                "needs the fingertip and the grasp controller",
+                "[sensors.fingertip] and [controller] with it",
+            ));
+        }
+        if h.get_ref().serial_port.is_none() {
+            if h.get_ref().model != HandModel::Mx28 {
+                return Err(cx.err(
+                    h.span(),
+                    "hand.model",
+                    "is simulated, and the simulated Table 5 rig has MX-28 fingers",
+                    "\"mx28\", or a serial_port for real hardware",
+                ));
+            }
+            let osr = s.fingertip.as_ref().map(|f| *f.get_ref().osr.get_ref());
+            if osr != Some(hand_control::sim::rig::OSR) {
+                return Err(cx.err(
+                    g.span(),
+                    "experiment.grasp",
+                    "runs the simulated rig's 100 Hz loop, which reads the fingertip at OSR 1024",
+                    "sensors.fingertip.osr = 1024",
+                ));
+            }
+        }
+        for o in g.get_ref().objects.get_ref() {
+            if hand_sim::grasp::ObjectKind::from_name(o).is_none() {
+                return Err(cx.err(
+                    g.get_ref().objects.span(),
+                    "experiment.grasp.objects",
+                    format!("names \"{o}\""),
+                    "cube, cylinder, cone, ellipsoid, paper_cup, scroll_tissue (seed 000 Table 5)",
+                ));
+            }
+        }
+        let hold = &g.get_ref().hold_s;
+        if !(hold.get_ref().is_finite() && (0.1..=600.0).contains(hold.get_ref())) {
+            return Err(cx.err(
+                hold.span(),
+                "experiment.grasp.hold_s",
+                format!("is {}", hold.get_ref()),
+                "0.1…600 s after the lift (Table 5: 120)",
+            ));
+        }
+    }
+    if let Some(r) = &x.readout {
+        if s.fingertip.is_none() {
+            return Err(cx.err(
+                r.span(),
+                "experiment.readout",
+                "reads the fingertip the scene does not have",
+                "[sensors.fingertip] with it",
+            ));
+        }
+        let n = &r.get_ref().frames;
+        if !(2..=100_000).contains(n.get_ref()) {
+            return Err(cx.err(
+                n.span(),
+                "experiment.readout.frames",
+                format!("is {}", n.get_ref()),
+                "2…100 000",
+            ));
+        }
+    }
+    for (name, needs_sim) in [
+        ("weight", x.weight.is_some()),
+        ("contact", x.contact.is_some()),
+    ] {
+        let real = s
+            .fingertip
+            .as_ref()
+            .is_some_and(|t| t.get_ref().i2c_buses.is_some());
+        if needs_sim && real {
+            return Err(cx.err(
+                scene.experiment.span(),
+                &format!("experiment.{name}"),
+                "presses the simulated pad, but the fingertip is real (i2c_buses)",
+                "a simulated fingertip, or [experiment.readout] on real chips",
             ));
         }
     }

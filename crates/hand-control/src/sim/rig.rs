@@ -1,13 +1,13 @@
-//! Test support: one simulated grasp world (hand-sim's [`GraspRig`] squeezing an object and
-//! pressing hand-sim's barometric [`Fingertip`], read through the real MS5611 driver) behind the
+//! One simulated grasp world (feature `rig`): hand-sim's [`GraspRig`] squeezing an object and
+//! pressing hand-sim's barometric [`Fingertip`], read through the real MS5611 driver, behind the
 //! three parts a [`GraspLoop`] drives: a tactile source, an actuator and a clock. Waiting on the
-//! clock steps the physics, so a 120 s hold runs in simulated time.
+//! clock steps the physics, so a 120 s hold runs in simulated time. Shared by the closed-loop
+//! and fault tests, the `grasp_report` example (docs/grasping) and handstack's grasp scene.
 //!
 //! The actuator here is in-process (it calls the rig directly); its transport faults (lost
 //! status packet, CRC mismatch, silence, range error) are injected by time window.
-#![allow(dead_code, unreachable_pub)]
 
-use hand_control::grasp_loop::{
+use crate::grasp_loop::{
     FaultKind, GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator, Sample, TorqueBand,
 };
 use hand_sim::SimError;
@@ -45,8 +45,11 @@ pub enum Injected {
 /// One injection: `kind` on every call in `from_s..until_s`.
 #[derive(Debug, Clone, Copy)]
 pub struct Injection {
+    /// Window start, s.
     pub from_s: f64,
+    /// Window end, s.
     pub until_s: f64,
+    /// What is injected.
     pub kind: Injected,
 }
 
@@ -58,7 +61,10 @@ pub enum HandError {
     /// Status packet CRC mismatch.
     Crc,
     /// The servo refused a value (Dynamixel "Data Range Error").
-    Range { goal_rad: f32 },
+    Range {
+        /// The refused goal, rad.
+        goal_rad: f32,
+    },
     /// The rig refused (e.g. torque on while the overload bit is latched).
     Sim(SimError),
 }
@@ -66,23 +72,33 @@ pub enum HandError {
 /// One trace point of the physics (truth the loop never sees).
 #[derive(Debug, Clone, Copy)]
 pub struct Truth {
+    /// Time, s.
     pub t_s: f64,
+    /// Pad force, N.
     pub grip_force_n: f64,
+    /// Motor current, A.
     pub current_a: f64,
+    /// Finger angle, rad.
     pub position_rad: f64,
 }
 
 /// The shared world.
 pub struct World {
+    /// The two-finger rig and its object.
     pub rig: GraspRig,
+    /// The fingertip pressed by the rig.
     pub tip: Fingertip,
     t_ns: u64,
     patch: ContactPatch,
+    /// Transport faults to inject.
     pub injections: Vec<Injection>,
     /// The servo's goal limits, rad (Min / Max Position Limit).
     pub servo_goal_limits_rad: (f32, f32),
+    /// Highest pad force so far, N.
     pub peak_force_n: f64,
+    /// Whether the object ever slipped.
     pub ever_slipping: bool,
+    /// The physics at every loop tick.
     pub trace: Vec<Truth>,
     /// When the arm lifts the object, s ([`LIFT_AT_S`] unless a test needs it earlier).
     pub lift_at_s: f64,
@@ -130,11 +146,13 @@ impl World {
         Ok(())
     }
 
+    /// The rig's state now.
     pub fn state(&self) -> GraspState {
         self.rig.state()
     }
 }
 
+/// The world, shared by the source, the actuator and the clock.
 pub type Shared = Rc<RefCell<World>>;
 
 /// A world with `object` between open fingers and a fingertip seeded with `seed`.
@@ -304,8 +322,13 @@ pub fn grasp_loop(world: &Shared, config: LoopConfig) -> SimLoop {
 
 /// Runs the full Table 5 protocol: close, lift at 3 s, hold 120 s.
 pub fn run_hold(world: &Shared, config: LoopConfig) -> SimLoop {
+    run_hold_for(world, config, HOLD_S)
+}
+
+/// Close, lift at 3 s, hold `hold_s` seconds.
+pub fn run_hold_for(world: &Shared, config: LoopConfig, hold_s: f64) -> SimLoop {
     let mut l = grasp_loop(world, config);
-    l.run_until(((LIFT_AT_S + HOLD_S) * 1e6) as u64);
+    l.run_until(((LIFT_AT_S + hold_s) * 1e6) as u64);
     l
 }
 
@@ -318,22 +341,38 @@ pub const SETTLE_WINDOW_US: u64 = 10_000_000;
 /// What one closed-loop hold gave.
 #[derive(Debug, Clone)]
 pub struct Outcome {
+    /// The object.
     pub name: String,
+    /// The torque band, 0…1023.
     pub band: (u16, u16),
+    /// Mean torque sent over the last [`SETTLE_WINDOW_US`].
     pub settled_raw: f32,
+    /// Least and greatest torque sent in that window.
     pub window_raw: (u16, u16),
+    /// From the first command until every torque stays within [`SETTLE_TOL_RAW`], s.
     pub settling_time_s: f64,
+    /// Highest pad force, N (physics truth).
     pub peak_force_n: f64,
+    /// Pad force at the end, N.
     pub final_force_n: f64,
+    /// The loop's last mean pressure rise, Pa.
     pub final_pressure_pa: f32,
+    /// How far the object slid, m.
     pub slip_m: f64,
+    /// Slid beyond hand-sim's tolerance.
     pub slipped: bool,
+    /// Crushed.
     pub damaged: bool,
+    /// Dropped.
     pub dropped: bool,
+    /// Fault events the loop logged.
     pub faults: usize,
+    /// Loop cycles run.
     pub cycles: usize,
+    /// Ticks the loop missed.
     pub missed_ticks: u64,
-    pub mode: hand_control::grasp_loop::Mode,
+    /// The loop's mode at the end.
+    pub mode: crate::grasp_loop::Mode,
 }
 
 /// Runs the Table 5 protocol on `object` inside `band` and summarises it.
@@ -343,9 +382,20 @@ pub fn hold(
     band: TorqueBand,
     seed: u64,
 ) -> (Outcome, SimLoop, Shared) {
+    hold_for(name, object, band, seed, HOLD_S)
+}
+
+/// [`hold`] with a hold of `hold_s` seconds after the lift.
+pub fn hold_for(
+    name: &str,
+    object: ObjectParams,
+    band: TorqueBand,
+    seed: u64,
+    hold_s: f64,
+) -> (Outcome, SimLoop, Shared) {
     let w = world(object, seed);
-    let l = run_hold(&w, config(band));
-    let st = hand_control::grasp_loop::settling(l.log(), SETTLE_WINDOW_US, SETTLE_TOL_RAW)
+    let l = run_hold_for(&w, config(band), hold_s);
+    let st = crate::grasp_loop::settling(l.log(), SETTLE_WINDOW_US, SETTLE_TOL_RAW)
         .expect("the loop sent torques");
     let s = w.borrow().state();
     let last = l.log().last().and_then(|s| s.estimate);

@@ -1,0 +1,199 @@
+//! The demo report: one self-contained HTML file (inline CSS and SVG, no network, no script)
+//! of a list of [`Outcome`]s and the speed/accuracy trade points.
+//!
+//! Per scene: its title, a figures table (value, paper, target, met — an unmet target shows as
+//! unmet) and one inline SVG per [`Plot`](crate::Plot). Then the trade curves read from
+//! `docs/trade/points.csv` (see [`trade_points`]), or a note saying why they are missing.
+//! The header names the git commit, the date and the machine the runs were made on.
+//!
+//! ```
+//! use handstack::report::{Provenance, TradeSection, render};
+//! use handstack::{Figure, Outcome};
+//!
+//! let outcome = Outcome {
+//!     scene: "weight-estimation".into(),
+//!     title: "Seed 000 Table 1 <weights>".into(),
+//!     figures: vec![Figure {
+//!         name: "mae_gf".into(),
+//!         label: "mean absolute error".into(),
+//!         value: 4.2,
+//!         unit: "gf".into(),
+//!         paper: Some(3.9),
+//!         source: Some("seed 000 Table 1".into()),
+//!         target: Some("≤ 5".into()),
+//!         met: Some(true),
+//!     }],
+//!     plots: vec![],
+//!     wall_s: 1.5,
+//! };
+//! let trade = TradeSection::NotRequested;
+//! let html = render(&[outcome], &[], &trade, &Provenance::fixed("abc123"))?;
+//! assert!(html.contains("Seed 000 Table 1 &lt;weights&gt;")); // text is escaped
+//! assert!(html.contains(r#"data-figure="mae_gf""#));
+//! # Ok::<(), handstack::report::ReportError>(())
+//! ```
+
+pub mod browser;
+mod html;
+mod plot_svg;
+mod provenance;
+pub mod trade_points;
+
+pub use html::render;
+pub use provenance::Provenance;
+pub use trade_points::{TradePoint, TradeSection};
+
+use crate::Outcome;
+use std::path::{Path, PathBuf};
+
+/// Where `handstack trade` writes the trade points, relative to the workspace root.
+pub const TRADE_POINTS: &str = "docs/trade/points.csv";
+
+/// What can go wrong while writing a report.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    /// A plot could not be drawn (plotters' message).
+    #[error("plot {title:?}: {message}")]
+    Plot {
+        /// The plot's title.
+        title: String,
+        /// What plotters said.
+        message: String,
+    },
+    /// A line of the trade points CSV is malformed.
+    #[error("{path}:{line}: {problem}")]
+    TradeCsv {
+        /// The CSV file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+}
+
+/// A scene that did not produce an [`Outcome`]: the report lists it with its error, so a
+/// failed run is not silently missing from the page.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Failed {
+    /// The scene (file name or stem).
+    pub scene: String,
+    /// The error, as the run reported it.
+    pub error: String,
+}
+
+/// Renders `outcomes`, the `failed` scenes and the trade points at `trade_points` (when
+/// given) with the [`Provenance`] detected from the current directory's git checkout, and
+/// writes the page to `out`, creating its directory.
+///
+/// A missing `trade_points` file is not an error (the page says it is absent); a malformed
+/// one is.
+pub fn write_html(
+    outcomes: &[Outcome],
+    failed: &[Failed],
+    trade_points: Option<&Path>,
+    out: &Path,
+) -> Result<(), ReportError> {
+    let trade = match trade_points {
+        None => TradeSection::NotRequested,
+        Some(path) => TradeSection::load(path)?,
+    };
+    let html = render(outcomes, failed, &trade, &Provenance::detect())?;
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+    }
+    std::fs::write(out, html).map_err(|source| ReportError::Io {
+        path: out.to_path_buf(),
+        source,
+    })
+}
+
+/// A number for people: four significant digits, no exponent for everyday magnitudes.
+fn fmt_num(v: f64) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let mag = v.abs().log10().floor() as i32;
+    if !(-4..=7).contains(&mag) {
+        return format!("{v:.3e}");
+    }
+    let decimals = (3 - mag).clamp(0, 6) as usize;
+    let s = format!("{v:.decimals$}");
+    // Trailing zeros after the point say nothing.
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
+    }
+}
+
+/// `text` with the characters HTML gives meaning to escaped (safe in text and attributes).
+fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ReportError, escape, fmt_num, write_html};
+    use std::path::Path;
+
+    #[test]
+    fn write_html_creates_the_directory_and_names_an_unwritable_path() {
+        let dir = std::env::temp_dir().join(format!("handstack-report-{}", std::process::id()));
+        let out = dir.join("a/b/report.html");
+        write_html(&[], &[], Some(Path::new("/nonexistent/points.csv")), &out).unwrap();
+        let html = std::fs::read_to_string(&out).unwrap();
+        assert!(html.starts_with("<!DOCTYPE html>") && html.contains("is absent"));
+        // A file where the directory should be.
+        let blocked = dir.join("a/b/report.html/inner.html");
+        match write_html(&[], &[], None, &blocked) {
+            Err(ReportError::Io { path, .. }) => assert!(path.ends_with("report.html")),
+            other => panic!("{other:?}"),
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn numbers_keep_four_significant_digits() {
+        assert_eq!(fmt_num(0.0), "0");
+        assert_eq!(fmt_num(95.8333), "95.83");
+        assert_eq!(fmt_num(1023.0), "1023");
+        assert_eq!(fmt_num(0.012345), "0.01235");
+        assert_eq!(fmt_num(-2.5), "-2.5");
+        assert_eq!(fmt_num(1.5e9), "1.500e9");
+        assert_eq!(fmt_num(f64::NAN), "NaN");
+    }
+
+    #[test]
+    fn escapes_markup_and_quotes() {
+        assert_eq!(
+            escape(r#"<b a="1">&'</b>"#),
+            "&lt;b a=&quot;1&quot;&gt;&amp;&#39;&lt;/b&gt;"
+        );
+    }
+}

@@ -1,0 +1,66 @@
+//! Hardware bring-up: read the fingertip at rest and report the frame period and each
+//! sensor's noise (standard deviation, Pa) at the scene's OSR — on real chips (`i2c_buses`) or
+//! on hand-sim's chip models (whose noise per OSR follows the MS5611 datasheet's table).
+
+use super::figure::measured;
+use super::{Part, RunContext};
+use crate::error::RunError;
+use crate::scene::Scene;
+use crate::scene::experiment::Readout;
+use crate::{Line, Plot};
+
+/// Runs the readout experiment of `scene`.
+pub fn run(scene: &Scene, exp: &Readout, cx: &RunContext<'_>) -> Result<Part, RunError> {
+    let n = *exp.frames.get_ref();
+    let mut source = crate::stack::fingertip::open(scene)?;
+    cx.progress.stage("readout: fingertip frames", n as u64);
+    let mut frames = Vec::with_capacity(n);
+    for _ in 0..n {
+        frames.push(source.read_frame()?);
+        cx.progress.advance(1);
+    }
+    let mut part = Part::default();
+    let span_us = frames.last().map_or(0, |f| f.t_us) - frames.first().map_or(0, |f| f.t_us);
+    part.figures
+        .push(measured("frames", "frames read", n as f64, ""));
+    part.figures.push(measured(
+        "frame_period_ms",
+        "mean frame period (three sensors)",
+        span_us as f64 * 1e-3 / (n - 1).max(1) as f64,
+        "ms",
+    ));
+    for k in 0..3 {
+        let v: Vec<f64> = frames.iter().map(|f| f64::from(f.pressure_pa[k])).collect();
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        let sd = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (v.len() - 1).max(1) as f64)
+            .sqrt();
+        part.figures.push(measured(
+            &format!("sensor{}_mean_pa", k + 1),
+            &format!("sensor {}: mean pressure", k + 1),
+            mean,
+            "Pa",
+        ));
+        part.figures.push(measured(
+            &format!("sensor{}_sd_pa", k + 1),
+            &format!("sensor {}: standard deviation", k + 1),
+            sd,
+            "Pa",
+        ));
+    }
+    let t0 = frames.first().map_or(0, |f| f.t_us);
+    part.plots.push(Plot::Lines {
+        title: "Fingertip at rest".into(),
+        x_label: "time (s)".into(),
+        y_label: "pressure (Pa)".into(),
+        lines: (0..3)
+            .map(|k| Line {
+                label: format!("sensor {}", k + 1),
+                points: frames
+                    .iter()
+                    .map(|f| ((f.t_us - t0) as f64 * 1e-6, f64::from(f.pressure_pa[k])))
+                    .collect(),
+            })
+            .collect(),
+    });
+    Ok(part)
+}

@@ -1,0 +1,34 @@
+//! The hand a scene names on a real bus: `ServoHand` (dynamixel2 over serial2) on the scene's
+//! `serial_port`. (The simulated default is hand-control's Table 5 rig, `hand_control::sim::rig`.)
+
+use crate::error::RunError;
+use crate::scene::parts::Hand;
+use hand_control::{DEFAULT_REPLY_LATENCY, ServoHand};
+use std::time::Duration;
+
+/// The paper's bus speed (seed 000 §6: RS-485 at 1 Mbps).
+pub const DEFAULT_BAUD: u32 = 1_000_000;
+
+/// Opens `port` and identifies the servos `hand` names; position mode, torque on.
+pub fn open(hand: &Hand, port: &str) -> Result<ServoHand, RunError> {
+    let baud = hand.baud.as_ref().map_or(DEFAULT_BAUD, |b| *b.get_ref());
+    let latency = hand
+        .reply_timeout_ms
+        .map_or(DEFAULT_REPLY_LATENCY, Duration::from_millis);
+    let fail = |reason: String| RunError::Open {
+        device: "hand",
+        path: port.to_owned(),
+        reason,
+    };
+    let serial = serial2::SerialPort::open(port, baud).map_err(|e| fail(e.to_string()))?;
+    let mut servo = ServoHand::with_reply_latency(serial, &hand.ids, latency)
+        .map_err(|e| fail(format!("servos {:?}: {e}", hand.ids)))?;
+    // Operating Mode is in EEPROM, writable only with torque off (a previous run may have
+    // left it on).
+    servo
+        .set_torque(false)
+        .and_then(|()| servo.set_position_mode())
+        .and_then(|()| servo.set_torque(true))
+        .map_err(|e| fail(format!("setting up the servos: {e}")))?;
+    Ok(servo)
+}
