@@ -61,7 +61,9 @@ fn report_renders_in_headless_chromium() {
     write_html(&outcomes, &[], Some(&points), &page).unwrap();
 
     // 1. The browser parsed what we wrote.
-    let dom = chromium.dump_dom(&page, &dir).unwrap();
+    let dom = chromium
+        .dump_dom(&page, &dir)
+        .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(
         dom.matches("<section class=\"scene\"").count(),
         outcomes.len()
@@ -105,7 +107,7 @@ fn report_renders_in_headless_chromium() {
     let png = dir.join("report.png");
     chromium
         .screenshot(&page, &png, (1024, 1400), &dir)
-        .unwrap();
+        .unwrap_or_else(|e| panic!("{e}"));
     let image = Image::read(&png).unwrap();
     assert_eq!((image.width, image.height), (1024, 1400));
     let colours = image.distinct_colours();

@@ -36,7 +36,10 @@ pub enum BrowserError {
     )]
     NotFound,
     /// Chromium could not be started.
-    #[error("starting {path}: {source}")]
+    #[error(
+        "starting Chromium at {path}: {source} (set HANDSTACK_CHROMIUM to a Chromium, or run \
+         `cargo xtask test`, which installs Debian's `chromium` when it can)"
+    )]
     Start {
         /// The executable.
         path: PathBuf,

@@ -26,6 +26,7 @@ th, td { border-bottom: 1px solid #e4e7ec; padding: 4px 10px; text-align: left;
 th { background: #f0f2f5; font-weight: 600; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 td.met { font-weight: 600; white-space: nowrap; }
+td.target { white-space: nowrap; }
 td.met.yes { color: #11602a; background: #e3f5e8; }
 td.met.no { color: #9c1c1c; background: #fbe4e4; }
 td.met.none { color: #8a8f99; }
@@ -189,7 +190,7 @@ fn figures_table(w: &mut String, figures: &[Figure]) {
         let _ = writeln!(
             w,
             "<tr class=\"figure\" data-figure=\"{}\"><td>{}</td><td class=\"num\">{}{unit}</td>\
-             <td class=\"num\">{paper}</td><td>{}</td>{met}</tr>",
+             <td class=\"num\">{paper}</td><td class=\"target\">{}</td>{met}</tr>",
             escape(&f.name),
             escape(&f.label),
             fmt_num(f.value),

@@ -35,8 +35,8 @@ pub fn run(scene: &Scene, exp: &Tap, cx: &RunContext<'_>) -> Result<Part, RunErr
     };
     cx.progress
         .stage("tap: pad → CNN → UR3", pad.taps.len() as u64);
-    // One cycle per call so progress moves tap by tap; the pad is rebuilt per call from the
-    // same seed and schedule, so run_on over all taps at once would give the same rows.
+    // All taps in one run_on: the pad's taps follow each other on one simulated clock, as in
+    // docs/arm-tap-to-move.md (progress moves once, at the end).
     let rows = tap_run::run_on(
         &mut arm.arm,
         &pad,
