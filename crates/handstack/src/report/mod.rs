@@ -47,7 +47,7 @@ use crate::Outcome;
 use std::path::{Path, PathBuf};
 
 /// Where `handstack trade` writes the trade points, relative to the workspace root.
-pub const TRADE_POINTS: &str = "docs/trade/points.csv";
+pub use crate::trade::POINTS as TRADE_POINTS;
 
 /// What can go wrong while writing a report.
 #[derive(Debug, thiserror::Error)]

@@ -1,30 +1,14 @@
 //! The speed/accuracy trade points the report draws: `docs/trade/points.csv`, written by
-//! `handstack trade`, one row per knob setting with the columns
-//! `task,knob,setting,cost_us,accuracy,accuracy_unit,pareto` (any order, `#` lines ignored).
+//! `handstack trade`, one row per knob setting (parsed by the trade module's own reader, so
+//! the writer and both readers agree on one format).
 
 use super::ReportError;
+use crate::trade::{CsvRow, TradeError, parse_csv};
 use crate::{Line, Plot};
 use std::path::{Path, PathBuf};
 
-/// One measured knob setting.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TradePoint {
-    /// The task the accuracy is measured on (e.g. `force`, `location`).
-    pub task: String,
-    /// The knob turned (e.g. `ms5611_osr`).
-    pub knob: String,
-    /// Its setting (e.g. `4096`).
-    pub setting: String,
-    /// Cost per control cycle, µs.
-    pub cost_us: f64,
-    /// The task's quality figure (an accuracy, or an error / noise where lower is better),
-    /// in `unit`.
-    pub accuracy: f64,
-    /// Unit of `accuracy` (`%`, `gf`, …): the CSV's `accuracy_unit`.
-    pub unit: String,
-    /// Whether the point is on its task's Pareto front.
-    pub pareto: bool,
-}
+/// One measured knob setting: a row of `points.csv`.
+pub type TradePoint = CsvRow;
 
 /// What the report's trade section shows.
 #[derive(Debug, Clone, PartialEq)]
@@ -41,16 +25,6 @@ pub enum TradeSection {
         points: Vec<TradePoint>,
     },
 }
-
-const COLUMNS: [&str; 7] = [
-    "task",
-    "knob",
-    "setting",
-    "cost_us",
-    "accuracy",
-    "accuracy_unit",
-    "pareto",
-];
 
 impl TradeSection {
     /// Reads `path`: [`TradeSection::Absent`] when it does not exist, an error naming the
@@ -83,66 +57,18 @@ impl TradeSection {
 /// # Ok::<(), handstack::report::ReportError>(())
 /// ```
 pub fn parse(text: &str, path: &Path) -> Result<Vec<TradePoint>, ReportError> {
-    let err = |line: usize, problem: String| ReportError::TradeCsv {
-        path: path.to_path_buf(),
-        line,
-        problem,
-    };
-    let mut rows = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim_end_matches('\r')))
-        .filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#'));
-    let (header_line, header) = rows
-        .next()
-        .ok_or_else(|| err(1, "empty file: no header".into()))?;
-    let names: Vec<&str> = header.split(',').map(str::trim).collect();
-    let mut index = [0usize; COLUMNS.len()];
-    for (slot, col) in index.iter_mut().zip(COLUMNS) {
-        *slot = names.iter().position(|n| *n == col).ok_or_else(|| {
-            err(
-                header_line,
-                format!("header lacks column `{col}` (wanted {})", COLUMNS.join(",")),
-            )
-        })?;
-    }
-    rows.map(|(line, row)| {
-        let cells: Vec<&str> = row.split(',').map(str::trim).collect();
-        if cells.len() != names.len() {
-            return Err(err(
-                line,
-                format!("{} fields, the header has {}", cells.len(), names.len()),
-            ));
-        }
-        let num = |k: usize| {
-            cells[index[k]].parse::<f64>().map_err(|_| {
-                err(
-                    line,
-                    format!("`{}` is not a number: {:?}", COLUMNS[k], cells[index[k]]),
-                )
-            })
-        };
-        let pareto = match cells[index[6]] {
-            "true" | "1" | "yes" => true,
-            "false" | "0" | "no" | "" => false,
-            other => {
-                return Err(err(
-                    line,
-                    format!("`pareto` must be true or false, not {other:?}"),
-                ));
-            }
-        };
-        Ok(TradePoint {
-            task: cells[index[0]].to_owned(),
-            knob: cells[index[1]].to_owned(),
-            setting: cells[index[2]].to_owned(),
-            cost_us: num(3)?,
-            accuracy: num(4)?,
-            unit: cells[index[5]].to_owned(),
-            pareto,
-        })
+    parse_csv(text).map_err(|e| match e {
+        TradeError::Csv { line, detail } => ReportError::TradeCsv {
+            path: path.to_path_buf(),
+            line,
+            problem: detail,
+        },
+        other => ReportError::TradeCsv {
+            path: path.to_path_buf(),
+            line: 0,
+            problem: other.to_string(),
+        },
     })
-    .collect()
 }
 
 /// The tasks in first-seen order.
@@ -204,26 +130,12 @@ mod tests {
     const HEADER: &str = "task,knob,setting,cost_us,accuracy,accuracy_unit,pareto";
 
     #[test]
-    fn columns_in_any_order_and_comments() {
-        let csv = "# from handstack trade\npareto,task,knob,setting,cost_us,accuracy,accuracy_unit\n\
-                   false,force,osr,256,1.2,80.5,%\n";
-        let p = parse(csv, Path::new("p.csv")).unwrap();
-        assert_eq!(p.len(), 1);
-        assert_eq!(
-            (p[0].task.as_str(), p[0].setting.as_str()),
-            ("force", "256")
-        );
-        assert_eq!((p[0].cost_us, p[0].accuracy), (1.2, 80.5));
-        assert!(!p[0].pareto);
-    }
-
-    #[test]
     fn malformed_rows_name_their_line_and_problem() {
         let cases = [
             (
                 format!("{HEADER}\nforce,osr,256,fast,80,%,true\n"),
                 2,
-                "cost_us",
+                "not a number",
             ),
             (format!("{HEADER}\nforce,osr,256,1.0,80,%\n"), 2, "6 fields"),
             (
@@ -231,8 +143,8 @@ mod tests {
                 3,
                 "pareto",
             ),
-            ("task,knob,setting\n".to_owned(), 1, "cost_us"),
-            (String::new(), 1, "empty"),
+            ("task,knob,setting\n".to_owned(), 1, "header"),
+            (String::new(), 1, "header"),
         ];
         for (csv, line, word) in cases {
             match parse(&csv, Path::new("p.csv")) {
