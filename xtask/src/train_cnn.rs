@@ -253,10 +253,9 @@ pressure-channel variant (a 5th input row) is not built: the CNN's code is fixed
 rows through im2col, the frozen path, the augmentation and the dataset's window, and the \
 barometer only reads above noise from 0.8 mm (§III-C), so it could help only where the paper \
 net is already within 2 points.\n\
-- **Inference times** read `target/criterion`: not measured in this run. The architectures \
-and inference code are unchanged since the last `cargo xtask bench contact_cnn` on main: \
-paper net 12.09 µs (plain arrays) / 66.61 µs (dfdx), small net 2.02 / 21.70 µs per \
-single-sample f32 inference.\n";
+- **Inference times** in the table are the means of the last `cargo xtask bench contact_cnn` \
+(read from `target/criterion` when this section is written): one single-sample f32 inference, \
+the frozen plain-array path against dfdx.\n";
 
 /// A named line of points and its colour.
 type Series = (String, Vec<(f64, f64)>, RGBColor);
