@@ -6,7 +6,7 @@ use crate::bench::{Measurement, human, summary_table};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::process::Command;
-use std::time::{SystemTime, UNIX_EPOCH};
+use std::time::SystemTime;
 
 /// Where the table goes, below the workspace root.
 pub const DOC: &str = "docs/benchmarks.md";
@@ -75,21 +75,9 @@ fn load_average() -> String {
         .unwrap_or_else(|| "?".into())
 }
 
-/// `YYYY-MM-DD` (UTC) of `t` (civil-from-days, proleptic Gregorian).
+/// `YYYY-MM-DD` (UTC) of `t`.
 pub fn utc_date(t: SystemTime) -> String {
-    let days = t
-        .duration_since(UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs() / 86_400) as i64;
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1_460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    format!("{y:04}-{m:02}-{d:02}")
+    humantime::format_rfc3339_seconds(t).to_string()[..10].to_owned()
 }
 
 /// Group prefix of the control-cycle benches (`benches/benches/cycles.rs`).
@@ -187,6 +175,7 @@ pub fn document(command: &str, machine: &Machine, measurements: &[Measurement]) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::time::UNIX_EPOCH;
 
     fn m(id: &str, ns: f64) -> Measurement {
         Measurement {

@@ -26,3 +26,24 @@ pub fn step(name: &str, cmd: &mut Command) -> Result<()> {
     println!("    {name}: ok in {secs:.1} s");
     Ok(())
 }
+
+/// Runs the `handstack` binary as the step `name` under the optimised `test` profile (the
+/// profile the tests build, so nothing is compiled twice): `handstack ARGS --root ROOT`.
+pub fn handstack(root: &Path, name: &str, args: &[&str]) -> Result<()> {
+    step(
+        name,
+        cargo(root)
+            .args([
+                "run",
+                "--quiet",
+                "--profile",
+                "test",
+                "-p",
+                "handstack",
+                "--",
+            ])
+            .args(args)
+            .arg("--root")
+            .arg(root),
+    )
+}

@@ -2,27 +2,12 @@
 //! measures every speed / accuracy knob in one run and writes `docs/trade.md`, one SVG per
 //! task under `docs/trade/` and `docs/trade/points.csv`.
 
-use crate::run::{cargo, step};
 use anyhow::Result;
 use std::path::Path;
 
 /// Runs `cargo xtask trade`.
 pub fn run(root: &Path) -> Result<()> {
-    step(
-        "trade",
-        cargo(root)
-            .args([
-                "run",
-                "--quiet",
-                "--profile",
-                "test",
-                "-p",
-                "handstack",
-                "--",
-            ])
-            .args(["trade", "--root"])
-            .arg(root),
-    )?;
+    crate::run::handstack(root, "trade", &["trade"])?;
     println!(
         "trade: report written to {}",
         root.join("docs/trade.md").display()

@@ -9,7 +9,6 @@
 //! Training runs as `handstack train MODEL` under the optimised `test` profile (dfdx at
 //! `opt-level = 0`, the xtask's own profile, is several times slower).
 
-use crate::run::{cargo, step};
 use anyhow::{Context, Result, bail};
 use plotters::prelude::*;
 use std::path::Path;
@@ -42,21 +41,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
 /// Runs `handstack train MODEL --root ROOT` (the training code, `tactile_nets::jobs`) under
 /// the optimised `test` profile: it writes the weights and metrics this command then draws.
 pub fn run_handstack_train(root: &Path, model: &str) -> Result<()> {
-    step(
-        &format!("train ({model})"),
-        cargo(root)
-            .args([
-                "run",
-                "--quiet",
-                "--profile",
-                "test",
-                "-p",
-                "handstack",
-                "--",
-            ])
-            .args(["train", model, "--root"])
-            .arg(root),
-    )
+    crate::run::handstack(root, &format!("train ({model})"), &["train", model])
 }
 
 fn contact_mlp(root: &Path) -> Result<()> {

@@ -68,21 +68,12 @@ impl Provenance {
     }
 }
 
-/// `YYYY-MM-DD HH:MM UTC` of Unix time `secs` (proleptic Gregorian; H. Hinnant's
-/// days-from-civil inverse), so the header needs no date crate.
+/// `YYYY-MM-DD HH:MM UTC` of Unix time `secs`.
 fn utc_date(secs: u64) -> String {
-    let days = (secs / 86_400) as i64;
-    let (hh, mm) = ((secs % 86_400) / 3600, (secs % 3600) / 60);
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z.rem_euclid(146_097);
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    format!("{y:04}-{m:02}-{d:02} {hh:02}:{mm:02} UTC")
+    let t = UNIX_EPOCH + std::time::Duration::from_secs(secs);
+    // RFC 3339 `YYYY-MM-DDTHH:MM:SSZ`: the date, then hours and minutes.
+    let stamp = humantime::format_rfc3339_seconds(t).to_string();
+    format!("{} {} UTC", &stamp[..10], &stamp[11..16])
 }
 
 #[cfg(test)]
