@@ -228,3 +228,35 @@ fn tactile_bus_failure_holds_the_grip_and_resumes() {
     assert_eq!(l.log()[i + 5].mode, Mode::Grasp);
     assert_eq!(l.mode(), Mode::Grasp);
 }
+
+#[test]
+fn a_long_run_keeps_a_bounded_log_of_the_newest_cycles_and_counts_the_rest() {
+    // A loop left running for hours must not grow its memory with every cycle.
+    let w = support::world(cube(), 7);
+    let mut cfg = support::config(cube_band());
+    cfg.log_capacity = 100;
+    let mut l = support::grasp_loop(&w, cfg);
+    l.run_until(8_000_000);
+    let kept = l.log().len();
+    assert!((50..=100).contains(&kept), "kept {kept}");
+    assert!(l.log_dropped() > 600, "dropped {}", l.log_dropped());
+    // Nothing lost silently: kept + dropped is every cycle run, and the kept ones are the
+    // newest, contiguous, ending with the last cycle.
+    let last = l.log().last().expect("kept").cycle;
+    assert_eq!(l.log_dropped() + kept as u64, last + 1);
+    assert_eq!(l.log()[0].cycle, l.log_dropped());
+    assert!(
+        l.log()
+            .windows(2)
+            .all(|p| { (p[1].cycle, p[1].t_us) == (p[0].cycle + 1, p[0].t_us + 10_000) })
+    );
+    assert_eq!(l.events_dropped(), 0);
+    assert!(
+        hand_control::grasp_loop::LoopConfig {
+            log_capacity: 0,
+            ..hand_control::grasp_loop::LoopConfig::new()
+        }
+        .validate()
+        .is_err()
+    );
+}

@@ -53,7 +53,22 @@ where
     rebooted_since_safe: bool,
     reboots: u32,
     log: Vec<Sample<N>>,
+    log_dropped: u64,
     events: Vec<FaultEvent<S::Error, P::Error, A::Error>>,
+    events_dropped: u64,
+}
+
+/// Pushes `item`, first dropping the older half of `v` when it holds `capacity` (amortised
+/// O(1), the slice stays contiguous); returns how many were dropped.
+fn push_bounded<T>(v: &mut Vec<T>, item: T, capacity: usize) -> u64 {
+    let mut dropped = 0;
+    if v.len() >= capacity {
+        let n = v.len() - capacity / 2;
+        v.drain(..n);
+        dropped = n as u64;
+    }
+    v.push(item);
+    dropped
 }
 
 impl<S, P, A, C, const N: usize> GraspLoop<S, P, A, C, N>
@@ -94,7 +109,9 @@ where
             rebooted_since_safe: false,
             reboots: 0,
             log: Vec::new(),
+            log_dropped: 0,
             events: Vec::new(),
+            events_dropped: 0,
         })
     }
 
@@ -169,7 +186,7 @@ where
         }
         s.mode = self.mode;
         self.cycle += 1;
-        self.log.push(s);
+        self.log_dropped += push_bounded(&mut self.log, s, self.config.log_capacity);
         // Just pushed, so the log is not empty.
         &self.log[self.log.len() - 1]
     }
@@ -316,11 +333,12 @@ where
     }
 
     fn push_event(&mut self, t_us: u64, fault: FaultOf<S, P, A>) {
-        self.events.push(FaultEvent {
+        let event = FaultEvent {
             cycle: self.cycle,
             t_us,
             fault,
-        });
+        };
+        self.events_dropped += push_bounded(&mut self.events, event, self.config.log_capacity);
     }
 
     /// Changes the closing goal; one outside the configured limits is refused (an out-of-range
@@ -340,14 +358,25 @@ where
         self.mode
     }
 
-    /// Every cycle so far.
+    /// The cycles kept: every cycle so far, or, once more than
+    /// [`LoopConfig::log_capacity`] have run, the newest ones (see [`GraspLoop::log_dropped`]).
     pub fn log(&self) -> &[Sample<N>] {
         &self.log
     }
 
-    /// Every fault reported so far.
+    /// Cycles dropped from the front of the log to keep it within its capacity.
+    pub fn log_dropped(&self) -> u64 {
+        self.log_dropped
+    }
+
+    /// The faults reported so far (the newest, bounded as the log).
     pub fn events(&self) -> &[FaultEvent<S::Error, P::Error, A::Error>] {
         &self.events
+    }
+
+    /// Fault events dropped to keep them within [`LoopConfig::log_capacity`].
+    pub fn events_dropped(&self) -> u64 {
+        self.events_dropped
     }
 
     /// Reboots sent so far.
@@ -380,7 +409,7 @@ where
         &mut self.clock
     }
 
-    /// The parts back, with the log.
+    /// The parts back, with the log (the cycles kept).
     pub fn into_parts(self) -> (S, P, A, C, Vec<Sample<N>>) {
         (
             self.source,
