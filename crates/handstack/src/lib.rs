@@ -13,6 +13,7 @@
 //! - [`trade`]: `handstack trade`, the speed / accuracy trade report;
 //! - [`train`]: `handstack train MODEL`.
 
+mod axis;
 pub mod error;
 pub mod outcome;
 pub mod progress;

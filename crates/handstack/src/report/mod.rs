@@ -44,6 +44,7 @@ pub use provenance::Provenance;
 pub use trade_points::{TradePoint, TradeSection};
 
 use crate::Outcome;
+use crate::axis::fmt_num;
 use std::path::{Path, PathBuf};
 
 /// Where `handstack trade` writes the trade points, relative to the workspace root.
@@ -119,28 +120,6 @@ pub fn write_html(
     })
 }
 
-/// A number for people: four significant digits, no exponent for everyday magnitudes.
-fn fmt_num(v: f64) -> String {
-    if !v.is_finite() {
-        return format!("{v}");
-    }
-    if v == 0.0 {
-        return "0".into();
-    }
-    let mag = v.abs().log10().floor() as i32;
-    if !(-4..=7).contains(&mag) {
-        return format!("{v:.3e}");
-    }
-    let decimals = (3 - mag).clamp(0, 6) as usize;
-    let s = format!("{v:.decimals$}");
-    // Trailing zeros after the point say nothing.
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_owned()
-    } else {
-        s
-    }
-}
-
 /// `text` with the characters HTML gives meaning to escaped (safe in text and attributes).
 fn escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
@@ -159,7 +138,7 @@ fn escape(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{ReportError, escape, fmt_num, write_html};
+    use super::{ReportError, escape, write_html};
     use std::path::Path;
 
     #[test]
@@ -176,17 +155,6 @@ mod tests {
             other => panic!("{other:?}"),
         }
         std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[test]
-    fn numbers_keep_four_significant_digits() {
-        assert_eq!(fmt_num(0.0), "0");
-        assert_eq!(fmt_num(95.8333), "95.83");
-        assert_eq!(fmt_num(1023.0), "1023");
-        assert_eq!(fmt_num(0.012345), "0.01235");
-        assert_eq!(fmt_num(-2.5), "-2.5");
-        assert_eq!(fmt_num(1.5e9), "1.500e9");
-        assert_eq!(fmt_num(f64::NAN), "NaN");
     }
 
     #[test]

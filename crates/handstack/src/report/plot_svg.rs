@@ -1,7 +1,8 @@
 //! Each [`Plot`] as an inline SVG string, drawn with plotters' SVG backend (which escapes the
 //! text it writes). Non-finite values are skipped or drawn grey, never panicked on.
 
-use super::{ReportError, fmt_num};
+use super::ReportError;
+use crate::axis::{fmt_num, fmt_tick, padded, span, wants_log};
 use crate::{Line, Plot};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
@@ -152,36 +153,6 @@ fn axes(chart: &mut Chart<'_, '_>, a: Axes<'_>) -> DrawResult<()> {
     mesh.draw().map_err(e)
 }
 
-/// `lo..hi` of the finite values, widened when empty or a single value.
-fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v), hi.max(v))
-        });
-    if lo > hi {
-        (0.0, 1.0)
-    } else if hi - lo <= f64::EPSILON * lo.abs().max(1.0) {
-        (lo - 0.5, hi + 0.5)
-    } else {
-        (lo, hi)
-    }
-}
-
-/// An axis tick: [`fmt_num`], with rounding noise around zero (`-2.2e-16`) shown as `0`.
-fn fmt_tick(v: f64, axis: &std::ops::Range<f64>) -> String {
-    if v.abs() <= 1e-9 * (axis.end - axis.start).abs() {
-        "0".into()
-    } else {
-        fmt_num(v)
-    }
-}
-
-fn padded((lo, hi): (f64, f64)) -> std::ops::Range<f64> {
-    let pad = 0.04 * (hi - lo);
-    lo - pad..hi + pad
-}
-
 /// The Pareto-front band: amber, translucent, under the lines.
 const FRONT: RGBAColor = RGBAColor(255, 179, 0, 0.45);
 
@@ -203,7 +174,7 @@ fn lines(
     // Trade plots (those with a front) whose costs span two decades or more read better on a
     // log axis; time and weight axes stay linear.
     let (xlo, xhi) = span(all.iter().map(|p| p.0));
-    let log_x = front.is_some() && xlo > 0.0 && xhi / xlo >= 100.0;
+    let log_x = front.is_some() && wants_log((xlo, xhi));
     let tx = |x: f64| if log_x { x.log10() } else { x };
     let x_range = padded(span(all.iter().map(|p| tx(p.0))));
     let y_range = padded(span(all.iter().map(|p| p.1)));
@@ -633,13 +604,6 @@ mod tests {
         };
         assert!(!draw(&plot, None).unwrap().svg.contains("log scale"));
         assert!(draw(&plot, Some(&line)).unwrap().svg.contains("log scale"));
-    }
-
-    #[test]
-    fn spans_survive_empty_constant_and_nan_data() {
-        assert_eq!(span(std::iter::empty()), (0.0, 1.0));
-        assert_eq!(span([2.0, 2.0].into_iter()), (1.5, 2.5));
-        assert_eq!(span([f64::NAN, 1.0, 3.0].into_iter()), (1.0, 3.0));
     }
 
     #[test]

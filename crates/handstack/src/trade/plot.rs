@@ -3,6 +3,7 @@
 use super::error::TradeError;
 use super::pareto::Better;
 use super::point::{Point, Task};
+use crate::axis::{fmt_tick, padded, span, wants_log};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -24,45 +25,28 @@ pub(crate) fn draw(task: &Task, points: &[&Point], path: &Path) -> Result<(), Tr
     root.present().map_err(|x| err(path)(x.to_string()))
 }
 
-/// A cost tick without trailing `.0` noise: 12000, 2.5, 0.15.
-fn tick(x: f64) -> String {
-    match x.abs() {
-        a if a >= 100.0 || a == 0.0 => format!("{x:.0}"),
-        a if a >= 1.0 => format!("{x:.1}"),
-        _ => format!("{x:.2}"),
-    }
-}
-
-/// `(lo, hi)` padded so single values and flat sets still get an axis.
-fn span(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-        (l.min(v), h.max(v))
-    });
-    if log {
-        (lo / 1.6, hi * 1.6)
-    } else {
-        let pad = ((hi - lo) * 0.12).max(hi.abs() * 0.05).max(1e-3);
-        (lo - pad, hi + pad)
-    }
-}
-
 fn chart(
     task: &Task,
     points: &[&Point],
     area: &DrawingArea<SVGBackend, Shift>,
 ) -> Result<(), String> {
-    let (cmin, cmax) = points.iter().fold((f64::INFINITY, 0.0f64), |(l, h), p| {
-        (l.min(p.cost_us), h.max(p.cost_us))
-    });
+    let costs = span(points.iter().map(|p| p.cost_us));
     // A wide cost spread (ns to ms) reads only on a log axis.
-    let log_x = cmin > 0.0 && cmax > 10.0 * cmin;
-    let (_, chi) = span(points.iter().map(|p| p.cost_us), false);
-    let (ylo, yhi) = span(points.iter().map(|p| p.accuracy), false);
-    let ylo = if ylo < 0.0 && points.iter().all(|p| p.accuracy >= 0.0) {
-        0.0
-    } else {
-        ylo
+    let log_x = wants_log(costs);
+    let x_lin = 0.0..padded(costs).end;
+    let x_log = {
+        let r = padded(span(points.iter().map(|p| p.cost_us.log10())));
+        10f64.powf(r.start)..10f64.powf(r.end)
     };
+    let y = padded(span(points.iter().map(|p| p.accuracy)));
+    // Accuracies and errors are never negative: do not pad the axis below zero.
+    let y = if y.start < 0.0 && points.iter().all(|p| p.accuracy >= 0.0) {
+        0.0..y.end
+    } else {
+        y
+    };
+    let x_tick = if log_x { x_log.clone() } else { x_lin.clone() };
+    let y_tick = y.clone();
     let direction = match task.better {
         Better::Higher => "higher is better",
         Better::Lower => "lower is better",
@@ -79,7 +63,8 @@ fn chart(
                 .configure_mesh()
                 .x_desc(task.cost_label)
                 .x_labels(8)
-                .x_label_formatter(&|x: &f64| tick(*x))
+                .x_label_formatter(&|x: &f64| fmt_tick(*x, &x_tick))
+                .y_label_formatter(&|v: &f64| fmt_tick(*v, &y_tick))
                 .y_desc(format!("{} — {direction}", task.unit))
                 .axis_desc_style(("sans-serif", 14))
                 .draw()
@@ -126,16 +111,15 @@ fn chart(
         b
     };
     if log_x {
-        let (lo, hi) = span(points.iter().map(|p| p.cost_us), true);
         body!(
             builder(area)
-                .build_cartesian_2d((lo..hi).log_scale(), ylo..yhi)
+                .build_cartesian_2d(x_log.log_scale(), y)
                 .map_err(|x| x.to_string())?
         );
     } else {
         body!(
             builder(area)
-                .build_cartesian_2d(0.0..chi, ylo..yhi)
+                .build_cartesian_2d(x_lin, y)
                 .map_err(|x| x.to_string())?
         );
     }
