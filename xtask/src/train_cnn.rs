@@ -98,8 +98,8 @@ pub fn section(
          **Protocol** (`tactile_nets::cnn_eval`): every tap plus 20 copies with Gaussian noise \
          at 30 dB SNR per signal (5 → 105 windows per position, 840 per region and depth, as \
          §IV-A); 10 random 80 / 20 trials and 5-fold cross-validation, per depth and for all \
-         depths; one epoch per training (each tap seen 21 times), which is what keeps the \
-         {} trainings inside the ≲ 10 min budget on 2 shared cores. Two groupings: \
+         depths; the paper net trains one epoch (each tap seen 21 times), our variants six \
+         ({} trainings in all). Two groupings: \
          *samples* splits the augmented windows one by one, as §IV-A reads — the noisy copies \
          of a test tap are also in the training set; *taps* keeps a tap and its copies on one \
          side (leak-free).\n\n\
@@ -145,31 +145,10 @@ pub fn section(
          ![Table I side by side](learning/contact-cnn-table1.svg)\n\n",
         2 * table1.len()
     );
-    s += "### Our variant: a smaller net (4 filters, dense 32)\n\n\
-          | depth | Table I 10 × 80/20 | small, samples | ≥ Table I | Table I 5-fold | small, samples | ≥ Table I |\n\
-          |---|---:|---:|:---:|---:|---:|:---:|\n";
-    for row in table1 {
-        let case = case_name(row);
-        let (t, k) = (
-            ours(m, "small", "samples", "trials", &case),
-            ours(m, "small", "samples", "kfold", &case),
-        );
-        let tick = |a: f64, b: f64| if a >= b { "yes" } else { "no" };
-        s += &format!(
-            "| {} | {:.1} | {} | {} | {:.1} | {} | {} |\n",
-            row.depth_mm
-                .map_or_else(|| "all".to_owned(), |d| format!("{d:.1} mm")),
-            row.trial_mean_pct,
-            pct(t),
-            tick(t.0, row.trial_mean_pct),
-            row.kfold_mean_pct,
-            pct(k),
-            tick(k.0, row.kfold_mean_pct),
-        );
-    }
+    s += &variants_section(m, table1);
     s += "\n### Speed / accuracy\n\n\
-          | net | parameters | all depths, leak-free trial 0 (committed weights) | inference, plain arrays | inference, dfdx forward | one training epoch, 6048 windows |\n\
-          |---|---:|---:|---:|---:|---:|\n";
+          | net | filters, dense | parameters | epochs | all depths, leak-free trial 0 (committed weights) | inference, plain arrays | inference, dfdx forward | one training epoch, 6048 windows |\n\
+          |---|---|---:|---:|---:|---:|---:|---:|\n";
     for v in Variant::ALL {
         let t = |id: &str| {
             timings
@@ -180,10 +159,12 @@ pub fn section(
                     |x| crate::bench::human(x.mean_ns),
                 )
         };
+        let (filters, dense) = v.sizes();
         s += &format!(
-            "| {} | {} | {:.1} % | {} | {} | {} |\n",
+            "| {} | {filters}, {dense} | {} | {} | {:.1} % | {} | {} | {} |\n",
             v.name(),
             v.parameters(),
+            v.epochs(),
             100.0 * get(m, &committed_label(v), "accuracy"),
             t(&format!("/{}/infer", v.name())),
             t(&format!("/{}/infer_dfdx", v.name())),
@@ -196,6 +177,80 @@ pub fn section(
     s += &format!("{}\n\n", largest_confusions(m));
     s += WHY;
     s
+}
+
+/// Our variants against Table I, one table per protocol, and how many figures each meets.
+fn variants_section(m: &MetricsFile, table1: &[CnnAccuracyRow]) -> String {
+    let ours_v = [Variant::Small, Variant::Wide];
+    let mut s = String::from("### Our variants: a smaller net and a wider one\n\n");
+    for v in ours_v {
+        let (f, d) = v.sizes();
+        s += &format!(
+            "- **{}**: {f} filters, dense {d}, {} parameters, {} epochs.\n",
+            v.name(),
+            v.parameters(),
+            v.epochs()
+        );
+    }
+    s += "\n✓ marks a figure at or above Table I's.\n";
+    for (protocol, title) in [
+        ("trials", "10 × 80/20 trials"),
+        ("kfold", "5-fold cross-validation"),
+    ] {
+        s += &format!("\n{title}:\n\n| depth | Table I |");
+        for v in ours_v {
+            s += &format!(" {0}, samples | {0}, taps (leak-free) |", v.name());
+        }
+        s += "\n|---|---:|";
+        s += &"---:|---:|".repeat(ours_v.len());
+        s += "\n";
+        for row in table1 {
+            let case = case_name(row);
+            let paper = if protocol == "trials" {
+                row.trial_mean_pct
+            } else {
+                row.kfold_mean_pct
+            };
+            s += &format!(
+                "| {} | {paper:.1} |",
+                row.depth_mm
+                    .map_or_else(|| "all".to_owned(), |d| format!("{d:.1} mm"))
+            );
+            for v in ours_v {
+                for grouping in ["samples", "taps"] {
+                    let r = ours(m, v.name(), grouping, protocol, &case);
+                    let tick = if r.0 >= paper { " ✓" } else { "" };
+                    s += &format!(" {}{tick} |", pct(r));
+                }
+            }
+            s += "\n";
+        }
+    }
+    s += "\n";
+    for v in [Variant::Paper, Variant::Small, Variant::Wide] {
+        let met = |grouping: &str| meets(m, table1, v.name(), grouping);
+        s += &format!(
+            "- {} ≥ Table I: {} of {} figures on the paper's split, {} of {} leak-free.\n",
+            v.name(),
+            met("samples"),
+            2 * table1.len(),
+            met("taps"),
+            2 * table1.len()
+        );
+    }
+    s
+}
+
+/// How many of Table I's figures (both protocols, every case) `variant` on `grouping` meets.
+fn meets(m: &MetricsFile, table1: &[CnnAccuracyRow], variant: &str, grouping: &str) -> usize {
+    table1
+        .iter()
+        .map(|row| {
+            let case = case_name(row);
+            usize::from(ours(m, variant, grouping, "trials", &case).0 >= row.trial_mean_pct)
+                + usize::from(ours(m, variant, grouping, "kfold", &case).0 >= row.kfold_mean_pct)
+        })
+        .sum()
 }
 
 /// The three largest off-diagonal counts of the committed paper net, as a sentence.
@@ -245,14 +300,17 @@ chip has a short arm and tilts it little, so rows 8 / 9 and 16 / 17 are told apa
 arm.\n\
 - **Training length.** One epoch is the budget (each tap seen 21 times); the paper's MATLAB \
 run length is not stated.\n\
-- **Ours ≥ Table I at every depth: not met.** The paper net itself is at or above Table I at \
-the small depths (leaked split) and 0.0–2.1 points below from 1.2 mm (1.0 mm in 5-fold); \
-the smaller net (4 filters, dense 32, 18× smaller, ~6× faster) is at or above Table I only \
-at 0.4–0.8 mm in the 80 / 20 trials. The \
-pressure-channel variant (a 5th input row) is not built: the CNN's code is fixed at 4 input \
-rows through im2col, the frozen path, the augmentation and the dataset's window, and the \
-barometer only reads above noise from 0.8 mm (§III-C), so it could help only where the paper \
-net is already within 2 points.\n\
+- **Ours ≥ Table I.** Met on the paper's protocol (*samples* split) by the wide net, at \
+every depth and for all depths, in both the 80 / 20 trials and the 5 folds (the counts \
+above). That split lets a longer-trained net recognise the noisy copies of taps it has \
+already seen, so the figure measures the leak as much as the net: the leak-free columns are \
+the comparison to trust, and there the wide net meets Table I only where the tables \
+above tick it. Leak-free, the wide net is at or above the small one at every depth; the small \
+one (18× fewer parameters than the paper's, ~5× faster) is the cheap end of the trade. \
+The pressure channel (a 5th input row) is not built: the dataset stores the pressure peak, \
+not a series aligned with the window, and the barometer reads above noise only from 0.8 mm \
+(§III-C) and only for rows 8–19 there, so it could not help the shallow taps where the \
+leak-free figures fall short.\n\
 - **Inference times** in the table are the means of the last `cargo xtask bench contact_cnn` \
 (read from `target/criterion` when this section is written): one single-sample f32 inference, \
 the frozen plain-array path against dfdx.\n";
@@ -313,6 +371,8 @@ fn plot_table1(m: &MetricsFile, table1: &[CnnAccuracyRow], path: &Path) -> Resul
                     ("paper", "samples", "paper net, samples split", RED),
                     ("paper", "taps", "paper net, leak-free", BLUE),
                     ("small", "samples", "small net, samples split", GREEN),
+                    ("wide", "samples", "wide net, samples split", MAGENTA),
+                    ("wide", "taps", "wide net, leak-free", CYAN),
                 ]
                 .into_iter()
                 .map(|(v, g, name, color)| {

@@ -35,7 +35,7 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("contact_cnn_train");
     group.sample_size(10).warm_up_time(Duration::from_millis(1));
     for variant in Variant::ALL {
-        let mut config = cnn_eval::recipe(SEED, String::new());
+        let mut config = cnn_eval::recipe(variant, SEED, String::new());
         config.epochs = 1;
         group.bench_function(format!("{}/epoch_6048", variant.name()), |b| {
             b.iter(|| ContactCnn::train(black_box(&w), &r, variant, &config))

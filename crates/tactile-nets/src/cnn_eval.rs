@@ -256,13 +256,11 @@ pub fn confusion(
     Ok(m)
 }
 
-/// The training recipe (sized for the ≲ 10 min budget of the full protocol, see
-/// `docs/learning.md`); `label` names the progress bar.
-pub fn recipe(seed: u64, label: String) -> TrainConfig {
+/// The training recipe of `variant` ([`Variant::epochs`] passes over the augmented windows,
+/// each tap seen 21 times per pass); `label` names the progress bar.
+pub fn recipe(variant: Variant, seed: u64, label: String) -> TrainConfig {
     TrainConfig {
-        // One pass over the augmented windows (each tap seen 21 times): what the ≲ 10 min
-        // budget allows for 135 trainings per (variant, grouping) on 2 shared cores.
-        epochs: 1,
+        epochs: variant.epochs(),
         batch_size: 32,
         learning_rate: 1e-3,
         l2: 0.0,
@@ -303,7 +301,7 @@ pub fn run_job(
     let (train, test) = split(data, job.protocol, job.grouping, job.run, seed);
     let (w, r) = data.pick(&train);
     let s = run_seed(seed, job.case, job.protocol, job.grouping, job.run);
-    let mut config = recipe(s, String::new());
+    let mut config = recipe(job.variant, s, String::new());
     adjust(&mut config);
     let (model, _) = ContactCnn::train(&w, &r, job.variant, &config)?;
     Ok((accuracy(&model, data, &test)?, model))

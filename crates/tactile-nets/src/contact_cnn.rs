@@ -1,7 +1,7 @@
 //! The contact CNN of seed 002 §IV-A: a 4 × 38 ICM-20789 window (acc x, acc y, gyro x,
 //! gyro y) → which of the pad's 9 regions was touched.
 //!
-//! # Architecture ([`Variant::Paper`])
+//! # Architecture ([`Variant::Paper`]; ours: [`Variant::Small`], [`Variant::Wide`])
 //! The paper's Figure 8B: one 3 × 3 convolution, ReLU, 2 × 2 max-pool, flatten, a dense layer
 //! of 320, a dense layer of 9 and softmax. What the paper leaves open, and what we chose:
 //! - filters: not stated; 8;
@@ -61,17 +61,20 @@ pub enum Variant {
     Paper,
     /// Smaller and faster: 4 filters, dense 32.
     Small,
+    /// More filters: 16 filters, dense 64.
+    Wide,
 }
 
 impl Variant {
     /// Every variant.
-    pub const ALL: [Variant; 2] = [Variant::Paper, Variant::Small];
+    pub const ALL: [Variant; 3] = [Variant::Paper, Variant::Small, Variant::Wide];
 
     /// File and metrics name.
     pub fn name(self) -> &'static str {
         match self {
             Variant::Paper => "paper",
             Variant::Small => "small",
+            Variant::Wide => "wide",
         }
     }
 
@@ -85,6 +88,18 @@ impl Variant {
         match self {
             Variant::Paper => (8, 320),
             Variant::Small => (4, 32),
+            Variant::Wide => (16, 64),
+        }
+    }
+
+    /// Training epochs of the protocol and the committed model. The paper net's single pass
+    /// keeps its 270 trainings in budget and is what the Table I reproduction uses (MATLAB's
+    /// run length is not stated); our variants train 6 passes, where their held-out accuracy
+    /// stopped rising in the trials of `cargo xtask train contact-cnn --epochs N`.
+    pub fn epochs(self) -> usize {
+        match self {
+            Variant::Paper => 1,
+            Variant::Small | Variant::Wide => 6,
         }
     }
 
@@ -98,12 +113,14 @@ impl Variant {
 enum Body {
     Paper(Net<8, { 8 * POOLED }, 320>),
     Small(Net<4, { 4 * POOLED }, 32>),
+    Wide(Net<16, { 16 * POOLED }, 64>),
 }
 
 /// The frozen (plain-array) form of a [`Body`].
 enum Fast {
     Paper(FrozenCnn<8, { 8 * POOLED }, 320>),
     Small(FrozenCnn<4, { 4 * POOLED }, 32>),
+    Wide(FrozenCnn<16, { 16 * POOLED }, 64>),
 }
 
 /// Runs `$e` with `$n` bound to the concrete network inside a [`Body`].
@@ -112,6 +129,7 @@ macro_rules! with_net {
         match $body {
             Body::Paper($n) => $e,
             Body::Small($n) => $e,
+            Body::Wide($n) => $e,
         }
     };
 }
@@ -121,6 +139,7 @@ impl Fast {
         Ok(match body {
             Body::Paper(n) => Fast::Paper(FrozenCnn::new(&n.0.1, &n.1)?),
             Body::Small(n) => Fast::Small(FrozenCnn::new(&n.0.1, &n.1)?),
+            Body::Wide(n) => Fast::Wide(FrozenCnn::new(&n.0.1, &n.1)?),
         })
     }
 
@@ -128,6 +147,7 @@ impl Fast {
         match self {
             Fast::Paper(f) => f.logits(z),
             Fast::Small(f) => f.logits(z),
+            Fast::Wide(f) => f.logits(z),
         }
     }
 }
@@ -155,6 +175,7 @@ fn build(variant: Variant, dev: &Cpu) -> Body {
     match variant {
         Variant::Paper => Body::Paper(dev.build_module::<Arch<8, { 8 * POOLED }, 320>, f32>()),
         Variant::Small => Body::Small(dev.build_module::<Arch<4, { 4 * POOLED }, 32>, f32>()),
+        Variant::Wide => Body::Wide(dev.build_module::<Arch<16, { 16 * POOLED }, 64>, f32>()),
     }
 }
 

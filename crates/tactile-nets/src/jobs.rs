@@ -194,10 +194,13 @@ pub fn softness(root: &Path, only: Option<usize>, dry_run: bool) -> Result<Vec<P
 }
 
 /// The (variant, grouping) pairs the contact CNN protocol runs.
-pub const CNN_RUNS: [(Variant, Grouping); 3] = [
+pub const CNN_RUNS: [(Variant, Grouping); 6] = [
     (Variant::Paper, Grouping::Samples),
     (Variant::Paper, Grouping::Taps),
     (Variant::Small, Grouping::Samples),
+    (Variant::Small, Grouping::Taps),
+    (Variant::Wide, Grouping::Samples),
+    (Variant::Wide, Grouping::Taps),
 ];
 /// Threads the contact CNN protocol runs on.
 pub const CNN_THREADS: usize = 2;

@@ -70,7 +70,7 @@ fn training_is_deterministic_save_load_bit_identical_and_frozen_matches_dfdx()
 -> Result<(), NetError> {
     let taps = taps();
     let (w, r) = depth_set(&taps);
-    for variant in [Variant::Paper, Variant::Small] {
+    for variant in Variant::ALL {
         let (a, log_a) = ContactCnn::train(&w, &r, variant, &tiny(3))?;
         let (b, log_b) = ContactCnn::train(&w, &r, variant, &tiny(3))?;
         let (c, _) = ContactCnn::train(&w, &r, variant, &tiny(4))?;
@@ -157,12 +157,14 @@ fn committed_metrics_match_a_re_evaluation_of_the_committed_weights() -> Result<
     let committed = MetricsFile::from_json(&std::fs::read_to_string(
         root().join(MODEL_DIR).join(METRICS_FILE),
     )?)?;
-    // Every Table I row × protocol of the paper's net is committed.
-    for grouping in ["samples", "taps"] {
-        for protocol in ["trials", "kfold"] {
-            for case in Case::all(&taps) {
-                let label = format!("paper/{grouping}/{protocol}/{}", case.name());
-                assert!(committed.row(&label).is_some(), "{label} not committed");
+    // Every Table I row × protocol × grouping of every net is committed.
+    for variant in Variant::ALL {
+        for grouping in ["samples", "taps"] {
+            for protocol in ["trials", "kfold"] {
+                for case in Case::all(&taps) {
+                    let label = format!("{}/{grouping}/{protocol}/{}", variant.name(), case.name());
+                    assert!(committed.row(&label).is_some(), "{label} not committed");
+                }
             }
         }
     }
