@@ -46,7 +46,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         let kind = ObjectKind::from_name(&r.object).ok_or("a Table 5 object")?;
         let (lo, hi) = (r.torque_min as u16, r.torque_max as u16);
         let object = ObjectParams::calibrated(kind, lo, hi, &rig)?;
-        let (o, l, w) = support::hold(&r.object, object, TorqueBand::new(lo, hi)?, 7);
+        let (o, l, w) = support::hold(&r.object, object, TorqueBand::new(lo, hi)?, 7)?;
         row(&o);
         plot(
             &out.join(format!("{}.svg", r.object)),
@@ -57,7 +57,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     }
     for (i, r) in random_objects(42, 20, &rig)?.into_iter().enumerate() {
         let band = TorqueBand::new(r.range.min, r.range.max)?;
-        let (o, _, _) = support::hold(&r.params.name.clone(), r.params, band, 100 + i as u64);
+        let (o, _, _) = support::hold(&r.params.name.clone(), r.params, band, 100 + i as u64)?;
         row(&o);
     }
     std::fs::write(out.join("results.csv"), &csv)?;

@@ -96,7 +96,7 @@ fn table5_objects_held_two_minutes() {
         let (lo, hi) = (row.torque_min as u16, row.torque_max as u16);
         let object = ObjectParams::calibrated(kind, lo, hi, &rig).expect("calibrates");
         let band = TorqueBand::new(lo, hi).expect("Table 5 band");
-        let (o, _, _) = support::hold(&row.object, object, band, 7);
+        let (o, _, _) = support::hold(&row.object, object, band, 7).expect("held");
         check(&o);
     }
 }
@@ -110,7 +110,8 @@ fn twenty_random_objects_held_two_minutes() {
         .enumerate()
     {
         let band = TorqueBand::new(r.range.min, r.range.max).expect("derived band");
-        let (o, _, _) = support::hold(&r.params.name.clone(), r.params, band, 100 + i as u64);
+        let (o, _, _) =
+            support::hold(&r.params.name.clone(), r.params, band, 100 + i as u64).expect("held");
         check(&o);
     }
 }

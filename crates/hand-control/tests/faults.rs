@@ -33,11 +33,11 @@ fn every_cycle_logged(l: &SimLoop, until_s: f64) {
 fn overload_at_full_torque_goes_torque_off_in_the_same_cycle() {
     // §7: "after setting the torque to 100 %, the current continued to increase so that the
     // grasping action was released". The full band lets the policy reach 1023 on a stiff cube.
-    let w = support::world(cube(), 7);
+    let w = support::world(cube(), 7).expect("cube world");
     let mut cfg = support::config(TorqueBand::FULL);
     cfg.target_pressure_pa = 5_000.0; // unreachable: the policy saturates at full torque
     cfg.safe_action = SafeAction::TorqueOff;
-    let mut l = support::grasp_loop(&w, cfg);
+    let mut l = support::grasp_loop(&w, cfg).expect("valid config");
     l.run_until(6_000_000);
     every_cycle_logged(&l, 6.0);
     let i = support::safe_on_first_fault(
@@ -62,7 +62,7 @@ fn overload_at_full_torque_goes_torque_off_in_the_same_cycle() {
 
 #[test]
 fn overload_recovers_by_reboot_once_the_load_is_gone() {
-    let w = support::world(cube(), 7);
+    let w = support::world(cube(), 7).expect("cube world");
     // Lifted before the overload can latch (≥ 1 s at ≥ 90 % load), so torque-off drops the cube
     // (§7's release) and the load is really gone when the loop reboots.
     w.borrow_mut().lift_at_s = 0.5;
@@ -73,7 +73,7 @@ fn overload_recovers_by_reboot_once_the_load_is_gone() {
         cooldown_us: 500_000,
         max_reboots: 1,
     };
-    let mut l = support::grasp_loop(&w, cfg);
+    let mut l = support::grasp_loop(&w, cfg).expect("valid config");
     l.run_until(12_000_000);
     let i = support::first_fault(l.log());
     let reboot = l.log().iter().position(|s| s.rebooted).expect("rebooted");
@@ -95,7 +95,7 @@ fn overload_recovers_by_reboot_once_the_load_is_gone() {
 
 /// Runs a held cube with `kind` injected in `from_s..until_s`; returns the loop.
 fn with_injection(kind: Injected, from_s: f64, until_s: f64, cfg_recovery: Recovery) -> SimLoop {
-    let w = support::world(cube(), 7);
+    let w = support::world(cube(), 7).expect("cube world");
     w.borrow_mut().injections.push(Injection {
         from_s,
         until_s,
@@ -103,7 +103,7 @@ fn with_injection(kind: Injected, from_s: f64, until_s: f64, cfg_recovery: Recov
     });
     let mut cfg = support::config(cube_band());
     cfg.recovery = cfg_recovery;
-    let mut l = support::grasp_loop(&w, cfg);
+    let mut l = support::grasp_loop(&w, cfg).expect("valid config");
     l.run_until(8_000_000);
     every_cycle_logged(&l, 8.0);
     // The cube is still held: the safe state holds the last safe effort.
@@ -182,10 +182,10 @@ fn servo_that_stops_answering_keeps_the_loop_safe_until_it_answers() {
 
 #[test]
 fn out_of_range_goal_refused_before_sending_or_by_the_servo() {
-    let w = support::world(cube(), 7);
+    let w = support::world(cube(), 7).expect("cube world");
     // The servo's own limit is tighter than the loop's (a mis-set Max Position Limit).
     w.borrow_mut().servo_goal_limits_rad = (0.0, 0.3);
-    let mut l = support::grasp_loop(&w, support::config(cube_band()));
+    let mut l = support::grasp_loop(&w, support::config(cube_band())).expect("valid config");
     l.run_until(2_000_000);
     // Outside the loop's own limits: a typed error, nothing sent, the loop unaffected.
     assert!(l.set_goal_rad(0.6).is_err());
@@ -232,10 +232,10 @@ fn tactile_bus_failure_holds_the_grip_and_resumes() {
 #[test]
 fn a_long_run_keeps_a_bounded_log_of_the_newest_cycles_and_counts_the_rest() {
     // A loop left running for hours must not grow its memory with every cycle.
-    let w = support::world(cube(), 7);
+    let w = support::world(cube(), 7).expect("cube world");
     let mut cfg = support::config(cube_band());
     cfg.log_capacity = 100;
-    let mut l = support::grasp_loop(&w, cfg);
+    let mut l = support::grasp_loop(&w, cfg).expect("valid config");
     l.run_until(8_000_000);
     let kept = l.log().len();
     assert!((50..=100).contains(&kept), "kept {kept}");
@@ -259,4 +259,19 @@ fn a_long_run_keeps_a_bounded_log_of_the_newest_cycles_and_counts_the_rest() {
         .validate()
         .is_err()
     );
+}
+
+#[test]
+fn a_world_that_cannot_be_built_is_a_typed_error_not_a_panic() {
+    let mut object = cube();
+    object.mass_kg = f64::NAN;
+    let e = support::world(object.clone(), 7)
+        .err()
+        .expect("a NaN mass is refused");
+    assert!(!e.to_string().is_empty());
+    // The summarising entry point reports it the same way.
+    let e = support::hold_for("nan cube", object, cube_band(), 7, 1.0)
+        .err()
+        .expect("refused");
+    assert!(matches!(e, support::RigError::Sim(_)), "{e}");
 }

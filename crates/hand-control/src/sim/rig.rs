@@ -8,7 +8,8 @@
 //! status packet, CRC mismatch, silence, range error) are injected by time window.
 
 use crate::grasp_loop::{
-    FaultKind, GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator, Sample, TorqueBand,
+    ConfigError, FaultKind, GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator, Sample,
+    TorqueBand,
 };
 use hand_sim::SimError;
 use hand_sim::fingertip::{ContactPatch, Fingertip, FingertipConfig};
@@ -69,6 +70,25 @@ pub enum HandError {
     Sim(SimError),
 }
 
+/// Why a simulated grasp could not be set up, run or summarised.
+#[derive(Debug, thiserror::Error)]
+pub enum RigError {
+    /// The rig, its object or the fingertip refused a value, or a physics step failed.
+    #[error("simulated grasp world: {0}")]
+    Sim(#[from] SimError),
+    /// The loop refused its configuration.
+    #[error("grasp loop configuration: {0}")]
+    Config(#[from] ConfigError),
+    /// The loop never sent a torque, so there is nothing to settle (it faulted from the start).
+    #[error("the grasp loop sent no torque in {cycles} cycles (first fault: {fault:?})")]
+    NoTorque {
+        /// Cycles run.
+        cycles: usize,
+        /// The first fault logged, if any.
+        fault: Option<FaultKind>,
+    },
+}
+
 /// One trace point of the physics (truth the loop never sees).
 #[derive(Debug, Clone, Copy)]
 pub struct Truth {
@@ -102,6 +122,9 @@ pub struct World {
     pub trace: Vec<Truth>,
     /// When the arm lifts the object, s ([`LIFT_AT_S`] unless a test needs it earlier).
     pub lift_at_s: f64,
+    /// The first physics step that failed: the world stops there (the clock cannot return
+    /// an error to the loop), and [`hold_for`] reports it.
+    pub physics_error: Option<SimError>,
 }
 
 impl World {
@@ -156,14 +179,16 @@ impl World {
 pub type Shared = Rc<RefCell<World>>;
 
 /// A world with `object` between open fingers and a fingertip seeded with `seed`.
-pub fn world(object: ObjectParams, seed: u64) -> Shared {
-    let rig = GraspRig::new(object, RigParams::default()).expect("valid rig");
+///
+/// Errors: the rig or the fingertip refusing the object or its configuration.
+pub fn world(object: ObjectParams, seed: u64) -> Result<Shared, SimError> {
+    let rig = GraspRig::new(object, RigParams::default())?;
     let config = FingertipConfig {
         osr: OSR,
         ..FingertipConfig::default()
     };
-    let tip = Fingertip::new(&config, seed).expect("valid fingertip");
-    Rc::new(RefCell::new(World {
+    let tip = Fingertip::new(&config, seed)?;
+    Ok(Rc::new(RefCell::new(World {
         rig,
         tip,
         t_ns: 0,
@@ -174,7 +199,8 @@ pub fn world(object: ObjectParams, seed: u64) -> Shared {
         ever_slipping: false,
         trace: Vec::new(),
         lift_at_s: LIFT_AT_S,
-    }))
+        physics_error: None,
+    })))
 }
 
 /// The fingertip as the loop's tactile source.
@@ -283,11 +309,14 @@ impl LoopClock for Clock {
     }
 
     fn wait_until_us(&mut self, t_us: u64) {
-        // A physics error here is a test-setup bug (a bad dt), not device data.
-        self.0
-            .borrow_mut()
-            .advance_to(t_us * 1000)
-            .expect("physics step");
+        // The clock cannot hand an error to the loop: keep the first one and stop the world
+        // there (time stands still; the loop's own ticks still advance, so a run ends) for `hold_for` to report.
+        let mut w = self.0.borrow_mut();
+        if w.physics_error.is_none() {
+            if let Err(e) = w.advance_to(t_us * 1000) {
+                w.physics_error = Some(e);
+            }
+        }
     }
 }
 
@@ -307,8 +336,8 @@ pub fn config(band: TorqueBand) -> LoopConfig {
     }
 }
 
-/// A loop over `world` with `config`.
-pub fn grasp_loop(world: &Shared, config: LoopConfig) -> SimLoop {
+/// A loop over `world` with `config` (errors: the loop refusing `config`).
+pub fn grasp_loop(world: &Shared, config: LoopConfig) -> Result<SimLoop, ConfigError> {
     GraspLoop::new(
         Source(world.clone()),
         fuzzy_mamdani::grasp_controller()
@@ -317,19 +346,23 @@ pub fn grasp_loop(world: &Shared, config: LoopConfig) -> SimLoop {
         Clock(world.clone()),
         config,
     )
-    .expect("valid config")
 }
 
 /// Runs the full Table 5 protocol: close, lift at 3 s, hold 120 s.
-pub fn run_hold(world: &Shared, config: LoopConfig) -> SimLoop {
+pub fn run_hold(world: &Shared, config: LoopConfig) -> Result<SimLoop, RigError> {
     run_hold_for(world, config, HOLD_S)
 }
 
-/// Close, lift at 3 s, hold `hold_s` seconds.
-pub fn run_hold_for(world: &Shared, config: LoopConfig, hold_s: f64) -> SimLoop {
-    let mut l = grasp_loop(world, config);
+/// Close, lift at 3 s, hold `hold_s` seconds. Errors: the configuration, or a physics step
+/// that failed on the way (the world stopped there).
+pub fn run_hold_for(world: &Shared, config: LoopConfig, hold_s: f64) -> Result<SimLoop, RigError> {
+    let mut l = grasp_loop(world, config)?;
+    // The loop's ticks advance even over a stopped world, so this ends either way.
     l.run_until(((LIFT_AT_S + hold_s) * 1e6) as u64);
-    l
+    match world.borrow_mut().physics_error.take() {
+        Some(e) => Err(e.into()),
+        None => Ok(l),
+    }
 }
 
 /// Tolerance of the settling time, counts: 2 % of the 0…1023 scale (the MS5611 noise through
@@ -381,7 +414,7 @@ pub fn hold(
     object: ObjectParams,
     band: TorqueBand,
     seed: u64,
-) -> (Outcome, SimLoop, Shared) {
+) -> Result<(Outcome, SimLoop, Shared), RigError> {
     hold_for(name, object, band, seed, HOLD_S)
 }
 
@@ -392,11 +425,15 @@ pub fn hold_for(
     band: TorqueBand,
     seed: u64,
     hold_s: f64,
-) -> (Outcome, SimLoop, Shared) {
-    let w = world(object, seed);
-    let l = run_hold_for(&w, config(band), hold_s);
-    let st = crate::grasp_loop::settling(l.log(), SETTLE_WINDOW_US, SETTLE_TOL_RAW)
-        .expect("the loop sent torques");
+) -> Result<(Outcome, SimLoop, Shared), RigError> {
+    let w = world(object, seed)?;
+    let l = run_hold_for(&w, config(band), hold_s)?;
+    let st = crate::grasp_loop::settling(l.log(), SETTLE_WINDOW_US, SETTLE_TOL_RAW).ok_or_else(
+        || RigError::NoTorque {
+            cycles: l.log().len(),
+            fault: l.log().iter().find_map(|s| s.fault),
+        },
+    )?;
     let s = w.borrow().state();
     let last = l.log().last().and_then(|s| s.estimate);
     let o = Outcome {
@@ -417,7 +454,7 @@ pub fn hold_for(
         missed_ticks: l.missed_ticks(),
         mode: l.mode(),
     };
-    (o, l, w)
+    Ok((o, l, w))
 }
 
 /// Asserts the log's first fault is `kind` and that its own cycle sent `action` and ended in

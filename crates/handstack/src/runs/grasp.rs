@@ -59,7 +59,13 @@ pub fn run(scene: &Scene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part, RunE
                     reason: format!("no simulated object {name}"),
                 })?;
                 let object = ObjectParams::calibrated(kind, lo, hi, &RigParams::default())?;
-                let (o, l, _) = rig::hold_for(name, object, band, exp.seed, hold_s);
+                let (o, l, _) =
+                    rig::hold_for(name, object, band, exp.seed, hold_s).map_err(|e| {
+                        RunError::Device {
+                            device: "grasp",
+                            reason: format!("{name}: {e}"),
+                        }
+                    })?;
                 let held = !(o.slipped || o.damaged || o.dropped) && o.faults == 0;
                 part.figures.push(measured(
                     &format!("{name}_peak_force_n"),
