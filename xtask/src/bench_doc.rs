@@ -140,9 +140,9 @@ pub fn document(command: &str, machine: &Machine, measurements: &[Measurement]) 
         s,
         "Written by `{command}` from criterion's estimates of that run (mean per iteration and \
          its 95 % confidence interval); do not edit by hand.\n\n\
-         - machine: {} × {} (logical cores), shared with other engineers' builds — 1-minute load \
-         average {} at the start, {} at the end: compare rows with each other, not with another \
-         machine;\n- date: {} (UTC); commit: `{}`.\n",
+         - machine: {} × {} (logical cores) of a shared virtual machine — 1-minute load \
+         average {} at the start, {} at the end (the bench itself adds about 1; other tenants of \
+         the host do not show in it): compare rows with each other, not with another machine;\n- date: {} (UTC); commit: `{}`.\n",
         machine.cores, machine.cpu, machine.load.0, machine.load.1, machine.date, machine.commit
     );
     if measurements
