@@ -227,7 +227,7 @@ fn variants_section(m: &MetricsFile, table1: &[CnnAccuracyRow]) -> String {
         }
     }
     s += "\n";
-    for v in [Variant::Paper, Variant::Small, Variant::Wide] {
+    for v in Variant::ALL {
         let met = |grouping: &str| meets(m, table1, v.name(), grouping);
         s += &format!(
             "- {} ≥ Table I: {} of {} figures on the paper's split, {} of {} leak-free.\n",

@@ -53,7 +53,6 @@ where
     rebooted_since_safe: bool,
     reboots: u32,
     log: Vec<Sample<N>>,
-    log_dropped: u64,
     events: Vec<FaultEvent<S::Error, P::Error, A::Error>>,
     events_dropped: u64,
 }
@@ -109,7 +108,6 @@ where
             rebooted_since_safe: false,
             reboots: 0,
             log: Vec::new(),
-            log_dropped: 0,
             events: Vec::new(),
             events_dropped: 0,
         })
@@ -186,7 +184,7 @@ where
         }
         s.mode = self.mode;
         self.cycle += 1;
-        self.log_dropped += push_bounded(&mut self.log, s, self.config.log_capacity);
+        push_bounded(&mut self.log, s, self.config.log_capacity);
         // Just pushed, so the log is not empty.
         &self.log[self.log.len() - 1]
     }
@@ -366,7 +364,8 @@ where
 
     /// Cycles dropped from the front of the log to keep it within its capacity.
     pub fn log_dropped(&self) -> u64 {
-        self.log_dropped
+        // Every cycle run is either kept or dropped.
+        self.cycle - self.log.len() as u64
     }
 
     /// The faults reported so far (the newest, bounded as the log).

@@ -310,7 +310,8 @@ impl LoopClock for Clock {
 
     fn wait_until_us(&mut self, t_us: u64) {
         // The clock cannot hand an error to the loop: keep the first one and stop the world
-        // there (time stands still; the loop's own ticks still advance, so a run ends) for `hold_for` to report.
+        // there for `hold_for` to report (time stands still; the loop's own ticks still
+        // advance, so a run ends).
         let mut w = self.0.borrow_mut();
         if w.physics_error.is_none() {
             if let Err(e) = w.advance_to(t_us * 1000) {
