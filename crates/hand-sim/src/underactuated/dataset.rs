@@ -33,6 +33,9 @@ pub const IRREGULAR_TESTS: usize = 30;
 pub const SAMPLE_HZ: f64 = 10.0;
 /// Chance that a finger of a household object meets a feature of the adjacent class.
 pub const FEATURE_PROBABILITY: f64 = 0.3;
+/// Spread (σ of the natural log) of a household finger's local modulus around the object's
+/// overall one, away from a feature.
+pub const LOCAL_MODULUS_SD: f64 = 0.5;
 
 /// Which part of the protocol a grasp belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -89,7 +92,7 @@ pub struct Grasp {
 
 /// Overall moduli, Pa, household objects of each class are drawn from (log-uniform); gaps
 /// between the bands keep every overall label unambiguous.
-fn household_band(class: Softness) -> (f64, f64) {
+pub fn household_band(class: Softness) -> (f64, f64) {
     match class {
         Softness::Soft => (8e3, 45e3),
         Softness::Moderate => (60e3, 0.5e6),
@@ -126,22 +129,27 @@ fn regular(
     }
 }
 
-/// A household object of overall class `class`.
-fn household(rng: &mut ChaCha8Rng, class: Softness) -> ObjectConfig {
-    let shape = Shape::ALL[rng.random_range(0..Shape::ALL.len())];
-    let size_mm = rng.random_range(55.0..110.0);
-    let overall = log_uniform(rng, household_band(class));
-    let adjacent = match class {
+/// The classes a household object's feature is drawn from, each with chance ½: the neighbours
+/// of `class` on the soft → hard scale.
+pub fn adjacent(class: Softness) -> [Softness; 2] {
+    match class {
         Softness::Soft => [Softness::Moderate; 2],
         Softness::Moderate => [Softness::Soft, Softness::Hard],
         Softness::Hard => [Softness::Moderate; 2],
-    };
+    }
+}
+
+/// A household object of overall class `class`.
+pub(super) fn household(rng: &mut ChaCha8Rng, class: Softness) -> ObjectConfig {
+    let shape = Shape::ALL[rng.random_range(0..Shape::ALL.len())];
+    let size_mm = rng.random_range(55.0..110.0);
+    let overall = log_uniform(rng, household_band(class));
     let local_modulus_factor = std::array::from_fn(|_| {
         if rng.random::<f64>() < FEATURE_PROBABILITY {
-            let other = adjacent[rng.random_range(0..2)];
+            let other = adjacent(class)[rng.random_range(0..2)];
             log_uniform(rng, household_band(other)) / overall
         } else {
-            (0.5 * normal(rng)).exp()
+            (LOCAL_MODULUS_SD * normal(rng)).exp()
         }
     });
     ObjectConfig {

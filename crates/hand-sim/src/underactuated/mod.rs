@@ -16,9 +16,11 @@
 //! - [`fsr`], [`pot`], [`adc`]: readings leave the model only as 10-bit codes, decoded by the
 //!   nominal sensor laws as the paper's Arduino + Matlab did.
 //! - [`grasp`] records a series from first contact to 14 s; [`dataset`] builds the paper's
-//!   training and test grasps; [`separability`] is a nearest-centroid sanity check.
+//!   training and test grasps; [`separability`] is a nearest-centroid sanity check, a floor;
+//!   [`ceiling`] the Bayes rule on the exact local moduli, the most a classifier can expect.
 
 pub mod adc;
+pub mod ceiling;
 pub mod config;
 pub mod contact;
 pub mod dataset;

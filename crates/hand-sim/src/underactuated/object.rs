@@ -157,6 +157,11 @@ impl ObjectConfig {
             .unwrap_or(self.material.nominal_modulus_pa())
     }
 
+    /// The modulus each finger meets, Pa: [`modulus`](Self::modulus) × its local factor.
+    pub fn local_moduli(&self) -> [f64; 4] {
+        self.local_modulus_factor.map(|f| self.modulus() * f)
+    }
+
     /// Checks every value; `palm_radius_m` bounds the size that fits the open hand.
     pub fn validate(&self, palm_radius_m: f64) -> Result<(), SimError> {
         non_negative("object.size_mm", self.size_mm)?;
@@ -201,8 +206,12 @@ impl ObjectConfig {
             if self.size_mm <= 0.0 || w <= 0.0 || gap > finger.proximal_contact_m {
                 return None;
             }
-            let modulus = self.modulus() * self.local_modulus_factor[i];
-            let law = ContactLaw::new(modulus, w, self.shape.area_factor(), &finger.pad);
+            let law = ContactLaw::new(
+                self.local_moduli()[i],
+                w,
+                self.shape.area_factor(),
+                &finger.pad,
+            );
             let wrap = self.shape.distal_wrap_rad(w) + pose.wrap_jitter_rad[i];
             Some(FingerContact {
                 proximal_touch_rad: (gap / finger.proximal_contact_m).clamp(0.0, 1.0).asin(),
