@@ -455,6 +455,13 @@ fn dataset_row(root: &Path, file: &str, set: &str) -> Result<Vec<f64>> {
         .collect()
 }
 
+/// A row of `ceiling.csv`: objects, correct, accuracy.
+fn ceiling_row(root: &Path, set: &str) -> Result<[f64; 3]> {
+    dataset_row(root, "ceiling.csv", set)?
+        .try_into()
+        .map_err(|_| anyhow::anyhow!("ceiling.csv: `{set}` needs objects, correct, accuracy"))
+}
+
 /// The selected LM net's irregular-set answers against the Bayes rule's
 /// (`hand_sim::underactuated::ceiling`), object by object.
 #[derive(Debug, Default)]
@@ -500,15 +507,9 @@ fn differ(
     paper: &[SoftnessAccuracyRow],
 ) -> Result<String> {
     let floor = 100.0 * dataset_row(root, "separability.csv", "test_irregular")?[1];
-    let [n, k, ceiling] = dataset_row(root, "ceiling.csv", "test_irregular")?[..] else {
-        anyhow::bail!("ceiling.csv: test_irregular needs objects, correct, accuracy");
-    };
-    let [fresh, _, expected] = dataset_row(root, "ceiling.csv", "expected")?[..] else {
-        anyhow::bail!("ceiling.csv: expected needs objects, correct, accuracy");
-    };
-    let [train_n, train_k, _] = dataset_row(root, "ceiling.csv", "train")?[..] else {
-        anyhow::bail!("ceiling.csv: train needs objects, correct, accuracy");
-    };
+    let [n, k, ceiling] = ceiling_row(root, "test_irregular")?;
+    let [fresh, _, expected] = ceiling_row(root, "expected")?;
+    let [train_n, train_k, _] = ceiling_row(root, "train")?;
     // Chance that n fresh objects hold at most k the Bayes rule gets right: binomial tail.
     let choose = |j: f64| (0..j as u32).fold(1.0, |c, i| c * (n - f64::from(i)) / f64::from(i + 1));
     let at_most: f64 = (0..=k as u32)
@@ -521,7 +522,7 @@ fn differ(
         .map_or(f64::NAN, |r| r.accuracy_pct);
     let needed = (target / 100.0 * n).round();
     let lm = selected_seed(m, "lm");
-    let paper_net = value(m, &row_label("lm", lm), "irregular_accuracy") * n;
+    let paper_net = (value(m, &row_label("lm", lm), "irregular_accuracy") * n).round();
     let vs = against_ceiling(root, m)?;
     let mut s = String::new();
     let acc = |name: &str| 100.0 * validation["accuracy"][name].as_f64().unwrap_or(f64::NAN);
