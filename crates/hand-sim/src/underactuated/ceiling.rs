@@ -41,20 +41,22 @@ fn ln_add_exp(a: f64, b: f64) -> f64 {
 fn ln_evidence(ln_local: &[f64; 4], class: Softness) -> f64 {
     let (lo, hi) = household_band(class);
     let (lo, hi) = (lo.ln(), hi.ln());
-    let ln_feature = |x: f64| {
+    // A finger on a feature does not depend on the overall modulus: once per finger.
+    let ln_feature = ln_local.map(|x| {
         let [a, b] = adjacent(class).map(|c| ln_band_density(x, household_band(c)));
         ln_add_exp(a, b) + (0.5 * FEATURE_PROBABILITY).ln()
-    };
-    let ln_norm = -(LOCAL_MODULUS_SD * (2.0 * std::f64::consts::PI).sqrt()).ln();
+    });
+    let ln_spread = (1.0 - FEATURE_PROBABILITY).ln()
+        - (LOCAL_MODULUS_SD * (2.0 * std::f64::consts::PI).sqrt()).ln();
     let mut acc = f64::NEG_INFINITY;
     for k in 0..GRID {
         let g = lo + (hi - lo) * (k as f64 + 0.5) / GRID as f64;
         let ln_lik: f64 = ln_local
             .iter()
-            .map(|&x| {
+            .zip(ln_feature)
+            .map(|(&x, feature)| {
                 let z = (x - g) / LOCAL_MODULUS_SD;
-                let spread = (1.0 - FEATURE_PROBABILITY).ln() + ln_norm - 0.5 * z * z;
-                ln_add_exp(ln_feature(x), spread)
+                ln_add_exp(feature, ln_spread - 0.5 * z * z)
             })
             .sum();
         acc = ln_add_exp(acc, ln_lik);
@@ -98,7 +100,7 @@ pub fn bayes_class(local_moduli_pa: [f64; 4]) -> Result<Softness, SimError> {
 }
 
 /// How many objects the Bayes rule gets right.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Ceiling {
     /// Household objects counted.
     pub objects: usize,
@@ -116,10 +118,7 @@ impl Ceiling {
 /// The ceiling on the household objects of `set` in `specs` (other kinds are skipped: model
 /// and regular objects meet one modulus on every finger).
 pub fn of_set(specs: &[GraspSpec], set: Set) -> Result<Ceiling, SimError> {
-    let mut c = Ceiling {
-        objects: 0,
-        correct: 0,
-    };
+    let mut c = Ceiling::default();
     for s in specs
         .iter()
         .filter(|s| s.set == set && s.kind == "household")
@@ -136,10 +135,7 @@ pub fn of_set(specs: &[GraspSpec], set: Set) -> Result<Ceiling, SimError> {
 /// drawn with `seed` by the dataset's own generator.
 pub fn expected(seed: u64, per_class: usize) -> Result<Ceiling, SimError> {
     let mut rng = crate::seed::stream(seed, "underactuated/ceiling");
-    let mut c = Ceiling {
-        objects: 0,
-        correct: 0,
-    };
+    let mut c = Ceiling::default();
     for i in 0..3 * per_class {
         let class = Softness::ALL[i % 3];
         c.objects += 1;
