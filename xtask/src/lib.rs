@@ -1,8 +1,9 @@
 //! Developer workflows for the handstack workspace, run as `cargo xtask <command>`.
 //!
 //! - `test`: sets up `.venv` and Chromium, then fmt check, clippy `-D warnings`, every test, docs, and
-//!   `fixtures --check`: the one command CI runs.
-//! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones.
+//!   `fixtures --check` (once more with numpy's widest SIMD kernels off): the one command CI runs.
+//! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones
+//!   (byte for byte, or by value where a third-party library's float code wrote the numbers).
 //! - `bench [FILTER] [--write] [-- CRITERION ARGS]`: runs the criterion benches and prints a
 //!   summary table; `--write` also writes `docs/benchmarks.md` (machine, date, commit, every
 //!   bench, and each scene's control cycle against the 10 ms loop budget).

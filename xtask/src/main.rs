@@ -7,7 +7,11 @@ const USAGE: &str = "usage: cargo xtask <command>
 
 commands:
   test                      set up .venv and chromium, then fmt, clippy, every test, docs, fixtures --check
-  fixtures [--check]        regenerate the generated fixtures, or check the committed ones
+                            (and once more with numpy's widest SIMD kernels off)
+  fixtures [--check]        regenerate the generated fixtures, or check the committed ones (third-party
+                            float output by value within a tolerance: fixtures/README.md)
+  fixtures --check --numpy-narrowed
+                            check the value-compared ones regenerated with numpy's widest SIMD kernels off
   bench [FILTER] [--write] [-- ARGS]
                             run the criterion benches (names containing FILTER), print a summary;
                             --write: also write docs/benchmarks.md (`bench cycles --write`)
@@ -32,6 +36,9 @@ fn main() -> ExitCode {
         Some("fixtures") => match &args[1..] {
             [] => fixtures::run(&root, fixtures::Mode::Write),
             [flag] if flag == "--check" => fixtures::run(&root, fixtures::Mode::Check),
+            [check, narrowed] if check == "--check" && narrowed == "--numpy-narrowed" => {
+                fixtures::check_with_numpy_narrowed(&root)
+            }
             _ => usage_error(),
         },
         Some("bench") => bench::run(&root, &args[1..]),

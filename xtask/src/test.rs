@@ -6,7 +6,7 @@ use anyhow::Result;
 use std::path::Path;
 
 /// Sets up `.venv` and Chromium (the report render test), then runs fmt check, clippy `-D warnings`, every test with every feature,
-/// the docs with warnings denied, and `fixtures --check`.
+/// the docs with warnings denied, and `fixtures --check` (again with numpy's widest SIMD kernels off).
 pub fn run(root: &Path) -> Result<()> {
     let python = venv::ensure(root)?;
     let chromium = chromium::ensure()?;
@@ -37,5 +37,7 @@ pub fn run(root: &Path) -> Result<()> {
             .env("RUSTDOCFLAGS", "-D warnings"),
     )?;
     println!("==> fixtures --check");
-    fixtures::run(root, fixtures::Mode::Check)
+    fixtures::run(root, fixtures::Mode::Check)?;
+    println!("==> fixtures --check, numpy's widest SIMD kernels off");
+    fixtures::check_with_numpy_narrowed(root)
 }

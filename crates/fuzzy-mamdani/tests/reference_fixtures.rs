@@ -10,13 +10,11 @@ use fuzzy_mamdani::{Engine, Resolution, from_fis, from_fll};
 const TOLERANCE: f64 = 1e-6;
 
 /// scikit-fuzzy's mean of maximum is the mean of its *grid points* at the maximum, so it is
-/// only as exact as its output grid (step 0.005): the exact path must agree within one step.
+/// only as exact as its output grid (step 0.005): the exact path must agree within one step,
+/// on every row. Two clipped terms that share the maximum level up to rounding (e.g. tipping's
+/// 7.517 / 7.483, both at 0.5034) are a tie in the references too: the generator settles
+/// rounding-level differences before scikit-fuzzy's exact `==` (fixtures/README.md).
 const MOM_GRID_STEP: f64 = 0.005;
-
-/// Rows where two clipped terms share the maximum level up to rounding (e.g. tipping's
-/// 7.517 / 7.483, where both memberships are 0.5034): scikit-fuzzy's exact `==` keeps whichever
-/// plateau is an ulp higher, the exact path keeps both. At most this share of rows may differ so.
-const MOM_TIE_SHARE: f64 = 0.02;
 
 fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/fuzzy")
@@ -67,7 +65,6 @@ fn replay(engine: &Engine<f64>, data: &Dataset) -> Vec<(String, f64)> {
                 .unwrap_or_else(|| panic!("no column {}", o.name))
         })
         .collect();
-    let mut ties = vec![0usize; columns.len()];
     for row in &data.rows {
         let out = engine
             .evaluate(&mut scratch, &row[..n_in])
@@ -77,23 +74,11 @@ fn replay(engine: &Engine<f64>, data: &Dataset) -> Vec<(String, f64)> {
             let mut err = (out[k] - want).abs() / want.abs().max(1.0);
             assert!(err.is_finite(), "{row:?}: {} gave {}", worst[k].0, out[k]);
             if worst[k].0.ends_with("_mom") {
-                // Judged in grid steps: 1.0 means one step of the reference's grid.
+                // Judged in grid steps: TOLERANCE means one step of the reference's grid.
                 err = (out[k] - want).abs() / MOM_GRID_STEP * TOLERANCE;
-                if err > TOLERANCE {
-                    ties[k] += 1;
-                    continue;
-                }
             }
             worst[k].1 = worst[k].1.max(err);
         }
-    }
-    for (k, &t) in ties.iter().enumerate() {
-        println!("{}: {t} tie rows", worst[k].0);
-        assert!(
-            t as f64 <= MOM_TIE_SHARE * data.rows.len() as f64,
-            "{}: {t} rows beyond a grid step",
-            worst[k].0
-        );
     }
     worst
 }
