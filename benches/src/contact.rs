@@ -17,9 +17,9 @@ use aot_locate::{
     AotLocator, ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, Ranging, Scorer,
 };
 use hand_traits::{Contact, ContactLocator, PressureFrame};
-use tactile_nets::contact_eval::{MODEL_DIR, SELECTION_OSR, chosen_file};
+use paper_experiments::contact_eval::{MODEL_DIR, SELECTION_OSR, chosen_file};
+use paper_experiments::data::fingertip::TapReading;
 use tactile_nets::contact_mlp::{ContactMlp, Prediction, features};
-use tactile_nets::data::fingertip::TapReading;
 
 /// Untouched frames before the first press (the detectors' resting baseline).
 pub const REST_FRAMES: u64 = 30;

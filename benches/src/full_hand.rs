@@ -16,9 +16,9 @@ use crate::tap::{CnnWindow, TapCycle};
 use crate::weight::{Tare, WeightCycle};
 use hand_control::grasp_loop::ContactEstimate as GraspEstimate;
 use hand_traits::{Contact, FingerFrame, GripperCommand, ImuFrame, Pose, PressureFrame, Softness};
+use paper_experiments::data::underactuated::N_VARIABLES;
 use tactile_nets::contact_cnn::Prediction as CnnPrediction;
 use tactile_nets::contact_mlp::Prediction as MlpPrediction;
-use tactile_nets::data::underactuated::N_VARIABLES;
 
 /// What the devices gave this cycle.
 #[derive(Debug, Clone, Copy, PartialEq)]

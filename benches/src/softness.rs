@@ -15,10 +15,10 @@ use crate::replay::Replay;
 use hand_sim::scene::Model;
 use hand_sim::underactuated::{Material, SensorCodes, Underactuated, UnderactuatedConfig};
 use hand_traits::{FingerFrame, Softness};
-use tactile_nets::data::underactuated::N_VARIABLES;
+use paper_experiments::data::underactuated::N_VARIABLES;
+use paper_experiments::softness_eval::{METRICS_FILE, MODEL_DIR, model_file};
 use tactile_nets::metrics::MetricsFile;
 use tactile_nets::softness::{CLASSES, SoftnessNet};
-use tactile_nets::softness_eval::{METRICS_FILE, MODEL_DIR, model_file};
 
 /// Samples per second (seed 001 §3.1).
 pub const SAMPLE_HZ: f64 = 10.0;

@@ -4,14 +4,14 @@
 //! its UR3 grid pose (ur-bridge's `RegionToGrid`; the arm's I/O is not part of the cycle).
 //!
 //! Every cycle classifies the latest 38 frames: the cost of the cycle in which a tap's
-//! window completes, which the tap-to-move loop (`ur_bridge::experiment`) pays once per tap.
+//! window completes, which the tap-to-move loop (`ur_bridge::tap_to_move`) pays once per tap.
 
 use crate::CycleError;
 use hand_sim::imu_pad::{ImuPad, ImuPadConfig, TapSpec, TapWindow, WINDOW_SAMPLES};
 use hand_traits::{ImuFrame, Pose, TactileSource};
-use tactile_nets::cnn_eval::{MODEL_DIR, model_file};
+use paper_experiments::cnn_eval::{MODEL_DIR, model_file};
+use paper_experiments::data::imu_pad::WINDOW_VALUES;
 use tactile_nets::contact_cnn::{ContactCnn, Prediction, Variant};
-use tactile_nets::data::imu_pad::WINDOW_VALUES;
 use ur_bridge::RegionToGrid;
 
 /// The window as the CNN reads it: channel-major, acc in mm/s², gyro in mrad/s (the units of

@@ -2,13 +2,13 @@
 //!
 //! The fingertip is read at OSR 4096 with whole-pad loads of 50…200 gf, as hand-sim's weight
 //! series that trained the committed `sim` model; the tare is the mean of the resting frames
-//! before the first load, as that model's training tare (`tactile_nets::data::weights`).
+//! before the first load, as that model's training tare (`paper_experiments::data::weights`).
 
 use crate::CycleError;
 use crate::fingertip::{Press, PressSchedule, PressedFingertip, whole_pad};
 use hand_traits::PressureFrame;
+use paper_experiments::force_eval::{MODEL_DIR, SIM_FILE};
 use tactile_nets::force_dnn::ForceDnn;
-use tactile_nets::force_eval::{MODEL_DIR, SIM_FILE};
 
 /// Resting frames averaged into the tare.
 pub const TARE_FRAMES: u64 = 20;

@@ -81,15 +81,7 @@ fn tap_to_move(root: &Path) -> Result<()> {
     step(
         "demo tap-to-move",
         cargo(root)
-            .args([
-                "run",
-                "--profile",
-                "test",
-                "-p",
-                "ur-bridge",
-                "--features",
-                "sim",
-            ])
+            .args(["run", "--profile", "test", "-p", "paper-experiments"])
             .args(["--example", "tap_to_move", "--"])
             .arg(&out)
             .env("HANDSTACK_PYTHON", &python),

@@ -19,6 +19,7 @@
 //!   and writes `target/demo/report.html` (`--screenshot`: also `docs/demo-report.png`).
 //! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
 
+pub mod architecture;
 pub mod bench;
 pub mod bench_doc;
 pub mod chromium;

@@ -10,9 +10,9 @@
 //! `opt-level = 0`, the xtask's own profile, is several times slower).
 
 use anyhow::{Context, Result, bail};
+use paper_experiments::contact_eval::{METRICS_FILE, MODEL_DIR, chosen_label, row_label};
 use plotters::prelude::*;
 use std::path::Path;
-use tactile_nets::contact_eval::{METRICS_FILE, MODEL_DIR, chosen_label, row_label};
 use tactile_nets::contact_mlp::Head;
 use tactile_nets::metrics::MetricsFile;
 
@@ -38,7 +38,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     }
 }
 
-/// Runs `handstack train MODEL --root ROOT` (the training code, `tactile_nets::jobs`) under
+/// Runs `handstack train MODEL --root ROOT` (the training code, `paper_experiments::jobs`) under
 /// the optimised `test` profile: it writes the weights and metrics this command then draws.
 pub fn run_handstack_train(root: &Path, model: &str) -> Result<()> {
     crate::run::handstack(root, &format!("train ({model})"), &["train", model])

@@ -2,12 +2,7 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
-#[cfg(feature = "std")]
-extern crate std;
-
 mod arrival;
-#[cfg(feature = "std")]
-pub mod eval;
 mod geometry;
 mod label;
 mod lag;

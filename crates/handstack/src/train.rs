@@ -1,6 +1,6 @@
 //! `handstack train MODEL`: trains one committed model family with a progress bar and writes
 //! its weights and metrics — the code `cargo xtask train MODEL` runs before drawing the
-//! plots and docs ([`tactile_nets::jobs`]).
+//! plots and docs ([`paper_experiments::jobs`]).
 
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -109,7 +109,7 @@ pub fn run(root: &Path, model: Model, options: &TrainOptions) -> Result<Vec<Path
         return Err(refuse("--only"));
     }
     Ok(match model {
-        Model::ContactMlp => tactile_nets::jobs::contact_mlp(root, *epochs)?,
+        Model::ContactMlp => paper_experiments::jobs::contact_mlp(root, *epochs)?,
         Model::ForceDnn => {
             let rows: Vec<(f64, [f64; 3])> =
                 paper_fixtures::seed000::table1_weight_in(&root.join("fixtures"))
@@ -117,7 +117,7 @@ pub fn run(root: &Path, model: Model, options: &TrainOptions) -> Result<Vec<Path
                     .iter()
                     .map(|r| (r.weight_gf, r.pressure_hpa))
                     .collect();
-            tactile_nets::jobs::force_dnn(root, &rows)?
+            paper_experiments::jobs::force_dnn(root, &rows)?
         }
         Model::Softness => {
             let only = only
@@ -125,16 +125,16 @@ pub fn run(root: &Path, model: Model, options: &TrainOptions) -> Result<Vec<Path
                 .map(|s| {
                     s.parse::<usize>()
                         .ok()
-                        .filter(|&i| i < tactile_nets::softness_eval::OPTIMISERS.len())
+                        .filter(|&i| i < paper_experiments::softness_eval::OPTIMISERS.len())
                         .ok_or_else(|| TrainError::Option {
                             model: name(model),
                             detail: format!("--only takes 0 (LM) or 1 (Adam), not `{s}`"),
                         })
                 })
                 .transpose()?;
-            tactile_nets::jobs::softness(root, only, *dry_run)?
+            paper_experiments::jobs::softness(root, only, *dry_run)?
         }
-        Model::ContactCnn => tactile_nets::jobs::contact_cnn(root, *epochs, only.as_deref())?,
+        Model::ContactCnn => paper_experiments::jobs::contact_cnn(root, *epochs, only.as_deref())?,
     })
 }
 

@@ -1,6 +1,6 @@
 //! `fixtures/scenes/contact-location.toml` run as written: the MLP reproduces its committed
 //! metrics row at the scene's OSR, and eq. 3 / ranging reproduce the hits the AoT table of
-//! docs/contact-location.md states for that OSR (the table `cargo run -p aot-locate --example
+//! docs/contact-location.md states for that OSR (the table `cargo run -p paper-experiments --example
 //! aot_eval -- --write` writes and aot-locate's drift test checks).
 
 mod common;

@@ -1,7 +1,7 @@
 //! `fixtures/scenes/grasp-table5.toml` run as written (six holds of 123 s simulated): every
 //! object's settled torque, its window and settling time, and its peak force are the ones
 //! docs/grasping/results.csv states (written by hand-control's `grasp_report` example through the
-//! same `hand_control::sim::rig` path and seed), every settled torque lies in its Table 5 band
+//! same `paper_experiments::grasp_rig` path and seed), every settled torque lies in its Table 5 band
 //! and every object is held.
 
 mod common;

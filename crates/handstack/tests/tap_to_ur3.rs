@@ -1,6 +1,6 @@
 //! `fixtures/scenes/tap-to-ur3.toml` run as written (27 taps, ~20 s of real-time simulated UR3
 //! moves): the committed CNN locates as many taps as docs/arm-tap-to-move.md's training-aligned
-//! run states (same pad seed, schedule and window, `ur_bridge::tap_run`), every trigger falls
+//! run states (same pad seed, schedule and window, `paper_experiments::tap_run`), every trigger falls
 //! inside its tap and every move ends on its grid pose. Needs `$HANDSTACK_PYTHON` (ur-rtde).
 
 mod common;

@@ -15,7 +15,7 @@ fn weight_scene_reproduces_the_committed_force_metrics() {
     // same inputs; 1e-4 gf allows for a different summation order only).
     let rows = paper_fixtures::seed000::table1_weight().expect("Table 1 fixture");
     for r in &rows {
-        let key = tactile_nets::force_eval::row_key(r.weight_gf as f32);
+        let key = paper_experiments::force_eval::row_key(r.weight_gf as f32);
         let fig = o
             .figure(&format!("table1_fit_{key}"))
             .expect("a figure per row");

@@ -7,7 +7,7 @@
 //! against dfdx's forward to 1e-5.
 
 use crate::cnn_layers::{CONV_ROWS, KERNEL, PATCH, POOLED};
-use crate::data::imu_pad::{REGIONS, WINDOW, WINDOW_VALUES};
+use crate::contact_cnn::{REGIONS, WINDOW, WINDOW_VALUES};
 use crate::error::NetError;
 use crate::frozen::{Dense, Freeze, Layer, Relu};
 use dfdx::nn::modules::Linear;

@@ -11,7 +11,7 @@
 //! (conv row `r`, column parity `dc`), so the four members of a pool window are
 //! [`POOLED`] rows apart and one reshape puts them on an axis of their own.
 
-use crate::data::imu_pad::{CHANNELS, WINDOW, WINDOW_VALUES};
+use crate::contact_cnn::{CHANNELS, WINDOW, WINDOW_VALUES};
 use dfdx::nn::modules::{Module, NonMutableModule, ZeroSizedModule};
 use dfdx::prelude::*;
 

@@ -39,13 +39,21 @@
 use crate::activations::softmax_into;
 use crate::cnn_frozen::FrozenCnn;
 use crate::cnn_layers::{Im2Col, PATCH, POOLED, PoolFlatten};
-use crate::data::imu_pad::{CHANNELS, REGIONS, WINDOW, WINDOW_VALUES};
 use crate::error::{NetError, check_input, check_output};
 use crate::io::TensorFile;
 use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
 use dfdx::prelude::*;
 use hand_traits::{Contact, ContactLocator};
 use std::path::Path;
+
+/// Samples per signal in a window (§IV-A: 4 × 38).
+pub const WINDOW: usize = 38;
+/// Signals per window: acc x, acc y (mm/s²), gyro x, gyro y (mrad/s).
+pub const CHANNELS: usize = 4;
+/// Values of one window, channel-major (`[channel * WINDOW + sample]`).
+pub const WINDOW_VALUES: usize = CHANNELS * WINDOW;
+/// The §IV-A contact regions (3 columns × 3 groups of 8 rows).
+pub const REGIONS: usize = 9;
 
 type Arch<const F: usize, const FLAT: usize, const H: usize> = (
     (Im2Col, Linear<PATCH, F>, ReLU, PoolFlatten<F, FLAT>),

@@ -28,16 +28,41 @@
 //! centroid (ties: the lower row, then column), so `regions` = 24.
 
 use crate::activations::{log_sigmoid, sigmoid};
-use crate::data::fingertip::{TapReading, TapRecord};
 use crate::error::{NetError, check_output};
 use crate::frozen::{self, Freeze, Layer};
 use crate::io::TensorFile;
 use crate::norm::{mean_and_scale, standardise};
-use crate::pad::{self, CELLS, COLS, ROWS};
 use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
+use aot_locate::{CELLS, COLS, CellSet, ROWS};
 use dfdx::prelude::*;
 use hand_traits::{Contact, ContactLocator};
 use std::path::Path;
+
+/// What the three sensors read for one tap, the MLP's raw material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TapReading {
+    /// Mean resting pressure before contact, Pa.
+    pub baseline_pa: [f32; 3],
+    /// Held pressure during contact, Pa.
+    pub held_pa: [f32; 3],
+    /// Arrival time of each sensor after onset, ms; `None` when it never rose in the window.
+    pub arrival_ms: [Option<f32>; 3],
+}
+
+/// One training example: a reading and the cells that were touched.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactExample {
+    /// What the sensors read.
+    pub reading: TapReading,
+    /// The touched cells (bit `i` = cell `i` of the 4 × 6 pad, [`aot_locate::CellSet`]'s bits);
+    /// the [`Head::AverageArea`] target is its eq. 4 label.
+    pub mask: u32,
+}
+
+/// Eq. 4's label of a mask (0 for an empty or out-of-pad mask, as Table 2's no-contact row).
+fn average_area(mask: u32) -> f32 {
+    CellSet::from_bits(mask).map_or(0.0, |c| c.average_area().value())
+}
 
 /// Raw input values per tap.
 pub const N_FEATURES: usize = 9;
@@ -163,8 +188,8 @@ pub fn features(reading: &TapReading) -> [f32; N_FEATURES] {
 }
 
 /// The training-split contacts: distinct masks, smaller contacts first, then by mask.
-fn catalogue_of(records: &[&TapRecord]) -> Vec<u32> {
-    let mut masks: Vec<u32> = records.iter().map(|r| r.tap.mask).collect();
+fn catalogue_of(examples: &[ContactExample]) -> Vec<u32> {
+    let mut masks: Vec<u32> = examples.iter().map(|e| e.mask).collect();
     masks.sort_by_key(|&m| (m.count_ones(), m));
     masks.dedup();
     masks
@@ -179,32 +204,36 @@ fn build<const O: usize>(dev: &Cpu) -> Net<O> {
 
 /// Cell nearest a mask's centroid (ties: the lower row, then column).
 fn region_of(mask: u32) -> u16 {
-    let (r, c) = pad::centroid(mask).unwrap_or((0.0, 0.0));
+    // CellSet's centroid is 1-based.
+    let [r, c] = CellSet::from_bits(mask)
+        .and_then(CellSet::centroid)
+        .map_or([0.0, 0.0], |[r, c]| [r - 1.0, c - 1.0]);
     let snap = |x: f32, n: usize| ((x - 0.5).ceil().max(0.0) as usize).min(n - 1);
-    (snap(r, ROWS) * COLS + snap(c, COLS)) as u16
+    let (rows, cols) = (usize::from(ROWS), usize::from(COLS));
+    (snap(r, rows) * cols + snap(c, cols)) as u16
 }
 
 impl ContactMlp {
-    /// Trains a model with `head` on `records` (the training split) using `config`'s epochs,
+    /// Trains a model with `head` on `examples` (the training split) using `config`'s epochs,
     /// batch size, learning rate and seeds (its `l2` is the paper's 0.001 unless changed).
     pub fn train(
-        records: &[&TapRecord],
+        examples: &[ContactExample],
         head: Head,
         config: &TrainConfig,
     ) -> Result<(ContactMlp, TrainLog), NetError> {
-        if records.is_empty() {
+        if examples.is_empty() {
             return Err(NetError::Training("no training taps".into()));
         }
-        let rows: Vec<[f32; N_FEATURES]> = records.iter().map(|r| features(&r.reading)).collect();
+        let rows: Vec<[f32; N_FEATURES]> = examples.iter().map(|e| features(&e.reading)).collect();
         let (mean, scale) = mean_and_scale(&rows);
         let mut samples = Samples::default();
-        for (row, rec) in rows.iter().zip(records) {
+        for (row, ex) in rows.iter().zip(examples) {
             let z = standardise(row, &mean, &scale);
             match head {
-                Head::AverageArea => samples.push(&z, &[rec.tap.average_area]),
+                Head::AverageArea => samples.push(&z, &[average_area(ex.mask)]),
                 Head::CellSet => {
                     let bits: [f32; CELLS] =
-                        core::array::from_fn(|i| f32::from(u8::from(rec.tap.mask & (1 << i) != 0)));
+                        core::array::from_fn(|i| f32::from(u8::from(ex.mask & (1 << i) != 0)));
                     samples.push(&z, &bits);
                 }
             }
@@ -234,7 +263,7 @@ impl ContactMlp {
             body,
             mean,
             scale,
-            catalogue: catalogue_of(records),
+            catalogue: catalogue_of(examples),
         };
         Ok((model, log))
     }
@@ -298,7 +327,7 @@ impl ContactMlp {
     fn decode_label(&self, y: f32) -> Option<(u32, f32)> {
         let mut best: Option<(u32, f32)> = None;
         for &m in &self.catalogue {
-            let d = (pad::average_area(m) - y).abs();
+            let d = (average_area(m) - y).abs();
             if best.is_none_or(|(_, bd)| d < bd) {
                 best = Some((m, d));
             }

@@ -6,7 +6,7 @@
 //! and a rectified linear unit (ReLU) and sigmoid are used for the hidden layer", Adam, MSE
 //! (eq. 1). Here: 3 inputs → [`HIDDEN`] sigmoid → [`HIDDEN`] ReLU → [`HIDDEN`] sigmoid → 1
 //! sigmoid output. The inputs are the pressure rises above the sensors' unloaded reading
-//! ([`crate::data::weights`]), standardised with the training set's mean and spread; the
+//! ([`tared_table`]), standardised with the training set's mean and spread; the
 //! target weight is mapped linearly onto [`OUTPUT_SPAN`] of the sigmoid (the rated range's
 //! lightest weight at 0.1, heaviest at 0.9, a choice made before training, not fitted), so
 //! estimates saturate 12.5 % of the range beyond it instead of running away.
@@ -17,8 +17,7 @@
 //!
 //! ```
 //! use hand_traits::ForceEstimator;
-//! use tactile_nets::data::weights::tared_table;
-//! use tactile_nets::force_dnn::ForceDnn;
+//! use tactile_nets::force_dnn::{ForceDnn, tared_table};
 //! use tactile_nets::train::TrainConfig;
 //!
 //! // Three rows of seed 000 Table 1: weight (gf) and the three pressures (hPa).
@@ -34,7 +33,6 @@
 //! # Ok::<(), tactile_nets::NetError>(())
 //! ```
 
-use crate::data::weights::WeightSample;
 use crate::error::{NetError, check_output};
 use crate::frozen::{self, Freeze, Layer};
 use crate::io::TensorFile;
@@ -43,6 +41,53 @@ use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
 use dfdx::prelude::*;
 use hand_traits::{ForceEstimate, ForceEstimator};
 use std::path::Path;
+
+/// One training or test sample: tared pressure rises and the true weight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WeightSample {
+    /// Pressure rise of sensors 1–3 above the unloaded reading, hPa.
+    pub rise_hpa: [f32; 3],
+    /// The weight on the pad, gf.
+    pub weight_gf: f32,
+}
+
+/// Tares `(weight_gf, pressures_hpa)` rows against the row whose weight is 0 (Table 1's form).
+///
+/// Errors: [`NetError::Data`] when no row has weight 0 or a value is not finite.
+pub fn tared_table(rows: &[(f64, [f64; 3])]) -> Result<Vec<WeightSample>, NetError> {
+    let (_, tare) = rows
+        .iter()
+        .find(|(w, _)| *w == 0.0)
+        .ok_or_else(|| NetError::Data {
+            line: 0,
+            reason: "no 0 gf row to tare against".into(),
+        })?;
+    rows.iter()
+        .enumerate()
+        .map(|(i, (w, p))| {
+            let s = WeightSample {
+                rise_hpa: core::array::from_fn(|k| (p[k] - tare[k]) as f32),
+                weight_gf: *w as f32,
+            };
+            finite(&s, i + 1)
+        })
+        .collect()
+}
+
+fn finite(s: &WeightSample, line: usize) -> Result<WeightSample, NetError> {
+    if s.rise_hpa
+        .iter()
+        .chain([&s.weight_gf])
+        .all(|v| v.is_finite())
+    {
+        Ok(*s)
+    } else {
+        Err(NetError::Data {
+            line,
+            reason: "non-finite value".into(),
+        })
+    }
+}
 
 /// Inputs: the rises of sensors 1–3, hPa.
 pub const N_INPUTS: usize = 3;
@@ -324,7 +369,7 @@ fn to_unit(weight_gf: f32, [lo, hi]: [f32; 2]) -> f32 {
     a + (weight_gf - lo) / (hi - lo) * (b - a)
 }
 
-/// Input: the three tared rises, hPa ([`crate::data::weights`]).
+/// Input: the three tared rises, hPa ([`tared_table`]).
 impl ForceEstimator for ForceDnn {
     type Input = [f32];
     type Error = NetError;

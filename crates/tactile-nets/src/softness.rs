@@ -40,7 +40,12 @@ use hand_traits::{Softness, SoftnessClassifier};
 use nalgebra::{RealField, SMatrix, SVector};
 use std::path::Path;
 
-pub use crate::data::underactuated::{N_VARIABLES, VARIABLE_NAMES};
+/// Readings per sample: `f1_n..f4_n`, then `a1_deg..a4_deg` (seed 001 §3.1's 8 variables).
+pub const N_VARIABLES: usize = 8;
+/// Names of the 8 variables, in sample order.
+pub const VARIABLE_NAMES: [&str; N_VARIABLES] = [
+    "f1_n", "f2_n", "f3_n", "f4_n", "a1_deg", "a2_deg", "a3_deg", "a4_deg",
+];
 
 /// Neurons per hidden layer (seed 001 §3.3: two hidden layers of four).
 pub const HIDDEN: usize = 4;

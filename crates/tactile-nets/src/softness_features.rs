@@ -38,7 +38,11 @@
 //! assert_eq!(Features::FingerStiffness.rows(&grasp(0)).len(), 1);
 //! ```
 
-use crate::data::underactuated::N_VARIABLES;
+use crate::softness::N_VARIABLES;
+
+/// Training rows of a series: every 14th sample (1.4 s apart at 10 Hz, 11 per grasp), the
+/// paper's training rows; inference reads every sample.
+pub const SERIES_STRIDE: usize = 14;
 
 /// Fingers per grasp (forces first, then angles, in each sample).
 const FINGERS: usize = N_VARIABLES / 2;
@@ -89,7 +93,7 @@ impl Features {
     /// every row for the one-row form.
     pub fn stride(self) -> usize {
         match self {
-            Features::Paper | Features::SortedSeries => crate::softness_eval::STRIDE,
+            Features::Paper | Features::SortedSeries => SERIES_STRIDE,
             Features::FingerStiffness => 1,
         }
     }

@@ -19,8 +19,8 @@
 //! rank-deficient Jacobian (e.g. a variable that never varies, or saturated neurons) is no
 //! error: the crate's pivoted QR solves the damped step whatever the rank.
 
-use crate::data::underactuated::N_VARIABLES;
 use crate::error::NetError;
+use crate::softness::N_VARIABLES;
 use crate::softness::{CLASSES, HIDDEN, InputScale, Layers, N_PARAMS, SoftnessNet};
 use hand_traits::Softness;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};

@@ -6,20 +6,18 @@
 //!   safety status; Python exceptions and refused commands become [`UrError`]s.
 //! - [`kinematics`]: a UR3 (DH table, Jacobian, inverse kinematics near a seed, limits).
 //! - [`RegionToGrid`]: the 9 touched regions of a pad → 9 tool poses, validated against the
-//!   UR3's reach and joint limits; [`experiment`]: the tap → region → move loop of seed 002 §IV-B.
+//!   UR3's reach and joint limits; [`tap_to_move`]: the tap → region → move loop of seed 002 §IV-B over `hand-traits` parts.
 //! - `sim` feature: [`sim::UrSim`], a UR controller on loopback the unmodified ur_rtde accepts.
 
 mod bridge;
 mod error;
-pub mod experiment;
 mod grid;
 pub mod kinematics;
 mod python;
 #[cfg(feature = "sim")]
 pub mod sim;
 pub mod status;
-#[cfg(feature = "pad-sim")]
-pub mod tap_run;
+pub mod tap_to_move;
 
 pub use bridge::{JointMotion, MoveHandle, MoveProgress, UrArm, UrConfig};
 pub use error::UrError;

@@ -28,7 +28,9 @@ impl Venv {
         Self { root: root.into() }
     }
 
-    /// `$HANDSTACK_VENV`, else the venv of `$HANDSTACK_PYTHON`, else the workspace's `.venv`.
+    /// `$HANDSTACK_VENV`, else the venv of `$HANDSTACK_PYTHON`, else the activated venv
+    /// (`$VIRTUAL_ENV`), else the nearest `.venv` at or above the current directory (as uv and
+    /// Poetry find a project's venv), else `.venv` in the current directory.
     ///
     /// ```
     /// let venv = ur_bridge::Venv::from_env();
@@ -44,7 +46,15 @@ impl Venv {
                 return Self::at(root);
             }
         }
-        Self::at(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../.venv"))
+        if let Some(dir) = std::env::var_os("VIRTUAL_ENV") {
+            return Self::at(dir);
+        }
+        let here = std::env::current_dir().unwrap_or_default();
+        let nearest = here
+            .ancestors()
+            .map(|d| d.join(".venv"))
+            .find(|v| v.join("pyvenv.cfg").is_file());
+        Self::at(nearest.unwrap_or_else(|| here.join(".venv")))
     }
 
     /// Puts the venv's site-packages on the embedded interpreter's `sys.path` (once per venv)

@@ -38,8 +38,6 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-#[cfg(feature = "rig")]
-pub mod rig;
 mod servo;
 
 pub use servo::{Plant, ServoParams, SimServo};

@@ -2,7 +2,7 @@
 //! aot-locate's ranging scorer) on the 3 × 3 grid, the contact MLP on the 4 × 6 grid, over the
 //! held-out simulated taps (repeat 1 of `fixtures/datasets/fingertip/`, read through the
 //! MS5611 driver) at the scene's OSR. The evaluation is the libraries' own
-//! (`aot_locate::eval`, `tactile_nets::contact_eval`), the one the docs were written from.
+//! (`paper_experiments::aot_eval`, `paper_experiments::contact_eval`), the one the docs were written from.
 
 use super::figure::{Target, measured, target};
 use super::{Part, RunContext};
@@ -11,11 +11,11 @@ use crate::error::RunError;
 use crate::scene::Scene;
 use crate::scene::experiment::Contact;
 use crate::scene::parts::Locator;
-use aot_locate::eval::{self, Rule, Tally};
 use aot_locate::{DetectorConfig, Geometry};
-use tactile_nets::contact_eval;
+use paper_experiments::aot_eval::{self, Rule, Tally};
+use paper_experiments::contact_eval;
+use paper_experiments::data::fingertip;
 use tactile_nets::contact_mlp::ContactMlp;
-use tactile_nets::data::fingertip;
 
 /// Issue 7's targets: AoT ≥ 90 % on 3 × 3, MLP ≥ 95 % on 24 areas.
 const AOT_TARGET_PCT: f64 = 90.0;
@@ -44,11 +44,11 @@ pub fn run(scene: &Scene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, Ru
         cx.progress.stage("contact: arrival-of-time", 0);
         let dir = cx.root.join("fixtures/datasets/fingertip");
         let data =
-            eval::Dataset::load(&dir, |t| t.osr == osr).map_err(|reason| RunError::Device {
+            aot_eval::Dataset::load(&dir, |t| t.osr == osr).map_err(|reason| RunError::Device {
                 device: "fingertip dataset",
                 reason,
             })?;
-        let rep = eval::evaluate(&data, &Geometry::simulated_pad(), DetectorConfig::DEFAULT);
+        let rep = aot_eval::evaluate(&data, &Geometry::simulated_pad(), DetectorConfig::DEFAULT);
         for rule in rules {
             aot_part(&rep, rule, osr, &mut part);
         }
@@ -72,7 +72,7 @@ fn key(rule: Rule) -> &'static str {
     }
 }
 
-fn aot_part(rep: &eval::Report, rule: Rule, osr: u16, part: &mut Part) {
+fn aot_part(rep: &aot_eval::Report, rule: Rule, osr: u16, part: &mut Part) {
     let k = key(rule);
     let all = rep.by_osr.get(&(rule, osr)).copied().unwrap_or_default();
     let inside = rep

@@ -2,7 +2,7 @@
 //! (tactile source → contact estimate → the paper's Mamdani controller → torque limit) closes on
 //! each object, the arm lifts at 3 s, the hold lasts `hold_s`.
 //!
-//! Simulated (no `serial_port`): hand-control's Table 5 world (`hand_control::sim::rig`:
+//! Simulated (no `serial_port`): hand-control's Table 5 world (`paper_experiments::grasp_rig`:
 //! hand-sim's two-finger MX-28 rig and the fingertip's three MS5611 chip models read by the
 //! real driver, in simulated time), the code path of docs/grasping. With `[hand] serial_port`:
 //! the real `ServoHand` on that port, on the wall clock, for `hold_s` per object, the fingertip
@@ -15,9 +15,9 @@ use crate::scene::Scene;
 use crate::scene::experiment::Grasp;
 use crate::{Line, Plot};
 use hand_control::grasp_loop::{GraspLoop, LoopConfig, Sample, StdClock, TorqueBand};
-use hand_control::sim::rig::{self, SETTLE_TOL_RAW, SETTLE_WINDOW_US};
 use hand_sim::fingertip::Fingertip;
 use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
+use paper_experiments::grasp_rig::{self, SETTLE_TOL_RAW, SETTLE_WINDOW_US};
 
 /// Seconds of each trace the plots show: closing, squeeze, lift at 3 s, start of the hold.
 const TRACE_S: f64 = 10.0;
@@ -51,42 +51,41 @@ pub fn run(scene: &Scene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part, RunE
             device: "grasp",
             reason: format!("{name}: {e}"),
         })?;
-        let log = match (&hand, &port) {
-            (Some(h), Some(port)) => real_hold(scene, h, port, band, hold_s)?,
-            _ => {
-                let kind = ObjectKind::from_name(name).ok_or_else(|| RunError::Device {
-                    device: "grasp",
-                    reason: format!("no simulated object {name}"),
-                })?;
-                let object = ObjectParams::calibrated(kind, lo, hi, &RigParams::default())?;
-                let (o, l, _) =
-                    rig::hold_for(name, object, band, exp.seed, hold_s).map_err(|e| {
-                        RunError::Device {
+        let log =
+            match (&hand, &port) {
+                (Some(h), Some(port)) => real_hold(scene, h, port, band, hold_s)?,
+                _ => {
+                    let kind = ObjectKind::from_name(name).ok_or_else(|| RunError::Device {
+                        device: "grasp",
+                        reason: format!("no simulated object {name}"),
+                    })?;
+                    let object = ObjectParams::calibrated(kind, lo, hi, &RigParams::default())?;
+                    let (o, l, _) = grasp_rig::hold_for(name, object, band, exp.seed, hold_s)
+                        .map_err(|e| RunError::Device {
                             device: "grasp",
                             reason: format!("{name}: {e}"),
-                        }
-                    })?;
-                let held = !(o.slipped || o.damaged || o.dropped) && o.faults == 0;
-                part.figures.push(measured(
-                    &format!("{name}_peak_force_n"),
-                    &format!("{name}: peak pad force (sim truth)"),
-                    o.peak_force_n,
-                    "N",
-                ));
-                part.figures.push(target(
-                    measured(
-                        &format!("{name}_held"),
-                        &format!(
-                            "{name}: held {hold_s} s, no slip / crush / drop / fault (1 = yes)"
+                        })?;
+                    let held = !(o.slipped || o.damaged || o.dropped) && o.faults == 0;
+                    part.figures.push(measured(
+                        &format!("{name}_peak_force_n"),
+                        &format!("{name}: peak pad force (sim truth)"),
+                        o.peak_force_n,
+                        "N",
+                    ));
+                    part.figures.push(target(
+                        measured(
+                            &format!("{name}_held"),
+                            &format!(
+                                "{name}: held {hold_s} s, no slip / crush / drop / fault (1 = yes)"
+                            ),
+                            f64::from(u8::from(held)),
+                            "",
                         ),
-                        f64::from(u8::from(held)),
-                        "",
-                    ),
-                    Target::Between(1.0, 1.0),
-                ));
-                l.log().to_vec()
-            }
-        };
+                        Target::Between(1.0, 1.0),
+                    ));
+                    l.log().to_vec()
+                }
+            };
         summarise(name, (lo, hi), &log, &mut part);
         let t = |s: &Sample<3>| s.t_us as f64 * 1e-6;
         let early = || log.iter().filter(|s| t(s) <= TRACE_S);
@@ -179,7 +178,7 @@ fn real_hold(
     )?;
     let config = LoopConfig {
         band,
-        ..rig::config(band)
+        ..grasp_rig::config(band)
     };
     let policy = fuzzy_mamdani::grasp_controller().with_torque_band(band.min_raw(), band.max_raw());
     let mut l = GraspLoop::new(tip, policy, servo, StdClock::new(), config).map_err(|e| {

@@ -2,7 +2,7 @@
 //! distal potentiometers. The committed 8 → 4 → 4 → 3 models run on the simulated hand's
 //! grasps (`fixtures/datasets/underactuated/`, hand-sim) of the 24 regular and 30 irregular
 //! test objects; the one that runs is the optimiser's selected seed (lowest training MSE, chosen
-//! on training data only), through `tactile_nets::softness_eval` as docs/learning.md.
+//! on training data only), through `paper_experiments::softness_eval` as docs/learning.md.
 
 use super::figure::{Target, measured, paper, target};
 use super::{Part, RunContext};
@@ -10,8 +10,8 @@ use crate::Plot;
 use crate::error::RunError;
 use crate::scene::experiment::Softness;
 use hand_traits::Softness as Class;
-use tactile_nets::data::underactuated;
-use tactile_nets::softness_eval::{self, Confusion};
+use paper_experiments::data::underactuated;
+use paper_experiments::softness_eval::{self, Confusion};
 
 /// Runs the softness experiment.
 pub fn run(exp: &Softness, cx: &RunContext<'_>) -> Result<Part, RunError> {

@@ -2,7 +2,7 @@
 //! scene's pressure mode) trigger on the pressure rise; the 4 × 38 accelerometer / gyroscope
 //! window goes to the committed contact CNN; the region it names moves the UR3 (ur-bridge's
 //! loopback simulator through the real ur_rtde, or the controller at `[arm] host`) to its grid
-//! pose. The loop is ur-bridge's `TapToMove` via `ur_bridge::tap_run`, the code path of the
+//! pose. The loop is ur-bridge's `TapToMove` via `paper_experiments::tap_run`, the code path of the
 //! `tap_to_move` example that wrote docs/arm-tap-to-move.md.
 
 use super::figure::{Target, measured, paper, target};
@@ -11,10 +11,10 @@ use crate::error::RunError;
 use crate::scene::Scene;
 use crate::scene::experiment::{Tap, WindowPlacement};
 use crate::{Line, Plot};
-use tactile_nets::cnn_eval::{MODEL_DIR, model_file};
+use paper_experiments::cnn_eval::{MODEL_DIR, model_file};
+use paper_experiments::tap_run::{self, ROUNDS, Row};
 use tactile_nets::contact_cnn::{ContactCnn, Variant};
-use ur_bridge::experiment::TapToMoveConfig;
-use ur_bridge::tap_run::{self, ROUNDS, Row};
+use ur_bridge::tap_to_move::TapToMoveConfig;
 
 /// Runs the tap-to-UR3 experiment of `scene`.
 pub fn run(scene: &Scene, exp: &Tap, cx: &RunContext<'_>) -> Result<Part, RunError> {

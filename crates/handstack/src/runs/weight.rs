@@ -16,9 +16,9 @@ use crate::scene::parts::ForceModel;
 use crate::{Line, Plot};
 use hand_sim::fingertip::Fingertip;
 use hand_sim::fingertip::dataset::{weight_run, weight_run_seed};
-use tactile_nets::data::weights::{self, WeightFrame};
+use paper_experiments::data::weights::{self, WeightFrame};
+use paper_experiments::force_eval::{self, MODEL_DIR, SIM_FILE, TABLE_FILE};
 use tactile_nets::force_dnn::ForceDnn;
-use tactile_nets::force_eval::{self, MODEL_DIR, SIM_FILE, TABLE_FILE};
 
 /// Seed 000 Table 1, cited beside every paper value.
 const SOURCE: &str = "seed 000 Table 1, Expect. Weight";

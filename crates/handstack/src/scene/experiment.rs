@@ -67,7 +67,7 @@ pub struct Weight {
 }
 
 fn held_out_run() -> u32 {
-    tactile_nets::force_eval::SIM_TEST_RUN
+    paper_experiments::force_eval::SIM_TEST_RUN
 }
 fn twenty() -> Spanned<u32> {
     Spanned::new(0..0, hand_sim::fingertip::dataset::WEIGHT_STEPS)
@@ -92,7 +92,7 @@ pub enum MlpChoice {
 impl MlpChoice {
     /// Its file inside `fixtures/models/contact_mlp/` and its metrics row label at `osr`.
     pub fn file_and_label(self, osr: u16) -> (String, String) {
-        use tactile_nets::contact_eval as ce;
+        use paper_experiments::contact_eval as ce;
         use tactile_nets::contact_mlp::Head;
         match self {
             MlpChoice::Chosen => (ce::chosen_file(osr), ce::chosen_label(osr)),
@@ -166,7 +166,7 @@ pub enum WindowPlacement {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tap {
-    /// Rounds of nine taps (regions 0…8), 1…3 (rows of `ur_bridge::tap_run::ROUNDS`).
+    /// Rounds of nine taps (regions 0…8), 1…3 (rows of `paper_experiments::tap_run::ROUNDS`).
     #[serde(default = "three")]
     pub rounds: Spanned<usize>,
     /// The window placement (default `aligned`).
@@ -199,7 +199,7 @@ fn table5_objects() -> Spanned<Vec<String>> {
     Spanned::new(0..0, names.to_vec())
 }
 fn hold_120() -> Spanned<f64> {
-    Spanned::new(0..0, hand_control::sim::rig::HOLD_S)
+    Spanned::new(0..0, paper_experiments::grasp_rig::HOLD_S)
 }
 fn seven() -> u64 {
     7

@@ -414,7 +414,7 @@ pub(crate) fn check(scene: &SceneFile, file: &str, text: &str) -> Result<SceneCo
                 ));
             }
             let osr = s.fingertip.as_ref().map(|f| *f.get_ref().osr.get_ref());
-            if osr != Some(hand_control::sim::rig::OSR) {
+            if osr != Some(paper_experiments::grasp_rig::OSR) {
                 return Err(cx.err(
                     g.span(),
                     "experiment.grasp",

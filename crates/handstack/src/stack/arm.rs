@@ -40,7 +40,7 @@ pub fn open(host: Option<&str>) -> Result<ArmStack, RunError> {
             (address.to_string(), Some(sim))
         }
     };
-    let arm = ur_bridge::tap_run::connect(&host).map_err(|reason| RunError::Open {
+    let arm = paper_experiments::tap_run::connect(&host).map_err(|reason| RunError::Open {
         device: "arm",
         path: host.clone(),
         reason,

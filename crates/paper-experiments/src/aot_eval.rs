@@ -1,0 +1,407 @@
+//! Evaluates Arrival-of-Time on the simulated fingertip taps (`fixtures/datasets/fingertip/`).
+//!
+//! Shared by the `aot_eval` example (which writes `docs/contact-location.md`), the drift test
+//! (which re-runs one OSR and compares with the doc) and handstack's contact-location scene.
+
+use aot_locate::{
+    ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, Ranging, RangingFit, Scores, eq3,
+};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// One row of `taps.csv`.
+#[derive(Debug, Clone)]
+pub struct Tap {
+    /// Tap id (joins `series.csv`).
+    pub id: u32,
+    /// MS5611 oversampling ratio the tap was read at.
+    pub osr: u16,
+    /// Figure 7 shape name.
+    pub shape: String,
+    /// Touched cells, bit i = cell i of the 4 × 6 grid.
+    pub mask: u32,
+    /// Press force, kgf.
+    pub force_kgf: u32,
+    /// Repeat index (0 trains the ranging fit, 1 is held out).
+    pub repeat: u32,
+    /// The 3 × 3 area (0…8, row-major) of the patch centroid: the label.
+    pub aot_region: usize,
+    /// Mean held pressure per sensor, Pa.
+    pub held_pa: [f32; 3],
+}
+
+/// One frame of `series.csv`.
+#[derive(Debug, Clone, Copy)]
+pub struct Frame {
+    /// Time from contact onset, µs.
+    pub t_us: i64,
+    /// Sensors 1–3 as the driver decoded them, Pa.
+    pub p_pa: [f32; 3],
+}
+
+/// The tap table and each tap's frames.
+pub struct Dataset {
+    /// The taps kept.
+    pub taps: Vec<Tap>,
+    /// Each kept tap's frames, by id.
+    pub series: BTreeMap<u32, Vec<Frame>>,
+}
+
+fn rows(text: &str) -> impl Iterator<Item = Vec<&str>> {
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .skip(1) // header
+        .map(|l| l.split(',').collect())
+}
+
+fn field<T: std::str::FromStr>(row: &[&str], i: usize) -> Result<T, String> {
+    row.get(i)
+        .ok_or_else(|| format!("missing column {i} in {row:?}"))?
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad column {i} in {row:?}"))
+}
+
+impl Dataset {
+    /// Reads `taps.csv` and `series.csv` from `dir`, keeping the taps `keep` accepts.
+    pub fn load(dir: &Path, keep: impl Fn(&Tap) -> bool) -> Result<Dataset, String> {
+        let read = |f: &str| std::fs::read_to_string(dir.join(f)).map_err(|e| format!("{f}: {e}"));
+        let mut taps = Vec::new();
+        for r in rows(&read("taps.csv")?) {
+            let tap = Tap {
+                id: field(&r, 0)?,
+                osr: field(&r, 1)?,
+                shape: field(&r, 2)?,
+                mask: field(&r, 4)?,
+                aot_region: field(&r, 6)?,
+                force_kgf: field(&r, 7)?,
+                repeat: field(&r, 8)?,
+                held_pa: [field(&r, 9)?, field(&r, 10)?, field(&r, 11)?],
+            };
+            if keep(&tap) {
+                taps.push(tap);
+            }
+        }
+        let wanted: std::collections::BTreeSet<u32> = taps.iter().map(|t| t.id).collect();
+        let mut series: BTreeMap<u32, Vec<Frame>> = BTreeMap::new();
+        for r in rows(&read("series.csv")?) {
+            let id: u32 = field(&r, 0)?;
+            if wanted.contains(&id) {
+                series.entry(id).or_default().push(Frame {
+                    t_us: field(&r, 1)?,
+                    p_pa: [field(&r, 2)?, field(&r, 3)?, field(&r, 4)?],
+                });
+            }
+        }
+        Ok(Dataset { taps, series })
+    }
+}
+
+/// What one tap gives eq. 3: arrival times from the series (detected sample by sample, onset
+/// at t = 0 as the dataset defines it) and the held pressures read against the baseline the
+/// detector tracked before arrival (the steady rise, as Table 2 reports pressures while held).
+pub fn tap_event(tap: &Tap, frames: &[Frame], config: DetectorConfig) -> ArrivalEvent {
+    let mut d = ArrivalDetector::new(config);
+    for f in frames {
+        d.push(f.t_us, f.p_pa);
+    }
+    d.event(0, tap.held_pa)
+}
+
+/// The scoring rules compared.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Rule {
+    /// Eq. 3 as written, `P_k` = held rise above the tracked baseline.
+    Eq3Rise,
+    /// Eq. 3 as written, `P_k` = absolute held pressure (Table 2's columns are absolute hPa).
+    Eq3Absolute,
+    /// Not the paper's: eq. 3's ingredients as ranges ([`Ranging`]): `t_k ≈ a + b·r + c·L_k`
+    /// gives each arrived sensor a range, the pad point that matches them best picks the area;
+    /// `a`, `b`, `c` fitted per OSR on the training repeat.
+    Ranging,
+}
+
+impl Rule {
+    /// Every rule, in report order.
+    pub const ALL: [Rule; 3] = [Rule::Eq3Rise, Rule::Eq3Absolute, Rule::Ranging];
+
+    /// Its name in the report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rule::Eq3Rise => "eq. 3, P = held rise",
+            Rule::Eq3Absolute => "eq. 3, P = absolute held",
+            Rule::Ranging => "ranging (fitted)",
+        }
+    }
+
+    /// The area this rule picks, `None` if eq. 3 refuses the input (no sensor arrived).
+    pub fn predict(
+        self,
+        geometry: &Geometry,
+        ranging: Option<&Ranging>,
+        tap: &Tap,
+        event: &ArrivalEvent,
+    ) -> Option<usize> {
+        let scores: Scores = match self {
+            Rule::Ranging => ranging?.scores(geometry, event).ok()?,
+            Rule::Eq3Rise => eq3(geometry, event).ok()?,
+            Rule::Eq3Absolute => {
+                let abs = ArrivalEvent {
+                    pressure_pa: tap.held_pa,
+                    ..*event
+                };
+                eq3(geometry, &abs).ok()?
+            }
+        };
+        Some(scores.argmax())
+    }
+}
+
+/// Hits and trials.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Tally {
+    /// Correct answers.
+    pub hits: u32,
+    /// Trials.
+    pub n: u32,
+}
+
+impl Tally {
+    /// Counts one trial.
+    pub fn add(&mut self, hit: bool) {
+        self.hits += u32::from(hit);
+        self.n += 1;
+    }
+
+    /// Accuracy in percent (0 for no trials).
+    pub fn percent(&self) -> f64 {
+        if self.n == 0 {
+            0.0
+        } else {
+            100.0 * f64::from(self.hits) / f64::from(self.n)
+        }
+    }
+}
+
+/// `84.8 % (173/204)`, as every table of the report prints a tally.
+impl std::fmt::Display for Tally {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:.1} % ({}/{})", self.percent(), self.hits, self.n)
+    }
+}
+
+/// Accuracy of each rule by OSR, by (OSR, shape) and by (OSR, force); plus how often a
+/// sensor never arrived.
+#[derive(Debug, Default)]
+pub struct Report {
+    /// Accuracy per (rule, OSR).
+    pub by_osr: BTreeMap<(Rule, u16), Tally>,
+    /// Accuracy per (rule, OSR, shape).
+    pub by_shape: BTreeMap<(Rule, u16, String), Tally>,
+    /// Accuracy per (rule, OSR, force kgf).
+    pub by_force: BTreeMap<(Rule, u16, u32), Tally>,
+    /// Taps with a sensor that never arrived, per OSR.
+    pub missing_sensor: BTreeMap<u16, Tally>,
+    /// Taps where no sensor arrived, per OSR.
+    pub no_arrival: BTreeMap<u16, u32>,
+    /// The ranging fit per OSR.
+    pub fits: BTreeMap<u16, Ranging>,
+    /// How often each rule picked each area (all OSRs): which areas a rule can reach at all.
+    pub picked: BTreeMap<Rule, [u32; 9]>,
+    /// Taps whose centroid lies inside one area (`true`) or on a border between areas:
+    /// hits against the strict label, per rule and OSR.
+    pub by_interior: BTreeMap<(Rule, u16, bool), Tally>,
+    /// Hits when any area whose closed rectangle holds the centroid counts (a centroid on a
+    /// border belongs to both sides), per rule and OSR.
+    pub tolerant: BTreeMap<(Rule, u16), Tally>,
+    /// Accuracy per (rule, OSR, labelled area 0…8): the per-area map of seed 000 Figure 11.
+    pub by_region: BTreeMap<(Rule, u16, usize), Tally>,
+    /// What the held-out taps whose centroid lies on a border carry about a side, per OSR.
+    pub border: BTreeMap<u16, Border>,
+}
+
+/// The held-out taps whose patch centroid lies on a border between two areas: whether the
+/// contact itself favours a side, and where the ranging scorer places them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Border {
+    /// Border taps.
+    pub taps: u32,
+    /// Of them, taps whose cells (by cell centre; none lies on a border) split evenly between
+    /// the two sides of the border.
+    pub even_cells: u32,
+    /// Of them, taps whose eq. 4 column (or row) mean is a half-integer: rounding the label to a
+    /// cell is a tie too.
+    pub eq4_tie: u32,
+    /// The labelled area's offset from the centroid along the border's normal, by the side of
+    /// the pad the border is on (`x < 0` first): `+1` when the label is the area towards +x.
+    pub label_side: [Option<i8>; 2],
+    /// The ranging position's offset from the border towards the labelled area, mm, per tap.
+    pub offsets_mm: Vec<f64>,
+}
+
+impl Border {
+    /// Mean and sample standard deviation of [`Border::offsets_mm`].
+    pub fn offset_stats(&self) -> (f64, f64) {
+        let n = self.offsets_mm.len() as f64;
+        let mean = self.offsets_mm.iter().sum::<f64>() / n;
+        let var = self
+            .offsets_mm
+            .iter()
+            .map(|o| (o - mean).powi(2))
+            .sum::<f64>()
+            / (n - 1.0);
+        (mean, var.sqrt())
+    }
+
+    /// Ranging positions on the labelled side of the border.
+    pub fn on_label_side(&self) -> usize {
+        self.offsets_mm.iter().filter(|o| **o > 0.0).count()
+    }
+
+    fn add(&mut self, tap: &Tap, centroid: [f32; 2], holding: &[usize], ranging: Option<[f64; 2]>) {
+        let grid = aot_locate::AreaGrid::SIMULATED_PAD;
+        let centres = grid.centres_mm();
+        let (a, b) = (holding[0], holding[1]);
+        self.taps += 1;
+        // The border's normal: the axis along which the two areas' centres differ.
+        let axis = usize::from(centres[a][0] == centres[b][0]);
+        let line = (centres[a][axis] + centres[b][axis]) / 2.0;
+        let cells = aot_locate::CellSet::from_bits(tap.mask).unwrap_or_default();
+        let mut sides = [0u32; 2];
+        for i in (0..aot_locate::CELLS).filter(|i| cells.bits() & (1 << i) != 0) {
+            sides[usize::from(cell_centre_mm(i)[axis] > line)] += 1;
+        }
+        self.even_cells += u32::from(sides[0] == sides[1]);
+        let [r, c] = cells.centroid().unwrap_or([0.0, 0.0]);
+        let half = |v: f32| (v - v.floor() - 0.5).abs() < 1e-4;
+        self.eq4_tie += u32::from(half(r) || half(c));
+        let label = centres[tap.aot_region][axis] - centroid[axis];
+        let side = if label > 0.0 { 1 } else { -1 };
+        self.label_side[usize::from(centroid[axis] > 0.0)] = Some(side);
+        if let Some(p) = ranging {
+            self.offsets_mm
+                .push((p[axis] - f64::from(centroid[axis])) * f64::from(side));
+        }
+    }
+}
+
+/// The centre of 4 × 6 cell `i` (row-major), pad millimetres.
+fn cell_centre_mm(i: usize) -> [f32; 2] {
+    grid_mm([(i / 6 + 1) as f32, (i % 6 + 1) as f32])
+}
+
+/// The areas (0…8) whose closed rectangle on the simulated pad holds the point `c` (mm).
+pub fn areas_holding(c: [f32; 2]) -> Vec<usize> {
+    let g = aot_locate::AreaGrid::SIMULATED_PAD;
+    let (hw, hh) = (g.width_mm / 6.0, g.height_mm / 6.0);
+    g.centres_mm()
+        .iter()
+        .enumerate()
+        .filter(|(_, a)| (c[0] - a[0]).abs() <= hw + 1e-4 && (c[1] - a[1]).abs() <= hh + 1e-4)
+        .map(|(n, _)| n)
+        .collect()
+}
+
+/// The repeat the time-of-flight variant is fitted on; the other is held out.
+pub const TRAIN_REPEAT: u32 = 0;
+
+/// Each sensor's distance to the patch centroid of `mask`, mm (`None` for an empty mask).
+pub fn distances_mm(mask: u32) -> Option<[f32; 3]> {
+    let c = centroid_mm(mask)?;
+    let s = Geometry::SIMULATED_SENSORS_MM;
+    Some(std::array::from_fn(|k| {
+        ((c[0] - s[k][0]).powi(2) + (c[1] - s[k][1]).powi(2)).sqrt()
+    }))
+}
+
+/// Runs every rule on the held-out taps of `data` (repeat 1), after fitting the ranging
+/// model on the training taps (repeat 0) only.
+pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> Report {
+    let mut rep = Report::default();
+    let events: Vec<(&Tap, ArrivalEvent)> = data
+        .taps
+        .iter()
+        .map(|tap| {
+            let frames = data.series.get(&tap.id).map(Vec::as_slice).unwrap_or(&[]);
+            (tap, tap_event(tap, frames, config))
+        })
+        .collect();
+    let mut fits = BTreeMap::new();
+    for (tap, _) in &events {
+        if fits.contains_key(&tap.osr) {
+            continue;
+        }
+        let mut fit = RangingFit::new(config.threshold_pa);
+        for (t, e) in events
+            .iter()
+            .filter(|(t, _)| t.osr == tap.osr && t.repeat == TRAIN_REPEAT)
+        {
+            if let Some(d) = distances_mm(t.mask) {
+                fit.push(e, d);
+            }
+        }
+        if let Some(model) = fit.finish() {
+            fits.insert(tap.osr, model);
+        }
+    }
+    rep.fits = fits.clone();
+    for (tap, event) in events.iter().filter(|(t, _)| t.repeat != TRAIN_REPEAT) {
+        let (tap, event) = (*tap, *event);
+        let missing = event.arrival_us.iter().any(Option::is_none);
+        rep.missing_sensor.entry(tap.osr).or_default().add(missing);
+        if event.arrival_us.iter().all(Option::is_none) {
+            *rep.no_arrival.entry(tap.osr).or_default() += 1;
+        }
+        let centroid = centroid_mm(tap.mask);
+        let holding = centroid.map(areas_holding).unwrap_or_default();
+        if let (Some(c), 2) = (centroid, holding.len()) {
+            let p = fits
+                .get(&tap.osr)
+                .and_then(|m| m.position_mm(geometry, &event).ok());
+            rep.border
+                .entry(tap.osr)
+                .or_default()
+                .add(tap, c, &holding, p);
+        }
+        for rule in Rule::ALL {
+            let pick = rule.predict(geometry, fits.get(&tap.osr), tap, &event);
+            rep.tolerant
+                .entry((rule, tap.osr))
+                .or_default()
+                .add(pick.is_some_and(|p| holding.contains(&p)));
+            if let Some(p) = pick {
+                rep.picked.entry(rule).or_default()[p] += 1;
+            }
+            let hit = pick == Some(tap.aot_region);
+            rep.by_interior
+                .entry((rule, tap.osr, holding.len() == 1))
+                .or_default()
+                .add(hit);
+            rep.by_osr.entry((rule, tap.osr)).or_default().add(hit);
+            rep.by_region
+                .entry((rule, tap.osr, tap.aot_region))
+                .or_default()
+                .add(hit);
+            rep.by_shape
+                .entry((rule, tap.osr, tap.shape.clone()))
+                .or_default()
+                .add(hit);
+            rep.by_force
+                .entry((rule, tap.osr, tap.force_kgf))
+                .or_default()
+                .add(hit);
+        }
+    }
+    rep
+}
+
+/// The patch centroid in pad millimetres (x right, y up, origin at the centre; 3 mm cells).
+pub fn centroid_mm(mask: u32) -> Option<[f32; 2]> {
+    let [r, c] = aot_locate::CellSet::from_bits(mask)?.centroid()?;
+    Some(grid_mm([r, c]))
+}
+
+/// 1-based (row, column) on the 4 × 6 grid, cell centres at whole numbers, to pad millimetres.
+fn grid_mm([r, c]: [f32; 2]) -> [f32; 2] {
+    [(c - 0.5) * 3.0 - 9.0, 6.0 - (r - 0.5) * 3.0]
+}

@@ -1,0 +1,424 @@
+//! Seed 002 §IV-A's protocol for the contact CNN, its committed weights and metrics
+//! (`fixtures/models/contact_cnn/`).
+//!
+//! # Augmentation ([`augment`])
+//! "The size of the dataset of each contact depth is augmented adding Gaussian noise (30 dB
+//! signal-to-noise ratio) from 5 to 105": every tap is kept and gets [`NOISY_COPIES`] = 20
+//! noisy copies (5 repeats → 105 windows per position; 8 positions per region → the paper's
+//! 840 per region and depth). The noise of each signal (row of the 4 × 38 window) has power
+//! `P / 10^(30 / 10)`, `P` the mean square of that signal in that tap — MATLAB's
+//! `awgn(x, 30, 'measured')` per signal. Seeded per tap.
+//!
+//! # Splits ([`Protocol`], [`Grouping`])
+//! - 10 trials of a random 80 / 20 split, and 5-fold cross-validation, each on one case: one
+//!   depth (0.2…1.6 mm) or all depths together;
+//! - [`Grouping::Samples`] (the paper's, as §IV-A reads: the augmented matrices are split):
+//!   the noisy copies of one tap land on both sides, so the test set holds near-duplicates of
+//!   training windows; [`Grouping::Taps`] (ours, leak-free): whole taps, with their copies, go
+//!   to one side.
+//!
+//! Accuracy is the fraction of held-out windows whose arg-max region is right; a row of the
+//! metrics file holds the mean and (n − 1) standard deviation over the trials or folds, in %.
+
+use crate::data::imu_pad::{CHANNELS, ImuTap, REGIONS, WINDOW, WINDOW_VALUES, depths_um};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::StandardNormal;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use tactile_nets::contact_cnn::{ContactCnn, Variant};
+use tactile_nets::error::NetError;
+use tactile_nets::metrics::{MetricsFile, MetricsRow};
+use tactile_nets::train::TrainConfig;
+
+/// Where the committed weights and metrics live, below the workspace root.
+pub const MODEL_DIR: &str = "fixtures/models/contact_cnn";
+/// The committed metrics file inside [`MODEL_DIR`].
+pub const METRICS_FILE: &str = "metrics.json";
+/// Root seed of the protocol (augmentation, splits, initial weights).
+pub const SEED: u64 = 8;
+/// The paper's augmentation SNR, dB.
+pub const SNR_DB: f32 = 30.0;
+/// Noisy copies per tap (5 → 105 per position).
+pub const NOISY_COPIES: usize = 20;
+/// Random 80 / 20 trials.
+pub const TRIALS: usize = 10;
+/// Cross-validation folds.
+pub const FOLDS: usize = 5;
+/// Held-out share of a trial.
+pub const TEST_SHARE: f64 = 0.2;
+
+/// Augmented windows with their labels and the tap each came from.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Augmented {
+    /// Raw windows (channel-major).
+    pub windows: Vec<[f32; WINDOW_VALUES]>,
+    /// Region of each window.
+    pub regions: Vec<u8>,
+    /// Index (into the taps given to [`augment`]) of the tap each window came from.
+    pub taps: Vec<usize>,
+}
+
+impl Augmented {
+    /// The windows and labels at `idx`.
+    pub fn pick(&self, idx: &[usize]) -> (Vec<[f32; WINDOW_VALUES]>, Vec<u8>) {
+        (
+            idx.iter().map(|&i| self.windows[i]).collect(),
+            idx.iter().map(|&i| self.regions[i]).collect(),
+        )
+    }
+}
+
+/// Each tap plus `copies` noisy copies at `snr_db` (see the module docs), seeded by `seed`.
+pub fn augment(taps: &[&ImuTap], copies: usize, snr_db: f32, seed: u64) -> Augmented {
+    let mut out = Augmented::default();
+    let ratio = 10f32.powf(snr_db / 10.0);
+    for (t, tap) in taps.iter().enumerate() {
+        // One stream per tap, keyed by what the tap is, so a case's copies do not depend on
+        // which other taps are in the case.
+        let key =
+            (u64::from(tap.depth_um) << 32) | (u64::from(tap.repeat) << 16) | tap.position() as u64;
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(key);
+        let sigma: [f32; CHANNELS] = core::array::from_fn(|c| {
+            let s = &tap.window[c * WINDOW..(c + 1) * WINDOW];
+            (s.iter().map(|v| v * v).sum::<f32>() / WINDOW as f32 / ratio).sqrt()
+        });
+        out.windows.push(tap.window);
+        for _ in 0..copies {
+            let w: [f32; WINDOW_VALUES] = core::array::from_fn(|i| {
+                let n: f32 = rng.sample(StandardNormal);
+                tap.window[i] + sigma[i / WINDOW] * n
+            });
+            out.windows.push(w);
+        }
+        out.regions
+            .extend(std::iter::repeat_n(tap.region, copies + 1));
+        out.taps.extend(std::iter::repeat_n(t, copies + 1));
+    }
+    out
+}
+
+/// Which taps a case trains and tests on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Case {
+    /// One contact depth, µm.
+    Depth(u32),
+    /// Every depth together (Table I's "All cases").
+    All,
+}
+
+impl Case {
+    /// Table I's rows: each depth in `taps`, then all.
+    pub fn all(taps: &[ImuTap]) -> Vec<Case> {
+        let mut v: Vec<Case> = depths_um(taps).into_iter().map(Case::Depth).collect();
+        v.push(Case::All);
+        v
+    }
+
+    /// `0.2mm` … or `all`.
+    pub fn name(self) -> String {
+        match self {
+            Case::Depth(um) => format!("{:.1}mm", f64::from(um) / 1000.0),
+            Case::All => "all".into(),
+        }
+    }
+
+    /// The taps of this case.
+    pub fn taps(self, taps: &[ImuTap]) -> Vec<&ImuTap> {
+        taps.iter()
+            .filter(|t| match self {
+                Case::Depth(um) => t.depth_um == um,
+                Case::All => true,
+            })
+            .collect()
+    }
+
+    fn key(self) -> u64 {
+        match self {
+            Case::Depth(um) => u64::from(um),
+            Case::All => u64::from(u32::MAX),
+        }
+    }
+}
+
+/// Repeated random splits or k-fold cross-validation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Protocol {
+    /// [`TRIALS`] random 80 / 20 splits.
+    Trials,
+    /// [`FOLDS`]-fold cross-validation.
+    KFold,
+}
+
+impl Protocol {
+    /// Both.
+    pub const ALL: [Protocol; 2] = [Protocol::Trials, Protocol::KFold];
+
+    /// `trials` or `kfold`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Protocol::Trials => "trials",
+            Protocol::KFold => "kfold",
+        }
+    }
+
+    /// Splits of this protocol.
+    pub fn runs(self) -> usize {
+        match self {
+            Protocol::Trials => TRIALS,
+            Protocol::KFold => FOLDS,
+        }
+    }
+}
+
+/// What a split keeps together.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Grouping {
+    /// Augmented windows are split one by one (the paper's protocol).
+    Samples,
+    /// A tap and its noisy copies stay on one side (leak-free).
+    Taps,
+}
+
+impl Grouping {
+    /// `samples` or `taps`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Grouping::Samples => "samples",
+            Grouping::Taps => "taps",
+        }
+    }
+}
+
+/// Fisher–Yates with a seeded stream (as [`tactile_nets::train`] does for minibatches).
+fn shuffled(n: usize, rng: &mut ChaCha8Rng) -> Vec<usize> {
+    let mut v: Vec<usize> = (0..n).collect();
+    for i in (1..n).rev() {
+        v.swap(i, rng.random_range(0..=i));
+    }
+    v
+}
+
+/// (training, held-out) window indices of run `run` (trial or fold) of `protocol`.
+pub fn split(
+    data: &Augmented,
+    protocol: Protocol,
+    grouping: Grouping,
+    run: usize,
+    seed: u64,
+) -> (Vec<usize>, Vec<usize>) {
+    let units = match grouping {
+        Grouping::Samples => data.windows.len(),
+        Grouping::Taps => data.taps.iter().max().map_or(0, |&t| t + 1),
+    };
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    // Trials draw a fresh order each run; folds cut one order into FOLDS parts.
+    rng.set_stream(match protocol {
+        Protocol::Trials => 1 + run as u64,
+        Protocol::KFold => 0,
+    });
+    let order = shuffled(units, &mut rng);
+    let (lo, hi) = match protocol {
+        Protocol::Trials => (0, (units as f64 * TEST_SHARE).round() as usize),
+        Protocol::KFold => (run * units / FOLDS, (run + 1) * units / FOLDS),
+    };
+    let mut held = vec![false; units];
+    for &u in &order[lo..hi] {
+        held[u] = true;
+    }
+    let unit = |i: usize| match grouping {
+        Grouping::Samples => i,
+        Grouping::Taps => data.taps[i],
+    };
+    (0..data.windows.len()).partition(|&i| !held[unit(i)])
+}
+
+/// Fraction of `idx` that `model` classifies right.
+pub fn accuracy(model: &ContactCnn, data: &Augmented, idx: &[usize]) -> Result<f64, NetError> {
+    let (w, r) = data.pick(idx);
+    let got = model.classify_batch(&w)?;
+    let hits = got.iter().zip(&r).filter(|(a, b)| a == b).count();
+    Ok(hits as f64 / idx.len().max(1) as f64)
+}
+
+/// The 9 × 9 confusion counts (`[truth][predicted]`) of `model` on `idx`.
+pub fn confusion(
+    model: &ContactCnn,
+    data: &Augmented,
+    idx: &[usize],
+) -> Result<[[u32; REGIONS]; REGIONS], NetError> {
+    let (w, r) = data.pick(idx);
+    let mut m = [[0u32; REGIONS]; REGIONS];
+    for (p, t) in model.classify_batch(&w)?.into_iter().zip(r) {
+        m[usize::from(t)][usize::from(p)] += 1;
+    }
+    Ok(m)
+}
+
+/// The training recipe of `variant` ([`Variant::epochs`] passes over the augmented windows,
+/// each tap seen 21 times per pass); `label` names the progress bar.
+pub fn recipe(variant: Variant, seed: u64, label: String) -> TrainConfig {
+    TrainConfig {
+        epochs: variant.epochs(),
+        batch_size: 32,
+        learning_rate: 1e-3,
+        l2: 0.0,
+        seed,
+        progress: false,
+        label,
+    }
+}
+
+/// The seed of one training run, from the root seed and what the run is.
+pub fn run_seed(seed: u64, case: Case, protocol: Protocol, grouping: Grouping, run: usize) -> u64 {
+    let tag = (case.key() << 8) ^ ((protocol as u64) << 4) ^ ((grouping as u64) << 6) ^ run as u64;
+    seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ tag
+}
+
+/// One job of the protocol: a model trained and tested on one split.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Job {
+    /// Which network.
+    pub variant: Variant,
+    /// Which taps.
+    pub case: Case,
+    /// Trials or folds.
+    pub protocol: Protocol,
+    /// Samples or taps.
+    pub grouping: Grouping,
+    /// Trial / fold index.
+    pub run: usize,
+}
+
+/// Trains and tests one job; returns the held-out accuracy and the model.
+pub fn run_job(
+    job: Job,
+    data: &Augmented,
+    seed: u64,
+    adjust: &dyn Fn(&mut TrainConfig),
+) -> Result<(f64, ContactCnn), NetError> {
+    let (train, test) = split(data, job.protocol, job.grouping, job.run, seed);
+    let (w, r) = data.pick(&train);
+    let s = run_seed(seed, job.case, job.protocol, job.grouping, job.run);
+    let mut config = recipe(job.variant, s, String::new());
+    adjust(&mut config);
+    let (model, _) = ContactCnn::train(&w, &r, job.variant, &config)?;
+    Ok((accuracy(&model, data, &test)?, model))
+}
+
+/// Mean and (n − 1) standard deviation, in %.
+pub fn mean_std_pct(acc: &[f64]) -> (f64, f64) {
+    let n = acc.len() as f64;
+    let mean = acc.iter().sum::<f64>() / n.max(1.0);
+    let var = acc.iter().map(|a| (a - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
+    (100.0 * mean, 100.0 * var.sqrt())
+}
+
+/// Metrics row label of a protocol result.
+pub fn row_label(variant: Variant, grouping: Grouping, protocol: Protocol, case: Case) -> String {
+    format!(
+        "{}/{}/{}/{}",
+        variant.name(),
+        grouping.name(),
+        protocol.name(),
+        case.name()
+    )
+}
+
+/// Metrics row label of a committed model's re-evaluation.
+pub fn committed_label(variant: Variant) -> String {
+    format!("committed/{}", variant.name())
+}
+
+/// The committed models: each variant trained on trial 0 of the all-depth case, leak-free
+/// grouping — the split a test re-creates to check the weights against the metrics.
+pub fn committed_job(variant: Variant) -> Job {
+    Job {
+        variant,
+        case: Case::All,
+        protocol: Protocol::Trials,
+        grouping: Grouping::Taps,
+        run: 0,
+    }
+}
+
+/// File name of a committed model inside [`MODEL_DIR`].
+pub fn model_file(variant: Variant) -> String {
+    format!("{}.safetensors", variant.name())
+}
+
+/// Re-evaluates the committed model of `variant` below the workspace root `root` on its
+/// held-out split: (accuracy, confusion counts).
+pub fn evaluate_committed(
+    root: &Path,
+    taps: &[ImuTap],
+    variant: Variant,
+) -> Result<(f64, [[u32; REGIONS]; REGIONS]), NetError> {
+    let job = committed_job(variant);
+    let model = ContactCnn::load(&root.join(MODEL_DIR).join(model_file(variant)))?;
+    let data = augment(&job.case.taps(taps), NOISY_COPIES, SNR_DB, SEED);
+    let (_, test) = split(&data, job.protocol, job.grouping, job.run, SEED);
+    Ok((
+        accuracy(&model, &data, &test)?,
+        confusion(&model, &data, &test)?,
+    ))
+}
+
+/// The committed-model rows: accuracy and the confusion counts (`c{truth}{predicted}`).
+pub fn committed_row(
+    variant: Variant,
+    accuracy: f64,
+    confusion: &[[u32; REGIONS]; REGIONS],
+) -> MetricsRow {
+    let mut values = BTreeMap::from([("accuracy".to_owned(), accuracy)]);
+    for (t, row) in confusion.iter().enumerate() {
+        for (p, &n) in row.iter().enumerate() {
+            values.insert(format!("c{t}{p}"), f64::from(n));
+        }
+    }
+    MetricsRow {
+        label: committed_label(variant),
+        values,
+    }
+}
+
+/// A protocol result row: mean and standard deviation of accuracy, %, and the runs.
+pub fn protocol_row(label: String, accuracies: &[f64]) -> MetricsRow {
+    let (mean, std) = mean_std_pct(accuracies);
+    MetricsRow {
+        label,
+        values: BTreeMap::from([
+            ("mean_pct".to_owned(), mean),
+            ("std_pct".to_owned(), std),
+            ("runs".to_owned(), accuracies.len() as f64),
+        ]),
+    }
+}
+
+/// The metrics file around `rows`.
+pub fn metrics_file(rows: Vec<MetricsRow>, seed: u64) -> MetricsFile {
+    MetricsFile {
+        model: "contact_cnn".into(),
+        description: "Contact CNN (seed 002 §IV-A) on the hand-sim ICM-20789 pad taps, 30 dB \
+                      augmentation (1 + 20 windows per tap). Rows `variant/grouping/protocol/case`: \
+                      held-out accuracy mean and (n-1) std over 10 random 80/20 trials or 5 folds, \
+                      %. Rows `committed/variant`: the committed weights on their held-out split \
+                      (accuracy, confusion counts c{truth}{predicted})."
+            .into(),
+        split: "grouping `samples`: augmented windows split one by one (paper); `taps`: a tap \
+                and its noisy copies on one side (leak-free); committed models: all depths, \
+                taps grouping, trial 0"
+            .into(),
+        seed,
+        rows,
+    }
+}
+
+/// Writes the metrics file into `dir`; returns its path.
+pub fn save_metrics(dir: &Path, file: &MetricsFile) -> Result<PathBuf, NetError> {
+    std::fs::create_dir_all(dir)?;
+    let path = dir.join(METRICS_FILE);
+    std::fs::write(&path, file.to_json()?)?;
+    Ok(path)
+}

@@ -1,0 +1,32 @@
+//! The three papers' protocols on the simulated datasets: what reproduces a table or a figure
+//! and is no part of a crate a user installs. Reproduction only (`publish = false`): it reads
+//! the repository's `fixtures/`, trains and evaluates on them, and prints progress.
+//!
+//! - [`data`]: one reader per committed dataset (fingertip taps and weights, the ICM-20789
+//!   pad's windows, the underactuated hand's grasps);
+//! - [`force_eval`], [`contact_eval`], [`cnn_eval`], [`softness_eval`]: each model's recipes,
+//!   held-out protocols and committed models (seed 000 §2.2 and §4, seed 002 §IV-A, seed 001);
+//! - [`aot_eval`]: Arrival-of-Time on the fingertip taps (seed 000 §3);
+//! - [`jobs`]: the training commands (`cargo xtask train MODEL`);
+//! - [`grasp_rig`]: the Table 5 grasp world (hand-sim's rig and fingertip) behind the grasp
+//!   loop's parts (seed 000 §5–7);
+//! - `tap_run` (feature `arm`, default): seed 002 §IV-B end to end on hand-sim's pad and the
+//!   simulated UR3.
+
+pub mod aot_eval;
+pub mod cnn_eval;
+pub mod contact_eval;
+pub mod force_eval;
+pub mod grasp_rig;
+pub mod jobs;
+pub mod softness_eval;
+#[cfg(feature = "arm")]
+pub mod tap_run;
+
+/// One reader per committed dataset.
+pub mod data {
+    pub mod fingertip;
+    pub mod imu_pad;
+    pub mod underactuated;
+    pub mod weights;
+}

@@ -1,0 +1,200 @@
+//! The workspace's crate graph obeys `docs/architecture.md`'s rules table (read from
+//! `cargo metadata`), and the checker catches each kind of forbidden edge on a stand-in graph.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use xtask::architecture::{
+    Edge, Kind, Package, Rule, check, parse_rules, repository_paths, workspace_packages,
+};
+
+fn rules() -> BTreeMap<String, Rule> {
+    let doc = std::fs::read_to_string(xtask::workspace_root().join("docs/architecture.md"))
+        .expect("docs/architecture.md");
+    parse_rules(&doc).expect("the rules table parses")
+}
+
+#[test]
+fn the_workspace_graph_is_the_documented_one() {
+    let rules = rules();
+    let packages = workspace_packages(&xtask::workspace_root()).expect("cargo metadata");
+    assert!(packages.len() >= 14, "{} workspace crates", packages.len());
+    let mut bad = check(&rules, &packages);
+    bad.extend(repository_paths(&rules, &packages));
+    let report: Vec<String> = bad.iter().map(ToString::to_string).collect();
+    assert!(report.is_empty(), "\n{}", report.join("\n"));
+    // The eight product crates of issue 19, and the kinds the rules rest on.
+    for name in [
+        "hand-traits",
+        "baro-drivers",
+        "imu-icm20789",
+        "aot-locate",
+        "fuzzy-mamdani",
+        "tactile-nets",
+        "hand-control",
+        "ur-bridge",
+    ] {
+        assert!(rules[name].kind.is_product(), "{name}");
+    }
+    for name in ["hand-sim", "paper-experiments", "paper-fixtures"] {
+        assert_eq!(rules[name].kind, Kind::Reproduction, "{name}");
+    }
+    assert_eq!(rules["handstack"].kind, Kind::Composition);
+}
+
+fn package(name: &str, unpublished: bool, deps: &[(&str, &'static str, bool)]) -> Package {
+    Package {
+        name: name.into(),
+        unpublished,
+        dir: PathBuf::from("/nonexistent").join(name),
+        deps: deps
+            .iter()
+            .map(|&(to, kind, optional)| Edge {
+                to: to.into(),
+                kind,
+                optional,
+            })
+            .collect(),
+    }
+}
+
+/// A graph that obeys the real table: each product crate with its allowed edges.
+fn lawful() -> Vec<Package> {
+    vec![
+        package("hand-traits", false, &[]),
+        package(
+            "baro-drivers",
+            false,
+            &[("embedded-hal", "normal", false), ("rand", "normal", true)],
+        ),
+        package("imu-icm20789", false, &[("embedded-hal", "normal", false)]),
+        package("aot-locate", false, &[("hand-traits", "normal", false)]),
+        package("fuzzy-mamdani", false, &[("hand-traits", "normal", false)]),
+        package("tactile-nets", false, &[("aot-locate", "normal", false)]),
+        package("hand-control", false, &[("fuzzy-mamdani", "dev", false)]),
+        package("ur-bridge", false, &[("ur-bridge", "dev", false)]),
+        package("hand-sim", true, &[("baro-drivers", "normal", false)]),
+        package("paper-fixtures", true, &[]),
+        package("paper-experiments", true, &[("hand-sim", "normal", false)]),
+        package("handstack-benches", true, &[("hand-sim", "normal", false)]),
+        package("handstack", true, &[("paper-experiments", "normal", false)]),
+        package("xtask", true, &[("hand-sim", "normal", false)]),
+    ]
+}
+
+/// The violations after `edit` changes the lawful graph.
+fn after(edit: impl FnOnce(&mut Vec<Package>)) -> Vec<String> {
+    let mut packages = lawful();
+    edit(&mut packages);
+    check(&rules(), &packages)
+        .iter()
+        .map(ToString::to_string)
+        .collect()
+}
+
+fn add(packages: &mut [Package], from: &str, to: &str, kind: &'static str, optional: bool) {
+    let p = packages.iter_mut().find(|p| p.name == from).expect(from);
+    p.deps.push(Edge {
+        to: to.into(),
+        kind,
+        optional,
+    });
+}
+
+#[test]
+fn the_lawful_stand_in_graph_passes() {
+    assert_eq!(after(|_| {}), Vec::<String>::new());
+}
+
+#[test]
+fn a_product_crate_on_the_simulator_fails_under_any_feature_or_kind() {
+    for (from, to, kind, optional) in [
+        ("hand-control", "hand-sim", "normal", true),
+        ("ur-bridge", "hand-sim", "dev", false),
+        ("tactile-nets", "paper-experiments", "normal", false),
+        ("aot-locate", "paper-fixtures", "dev", false),
+    ] {
+        let bad = after(|p| add(p, from, to, kind, optional));
+        assert!(
+            bad.iter()
+                .any(|b| b.contains(&format!("`{from}` → `{to}`")) && b.contains("reproduction")),
+            "{from} → {to}: {bad:?}"
+        );
+    }
+}
+
+#[test]
+fn nothing_may_depend_on_the_composition_root() {
+    let bad = after(|p| add(p, "paper-experiments", "handstack", "normal", false));
+    assert!(
+        bad.iter().any(|b| b.contains("composition root")),
+        "{bad:?}"
+    );
+}
+
+#[test]
+fn a_driver_uses_embedded_hal_and_its_listed_crates_only() {
+    let bad = after(|p| add(p, "baro-drivers", "serde", "normal", false));
+    assert!(
+        bad.iter().any(|b| b.contains("`baro-drivers` → `serde`")),
+        "{bad:?}"
+    );
+    let bad = after(|p| add(p, "imu-icm20789", "aot-locate", "normal", false));
+    assert!(bad.iter().any(|b| b.contains("not in its row")), "{bad:?}");
+    // Dev-dependencies (tests against a mock bus) are free.
+    assert_eq!(
+        after(|p| add(p, "baro-drivers", "embedded-hal-mock", "dev", false)),
+        Vec::<String>::new()
+    );
+}
+
+#[test]
+fn an_edge_the_table_does_not_list_fails() {
+    let bad = after(|p| add(p, "tactile-nets", "fuzzy-mamdani", "normal", false));
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`tactile-nets` → `fuzzy-mamdani`") && b.contains("not in its row")),
+        "{bad:?}"
+    );
+}
+
+#[test]
+fn publish_flags_follow_the_kind_and_every_crate_is_documented() {
+    let bad = after(|p| p[0].unpublished = true);
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`hand-traits` is a product crate")),
+        "{bad:?}"
+    );
+    let bad = after(|p| p[8].unpublished = false);
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`hand-sim`") && b.contains("publish = false"))
+    );
+    let bad = after(|p| p.push(package("stray", false, &[])));
+    assert!(
+        bad.iter().any(|b| b.contains("`stray` is not in")),
+        "{bad:?}"
+    );
+    let bad = after(|p| p.retain(|p| p.name != "xtask"));
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`xtask`, which is no workspace crate"))
+    );
+}
+
+#[test]
+fn a_product_crate_naming_a_repository_path_fails() {
+    let dir = std::env::temp_dir().join(format!("arch-paths-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("src/models")).expect("temp dir");
+    std::fs::write(
+        dir.join("src/models/mod.rs"),
+        "// reads fixtures/models in the docs only\nconst M: &str = \"fixtures/models/x\";\n",
+    )
+    .expect("write");
+    let mut p = package("tactile-nets", false, &[]);
+    p.dir = dir.clone();
+    let bad = repository_paths(&rules(), &[p]);
+    std::fs::remove_dir_all(&dir).expect("cleanup");
+    assert_eq!(bad.len(), 1, "{bad:?}");
+    assert!(bad[0].to_string().contains("mod.rs:2"), "{}", bad[0]);
+}
