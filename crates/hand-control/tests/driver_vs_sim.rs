@@ -4,7 +4,7 @@
 use std::time::Duration;
 
 use hand_control::sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
-use hand_control::{Error, InstructionError, ServoHand};
+use hand_control::{Error, InstructionError, RawServoState, ServoHand};
 use hand_traits::{Effort, Faults, GripperActuator, GripperCommand, SafeAction};
 
 fn hand(ids: &[u8]) -> (SimBus, ServoHand) {
@@ -187,6 +187,44 @@ fn dropped_status_corrupt_crc_and_silence_are_typed_errors() {
     assert_eq!(sim.with_servo(2, |s| s.torque_enabled()), Some(false));
     sim.clear_faults(2);
     assert_eq!(hand.read_states().unwrap().len(), 2);
+}
+
+#[test]
+fn sync_read_into_a_caller_buffer() {
+    let (mut sim, mut hand) = hand(&[1, 2, 3]);
+    hand.set_torque(true).unwrap();
+    hand.command(&cmd(2.5, 1023)).unwrap();
+    sim.advance(Duration::from_millis(300)).unwrap();
+    // A longer buffer: the first three entries are filled, the rest left alone.
+    let marker = RawServoState {
+        id: 99,
+        ..RawServoState::default()
+    };
+    let mut out = [marker; 4];
+    assert_eq!(hand.read_states_into(&mut out).unwrap(), 3);
+    assert_eq!(out.map(|s| s.id), [1, 2, 3, 99]);
+    // The convenience wrapper reads the same (the servos hold still between the two reads).
+    sim.advance(Duration::from_secs(3)).unwrap();
+    hand.read_states_into(&mut out).unwrap();
+    assert_eq!(hand.read_states().unwrap(), out[..3]);
+    // Too short: a typed error, nothing sent, the buffer untouched.
+    let mut short = [marker; 2];
+    let r = hand.read_states_into(&mut short);
+    assert!(
+        matches!(r, Err(Error::OutOfRange { what: "state buffer length", value, min, .. })
+            if value == 2.0 && min == 3.0),
+        "{r:?}"
+    );
+    assert_eq!(short, [marker; 2]);
+    // A failed exchange leaves the buffer as it was.
+    let before = out;
+    sim.inject(2, Fault::DropNextStatus);
+    assert!(matches!(
+        hand.read_states_into(&mut out),
+        Err(Error::Timeout { id: Some(2) })
+    ));
+    assert_eq!(out, before);
+    assert_eq!(hand.read_states_into(&mut out).unwrap(), 3);
 }
 
 /// An object 0.1 rad ahead of servo 1 (a 200 N·m/rad spring), stiff enough to stall the finger;

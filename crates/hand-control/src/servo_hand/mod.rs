@@ -19,7 +19,9 @@ use hand_traits::Faults;
 const BUFFER_LEN: usize = 1024;
 
 /// One servo's state from a sync read, in raw control-table units.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+///
+/// `Default` (all zero) is there to size a buffer for [`ServoHand::read_states_into`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct RawServoState {
     /// Servo ID.
     pub id: u8,
@@ -47,11 +49,25 @@ pub struct RawGoals {
 /// Positions are the servo's raw Present Position times the model's unit (radians from raw 0);
 /// the effort fraction of [`hand_traits::Effort`] maps onto Goal PWM (MX-28: the paper's
 /// 0…1023 torque limit becomes 0…885) or Goal Current (XM430, RH-P12-RN).
+///
+/// # Allocation
+///
+/// The per-cycle calls allocate nothing once the hand exists: [`ServoHand::write_goals`],
+/// [`ServoHand::torque_off_all`], [`ServoHand::read_states_into`] (into the caller's buffer)
+/// and the [`hand_traits::GripperActuator`] methods built on them (`command`, `state`,
+/// `safe_stop`). The buffers they need — the bus's read and write buffers, the status-packet
+/// framing, the SYNC READ parameters, one state per servo — are sized by the constructor.
+/// Errors allocate (messages), and so do the convenience [`ServoHand::read_states`] (its
+/// returned `Vec`) and [`ServoHand::recover`].
 #[derive(Debug)]
 pub struct ServoHand {
     link: status::Link,
     ids: Vec<u8>,
     table: &'static ControlTable,
+    /// SYNC READ parameters of the state block (start, length, every ID), built once.
+    sync_read: Vec<u8>,
+    /// One state per servo, for [`hand_traits::GripperActuator::state`].
+    states: Vec<RawServoState>,
     /// The last command a fault-free state read confirmed.
     last_safe: Option<RawGoals>,
     /// The last command sent, not yet confirmed.
@@ -110,6 +126,8 @@ impl ServoHand {
             link: status::Link::new(bus, latency)?,
             ids: ids.to_vec(),
             table: &crate::control_table::MX_28,
+            sync_read: Vec::new(),
+            states: vec![RawServoState::default(); ids.len()],
             last_safe: None,
             pending: None,
         };
@@ -125,6 +143,13 @@ impl ServoHand {
             }
         }
         hand.table = table;
+        let (start, len) = table.state_block();
+        hand.sync_read.reserve_exact(4 + ids.len());
+        hand.sync_read.extend_from_slice(&start.to_le_bytes());
+        hand.sync_read.extend_from_slice(&len.to_le_bytes());
+        hand.sync_read.extend_from_slice(ids);
+        // The largest exchange a hand makes: every servo's state block.
+        hand.link.reserve(ids.len(), len);
         Ok(hand)
     }
 
@@ -139,16 +164,16 @@ impl ServoHand {
         self.link.latency = latency;
     }
 
-    /// One instruction to `id` and its status packet's data (`count` bytes).
+    /// One instruction to `id` and its status packet (`count` data bytes).
     fn transfer(
         &mut self,
         id: u8,
         instruction: u8,
         params: &[u8],
         count: u16,
-    ) -> Result<status::Answer, Error> {
-        let mut a = self.link.exchange(id, instruction, params, &[id], count)?;
-        a.pop().ok_or(Error::Timeout { id: Some(id) })
+    ) -> Result<status::Answer<'_>, Error> {
+        self.link.exchange(id, instruction, params, &[id], count)?;
+        self.link.answer(0).ok_or(Error::Timeout { id: Some(id) })
     }
 
     /// The servo IDs, in the order commands and states use.
@@ -193,8 +218,9 @@ impl ServoHand {
     /// but the servo has a hardware error latched).
     pub fn write_register(&mut self, id: u8, address: u16, value: i32) -> Result<(), Error> {
         let reg = self.register(address)?;
-        let r = self.transfer(id, instruction_id::WRITE, &address_and_value(reg, value), 0)?;
-        if r.alert {
+        let (p, n) = address_and_value(reg, value);
+        let alert = self.transfer(id, instruction_id::WRITE, &p[..n], 0)?.alert;
+        if alert {
             return Err(self.hardware_error_of(id));
         }
         Ok(())
@@ -206,10 +232,15 @@ impl ServoHand {
     /// As [`ServoHand::write_register`].
     pub fn read_register(&mut self, id: u8, address: u16) -> Result<i32, Error> {
         let reg = self.register(address)?;
-        let mut p = address.to_le_bytes().to_vec();
-        p.extend_from_slice(&u16::from(reg.width).to_le_bytes());
-        let r = self.transfer(id, instruction_id::READ, &p, u16::from(reg.width))?;
-        reg.decode(&r.data).ok_or(Error::Protocol {
+        let [a0, a1] = address.to_le_bytes();
+        let [w0, w1] = u16::from(reg.width).to_le_bytes();
+        let r = self.transfer(
+            id,
+            instruction_id::READ,
+            &[a0, a1, w0, w1],
+            u16::from(reg.width),
+        )?;
+        reg.decode(r.data).ok_or_else(|| Error::Protocol {
             id: Some(id),
             detail: "short read".into(),
         })
@@ -287,12 +318,8 @@ impl ServoHand {
     /// As [`ServoHand::write_register`].
     pub fn reg_write(&mut self, id: u8, address: u16, value: i32) -> Result<(), Error> {
         let reg = self.register(address)?;
-        self.transfer(
-            id,
-            instruction_id::REG_WRITE,
-            &address_and_value(reg, value),
-            0,
-        )?;
+        let (p, n) = address_and_value(reg, value);
+        self.transfer(id, instruction_id::REG_WRITE, &p[..n], 0)?;
         Ok(())
     }
 
@@ -333,6 +360,9 @@ impl ServoHand {
 
     /// Sync-writes raw goals to every servo (two broadcast packets: effort, then position).
     ///
+    /// Allocates nothing: each packet's parameters are written straight into the bus's write
+    /// buffer (`dynamixel2`'s `Bus::sync_write` takes an iterator of per-servo data).
+    ///
     /// # Errors
     /// A serial-port error (sync write has no status packets).
     pub fn write_goals(&mut self, goals: &RawGoals) -> Result<(), Error> {
@@ -342,86 +372,128 @@ impl ServoHand {
             (t.goal_position, goals.position),
         ] {
             let bytes = reg.encode(value);
-            let data: Vec<_> = self
+            let data = &bytes[..usize::from(reg.width)];
+            let per_servo = self
                 .ids
                 .iter()
-                .map(|&motor_id| SyncWriteData {
-                    motor_id,
-                    data: &bytes[..usize::from(reg.width)],
-                })
-                .collect();
+                .map(|&motor_id| SyncWriteData { motor_id, data });
             self.link
                 .bus
-                .sync_write(reg.address, u16::from(reg.width), &data)
+                .sync_write(reg.address, u16::from(reg.width), per_servo)
                 .map_err(Error::from_write)?;
         }
         Ok(())
     }
 
-    /// Sync-reads Present Load / Velocity / Position of every servo in one packet.
+    /// Sync-reads Present Load / Velocity / Position of every servo in one packet into `out`:
+    /// `out[k]` is servo [`ServoHand::ids`]`()[k]`; returns how many entries were filled (the
+    /// number of servos). Entries past that are left alone.
+    ///
+    /// Allocates nothing: the SYNC READ parameters were built by the constructor and the status
+    /// packets are framed in buffers the hand keeps. Size `out` once (an array, or a `Vec`
+    /// kept between calls) and reuse it every cycle.
+    ///
+    /// ```
+    /// use hand_control::sim::{SimBus, SimConfig, REPLY_LATENCY};
+    /// use hand_control::{RawServoState, ServoHand};
+    ///
+    /// let (_sim, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2]))?;
+    /// let mut hand = ServoHand::with_reply_latency(port, &[1, 2], REPLY_LATENCY)?;
+    /// let mut states = [RawServoState::default(); 2]; // on the stack, reused every cycle
+    /// let n = hand.read_states_into(&mut states)?;
+    /// assert_eq!(n, 2);
+    /// assert_eq!(states.map(|s| s.id), [1, 2]);
+    /// assert_eq!(states[0].position, 2048); // the simulator starts every servo at π rad
+    /// // A buffer shorter than the hand is a typed error, and nothing is sent.
+    /// assert!(matches!(
+    ///     hand.read_states_into(&mut states[..1]),
+    ///     Err(hand_control::Error::OutOfRange { what: "state buffer length", .. })
+    /// ));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     ///
     /// # Errors
-    /// The first servo's error ([`Error::Timeout`], [`Error::Crc`]…); all answers are consumed.
-    pub fn read_states(&mut self) -> Result<Vec<RawServoState>, Error> {
+    /// [`Error::OutOfRange`] (`what: "state buffer length"`) when `out` is shorter than the
+    /// number of servos, before anything is sent; otherwise the first servo's error
+    /// ([`Error::Timeout`], [`Error::Crc`]…), after all answers are consumed. On an exchange
+    /// error `out` is left unchanged.
+    pub fn read_states_into(&mut self, out: &mut [RawServoState]) -> Result<usize, Error> {
+        let n = self.ids.len();
+        let Some(out) = out.get_mut(..n) else {
+            return Err(Error::OutOfRange {
+                what: "state buffer length",
+                value: out.len() as f64,
+                min: n as f64,
+                max: f64::INFINITY,
+            });
+        };
         let t = self.table;
         let (start, len) = t.state_block();
-        let ids = self.ids.clone();
-        let mut p = Vec::with_capacity(4 + ids.len());
-        p.extend_from_slice(&start.to_le_bytes());
-        p.extend_from_slice(&len.to_le_bytes());
-        p.extend_from_slice(&ids);
-        let answers = self.link.exchange(
+        self.link.exchange(
             packet_id::BROADCAST,
             instruction_id::SYNC_READ,
-            &p,
-            &ids,
+            &self.sync_read,
+            &self.ids,
             len,
         )?;
         let field = |reg: crate::control_table::Register, data: &[u8]| {
             reg.decode(data.get(usize::from(reg.address - start)..)?)
         };
-        answers
-            .into_iter()
-            .map(|a| {
-                match (
-                    field(t.present_position, &a.data),
-                    field(t.present_velocity, &a.data),
-                    field(t.present_load, &a.data),
-                ) {
-                    (Some(position), Some(velocity), Some(load)) => Ok(RawServoState {
+        for (k, state) in out.iter_mut().enumerate() {
+            let a = self.link.answer(k).ok_or(Error::Timeout {
+                id: self.ids.get(k).copied(),
+            })?;
+            match (
+                field(t.present_position, a.data),
+                field(t.present_velocity, a.data),
+                field(t.present_load, a.data),
+            ) {
+                (Some(position), Some(velocity), Some(load)) => {
+                    *state = RawServoState {
                         id: a.id,
                         position,
                         velocity,
                         load,
                         alert: a.alert,
-                    }),
-                    _ => Err(Error::Protocol {
+                    }
+                }
+                _ => {
+                    return Err(Error::Protocol {
                         id: Some(a.id),
                         detail: "short sync read".into(),
-                    }),
+                    });
                 }
-            })
-            .collect()
+            }
+        }
+        Ok(n)
+    }
+
+    /// [`ServoHand::read_states_into`] a new `Vec` (one per call: a loop should keep its own
+    /// buffer and call `read_states_into`).
+    ///
+    /// # Errors
+    /// As [`ServoHand::read_states_into`].
+    pub fn read_states(&mut self) -> Result<Vec<RawServoState>, Error> {
+        let mut states = vec![RawServoState::default(); self.ids.len()];
+        let n = self.read_states_into(&mut states)?;
+        states.truncate(n);
+        Ok(states)
     }
 
     /// Sync-writes Torque Enable = 0 to every servo: one broadcast packet, no answer needed, so
-    /// it reaches every servo even when one has stopped answering.
+    /// it reaches every servo even when one has stopped answering. Allocates nothing.
     ///
     /// # Errors
     /// A serial-port error.
     pub fn torque_off_all(&mut self) -> Result<(), Error> {
         let reg = self.table.torque_enable;
-        let data: Vec<_> = self
-            .ids
-            .iter()
-            .map(|&motor_id| SyncWriteData {
-                motor_id,
-                data: [0u8],
-            })
-            .collect();
+        let per_servo = self.ids.iter().map(|&motor_id| SyncWriteData {
+            motor_id,
+            data: [0u8],
+        });
         self.link
             .bus
-            .sync_write(reg.address, 1, &data)
+            .sync_write(reg.address, 1, per_servo)
             .map_err(Error::from_write)
     }
 
@@ -504,9 +576,10 @@ fn position_limits(t: &ControlTable) -> (i32, i32) {
     }
 }
 
-/// WRITE / REG_WRITE parameters: the address, then the value in the register's width.
-fn address_and_value(reg: &crate::control_table::Register, value: i32) -> Vec<u8> {
-    let mut p = reg.address.to_le_bytes().to_vec();
-    p.extend_from_slice(&reg.encode(value)[..usize::from(reg.width)]);
-    p
+/// WRITE / REG_WRITE parameters — the address, then the value in the register's width — and
+/// how many of the six bytes they take.
+fn address_and_value(reg: &crate::control_table::Register, value: i32) -> ([u8; 6], usize) {
+    let [a0, a1] = reg.address.to_le_bytes();
+    let [v0, v1, v2, v3] = reg.encode(value);
+    ([a0, a1, v0, v1, v2, v3], 2 + usize::from(reg.width).min(4))
 }
