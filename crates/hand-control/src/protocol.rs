@@ -78,45 +78,103 @@ impl Parser {
 
     /// The next complete packet, a skipped bad frame, or `None` when more bytes are needed.
     pub fn next_packet(&mut self) -> Option<Result<Packet, FrameError>> {
-        let start = find_header(&self.buf);
-        self.buf.drain(..start);
-        if self.buf.len() < 7 {
-            return None;
-        }
-        let len = usize::from(u16::from_le_bytes([self.buf[5], self.buf[6]]));
-        if !(3..=MAX_LEN).contains(&len) {
-            // Not a real header: drop its first byte and look again.
-            self.buf.drain(..1);
-            return Some(Err(FrameError::BadLength));
-        }
-        let total = 7 + len;
-        if self.buf.len() < total {
-            return None;
-        }
-        let crc_at = total - 2;
-        let sent = u16::from_le_bytes([self.buf[crc_at], self.buf[crc_at + 1]]);
-        let (id, instruction) = (self.buf[4], self.buf[7]);
-        let computed = calculate_checksum(0, &self.buf[..crc_at]);
-        if computed != sent {
-            // The "packet" may be garbage that happened to contain a header: resume one
-            // byte later so a real packet inside it is still found.
-            self.buf.drain(..1);
-            return Some(Err(FrameError::Crc {
+        Some(match next_frame(&mut self.buf)? {
+            Frame::Packet {
+                id,
+                instruction,
+                params,
+                total,
+            } => {
+                let params = self.buf[8..8 + params].to_vec();
+                self.buf.drain(..total);
+                Ok(Packet {
+                    id,
+                    instruction,
+                    params,
+                    wire_len: total,
+                })
+            }
+            Frame::Crc {
                 id,
                 instruction,
                 sent,
                 computed,
-            }));
-        }
-        let params = unstuff(&self.buf[8..crc_at]);
-        self.buf.drain(..total);
-        Some(Ok(Packet {
+            } => Err(FrameError::Crc {
+                id,
+                instruction,
+                sent,
+                computed,
+            }),
+            Frame::BadLength => Err(FrameError::BadLength),
+        })
+    }
+}
+
+/// What [`next_frame`] found at the front of the received bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Frame {
+    /// A frame with a good CRC, still at the front of the buffer: its unstuffed parameters are
+    /// `buf[8..8 + params]`; the caller drops its `total` bytes once done with them.
+    Packet {
+        id: u8,
+        instruction: u8,
+        params: usize,
+        total: usize,
+    },
+    /// A complete frame whose CRC did not match (its first byte dropped).
+    Crc {
+        id: u8,
+        instruction: u8,
+        sent: u16,
+        computed: u16,
+    },
+    /// A LEN field below 3 or above [`MAX_LEN`] (its first byte dropped).
+    BadLength,
+}
+
+/// The one Protocol 2.0 framing, in place: resynchronise on a header, LEN in `3..=MAX_LEN`,
+/// CRC-16, e-Manual unstuffing of the parameters inside `buf` (no new `Vec`), bad frames
+/// skipped one byte at a time. `None` when more bytes are needed. [`Parser::next_packet`]
+/// and the driver's status reader both frame through it.
+pub(crate) fn next_frame(buf: &mut Vec<u8>) -> Option<Frame> {
+    let start = find_header(buf);
+    buf.drain(..start);
+    let &[_, _, _, _, id, len_lo, len_hi, ..] = buf.as_slice() else {
+        return None;
+    };
+    let len = usize::from(u16::from_le_bytes([len_lo, len_hi]));
+    if !(3..=MAX_LEN).contains(&len) {
+        // Not a real header: drop its first byte and look again.
+        buf.drain(..1);
+        return Some(Frame::BadLength);
+    }
+    let total = 7 + len;
+    let crc_at = total - 2;
+    let (Some(body), Some(&[lo, hi])) = (buf.get(..crc_at), buf.get(crc_at..total)) else {
+        return None;
+    };
+    // LEN ≥ 3, so `crc_at` ≥ 8: the body holds the instruction byte.
+    let instruction = body[7];
+    let sent = u16::from_le_bytes([lo, hi]);
+    let computed = calculate_checksum(0, body);
+    if computed != sent {
+        // Garbage that happened to contain a header: resume one byte later, so a real packet
+        // inside it is still found.
+        buf.drain(..1);
+        return Some(Frame::Crc {
             id,
             instruction,
-            params,
-            wire_len: total,
-        }))
+            sent,
+            computed,
+        });
     }
+    let params = unstuff_in_place(&mut buf[8..crc_at]);
+    Some(Frame::Packet {
+        id,
+        instruction,
+        params,
+        total,
+    })
 }
 
 /// Position of the first (possibly partial, at the end) header in `buf`; `buf.len()` if none.
@@ -129,19 +187,30 @@ fn find_header(buf: &[u8]) -> usize {
         .unwrap_or(buf.len())
 }
 
-/// Removes byte stuffing: every `FF FF FD FD` on the wire becomes `FF FF FD`.
-pub fn unstuff(body: &[u8]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(body.len());
+/// [`unstuff`] in place: every `FF FF FD FD` becomes `FF FF FD`; returns the
+/// unstuffed length (the front of `body`).
+fn unstuff_in_place(body: &mut [u8]) -> usize {
     // The last three wire bytes; cleared after a stuffing byte so patterns never chain.
     let mut last = [0u8; 3];
-    for &b in body {
+    let mut out = 0;
+    for i in 0..body.len() {
+        let b = body[i];
         if last == [0xFF, 0xFF, 0xFD] && b == 0xFD {
             last = [0; 3];
             continue;
         }
-        out.push(b);
+        body[out] = b;
+        out += 1;
         last = [last[1], last[2], b];
     }
+    out
+}
+
+/// Removes byte stuffing: every `FF FF FD FD` on the wire becomes `FF FF FD`.
+pub fn unstuff(body: &[u8]) -> Vec<u8> {
+    let mut out = body.to_vec();
+    let n = unstuff_in_place(&mut out);
+    out.truncate(n);
     out
 }
 

@@ -15,9 +15,9 @@
 //! The driver's own instruction parameters are non-negative goals and addresses, which never
 //! contain the pattern `dynamixel2` would stuff wrongly.
 //!
-//! Replies are framed in place ([`next_frame`]: [`crate::protocol::Parser`]'s framing, without
-//! its per-packet `Vec`) into buffers the [`Link`] keeps, so a steady exchange allocates
-//! nothing; unit tests hold the two framings equal on random streams.
+//! Replies are framed in place ([`crate::protocol`]'s one framing, without the per-packet
+//! `Vec` of its [`Parser`](crate::protocol::Parser)) into buffers the [`Link`] keeps, so a
+//! steady exchange allocates nothing.
 
 use std::time::{Duration, Instant};
 
@@ -27,7 +27,7 @@ use dynamixel2::serial2::SerialPort;
 
 use crate::InstructionError;
 use crate::error::Error;
-use crate::protocol::{HEADER, MAX_LEN, calculate_checksum};
+use crate::protocol::{Frame, MAX_LEN, next_frame};
 
 /// Bytes one `read` of the port takes at most.
 const READ_CHUNK: usize = 512;
@@ -166,7 +166,9 @@ impl Link {
                         let body = self.rx.get(8..8 + params).unwrap_or_default();
                         (id, check(count, id, instruction, body), total)
                     }
-                    Frame::Crc { id, sent, computed } => (
+                    Frame::Crc {
+                        id, sent, computed, ..
+                    } => (
                         id,
                         Err(Error::Crc {
                             id: Some(id),
@@ -233,92 +235,6 @@ impl Link {
     }
 }
 
-/// What [`next_frame`] found at the front of the received bytes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Frame {
-    /// A frame with a good CRC, still at the front of the buffer: its unstuffed parameters are
-    /// `buf[8..8 + params]`; the caller drops its `total` bytes once done with them.
-    Packet {
-        id: u8,
-        instruction: u8,
-        params: usize,
-        total: usize,
-    },
-    /// A complete frame whose CRC did not match (its first byte dropped).
-    Crc { id: u8, sent: u16, computed: u16 },
-    /// A LEN field below 3 or above [`MAX_LEN`] (its first byte dropped).
-    BadLength,
-}
-
-/// [`crate::protocol::Parser::next_packet`] in place: the same framing (resynchronise on a
-/// header, LEN in `3..=MAX_LEN`, CRC-16, e-Manual unstuffing), the same skipping of bad frames,
-/// but the parameters are unstuffed inside `buf` instead of into a new `Vec`. `None` when more
-/// bytes are needed. The unit tests check both against each other.
-fn next_frame(buf: &mut Vec<u8>) -> Option<Frame> {
-    let start = find_header(buf);
-    buf.drain(..start);
-    let &[_, _, _, _, id, len_lo, len_hi, ..] = buf.as_slice() else {
-        return None;
-    };
-    let len = usize::from(u16::from_le_bytes([len_lo, len_hi]));
-    if !(3..=MAX_LEN).contains(&len) {
-        // Not a real header: drop its first byte and look again.
-        buf.drain(..1);
-        return Some(Frame::BadLength);
-    }
-    let total = 7 + len;
-    let crc_at = total - 2;
-    let (Some(body), Some(&[lo, hi])) = (buf.get(..crc_at), buf.get(crc_at..total)) else {
-        return None;
-    };
-    // LEN ≥ 3, so `crc_at` ≥ 8: the body holds the instruction byte.
-    let instruction = body[7];
-    let sent = u16::from_le_bytes([lo, hi]);
-    let computed = calculate_checksum(0, body);
-    if computed != sent {
-        // Garbage that happened to contain a header: resume one byte later, so a real packet
-        // inside it is still found.
-        buf.drain(..1);
-        return Some(Frame::Crc { id, sent, computed });
-    }
-    let params = unstuff_in_place(&mut buf[8..crc_at]);
-    Some(Frame::Packet {
-        id,
-        instruction,
-        params,
-        total,
-    })
-}
-
-/// Position of the first (possibly partial, at the end) header in `buf`; `buf.len()` if none.
-fn find_header(buf: &[u8]) -> usize {
-    (0..buf.len())
-        .find(|&i| {
-            let n = HEADER.len().min(buf.len() - i);
-            buf[i..i + n] == HEADER[..n]
-        })
-        .unwrap_or(buf.len())
-}
-
-/// [`crate::protocol::unstuff`] in place: every `FF FF FD FD` becomes `FF FF FD`; returns the
-/// unstuffed length (the front of `body`).
-fn unstuff_in_place(body: &mut [u8]) -> usize {
-    // The last three wire bytes; cleared after a stuffing byte so patterns never chain.
-    let mut last = [0u8; 3];
-    let mut out = 0;
-    for i in 0..body.len() {
-        let b = body[i];
-        if last == [0xFF, 0xFF, 0xFD] && b == 0xFD {
-            last = [0; 3];
-            continue;
-        }
-        body[out] = b;
-        out += 1;
-        last = [last[1], last[2], b];
-    }
-    out
-}
-
 /// Checks a status packet: a status, no error code, `count` data bytes; its alert bit and data.
 fn check(count: u16, id: u8, instruction: u8, params: &[u8]) -> Result<(bool, &[u8]), Error> {
     let bad = |detail: String| Error::Protocol {
@@ -342,11 +258,9 @@ fn check(count: u16, id: u8, instruction: u8, params: &[u8]) -> Result<(bool, &[
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::protocol::{FrameError, Packet, Parser, encode};
-    use proptest::prelude::*;
 
-    /// What either parser reports, in one shape.
+    /// What the parser reports, in one shape.
     #[derive(Debug, PartialEq, Eq)]
     enum Seen {
         Packet(u8, u8, Vec<u8>),
@@ -377,86 +291,22 @@ mod tests {
         seen
     }
 
-    fn in_place(wire: &[u8], chunk: usize) -> Vec<Seen> {
-        let mut buf = Vec::new();
-        let mut seen = Vec::new();
-        for c in wire.chunks(chunk.max(1)) {
-            buf.extend_from_slice(c);
-            while let Some(f) = next_frame(&mut buf) {
-                seen.push(match f {
-                    Frame::Packet {
-                        id,
-                        instruction,
-                        params,
-                        total,
-                    } => {
-                        let s = Seen::Packet(id, instruction, buf[8..8 + params].to_vec());
-                        buf.drain(..total);
-                        s
-                    }
-                    Frame::Crc { id, sent, computed } => Seen::Crc(id, sent, computed),
-                    Frame::BadLength => Seen::BadLength,
-                });
-            }
-        }
-        seen
-    }
-
     #[test]
     fn stuffed_status_unstuffs_in_place() {
         // Present Load −1 then a negative velocity: FF FF FD on the wire, one stuffing FD.
         let params = [0x00, 0xFF, 0xFF, 0xFD, 0xFF, 0xFF, 0xFF, 0x10, 0x20];
         let mut wire = vec![0x13, 0xFF];
         encode(&mut wire, 2, 0x55, &params);
-        assert_eq!(in_place(&wire, 3), [Seen::Packet(2, 0x55, params.to_vec())]);
+        assert_eq!(
+            with_parser(&wire, 3),
+            [Seen::Packet(2, 0x55, params.to_vec())]
+        );
     }
 
     #[test]
     fn a_bad_length_is_seen_with_seven_bytes() {
         // Header, ID and a LEN of 0xFFFF: garbage before any instruction byte has arrived.
         let wire = [0xFF, 0xFF, 0xFD, 0x00, 0xFF, 0xFF, 0xFF];
-        assert_eq!(in_place(&wire, 1), [Seen::BadLength]);
         assert_eq!(with_parser(&wire, 1), [Seen::BadLength]);
-    }
-
-    /// A stream of packets (some with stuffing patterns), garbage and corrupted bytes.
-    fn stream() -> impl Strategy<Value = Vec<u8>> {
-        let piece = prop_oneof![
-            (
-                any::<u8>(),
-                any::<u8>(),
-                prop::collection::vec(prop_oneof![Just(0xFFu8), Just(0xFD), any::<u8>()], 0..24),
-            )
-                .prop_map(|(id, ins, params)| {
-                    let mut w = Vec::new();
-                    encode(&mut w, id, ins, &params);
-                    w
-                }),
-            prop::collection::vec(
-                prop_oneof![Just(0xFFu8), Just(0xFD), Just(0), any::<u8>()],
-                0..12
-            ),
-        ];
-        (
-            prop::collection::vec(piece, 0..8),
-            prop::collection::vec((any::<prop::sample::Index>(), any::<u8>()), 0..3),
-        )
-            .prop_map(|(pieces, flips)| {
-                let mut wire: Vec<u8> = pieces.concat();
-                if !wire.is_empty() {
-                    for (at, x) in flips {
-                        let i = at.index(wire.len());
-                        wire[i] ^= x;
-                    }
-                }
-                wire
-            })
-    }
-
-    proptest! {
-        #[test]
-        fn in_place_framing_matches_the_parser(wire in stream(), chunk in 1usize..64) {
-            prop_assert_eq!(in_place(&wire, chunk), with_parser(&wire, chunk));
-        }
     }
 }
