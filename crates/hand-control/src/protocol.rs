@@ -78,65 +78,34 @@ impl Parser {
 
     /// The next complete packet, a skipped bad frame, or `None` when more bytes are needed.
     pub fn next_packet(&mut self) -> Option<Result<Packet, FrameError>> {
-        Some(match next_frame(&mut self.buf)? {
-            Frame::Packet {
-                id,
-                instruction,
+        Some(next_frame(&mut self.buf)?.map(|f| {
+            let params = self.buf[8..8 + f.params].to_vec();
+            self.buf.drain(..f.total);
+            Packet {
+                id: f.id,
+                instruction: f.instruction,
                 params,
-                total,
-            } => {
-                let params = self.buf[8..8 + params].to_vec();
-                self.buf.drain(..total);
-                Ok(Packet {
-                    id,
-                    instruction,
-                    params,
-                    wire_len: total,
-                })
+                wire_len: f.total,
             }
-            Frame::Crc {
-                id,
-                instruction,
-                sent,
-                computed,
-            } => Err(FrameError::Crc {
-                id,
-                instruction,
-                sent,
-                computed,
-            }),
-            Frame::BadLength => Err(FrameError::BadLength),
-        })
+        }))
     }
 }
 
-/// What [`next_frame`] found at the front of the received bytes.
+/// A frame with a good CRC that [`next_frame`] left at the front of the buffer: its unstuffed
+/// parameters are `buf[8..8 + params]`; the caller drops its `total` bytes once done with them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Frame {
-    /// A frame with a good CRC, still at the front of the buffer: its unstuffed parameters are
-    /// `buf[8..8 + params]`; the caller drops its `total` bytes once done with them.
-    Packet {
-        id: u8,
-        instruction: u8,
-        params: usize,
-        total: usize,
-    },
-    /// A complete frame whose CRC did not match (its first byte dropped).
-    Crc {
-        id: u8,
-        instruction: u8,
-        sent: u16,
-        computed: u16,
-    },
-    /// A LEN field below 3 or above [`MAX_LEN`] (its first byte dropped).
-    BadLength,
+pub(crate) struct Framed {
+    pub(crate) id: u8,
+    pub(crate) instruction: u8,
+    pub(crate) params: usize,
+    pub(crate) total: usize,
 }
 
 /// The one Protocol 2.0 framing, in place: resynchronise on a header, LEN in `3..=MAX_LEN`,
 /// CRC-16, e-Manual unstuffing of the parameters inside `buf` (no new `Vec`), bad frames
-/// skipped one byte at a time. `None` when more bytes are needed. [`Parser::next_packet`]
+/// skipped one byte at a time (and reported). `None` when more bytes are needed. [`Parser::next_packet`]
 /// and the driver's status reader both frame through it.
-pub(crate) fn next_frame(buf: &mut Vec<u8>) -> Option<Frame> {
+pub(crate) fn next_frame(buf: &mut Vec<u8>) -> Option<Result<Framed, FrameError>> {
     let start = find_header(buf);
     buf.drain(..start);
     let &[_, _, _, _, id, len_lo, len_hi, ..] = buf.as_slice() else {
@@ -146,7 +115,7 @@ pub(crate) fn next_frame(buf: &mut Vec<u8>) -> Option<Frame> {
     if !(3..=MAX_LEN).contains(&len) {
         // Not a real header: drop its first byte and look again.
         buf.drain(..1);
-        return Some(Frame::BadLength);
+        return Some(Err(FrameError::BadLength));
     }
     let total = 7 + len;
     let crc_at = total - 2;
@@ -161,20 +130,20 @@ pub(crate) fn next_frame(buf: &mut Vec<u8>) -> Option<Frame> {
         // Garbage that happened to contain a header: resume one byte later, so a real packet
         // inside it is still found.
         buf.drain(..1);
-        return Some(Frame::Crc {
+        return Some(Err(FrameError::Crc {
             id,
             instruction,
             sent,
             computed,
-        });
+        }));
     }
     let params = unstuff_in_place(&mut buf[8..crc_at]);
-    Some(Frame::Packet {
+    Some(Ok(Framed {
         id,
         instruction,
         params,
         total,
-    })
+    }))
 }
 
 /// Position of the first (possibly partial, at the end) header in `buf`; `buf.len()` if none.

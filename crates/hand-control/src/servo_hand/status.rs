@@ -27,7 +27,7 @@ use dynamixel2::serial2::SerialPort;
 
 use crate::InstructionError;
 use crate::error::Error;
-use crate::protocol::{Frame, MAX_LEN, next_frame};
+use crate::protocol::{FrameError, Framed, MAX_LEN, next_frame};
 
 /// Bytes one `read` of the port takes at most.
 const READ_CHUNK: usize = 512;
@@ -157,18 +157,18 @@ impl Link {
         loop {
             while let Some(frame) = next_frame(&mut self.rx) {
                 let (from, result, used) = match frame {
-                    Frame::Packet {
+                    Ok(Framed {
                         id,
                         instruction,
                         params,
                         total,
-                    } => {
+                    }) => {
                         let body = self.rx.get(8..8 + params).unwrap_or_default();
                         (id, check(count, id, instruction, body), total)
                     }
-                    Frame::Crc {
+                    Err(FrameError::Crc {
                         id, sent, computed, ..
-                    } => (
+                    }) => (
                         id,
                         Err(Error::Crc {
                             id: Some(id),
@@ -177,7 +177,7 @@ impl Link {
                         }),
                         0,
                     ),
-                    Frame::BadLength => continue,
+                    Err(FrameError::BadLength) => continue,
                 };
                 // A corrupted ID byte: charge the error to the first servo still waiting.
                 let slot = expect
