@@ -43,4 +43,6 @@ mod servo_hand;
 pub mod sim;
 
 pub use error::{Error, InstructionError, faults_from_hardware_error};
-pub use servo_hand::{DEFAULT_REPLY_LATENCY, RawGoals, RawServoState, ServoHand, encode_goals};
+pub use servo_hand::{
+    DEFAULT_REPLY_LATENCY, PacketCounts, RawGoals, RawServoState, ServoHand, encode_goals,
+};

@@ -22,7 +22,9 @@ proptest! {
         let mut g = GraspRig::new(obj, rig).unwrap();
         let set = g.set_torque_limit(limit);
         prop_assert_eq!(set.is_err(), limit > 1023);
-        g.set_goal_rad(goal).unwrap();
+        // Position Control Mode takes Goal Position 0…4095 (a turn around the start at π).
+        let raw = ((std::f64::consts::PI + goal) / std::f64::consts::TAU * 4096.0).round();
+        prop_assert_eq!(g.set_goal_rad(goal).is_err(), !(0.0..=4095.0).contains(&raw));
         for i in 0..200 {
             g.set_lifted(i > 50);
             let s = g.step(dt).unwrap();
@@ -30,8 +32,8 @@ proptest! {
                       s.grip_force_n, s.slip_m, s.patch.force_n] {
                 prop_assert!(v.is_finite(), "{:?}", s);
             }
-            // The register saturates even when a violent back-drive pushes the current past stall.
-            prop_assert!(g.servo().present_load_raw() <= 0x7ff);
+            // Present Load saturates at ±100 % even when a violent back-drive pushes past stall.
+            prop_assert!(s.load_fraction.abs() <= 1.0, "{:?}", s);
         }
     }
 

@@ -55,6 +55,12 @@ fn grasp_scene_reproduces_the_committed_grasp_results() {
             value(&o, &format!("{name}_held")),
             f64::from(u8::from(get("held") == "true"))
         );
+        // Every hold went over Protocol 2.0: the driver's packet counts, as committed.
+        for what in ["sent", "received"] {
+            let n = value(&o, &format!("{name}_packets_{what}"));
+            assert_eq!(n, num(&format!("packets_{what}")), "{name} {what}");
+            assert!(n > 12_000.0, "{name}: {n} packets {what}");
+        }
         let settled = o.figure(&format!("{name}_settled_torque")).expect("figure");
         assert_eq!(settled.met, Some(true), "{settled:?}");
         checked += 1;

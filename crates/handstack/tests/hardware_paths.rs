@@ -1,7 +1,8 @@
-//! Naming real hardware really opens it: a scene whose `serial_port` is the pty of a running
-//! hand-control bus simulator drives those servos through `ServoHand`; a scene whose `host` is
-//! a started ur-bridge simulator moves that arm; a missing I2C bus or serial port is a typed
-//! "cannot open …" error naming the path; the readout experiment reads the simulated fingertip.
+//! Naming real hardware really opens it: a hardware grasp scene (a `serial_port`, here the pty
+//! of a running bus simulator) reads only real fingertip buses and fails before any servo
+//! command when they are missing or cannot be opened; a scene whose `host` is a started
+//! ur-bridge simulator moves that arm; a missing I2C bus or serial port is a typed "cannot open
+//! …" error naming the path; the readout experiment reads the simulated fingertip.
 
 mod common;
 
@@ -16,34 +17,58 @@ fn run_text(text: &str) -> Result<handstack::Outcome, RunError> {
     run(&scene, &RunContext::new(&Quiet))
 }
 
-#[test]
-fn a_scene_naming_the_pty_of_a_simulated_bus_drives_its_servos() {
-    use hand_control::sim::{SimBus, SimConfig};
-    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
-    drop(port); // the scene opens the pty by its path, as it would /dev/ttyUSB0
-    let path = bus.client_path().display().to_string();
-    // A 0.3 s hold on the wall clock: the servos' physics stands still (nobody advances the
-    // simulator's clock), but every packet goes over the pty through dynamixel2.
-    let text = format!(
-        "title = \"pty hand\"\n[sensors.fingertip]\nosr = 1024\n[controller]\npreset = \"grasp\"\n\
-         [hand]\nmodel = \"mx28\"\nids = [1, 2]\nserial_port = \"{path}\"\nreply_timeout_ms = 250\n\
-         [experiment.grasp]\nobjects = [\"cube\"]\nhold_s = 0.3\n"
-    );
-    let o = run_text(&text).unwrap_or_else(|e| panic!("{e}"));
-    // The loop sent torque limits inside the cube's Table 5 band (80…400) …
-    let settled = o.figure("cube_settled_torque").expect("commands were sent");
-    assert!((80.0..=400.0).contains(&settled.value), "{settled:?}");
-    // … and the servos on the other end of the pty hold them, with torque on.
+/// The servos of `bus` have had no command: torque off, Goal PWM at its power-on value.
+fn untouched(bus: &hand_control::sim::SimBus, ids: &[u8]) {
     let table = &hand_control::control_table::MX_28;
-    for id in [1, 2] {
+    for &id in ids {
         let (on, pwm) = bus
             .with_servo(id, |s| {
                 (s.torque_enabled(), s.get(table.goal_effort.address))
             })
             .expect("servo");
-        assert!(on, "servo {id} torque");
-        assert!(pwm > 0, "servo {id} goal PWM {pwm}");
+        assert!(!on, "servo {id} torque");
+        assert_eq!(pwm, table.effort_limit.default, "servo {id} Goal PWM");
     }
+}
+
+#[test]
+fn a_hardware_grasp_never_reads_a_simulated_fingertip_and_fails_before_any_servo_command() {
+    use hand_control::sim::{SimBus, SimConfig};
+    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
+    drop(port); // the scene opens the pty by its path, as it would /dev/ttyUSB0
+    let path = bus.client_path().display().to_string();
+    let scene = |sensors: &str| {
+        format!(
+            "title = \"pty hand\"\n[sensors.fingertip]\nosr = 1024\n{sensors}[controller]\n\
+             preset = \"grasp\"\n[hand]\nmodel = \"mx28\"\nids = [1, 2]\nserial_port = \"{path}\"\n\
+             reply_timeout_ms = 250\n[experiment.grasp]\nobjects = [\"cube\"]\nhold_s = 0.3\n"
+        )
+    };
+    // Real servos, no sensor buses named: refused (the simulated pad is never pressed by a
+    // real grasp), and nothing reached the servos.
+    let e = run_text(&scene("")).expect_err("a hardware hand needs its fingertip's buses");
+    assert!(
+        matches!(
+            e,
+            RunError::Device {
+                device: "sensors.fingertip",
+                ..
+            }
+        ) && e.to_string().contains("i2c_buses"),
+        "{e}"
+    );
+    untouched(&bus, &[1, 2]);
+    // Buses that cannot be opened: the error names the device and the path, before any servo
+    // command.
+    let e = run_text(&scene(
+        "i2c_buses = [\"/dev/i2c-99\", \"/dev/i2c-98\", \"/dev/i2c-97\"]\n",
+    ))
+    .expect_err("no such bus");
+    assert!(
+        matches!(e, RunError::Open { device: "sensors.fingertip", ref path, .. } if path == "/dev/i2c-99"),
+        "{e:?}"
+    );
+    untouched(&bus, &[1, 2]);
 }
 
 #[test]
@@ -73,7 +98,11 @@ fn a_missing_serial_port_is_a_cannot_open_error() {
     let text = "title = \"real hand\"\n[sensors.fingertip]\nosr = 1024\n[controller]\npreset = \"grasp\"\n\
                 [hand]\nmodel = \"mx28\"\nserial_port = \"/dev/ttyUSB-handstack-none\"\n\
                 [experiment.grasp]\nobjects = [\"cube\"]\nhold_s = 1\n";
-    let e = run_text(text).expect_err("no such port");
+    let scene = Scene::parse("hw.toml", text).expect("valid scene");
+    let hand = scene.file.hand.as_ref().expect("hand").get_ref();
+    let e = handstack::stack::hand::open(hand, "/dev/ttyUSB-handstack-none")
+        .err()
+        .expect("no such port");
     assert!(matches!(e, RunError::Open { device: "hand", .. }), "{e:?}");
     assert!(
         e.to_string()

@@ -1,7 +1,7 @@
 //! Regenerates docs/grasping/: the closed-loop results table (`results.csv`) for the six
 //! Table 5 objects and the 20 randomised ones, and one plot per Table 5 object of torque,
 //! position, pad pressure and motor current over the first 10 s (as seed 000 Figures 23–24).
-//! Run: `cargo run --release -p paper-experiments --example grasp_report`.
+//! Run: `cargo run --profile test -p paper-experiments --example grasp_report`.
 
 use paper_experiments::grasp_rig as support;
 
@@ -22,13 +22,13 @@ fn main() -> Result<(), Box<dyn Error>> {
     let rig = RigParams::default();
     let mut csv = String::from(
         "object,table5_min,table5_max,settled_torque,window_min,window_max,settling_time_s,\
-         peak_force_n,final_force_n,final_pressure_pa,held\n",
+         peak_force_n,final_force_n,final_pressure_pa,held,packets_sent,packets_received\n",
     );
     let mut row = |o: &support::Outcome| {
         let held = !(o.slipped || o.damaged || o.dropped) && o.faults == 0;
         let _ = writeln!(
             csv,
-            "{},{},{},{:.1},{},{},{:.2},{:.2},{:.2},{:.0},{}",
+            "{},{},{},{:.1},{},{},{:.2},{:.2},{:.2},{:.0},{},{},{}",
             o.name,
             o.band.0,
             o.band.1,
@@ -39,7 +39,9 @@ fn main() -> Result<(), Box<dyn Error>> {
             o.peak_force_n,
             o.final_force_n,
             o.final_pressure_pa,
-            held
+            held,
+            o.packets.sent,
+            o.packets.received
         );
     };
     for r in table5_grasp_torque()? {

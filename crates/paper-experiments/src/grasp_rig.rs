@@ -1,23 +1,29 @@
-//! One simulated grasp world: hand-sim's [`GraspRig`] squeezing an object and
-//! pressing hand-sim's barometric [`Fingertip`], read through the real MS5611 driver, behind the
-//! three parts a [`GraspLoop`] drives: a tactile source, an actuator and a clock. Waiting on the
-//! clock steps the physics, so a 120 s hold runs in simulated time. Shared by the closed-loop
-//! and fault tests, the `grasp_report` example (docs/grasping) and handstack's grasp scene.
+//! One simulated grasp world behind the three parts a [`GraspLoop`] drives, each at its real
+//! interface: the tactile source is hand-sim's barometric [`Fingertip`] read through the real
+//! MS5611 driver; the actuator is [`ServoHand`], the Dynamixel driver, talking Protocol 2.0 over
+//! a pseudo-terminal to the servo-bus simulator ([`SimBus`]), whose MX-28 drives hand-sim's
+//! grasp physics ([`GraspPlant`]); the clock is the bus's simulated time. Waiting on the clock
+//! steps the physics, so a 120 s hold runs in simulated time. Shared by the closed-loop and
+//! fault tests, the `grasp_report` example (docs/grasping) and handstack's grasp scene.
 //!
-//! The actuator here is in-process (it calls the rig directly); its transport faults (lost
-//! status packet, CRC mismatch, silence, range error) are injected by time window.
+//! Faults are injected where they happen on hardware: on the wire (a servo that stops
+//! answering, a status packet with a corrupted CRC) and on the fingertip's bus.
 
-use hand_control::grasp_loop::{
-    ConfigError, FaultKind, GraspLoop, LoopClock, LoopConfig, RebootableActuator, TorqueBand,
-};
-use hand_sim::SimError;
-use hand_sim::fingertip::{ContactPatch, Fingertip, FingertipConfig};
-use hand_sim::grasp::{GraspRig, GraspState, ObjectParams, RigParams};
-use hand_traits::{
-    GripperActuator, GripperCommand, GripperState, PressureFrame, SafeAction, TactileSource,
-};
 use std::cell::RefCell;
 use std::rc::Rc;
+use std::time::Duration;
+
+use hand_control::control_table::MX_28;
+use hand_control::grasp_loop::{
+    ConfigError, FaultKind, GraspLoop, LoopClock, LoopConfig, TorqueBand,
+};
+use hand_control::sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
+use hand_control::{PacketCounts, ServoHand};
+use hand_sim::SimError;
+use hand_sim::fingertip::{Fingertip, FingertipConfig};
+use hand_sim::grasp::rig::{ORIGIN_RAD, SERVO_ID};
+use hand_sim::grasp::{GraspBody, GraspPlant, GraspState, ObjectParams, RigParams};
+use hand_traits::{PressureFrame, TactileSource};
 
 /// Physics step, s (hand-sim's grasp tests use the same).
 pub const DT_S: f64 = 1e-3;
@@ -28,21 +34,23 @@ pub const HOLD_S: f64 = 120.0;
 /// MS5611 oversampling: OSR 1024 reads three sensors in 4.6 ms, inside a 10 ms cycle.
 pub const OSR: u16 = 1024;
 
-/// Smallest pad-force change passed on to the fingertip, N.
+/// Smallest pad-force change passed on to the fingertip, N. 5 mN keeps the pad's step history
+/// short (and the tests fast) and moves the mean rise by < 0.5 Pa, under the MS5611's 3.6 Pa RMS
+/// noise at OSR 1024.
 pub const CONTACT_DEAD_BAND_N: f64 = 5e-3;
 
-/// A transport fault the simulated servo shows during a time window.
+/// A fault injected during a time window.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Injected {
-    /// The status packet never arrives (read times out).
-    LostStatus,
-    /// The status packet arrives with a wrong CRC.
+    /// The servo stops answering (and executing): every exchange times out.
+    Silent,
+    /// Every status packet arrives with a corrupted CRC.
     Crc,
-    /// The fingertip's SPI bus fails (the tactile source's error, not the servo's).
+    /// The fingertip's bus fails (the tactile source's error, not the servo's).
     TactileBus,
 }
 
-/// One injection: `kind` on every call in `from_s..until_s`.
+/// One injection: `kind` on every cycle in `from_s..until_s`.
 #[derive(Debug, Clone, Copy)]
 pub struct Injection {
     /// Window start, s.
@@ -53,28 +61,18 @@ pub struct Injection {
     pub kind: Injected,
 }
 
-/// The simulated servo's errors.
-#[derive(Debug)]
-pub enum HandError {
-    /// No status packet.
-    Timeout,
-    /// Status packet CRC mismatch.
-    Crc,
-    /// The servo refused a value (Dynamixel "Data Range Error").
-    Range {
-        /// The refused goal, rad.
-        goal_rad: f32,
-    },
-    /// The rig refused (e.g. torque on while the overload bit is latched).
-    Sim(SimError),
-}
-
 /// Why a simulated grasp could not be set up, run or summarised.
 #[derive(Debug, thiserror::Error)]
 pub enum RigError {
-    /// The rig, its object or the fingertip refused a value, or a physics step failed.
+    /// The object or the fingertip refused a value, or pressing the pad failed.
     #[error("simulated grasp world: {0}")]
     Sim(#[from] SimError),
+    /// The servo-bus simulator could not start or stopped answering.
+    #[error("servo-bus simulator: {0}")]
+    Bus(#[from] std::io::Error),
+    /// The Dynamixel driver could not set up the simulated hand.
+    #[error("servo hand: {0}")]
+    Hand(#[from] hand_control::Error),
     /// The loop refused its configuration.
     #[error("grasp loop configuration: {0}")]
     Config(#[from] ConfigError),
@@ -101,105 +99,138 @@ pub struct Truth {
     pub position_rad: f64,
 }
 
-/// The shared world.
+/// The shared world: the bus simulator with its plant, and the fingertip.
 pub struct World {
-    /// The two-finger rig and its object.
-    pub rig: GraspRig,
-    /// The fingertip pressed by the rig.
+    /// The servo-bus simulator (the hand's servo and its plant).
+    pub bus: SimBus,
+    /// The object between the pads.
+    pub plant: GraspPlant,
+    /// The fingertip pressed by the object.
     pub tip: Fingertip,
-    t_ns: u64,
-    patch: ContactPatch,
-    /// Transport faults to inject.
+    /// Faults to inject.
     pub injections: Vec<Injection>,
-    /// The servo's goal limits, rad (Min / Max Position Limit).
-    pub servo_goal_limits_rad: (f32, f32),
-    /// Highest pad force so far, N.
-    pub peak_force_n: f64,
-    /// Whether the object ever slipped.
-    pub ever_slipping: bool,
     /// The physics at every loop tick.
     pub trace: Vec<Truth>,
-    /// When the arm lifts the object, s ([`LIFT_AT_S`] unless a test needs it earlier).
-    pub lift_at_s: f64,
-    /// The first physics step that failed: the world stops there (the clock cannot return
-    /// an error to the loop), and [`hold_for`] reports it.
-    pub physics_error: Option<SimError>,
+    /// The first failure of the world itself (the bus simulator not answering, the pad
+    /// refusing a contact): the world stops there (the clock cannot return an error to the
+    /// loop), and [`run_hold_for`] reports it.
+    pub world_error: Option<RigError>,
+    silent: bool,
 }
 
 impl World {
-    fn now_s(&self) -> f64 {
-        self.t_ns as f64 * 1e-9
-    }
-
-    fn injected(&self) -> Option<Injected> {
-        let t = self.now_s();
+    fn injected(&self, t_s: f64) -> Option<Injected> {
         self.injections
             .iter()
-            .find(|i| (i.from_s..i.until_s).contains(&t))
+            .find(|i| (i.from_s..i.until_s).contains(&t_s))
             .map(|i| i.kind)
     }
 
-    /// Steps the rig to `t_ns` and presses the pad with its contact patch.
-    fn advance_to(&mut self, t_ns: u64) -> Result<(), SimError> {
-        let dt_ns = (DT_S * 1e9) as u64;
-        while self.t_ns + dt_ns <= t_ns {
-            self.rig.set_lifted(self.now_s() >= self.lift_at_s);
-            let s = self.rig.step(DT_S)?;
-            self.t_ns += dt_ns;
-            self.peak_force_n = self.peak_force_n.max(s.grip_force_n);
-            self.ever_slipping |= s.slipping;
-            // A 5 mN dead band keeps the pad's step history short (and the tests fast); 5 mN
-            // moves the mean rise by < 0.5 Pa, under the MS5611's 3.6 Pa RMS noise at OSR 1024.
-            if s.patch.cells != self.patch.cells
-                || (s.patch.force_n - self.patch.force_n).abs() > CONTACT_DEAD_BAND_N
-            {
-                self.tip.physics().set_contact(self.t_ns, s.patch)?;
-                self.patch = s.patch;
+    /// Lifts the object at `t_s` (default [`LIFT_AT_S`]).
+    pub fn lift_at(&self, t_s: f64) {
+        self.plant.body().lift_at(t_s);
+    }
+
+    /// The physics now: the servo on the bus and the object.
+    pub fn state(&self) -> GraspState {
+        let body = self.plant.body();
+        self.bus
+            .with_servo(SERVO_ID, |s| GraspState::of(s, &body))
+            .expect("the grasp servo is on the bus")
+    }
+
+    /// Sets the wire faults for a cycle starting at `t_s`.
+    fn inject_wire(&mut self, t_s: f64) {
+        let now = self.injected(t_s);
+        let silent = now == Some(Injected::Silent);
+        if silent != self.silent {
+            if silent {
+                self.bus.inject(SERVO_ID, Fault::Mute);
+            } else {
+                self.bus.clear_faults(SERVO_ID);
             }
+            self.silent = silent;
+        }
+        if now == Some(Injected::Crc) {
+            self.bus.inject(SERVO_ID, Fault::CorruptNextCrc);
+        }
+    }
+
+    /// Steps the bus to `t_ns` and presses the pad with every patch change on the way.
+    fn advance_to(&mut self, t_ns: u64) -> Result<(), RigError> {
+        let now = self.bus.now();
+        let t = Duration::from_nanos(t_ns);
+        if t > now {
+            self.bus.advance(t - now)?;
+        }
+        let changes: Vec<_> = self.plant.body().take_contacts().collect();
+        for (at_ns, patch) in changes {
+            self.tip.physics().set_contact(at_ns, patch)?;
         }
         self.tip.idle_until_ns(t_ns);
-        let s = self.rig.state();
+        let s = self.state();
         self.trace.push(Truth {
-            t_s: self.now_s(),
+            t_s: s.t_s,
             grip_force_n: s.grip_force_n,
             current_a: s.current_a,
             position_rad: s.position_rad,
         });
+        self.inject_wire(t_ns as f64 * 1e-9);
         Ok(())
-    }
-
-    /// The rig's state now.
-    pub fn state(&self) -> GraspState {
-        self.rig.state()
     }
 }
 
-/// The world, shared by the source, the actuator and the clock.
+/// The world, shared by the source and the clock.
 pub type Shared = Rc<RefCell<World>>;
 
-/// A world with `object` between open fingers and a fingertip seeded with `seed`.
+/// A world with `object` between open fingers and a fingertip seeded with `seed`, and the
+/// Dynamixel hand on its bus (position mode, the tuning's gains kept across reboots, torque
+/// on).
 ///
-/// Errors: the rig or the fingertip refusing the object or its configuration.
-pub fn world(object: ObjectParams, seed: u64) -> Result<Shared, SimError> {
-    let rig = GraspRig::new(object, RigParams::default())?;
-    let config = FingertipConfig {
-        osr: OSR,
-        ..FingertipConfig::default()
-    };
-    let tip = Fingertip::new(&config, seed)?;
-    Ok(Rc::new(RefCell::new(World {
-        rig,
+/// Errors: the object or fingertip refusing their configuration, the bus or the hand failing
+/// to start.
+pub fn world(object: ObjectParams, seed: u64) -> Result<(Shared, ServoHand), RigError> {
+    let rig = RigParams::default();
+    object.validate()?;
+    rig.validate()?;
+    let mut body = GraspBody::new(object, rig, ORIGIN_RAD);
+    body.lift_at(LIFT_AT_S);
+    body.log_contacts(CONTACT_DEAD_BAND_N);
+    let plant = GraspPlant::new(body);
+    let (bus, port) = SimBus::spawn(SimConfig {
+        params: rig.servo.params(),
+        step: Duration::from_secs_f64(DT_S),
+        initial_position_rad: ORIGIN_RAD,
+        ..SimConfig::with_ids(&[SERVO_ID])
+    })?;
+    bus.set_plant(SERVO_ID, plant.clone());
+    let mut hand = ServoHand::with_reply_latency(port, &[SERVO_ID], REPLY_LATENCY)?;
+    hand.set_position_mode()?;
+    let settings = rig
+        .servo
+        .registers()
+        .map(|(name, value)| MX_28.register(name).map(|r| (r.address, value)));
+    let settings: Option<Vec<_>> = settings.into_iter().collect();
+    let settings = settings.ok_or(SimError::config("servo", "not an MX-28(2.0) register"))?;
+    hand.keep_ram_settings(&settings)?;
+    hand.set_torque(true)?;
+    let tip = Fingertip::new(
+        &FingertipConfig {
+            osr: OSR,
+            ..FingertipConfig::default()
+        },
+        seed,
+    )?;
+    let world = World {
+        bus,
+        plant,
         tip,
-        t_ns: 0,
-        patch: ContactPatch::NONE,
         injections: Vec::new(),
-        servo_goal_limits_rad: (0.0, 1.0),
-        peak_force_n: 0.0,
-        ever_slipping: false,
         trace: Vec::new(),
-        lift_at_s: LIFT_AT_S,
-        physics_error: None,
-    })))
+        world_error: None,
+        silent: false,
+    };
+    Ok((Rc::new(RefCell::new(world)), hand))
 }
 
 /// The fingertip as the loop's tactile source.
@@ -209,158 +240,90 @@ impl TactileSource for Source {
     type Frame = PressureFrame<3>;
     type Error = SimError;
     fn read_frame(&mut self) -> Result<PressureFrame<3>, SimError> {
-        if self.0.borrow().injected() == Some(Injected::TactileBus) {
+        let mut w = self.0.borrow_mut();
+        let t_s = w.tip.now_ns() as f64 * 1e-9;
+        if w.injected(t_s) == Some(Injected::TactileBus) {
             return Err(SimError::Driver {
                 model: "fingertip",
                 detail: "injected SPI failure".into(),
             });
         }
-        self.0.borrow_mut().tip.read_frame()
+        w.tip.read_frame()
     }
 }
 
-/// The rig's servo as the loop's actuator.
-pub struct Hand(pub Shared);
-
-impl Hand {
-    fn transport(&self) -> Result<(), HandError> {
-        match self.0.borrow().injected() {
-            Some(Injected::LostStatus) => Err(HandError::Timeout),
-            Some(Injected::Crc) => Err(HandError::Crc),
-            Some(Injected::TactileBus) | None => Ok(()),
-        }
-    }
-}
-
-impl GripperActuator for Hand {
-    type Error = HandError;
-
-    fn command(&mut self, cmd: &GripperCommand) -> Result<(), HandError> {
-        self.transport()?;
-        let mut w = self.0.borrow_mut();
-        let (lo, hi) = w.servo_goal_limits_rad;
-        if !(lo..=hi).contains(&cmd.position_rad) {
-            return Err(HandError::Range {
-                goal_rad: cmd.position_rad,
-            });
-        }
-        let rig = &mut w.rig;
-        rig.set_torque_limit(cmd.effort.to_torque_limit_raw())
-            .map_err(HandError::Sim)?;
-        rig.set_goal_rad(f64::from(cmd.position_rad))
-            .map_err(HandError::Sim)
-    }
-
-    fn state(&mut self) -> Result<GripperState, HandError> {
-        self.transport()?;
-        let s = self.0.borrow().rig.state();
-        Ok(GripperState {
-            position_rad: s.position_rad as f32,
-            velocity_rad_per_s: s.velocity_rad_s as f32,
-            load_fraction: s.load_fraction as f32,
-            faults: s.faults,
-        })
-    }
-
-    fn safe_stop(&mut self, action: SafeAction) -> Result<(), HandError> {
-        self.transport()?;
-        match action {
-            // The servo keeps its goal and the limit last written: it holds.
-            SafeAction::HoldLastSafeEffort => Ok(()),
-            SafeAction::TorqueOff => self
-                .0
-                .borrow_mut()
-                .rig
-                .set_torque_enabled(false)
-                .map_err(HandError::Sim),
-        }
-    }
-}
-
-impl RebootableActuator for Hand {
-    fn reboot(&mut self) -> Result<(), HandError> {
-        self.transport()?;
-        // REBOOT clears the latched error with torque off; enable it again, as a driver's
-        // recovery does, so the next command moves the fingers.
-        let rig = &mut self.0.borrow_mut().rig;
-        rig.reboot();
-        rig.set_torque_enabled(true).map_err(HandError::Sim)
-    }
-
-    fn enable_torque(&mut self) -> Result<(), HandError> {
-        self.transport()?;
-        self.0
-            .borrow_mut()
-            .rig
-            .set_torque_enabled(true)
-            .map_err(HandError::Sim)
-    }
-}
-
-/// The world's time as the loop's clock: waiting steps the physics.
+/// The world's time as the loop's clock: waiting steps the bus and its physics.
 pub struct Clock(pub Shared);
 
 impl LoopClock for Clock {
     fn now_us(&mut self) -> u64 {
-        // The bus clock runs ahead of the rig by the frame just read.
+        // The fingertip's bus runs ahead of the servo bus by the frame just read.
         let w = self.0.borrow();
-        w.t_ns.max(w.tip.now_ns()) / 1000
+        (w.bus.now().as_nanos() as u64).max(w.tip.now_ns()) / 1000
     }
 
     fn wait_until_us(&mut self, t_us: u64) {
         // The clock cannot hand an error to the loop: keep the first one and stop the world
-        // there for `hold_for` to report (time stands still; the loop's own ticks still
-        // advance, so a run ends).
+        // there for `run_hold_for` to report (the loop's own ticks still advance, so a run ends).
         let mut w = self.0.borrow_mut();
-        if w.physics_error.is_none() {
+        if w.world_error.is_none() {
             if let Err(e) = w.advance_to(t_us * 1000) {
-                w.physics_error = Some(e);
+                w.world_error = Some(e);
             }
         }
     }
 }
 
 /// The loop over the simulated world with the paper's fuzzy controller.
-pub type SimLoop = GraspLoop<Source, fuzzy_mamdani::GraspController, Hand, Clock, 3>;
+pub type SimLoop = GraspLoop<Source, fuzzy_mamdani::GraspController, ServoHand, Clock, 3>;
 
-/// The loop configuration the closed-loop tests use for `band`.
+/// The loop configuration the closed-loop tests use for `band`: goal 15 mm past first contact
+/// (hand-sim's `close()`), as the Table 5 calibration assumes, from the servo's start angle.
 pub fn config(band: TorqueBand) -> LoopConfig {
     let rig = RigParams::default();
-    // Goal 15 mm past first contact (hand-sim's `close()`), as the Table 5 calibration assumes.
-    let goal = (rig.approach_m + rig.goal_squeeze_m) / rig.linkage.lever_m;
+    let goal = ORIGIN_RAD + rig.goal_for_squeeze_rad(rig.goal_squeeze_m);
     LoopConfig {
         band,
         goal_rad: goal as f32,
-        goal_limits_rad: (0.0, 0.5),
+        goal_limits_rad: (ORIGIN_RAD as f32, (ORIGIN_RAD + 0.5) as f32),
         ..LoopConfig::new()
     }
 }
 
-/// A loop over `world` with `config` (errors: the loop refusing `config`).
-pub fn grasp_loop(world: &Shared, config: LoopConfig) -> Result<SimLoop, ConfigError> {
+/// A loop over `world` and `hand` with `config` (errors: the loop refusing `config`).
+pub fn grasp_loop(
+    world: &Shared,
+    hand: ServoHand,
+    config: LoopConfig,
+) -> Result<SimLoop, ConfigError> {
     GraspLoop::new(
         Source(world.clone()),
         fuzzy_mamdani::grasp_controller()
             .with_torque_band(config.band.min_raw(), config.band.max_raw()),
-        Hand(world.clone()),
+        hand,
         Clock(world.clone()),
         config,
     )
 }
 
 /// Runs the full Table 5 protocol: close, lift at 3 s, hold 120 s.
-pub fn run_hold(world: &Shared, config: LoopConfig) -> Result<SimLoop, RigError> {
-    run_hold_for(world, config, HOLD_S)
+pub fn run_hold(world: &Shared, hand: ServoHand, config: LoopConfig) -> Result<SimLoop, RigError> {
+    run_hold_for(world, hand, config, HOLD_S)
 }
 
-/// Close, lift at 3 s, hold `hold_s` seconds. Errors: the configuration, or a physics step
-/// that failed on the way (the world stopped there).
-pub fn run_hold_for(world: &Shared, config: LoopConfig, hold_s: f64) -> Result<SimLoop, RigError> {
-    let mut l = grasp_loop(world, config)?;
+/// Close, lift at 3 s, hold `hold_s` seconds. Errors: the configuration, or the world failing
+/// on the way (it stopped there).
+pub fn run_hold_for(
+    world: &Shared,
+    hand: ServoHand,
+    config: LoopConfig,
+    hold_s: f64,
+) -> Result<SimLoop, RigError> {
+    let mut l = grasp_loop(world, hand, config)?;
     // The loop's ticks advance even over a stopped world, so this ends either way.
     l.run_until(((LIFT_AT_S + hold_s) * 1e6) as u64);
-    match world.borrow_mut().physics_error.take() {
-        Some(e) => Err(e.into()),
+    match world.borrow_mut().world_error.take() {
+        Some(e) => Err(e),
         None => Ok(l),
     }
 }
@@ -404,6 +367,8 @@ pub struct Outcome {
     pub cycles: usize,
     /// Ticks the loop missed.
     pub missed_ticks: u64,
+    /// Protocol 2.0 packets the driver sent and received over the hold (set-up included).
+    pub packets: PacketCounts,
     /// The loop's mode at the end.
     pub mode: hand_control::grasp_loop::Mode,
 }
@@ -426,14 +391,15 @@ pub fn hold_for(
     seed: u64,
     hold_s: f64,
 ) -> Result<(Outcome, SimLoop, Shared), RigError> {
-    let w = world(object, seed)?;
-    let l = run_hold_for(&w, config(band), hold_s)?;
+    let (w, hand) = world(object, seed)?;
+    let mut l = run_hold_for(&w, hand, config(band), hold_s)?;
     let st = hand_control::grasp_loop::settling(l.log(), SETTLE_WINDOW_US, SETTLE_TOL_RAW)
         .ok_or_else(|| RigError::NoTorque {
             cycles: l.log().len(),
             fault: l.log().iter().find_map(|s| s.fault),
         })?;
     let s = w.borrow().state();
+    let peak_force_n = w.borrow().plant.body().peak_force_n();
     let last = l.log().last().and_then(|s| s.estimate);
     let o = Outcome {
         name: name.to_owned(),
@@ -441,7 +407,7 @@ pub fn hold_for(
         settled_raw: st.settled_raw,
         window_raw: st.window_raw,
         settling_time_s: st.settling_time_us as f64 * 1e-6,
-        peak_force_n: w.borrow().peak_force_n,
+        peak_force_n,
         final_force_n: s.grip_force_n,
         final_pressure_pa: last.map_or(f32::NAN, |e| e.pressure_pa),
         slip_m: s.slip_m,
@@ -451,6 +417,7 @@ pub fn hold_for(
         faults: l.events().len(),
         cycles: l.log().len(),
         missed_ticks: l.missed_ticks(),
+        packets: l.actuator_mut().packet_counts(),
         mode: l.mode(),
     };
     Ok((o, l, w))

@@ -2,17 +2,19 @@
 //! CRC, a servo that stops answering, an out-of-range command → a typed error, the safe state
 //! in the same cycle, nothing panics, and the log keeps every cycle.
 //!
-//! The actuator here is the in-process rig (see `support`); the overload is the rig's own
-//! physics (seed 000 §7: full torque on a stiff object), the transport faults are injected.
+//! The actuator is the Dynamixel driver on the simulated Protocol 2.0 bus (see `support`); the
+//! overload is the servo's own (seed 000 §7: full torque on a stiff object), the wire faults are
+//! injected on the bus.
 
 mod common;
 
 use paper_experiments::grasp_rig as support;
 
+use hand_control::Error;
 use hand_control::grasp_loop::{FaultKind, LoopFault, Mode, Recovery, TorqueBand};
 use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
 use hand_traits::{Faults, SafeAction};
-use support::{HandError, Injected, Injection, SimLoop};
+use support::{Injected, Injection, SimLoop};
 
 fn cube() -> ObjectParams {
     ObjectParams::table5(ObjectKind::Cube, &RigParams::default()).expect("cube")
@@ -35,11 +37,11 @@ fn every_cycle_logged(l: &SimLoop, until_s: f64) {
 fn overload_at_full_torque_goes_torque_off_in_the_same_cycle() {
     // §7: "after setting the torque to 100 %, the current continued to increase so that the
     // grasping action was released". The full band lets the policy reach 1023 on a stiff cube.
-    let w = support::world(cube(), 7).expect("cube world");
+    let (w, hand) = support::world(cube(), 7).expect("cube world");
     let mut cfg = support::config(TorqueBand::FULL);
     cfg.target_pressure_pa = 5_000.0; // unreachable: the policy saturates at full torque
     cfg.safe_action = SafeAction::TorqueOff;
-    let mut l = support::grasp_loop(&w, cfg).expect("valid config");
+    let mut l = support::grasp_loop(&w, hand, cfg).expect("valid config");
     l.run_until(6_000_000);
     every_cycle_logged(&l, 6.0);
     let i = common::safe_on_first_fault(
@@ -64,10 +66,10 @@ fn overload_at_full_torque_goes_torque_off_in_the_same_cycle() {
 
 #[test]
 fn overload_recovers_by_reboot_once_the_load_is_gone() {
-    let w = support::world(cube(), 7).expect("cube world");
+    let (w, hand) = support::world(cube(), 7).expect("cube world");
     // Lifted before the overload can latch (≥ 1 s at ≥ 90 % load), so torque-off drops the cube
     // (§7's release) and the load is really gone when the loop reboots.
-    w.borrow_mut().lift_at_s = 0.5;
+    w.borrow().lift_at(0.5);
     let mut cfg = support::config(TorqueBand::FULL);
     cfg.target_pressure_pa = 5_000.0;
     cfg.safe_action = SafeAction::TorqueOff;
@@ -75,7 +77,7 @@ fn overload_recovers_by_reboot_once_the_load_is_gone() {
         cooldown_us: 500_000,
         max_reboots: 1,
     };
-    let mut l = support::grasp_loop(&w, cfg).expect("valid config");
+    let mut l = support::grasp_loop(&w, hand, cfg).expect("valid config");
     l.run_until(12_000_000);
     let i = common::first_fault(l.log());
     let reboot = l.log().iter().position(|s| s.rebooted).expect("rebooted");
@@ -97,7 +99,7 @@ fn overload_recovers_by_reboot_once_the_load_is_gone() {
 
 /// Runs a held cube with `kind` injected in `from_s..until_s`; returns the loop.
 fn with_injection(kind: Injected, from_s: f64, until_s: f64, cfg_recovery: Recovery) -> SimLoop {
-    let w = support::world(cube(), 7).expect("cube world");
+    let (w, hand) = support::world(cube(), 7).expect("cube world");
     w.borrow_mut().injections.push(Injection {
         from_s,
         until_s,
@@ -105,7 +107,7 @@ fn with_injection(kind: Injected, from_s: f64, until_s: f64, cfg_recovery: Recov
     });
     let mut cfg = support::config(cube_band());
     cfg.recovery = cfg_recovery;
-    let mut l = support::grasp_loop(&w, cfg).expect("valid config");
+    let mut l = support::grasp_loop(&w, hand, cfg).expect("valid config");
     l.run_until(8_000_000);
     every_cycle_logged(&l, 8.0);
     // The cube is still held: the safe state holds the last safe effort.
@@ -121,13 +123,13 @@ fn lost_status_packet_holds_then_resumes() {
         cooldown_us: 0,
         max_reboots: 0,
     };
-    let l = with_injection(Injected::LostStatus, 4.0, 4.01, auto);
-    let i =
-        common::safe_on_first_fault(l.log(), FaultKind::Command, SafeAction::HoldLastSafeEffort);
+    let l = with_injection(Injected::Silent, 4.0, 4.01, auto);
+    // A sync write needs no answer: the cycle's state read is what times out.
+    let i = common::safe_on_first_fault(l.log(), FaultKind::State, SafeAction::HoldLastSafeEffort);
     assert!((4_000_000..4_010_000).contains(&l.log()[i].t_us));
     assert!(matches!(
         l.events()[0].fault,
-        LoopFault::Command(HandError::Timeout)
+        LoopFault::State(Error::Timeout { .. })
     ));
     // The next cycle answers again: grasping resumes, the rest is clean.
     assert_eq!(l.log()[i + 1].mode, Mode::Grasp);
@@ -138,16 +140,16 @@ fn lost_status_packet_holds_then_resumes() {
 #[test]
 fn corrupted_crc_is_a_typed_fault_and_safe() {
     let l = with_injection(Injected::Crc, 4.0, 4.01, Recovery::Manual);
-    let _ =
-        common::safe_on_first_fault(l.log(), FaultKind::Command, SafeAction::HoldLastSafeEffort);
+    let _ = common::safe_on_first_fault(l.log(), FaultKind::State, SafeAction::HoldLastSafeEffort);
     assert!(matches!(
         l.events()[0].fault,
-        LoopFault::Command(HandError::Crc)
+        LoopFault::State(Error::Crc { .. })
     ));
     // Manual recovery: it stays safe, nothing more is commanded.
     assert_eq!(l.mode(), Mode::Safe);
+    // The fault's own cycle sent its sync write before the state read failed; nothing after.
     let i = common::first_fault(l.log());
-    assert!(l.log()[i..].iter().all(|s| s.torque_raw.is_none()));
+    assert!(l.log()[i + 1..].iter().all(|s| s.torque_raw.is_none()));
 }
 
 #[test]
@@ -156,26 +158,27 @@ fn servo_that_stops_answering_keeps_the_loop_safe_until_it_answers() {
         cooldown_us: 0,
         max_reboots: 0,
     };
-    let l = with_injection(Injected::LostStatus, 4.0, 6.0, auto);
+    // 0.3 s of silence: each cycle waits out the driver's reply allowance (250 ms of wall time
+    // on the simulated bus), so the window is kept short.
+    let l = with_injection(Injected::Silent, 4.0, 4.3, auto);
     let i = common::first_fault(l.log());
-    // Silent from 4 s to 6 s: every cycle logged with the fault and in the safe state, the safe
-    // stop retried (it cannot reach the servo), reported once per kind as it starts.
-    let silent = &l.log()[i..i + 200];
+    // Silent from 4 s: every cycle logged with the fault and in the safe state.
+    let silent = &l.log()[i..i + 30];
     assert!(
         silent
             .iter()
             .all(|s| s.mode == Mode::Safe && s.fault.is_some())
     );
+    // No state read succeeds; no command after the first silent cycle's (sent before its
+    // read timed out). The safe stop (hold the last safe effort) is a broadcast sync write: it
+    // needs no answer, so it goes out in the fault's cycle and does not fail.
+    assert!(silent.iter().all(|s| s.state.is_none()));
+    assert!(silent[1..].iter().all(|s| s.torque_raw.is_none()));
+    assert_eq!(silent[0].safe_action, Some(SafeAction::HoldLastSafeEffort));
     assert!(
-        silent
+        !l.events()
             .iter()
-            .all(|s| s.state.is_none() && s.torque_raw.is_none())
-    );
-    assert!(silent[1..].iter().all(|s| s.safe_action.is_some()));
-    assert!(
-        l.events()
-            .iter()
-            .any(|e| matches!(e.fault, LoopFault::SafeStop(HandError::Timeout)))
+            .any(|e| matches!(e.fault, LoopFault::SafeStop(_)))
     );
     assert!(l.events().len() < 10, "{} events", l.events().len());
     // From 6 s it answers: safe stop confirmed, then grasping again.
@@ -183,19 +186,18 @@ fn servo_that_stops_answering_keeps_the_loop_safe_until_it_answers() {
 }
 
 #[test]
-fn out_of_range_goal_refused_before_sending_or_by_the_servo() {
-    let w = support::world(cube(), 7).expect("cube world");
-    // The servo's own limit is tighter than the loop's (a mis-set Max Position Limit).
-    w.borrow_mut().servo_goal_limits_rad = (0.0, 0.3);
-    let mut l = support::grasp_loop(&w, support::config(cube_band())).expect("valid config");
+fn out_of_range_goal_refused_by_the_loop_or_by_the_driver_before_sending() {
+    let (w, hand) = support::world(cube(), 7).expect("cube world");
+    let mut cfg = support::config(cube_band());
+    // Wider than the MX-28's Min / Max Position Limit (0…4095, 0…2π rad), so the driver checks.
+    cfg.goal_limits_rad.1 = 7.0;
+    let mut l = support::grasp_loop(&w, hand, cfg).expect("valid config");
     l.run_until(2_000_000);
-    // Outside the loop's own limits: a typed error, nothing sent, the loop unaffected.
-    assert!(l.set_goal_rad(0.6).is_err());
+    assert!(l.set_goal_rad(7.5).is_err());
     assert!(l.set_goal_rad(f32::NAN).is_err());
     l.run_until(3_000_000);
     assert!(l.log().iter().all(|s| s.fault.is_none()));
-    // Inside the loop's limits but outside the servo's: the servo refuses, safe state.
-    l.set_goal_rad(0.4).expect("within the loop's limits");
+    l.set_goal_rad(6.5).expect("within the loop's limits");
     l.run_until(4_000_000);
     every_cycle_logged(&l, 4.0);
     let i =
@@ -203,7 +205,8 @@ fn out_of_range_goal_refused_before_sending_or_by_the_servo() {
     assert!((3_000_000..3_010_000).contains(&l.log()[i].t_us));
     assert!(matches!(
         l.events()[0].fault,
-        LoopFault::Command(HandError::Range { goal_rad }) if goal_rad == 0.4
+        LoopFault::Command(Error::OutOfRange { what: "goal position (rad)", value, .. })
+            if (value - 6.5).abs() < 1e-6
     ));
     let s = w.borrow().state();
     assert!(!s.dropped && !s.damaged, "{s:?}");
@@ -233,10 +236,10 @@ fn tactile_bus_failure_holds_the_grip_and_resumes() {
 #[test]
 fn a_long_run_keeps_a_bounded_log_of_the_newest_cycles_and_counts_the_rest() {
     // A loop left running for hours must not grow its memory with every cycle.
-    let w = support::world(cube(), 7).expect("cube world");
+    let (w, hand) = support::world(cube(), 7).expect("cube world");
     let mut cfg = support::config(cube_band());
     cfg.log_capacity = 100;
-    let mut l = support::grasp_loop(&w, cfg).expect("valid config");
+    let mut l = support::grasp_loop(&w, hand, cfg).expect("valid config");
     l.run_until(8_000_000);
     let kept = l.log().len();
     assert!((50..=100).contains(&kept), "kept {kept}");

@@ -35,6 +35,17 @@ pub struct RawServoState {
     pub alert: bool,
 }
 
+/// Protocol 2.0 packets a [`ServoHand`] has exchanged since it was opened: instruction packets
+/// written (each sync write is one) and status packets received (a corrupted one included).
+/// Instructions sent through [`ServoHand::bus_mut`] are not counted.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PacketCounts {
+    /// Instruction packets written.
+    pub sent: u64,
+    /// Status packets received.
+    pub received: u64,
+}
+
 /// Raw goals for every servo of a hand, as one command encodes them.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct RawGoals {
@@ -72,6 +83,8 @@ pub struct ServoHand {
     last_safe: Option<RawGoals>,
     /// The last command sent, not yet confirmed.
     pending: Option<RawGoals>,
+    /// RAM settings (address, value) written again after every REBOOT.
+    ram: Vec<(u16, i32)>,
 }
 
 /// The reply allowance a real bus needs: the ROBOTIS SDK's flat 34 ms (as `dynamixel2`).
@@ -130,6 +143,7 @@ impl ServoHand {
             states: vec![RawServoState::default(); ids.len()],
             last_safe: None,
             pending: None,
+            ram: Vec::new(),
         };
         let table = hand.identify(first)?;
         for &id in &ids[1..] {
@@ -184,6 +198,11 @@ impl ServoHand {
     /// The model's control table.
     pub fn table(&self) -> &'static ControlTable {
         self.table
+    }
+
+    /// The Protocol 2.0 packets sent and received so far.
+    pub fn packet_counts(&self) -> PacketCounts {
+        self.link.packets
     }
 
     /// The underlying bus, for instructions this type does not wrap.
@@ -381,6 +400,7 @@ impl ServoHand {
                 .bus
                 .sync_write(reg.address, u16::from(reg.width), per_servo)
                 .map_err(Error::from_write)?;
+            self.link.packets.sent += 1;
         }
         Ok(())
     }
@@ -494,10 +514,39 @@ impl ServoHand {
         self.link
             .bus
             .sync_write(reg.address, 1, per_servo)
-            .map_err(Error::from_write)
+            .map_err(Error::from_write)?;
+        self.link.packets.sent += 1;
+        Ok(())
     }
 
-    /// Reboots every servo whose Hardware Error Status is set; returns the IDs rebooted.
+    /// Writes RAM registers (address, value) to every servo and keeps them: REBOOT puts RAM back
+    /// to factory values, so [`ServoHand::recover`] writes them again. Gains and profiles a
+    /// scene tunes belong here; EEPROM settings persist on their own.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for an address where no register starts, before anything is sent;
+    /// the writes' errors ([`Error::Status`] for a refused value).
+    pub fn keep_ram_settings(&mut self, settings: &[(u16, i32)]) -> Result<(), Error> {
+        for &(address, _) in settings {
+            self.register(address)?;
+        }
+        self.ram = settings.to_vec();
+        for i in 0..self.ids.len() {
+            self.write_ram_settings(self.ids[i])?;
+        }
+        Ok(())
+    }
+
+    fn write_ram_settings(&mut self, id: u8) -> Result<(), Error> {
+        for i in 0..self.ram.len() {
+            let (address, value) = self.ram[i];
+            self.write_register(id, address, value)?;
+        }
+        Ok(())
+    }
+
+    /// Reboots every servo whose Hardware Error Status is set, and writes its kept RAM settings
+    /// ([`ServoHand::keep_ram_settings`]) again; returns the IDs rebooted.
     ///
     /// # Errors
     /// The exchanges' errors.
@@ -507,6 +556,7 @@ impl ServoHand {
             let id = self.ids[i];
             if self.hardware_error_bits(id)? != 0 {
                 self.reboot(id)?;
+                self.write_ram_settings(id)?;
                 rebooted.push(id);
             }
         }

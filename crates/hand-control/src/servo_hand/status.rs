@@ -76,6 +76,8 @@ pub(super) struct Link {
     data: Vec<u8>,
     /// Data bytes per answer of the last exchange.
     count: usize,
+    /// Instruction packets written and status packets framed (bad CRC included) so far.
+    pub(super) packets: super::PacketCounts,
 }
 
 impl Link {
@@ -90,6 +92,7 @@ impl Link {
             slots: Vec::new(),
             data: Vec::new(),
             count: 0,
+            packets: super::PacketCounts::default(),
         })
     }
 
@@ -138,6 +141,7 @@ impl Link {
                 b.copy_from_slice(params)
             })
             .map_err(Error::from_write)?;
+        self.packets.sent += 1;
         if expect.is_empty() {
             return Ok(());
         }
@@ -179,6 +183,7 @@ impl Link {
                     ),
                     Err(FrameError::BadLength) => continue,
                 };
+                self.packets.received += 1;
                 // A corrupted ID byte: charge the error to the first servo still waiting.
                 let slot = expect
                     .iter()

@@ -40,7 +40,10 @@
 
 mod servo;
 
-pub use servo::{Plant, ServoParams, SimServo};
+pub use servo::{
+    Load, MX28_NO_LOAD_SPEED_RAD_S, MX28_STALL_CURRENT_A, MX28_STALL_TORQUE_NM, Plant, ServoParams,
+    SimServo,
+};
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};

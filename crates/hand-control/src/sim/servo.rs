@@ -6,26 +6,36 @@ use std::time::Duration;
 use crate::InstructionError;
 use crate::control_table::{Access, Area, ControlTable, LimitBy, MX_28, Register, hardware_error};
 
-/// Physical parameters of the simulated servo.
+/// Physical parameters of the simulated servo: the one MX-28 model of the workspace (hand-sim's
+/// grasp physics drives this motor through a [`Plant`]).
 ///
-/// MX-28AT at 12 V, e-Manual "MX-28(2.0)" specifications: stall torque 2.5 N·m, no-load speed
-/// 55 rev/min. The rotor inertia is not published: `inertia_kg_m2` gives the geared motor a
-/// mechanical time constant J·ω₀/τ_stall of 20 ms, typical of coreless servos of this size.
-/// The overload trip is not documented either; the defaults bracket the paper's evidence
-/// (seed 000 §7, Table 5): a torque limit of 400/1023 (39 %) holds an object for more than 2 min,
-/// while 1023 (100 %) makes the servo overload and let go. The servo trips when |Present Load|
-/// stays above `overload_threshold` for `overload_time`.
+/// MX-28AT at 12 V, e-Manual "MX-28(2.0)" specifications: stall torque 2.5 N·m at 1.4 A, no-load
+/// speed 55 rev/min (67 rev/min is the 14.8 V figure). The rotor inertia is not published:
+/// `inertia_kg_m2` gives the geared motor a mechanical time constant J·ω₀/τ_stall of 20 ms,
+/// typical of coreless servos of this size; gear friction is assumed too.
+///
+/// The overload trip (Hardware Error bit 5, "persistent load that exceeds maximum output") is
+/// not documented either: the servo trips when |Present Load| stays at or above
+/// `overload_threshold` (90 %) for `overload_time` (1 s). Against the paper's evidence (seed 000
+/// §7, Table 5): a limit below 90 % can never trip it, so 400/1023 holds for more than 2 min;
+/// 1023 on an object that resists at full output stalls the motor at 100 % load, trips and
+/// lets go (§7), while a compliant object the servo reaches unsaturated (cone, paper cup) is
+/// held at 1023 (Table 5). `docs/sim-calibration/grasp.md` works this through.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ServoParams {
     /// Stall torque at the output, N·m.
     pub stall_torque_nm: f64,
+    /// Stall current, A (Present Load and current are the same fraction of stall).
+    pub stall_current_a: f64,
     /// No-load speed at the output, rad/s.
     pub no_load_speed_rad_s: f64,
-    /// Output-referred inertia, kg·m².
+    /// Output-referred inertia, kg·m² (rotor through the 193:1 gear, plus what it carries).
     pub inertia_kg_m2: f64,
-    /// |Present Load| fraction above which the overload timer runs.
+    /// Viscous gear friction at the output, N·m·s/rad.
+    pub gear_friction_nm_s: f64,
+    /// |Present Load| fraction at or above which the overload timer runs.
     pub overload_threshold: f64,
-    /// How long the load must stay above the threshold to trip.
+    /// How long the load must stay there to trip.
     pub overload_time: Duration,
     /// Present Temperature reported, °C.
     pub temperature_c: u8,
@@ -33,37 +43,73 @@ pub struct ServoParams {
     pub input_voltage_dv: u16,
 }
 
+/// MX-28 stall torque at 12 V, N·m (e-Manual).
+pub const MX28_STALL_TORQUE_NM: f64 = 2.5;
+/// MX-28 stall current at 12 V, A (e-Manual).
+pub const MX28_STALL_CURRENT_A: f64 = 1.4;
+/// MX-28 no-load speed at 12 V, rad/s (55 rev/min, e-Manual).
+pub const MX28_NO_LOAD_SPEED_RAD_S: f64 = 55.0 * std::f64::consts::TAU / 60.0;
+
 impl Default for ServoParams {
     fn default() -> Self {
-        let stall = 2.5;
-        let w0 = 55.0 * std::f64::consts::TAU / 60.0;
         Self {
-            stall_torque_nm: stall,
-            no_load_speed_rad_s: w0,
-            inertia_kg_m2: stall / w0 * 0.020,
-            overload_threshold: 0.8,
-            overload_time: Duration::from_secs(2),
+            stall_torque_nm: MX28_STALL_TORQUE_NM,
+            stall_current_a: MX28_STALL_CURRENT_A,
+            no_load_speed_rad_s: MX28_NO_LOAD_SPEED_RAD_S,
+            inertia_kg_m2: MX28_STALL_TORQUE_NM / MX28_NO_LOAD_SPEED_RAD_S * 0.020,
+            gear_friction_nm_s: 0.01,
+            overload_threshold: 0.9,
+            overload_time: Duration::from_secs(1),
             temperature_c: 36,
             input_voltage_dv: 120,
         }
     }
 }
 
-/// An external load on a servo's output: the torque (N·m) it opposes the motor with.
-///
-/// The grasp loop couples an object here: e.g. a spring that engages once the finger reaches
-/// the object's surface. Positive torque opposes positive motion.
-pub trait Plant: Send {
-    /// Load torque at output angle `position_rad`, speed `velocity_rad_s`, simulated time `t`.
-    fn load_torque_nm(&mut self, position_rad: f64, velocity_rad_s: f64, t: Duration) -> f64;
+/// An external load on the output, linearised at the present state so a stiff contact stays
+/// stable at any step: torque `torque_nm + stiffness·Δθ + damping·ω` opposes positive motion.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Load {
+    /// Load torque at the present angle (spring part), N·m; positive opposes positive motion.
+    pub torque_nm: f64,
+    /// d τ / d θ, N·m/rad (≥ 0).
+    pub stiffness_nm_per_rad: f64,
+    /// d τ / d ω, N·m·s/rad (≥ 0).
+    pub damping_nm_s_per_rad: f64,
 }
 
+impl Load {
+    /// A plain torque with no stiffness or damping.
+    pub fn torque(torque_nm: f64) -> Self {
+        Self {
+            torque_nm,
+            ..Self::default()
+        }
+    }
+}
+
+/// What a servo drives against: an object in a gripper, a finger's spring, a wall.
+///
+/// Positive torque opposes positive motion. The servo asks for the [`Load`] at the start of each
+/// physics step and reports where the step ended ([`Plant::stepped`]), so a plant with state of
+/// its own (friction, damage, a contact patch) advances in the same steps as the motor.
+pub trait Plant: Send {
+    /// The load at output angle `position_rad`, speed `velocity_rad_s`, simulated time `t`.
+    fn load(&mut self, position_rad: f64, velocity_rad_s: f64, t: Duration) -> Load;
+
+    /// The step of `dt` ending at `t` left the output at `position_rad`, `velocity_rad_s`.
+    fn stepped(&mut self, position_rad: f64, velocity_rad_s: f64, dt: Duration, t: Duration) {
+        let _ = (position_rad, velocity_rad_s, dt, t);
+    }
+}
+
+/// A closure is a plant of torque only: `|θ, ω, t| torque_nm`.
 impl<F> Plant for F
 where
     F: FnMut(f64, f64, Duration) -> f64 + Send,
 {
-    fn load_torque_nm(&mut self, position_rad: f64, velocity_rad_s: f64, t: Duration) -> f64 {
-        self(position_rad, velocity_rad_s, t)
+    fn load(&mut self, position_rad: f64, velocity_rad_s: f64, t: Duration) -> Load {
+        Load::torque(self(position_rad, velocity_rad_s, t))
     }
 }
 
@@ -82,6 +128,9 @@ pub struct SimServo {
     load: f64,
     /// Time the load has stayed above the overload threshold.
     over_for: Duration,
+    /// The profile's set-point in position units, moving toward Goal Position at Profile
+    /// Velocity; `None` while torque is off (torque on starts it where the output is).
+    setpoint: Option<f64>,
     /// Simulated time of the last step.
     now: Duration,
     plant: Option<Box<dyn Plant>>,
@@ -115,6 +164,7 @@ mod addr {
     pub(super) const VELOCITY_P_GAIN: u16 = 78;
     pub(super) const GOAL_PWM: u16 = 100;
     pub(super) const GOAL_VELOCITY: u16 = 104;
+    pub(super) const PROFILE_VELOCITY: u16 = 112;
     pub(super) const GOAL_POSITION: u16 = 116;
     pub(super) const REALTIME_TICK: u16 = 120;
     pub(super) const MOVING: u16 = 122;
@@ -145,6 +195,7 @@ impl SimServo {
             omega: 0.0,
             load: 0.0,
             over_for: Duration::ZERO,
+            setpoint: None,
             now: Duration::ZERO,
             plant: None,
             registered: None,
@@ -267,7 +318,10 @@ impl SimServo {
         let load = (self.load * 1000.0).round().clamp(-1000.0, 1000.0) as i32;
         let pwm = (self.load * f64::from(self.get(addr::PWM_LIMIT))).round() as i32;
         self.set(addr::PRESENT_POSITION, pos);
-        self.set(addr::POSITION_TRAJECTORY, self.get(addr::GOAL_POSITION));
+        let trajectory = self
+            .setpoint
+            .map_or_else(|| self.get(addr::GOAL_POSITION), |sp| sp.round() as i32);
+        self.set(addr::POSITION_TRAJECTORY, trajectory);
         self.set(addr::PRESENT_VELOCITY, vel);
         self.set(addr::VELOCITY_TRAJECTORY, vel);
         self.set(addr::PRESENT_LOAD, load);
@@ -288,71 +342,124 @@ impl SimServo {
     /// Advances the motor by `dt` ending at simulated time `now`.
     ///
     /// Position modes (3, 4): the e-Manual's P(D) position law, PWM = K_PP·e − K_PD·ė with
-    /// K_PP = Position P Gain / 128 and K_PD = Position D Gain / 16, clamped to ±Goal PWM.
-    /// Velocity mode (1): PWM = K_VP·(goal − ω) with K_VP = Velocity P Gain / 128. PWM mode
-    /// (16): PWM = Goal PWM. The PWM duty drives a DC motor: τ = τ_stall·(duty − ω/ω₀).
+    /// K_PP = Position P Gain / 128 and K_PD = Position D Gain / 16, clamped to ±Goal PWM, where
+    /// `e` is measured from the profile's set-point: it moves toward Goal Position at Profile
+    /// Velocity (0 = at once). Velocity mode (1): PWM = K_VP·(goal − ω) with K_VP = Velocity P
+    /// Gain / 128. PWM mode (16): PWM = Goal PWM. The PWM duty drives a DC motor,
+    /// τ = τ_stall·(duty − ω/ω₀), against gear friction and the plant's [`Load`].
+    ///
+    /// The step is linearly implicit: the controller's spring and damping (while unsaturated),
+    /// back-EMF, friction and the load's stiffness and damping are all taken at the end of the
+    /// step, so any stiffness and any step size stay bounded.
     pub fn step(&mut self, dt: Duration, now: Duration) {
         let h = dt.as_secs_f64();
+        if h <= 0.0 {
+            return;
+        }
         let p = self.params;
         let unit = f64::from(self.table.position_unit_rad);
         let vunit = f64::from(self.table.velocity_unit_rad_per_s);
         let pwm_full = f64::from(self.get(addr::PWM_LIMIT).max(1));
-        let duty = if self.torque_enabled() {
-            let cap = f64::from(self.get(addr::GOAL_PWM).abs()) / pwm_full;
-            let pwm_units = match self.get(addr::OPERATING_MODE) {
-                16 => f64::from(self.get(addr::GOAL_PWM)),
-                1 => {
-                    let kvp = f64::from(self.get(addr::VELOCITY_P_GAIN)) / 128.0;
-                    kvp * (f64::from(self.get(addr::GOAL_VELOCITY)) - self.omega / vunit)
-                }
-                _ => {
-                    let kpp = f64::from(self.get(addr::POSITION_P_GAIN)) / 128.0;
-                    let kpd = f64::from(self.get(addr::POSITION_D_GAIN)) / 16.0;
-                    let err = f64::from(self.get(addr::GOAL_POSITION)) - self.theta / unit;
-                    kpp * err - kpd * self.omega / vunit
-                }
+        let on = self.torque_enabled();
+        let mode = self.get(addr::OPERATING_MODE);
+        if !on {
+            self.setpoint = None;
+        } else if mode == 3 || mode == 4 {
+            let goal = f64::from(self.get(addr::GOAL_POSITION));
+            let here = self.setpoint.unwrap_or(self.theta / unit);
+            let v = f64::from(self.get(addr::PROFILE_VELOCITY)) * vunit / unit;
+            let next = if v > 0.0 {
+                here + (goal - here).clamp(-v * h, v * h)
+            } else {
+                goal
             };
-            (pwm_units / pwm_full).clamp(-cap, cap)
+            self.setpoint = Some(next);
+        }
+        // duty = raw − a_θ·Δθ − a_ω·ω near the present state (per rad, per rad/s).
+        let (raw, a_theta, a_omega) = match mode {
+            16 => (f64::from(self.get(addr::GOAL_PWM)) / pwm_full, 0.0, 0.0),
+            1 => {
+                let kvp = f64::from(self.get(addr::VELOCITY_P_GAIN)) / 128.0 / pwm_full;
+                let goal = f64::from(self.get(addr::GOAL_VELOCITY));
+                (kvp * (goal - self.omega / vunit), 0.0, kvp / vunit)
+            }
+            _ => {
+                let kpp = f64::from(self.get(addr::POSITION_P_GAIN)) / 128.0 / pwm_full;
+                let kpd = f64::from(self.get(addr::POSITION_D_GAIN)) / 16.0 / pwm_full;
+                let err = self.setpoint.unwrap_or(self.theta / unit) - self.theta / unit;
+                (
+                    kpp * err - kpd * self.omega / vunit,
+                    kpp / unit,
+                    kpd / vunit,
+                )
+            }
+        };
+        let cap = f64::from(self.get(addr::GOAL_PWM).abs()) / pwm_full;
+        let duty_at = |raw: f64| if on { raw.clamp(-cap, cap) } else { 0.0 };
+        let duty0 = duty_at(raw);
+        let (spring, ctrl_damping) = if on && raw.abs() <= cap {
+            (a_theta * p.stall_torque_nm, a_omega * p.stall_torque_nm)
         } else {
-            0.0
+            (0.0, 0.0)
         };
-        let motor = if self.torque_enabled() {
-            p.stall_torque_nm * (duty - self.omega / p.no_load_speed_rad_s)
-        } else {
-            0.0
-        };
-        let external = match self.plant.as_mut() {
-            Some(pl) => pl.load_torque_nm(self.theta, self.omega, now),
-            None => 0.0,
-        };
-        // Semi-implicit Euler: the back-EMF term is stiff, so treat it implicitly.
-        let damping = if self.torque_enabled() {
+        let emf = if on {
             p.stall_torque_nm / p.no_load_speed_rad_s
         } else {
             0.0
         };
-        let drive = if self.torque_enabled() {
-            p.stall_torque_nm * duty
+        let load = match self.plant.as_mut() {
+            Some(pl) => pl.load(self.theta, self.omega, now),
+            None => Load::default(),
+        };
+        let lhs = p.inertia_kg_m2 / h
+            + (spring + load.stiffness_nm_per_rad) * h
+            + ctrl_damping
+            + emf
+            + load.damping_nm_s_per_rad
+            + p.gear_friction_nm_s;
+        let rhs = p.inertia_kg_m2 / h * self.omega + p.stall_torque_nm * duty0 - load.torque_nm;
+        let omega_before = self.omega;
+        let omega = rhs / lhs;
+        self.omega = if omega.is_finite() { omega } else { 0.0 };
+        let moved = self.omega * h;
+        self.theta += moved;
+        // The duty at the end of the step: the Present Load the servo reports.
+        let duty = duty_at(raw - a_theta * moved - a_omega * (self.omega - omega_before));
+        self.load = if on {
+            (duty - self.omega / p.no_load_speed_rad_s).clamp(-1.0, 1.0)
         } else {
             0.0
         };
-        self.omega = (self.omega * p.inertia_kg_m2 + h * (drive - external))
-            / (p.inertia_kg_m2 + h * damping);
-        if !self.omega.is_finite() {
-            self.omega = 0.0;
-        }
-        self.theta += self.omega * h;
-        self.load = (motor / p.stall_torque_nm).clamp(-1.0, 1.0);
         self.now = now;
-        if self.torque_enabled() && self.load.abs() >= p.overload_threshold {
+        if let Some(pl) = self.plant.as_mut() {
+            pl.stepped(self.theta, self.omega, dt, now);
+        }
+        if on && self.load.abs() >= p.overload_threshold {
             self.over_for += dt;
             if self.over_for >= p.overload_time {
                 self.raise_hardware_error(hardware_error::OVERLOAD);
                 self.over_for = Duration::ZERO;
+                self.setpoint = None;
+                self.load = 0.0;
             }
         } else {
             self.over_for = Duration::ZERO;
         }
+    }
+
+    /// Motor current, A (signed like the load).
+    pub fn current_a(&self) -> f64 {
+        self.load * self.params.stall_current_a
+    }
+
+    /// Simulated time of the last step.
+    pub fn now(&self) -> Duration {
+        self.now
+    }
+
+    /// The motor's physical parameters.
+    pub fn params(&self) -> &ServoParams {
+        &self.params
     }
 
     /// READ: `len` bytes from `address`.
@@ -524,6 +631,131 @@ mod tests {
             s.write(36, &100u16.to_le_bytes()),
             Err(InstructionError::Access)
         ); // EEPROM locked
+    }
+
+    /// Writes `value` into the register called `name`.
+    fn set(s: &mut SimServo, name: &str, value: i32) {
+        let r = MX_28.register(name).unwrap();
+        s.write(r.address, &r.encode(value)[..usize::from(r.width)])
+            .unwrap();
+    }
+
+    #[test]
+    fn set_point_follows_profile_velocity() {
+        let mut s = servo();
+        set(&mut s, "Position P Gain", 1772);
+        set(&mut s, "Profile Velocity", 8);
+        set(&mut s, "Torque Enable", 1);
+        let start = s.get(132);
+        set(&mut s, "Goal Position", start + 400);
+        let dt = Duration::from_millis(1);
+        let mut now = Duration::ZERO;
+        for _ in 0..1000 {
+            now += dt;
+            s.step(dt, now);
+        }
+        // 8 × 0.229 rev/min = 0.192 rad/s: the output trails the set-point slightly.
+        let v = 8.0 * f64::from(MX_28.velocity_unit_rad_per_s);
+        assert!(
+            (s.velocity_rad_s() - v).abs() < 0.02 * v,
+            "{}",
+            s.velocity_rad_s()
+        );
+        for _ in 0..5000 {
+            now += dt;
+            s.step(dt, now);
+        }
+        s.refresh();
+        assert!((s.get(132) - (start + 400)).abs() <= 1, "{}", s.get(132));
+        assert!(s.load_fraction().abs() < 0.05);
+    }
+
+    #[test]
+    fn stalled_load_equals_goal_pwm_and_overload_needs_ninety_percent() {
+        // A wall that does not move: all damping.
+        let wall = |_: f64, _: f64, _: Duration| Load {
+            torque_nm: 100.0,
+            stiffness_nm_per_rad: 0.0,
+            damping_nm_s_per_rad: 1e6,
+        };
+        struct Wall<F>(F);
+        impl<F: FnMut(f64, f64, Duration) -> Load + Send> Plant for Wall<F> {
+            fn load(&mut self, th: f64, w: f64, t: Duration) -> Load {
+                (self.0)(th, w, t)
+            }
+        }
+        for (pwm, trips) in [(346, false), (778, false), (805, true), (885, true)] {
+            let mut s = servo();
+            s.set_plant(Some(Box::new(Wall(wall))));
+            set(&mut s, "Torque Enable", 1);
+            set(&mut s, "Goal PWM", pwm);
+            set(&mut s, "Goal Position", 4000);
+            let dt = Duration::from_millis(1);
+            let mut now = Duration::ZERO;
+            for _ in 0..3000 {
+                now += dt;
+                s.step(dt, now);
+            }
+            assert_eq!(
+                s.hardware_error() == hardware_error::OVERLOAD,
+                trips,
+                "{pwm}"
+            );
+            if !trips {
+                let want = f64::from(pwm) / 885.0;
+                assert!(
+                    (s.load_fraction() - want).abs() < 1e-3,
+                    "{}",
+                    s.load_fraction()
+                );
+                assert!((s.current_a() - want * 1.4).abs() < 2e-3);
+            }
+        }
+    }
+
+    #[test]
+    fn stiff_load_stays_bounded_at_any_step() {
+        // 1e7 N·m/rad is far stiffer than any grasp object; a linearly implicit step stays put.
+        let mut s = servo();
+        let wall = s.position_rad() + 0.01;
+        struct Spring(f64);
+        impl Plant for Spring {
+            fn load(&mut self, th: f64, _: f64, _: Duration) -> Load {
+                let k = 1e7;
+                if th > self.0 {
+                    Load {
+                        torque_nm: k * (th - self.0),
+                        stiffness_nm_per_rad: k,
+                        damping_nm_s_per_rad: 0.0,
+                    }
+                } else {
+                    Load::default()
+                }
+            }
+        }
+        s.set_plant(Some(Box::new(Spring(wall))));
+        set(&mut s, "Torque Enable", 1);
+        set(&mut s, "Goal Position", 3000);
+        let dt = Duration::from_millis(5);
+        let mut now = Duration::ZERO;
+        for _ in 0..400 {
+            now += dt;
+            s.step(dt, now);
+            // Contact is found at the start of a step, so the output may enter the wall by one
+            // step's travel at most; an explicit step would then ring with growing amplitude.
+            let (th, w) = (s.position_rad(), s.velocity_rad_s());
+            assert!(
+                th.is_finite() && w.is_finite() && th < wall + 0.05,
+                "{th} {w}"
+            );
+        }
+        // Pressed against the wall at the stall torque: 2.5 N·m / 1e7 N·m/rad.
+        assert!(
+            (s.position_rad() - wall).abs() < 1e-6,
+            "{}",
+            s.position_rad()
+        );
+        assert!(s.velocity_rad_s().abs() < 1e-6);
     }
 
     #[test]

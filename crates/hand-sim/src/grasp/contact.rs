@@ -3,7 +3,8 @@
 
 use super::object::ObjectParams;
 use super::rig::RigParams;
-use super::servo::LoadLinearisation;
+use hand_control::sim::Load;
+
 use crate::fingertip::ContactPatch;
 use crate::fingertip::geometry::{Cell, CellSet, HEIGHT_MM};
 
@@ -23,15 +24,15 @@ pub fn penetration_m(theta_rad: f64, rig: &RigParams) -> f64 {
 /// The object's squeeze reaction, seen at the servo: spring torque, stiffness and damping at the
 /// present state (zero out of contact). The object is a spring `k` between the two pads (it is
 /// compressed by twice each pad's penetration) with damping for a contact damping ratio `ζ`.
-pub fn load(theta_rad: f64, obj: &ObjectParams, rig: &RigParams) -> LoadLinearisation {
+pub fn load(theta_rad: f64, obj: &ObjectParams, rig: &RigParams) -> Load {
     let x = penetration_m(theta_rad, rig);
     if x <= 0.0 {
-        return LoadLinearisation::default();
+        return Load::default();
     }
     let lever = rig.linkage.lever_m / rig.linkage.efficiency;
     let k_pad = 2.0 * obj.material.stiffness_n_per_m;
     let stiffness = k_pad * rig.linkage.lever_m * lever;
-    LoadLinearisation {
+    Load {
         torque_nm: k_pad * x * lever,
         stiffness_nm_per_rad: stiffness,
         damping_nm_s_per_rad: 2.0
@@ -42,7 +43,7 @@ pub fn load(theta_rad: f64, obj: &ObjectParams, rig: &RigParams) -> LoadLinearis
 
 /// The pad force, N, for servo torque `load` state at velocity `omega`: spring plus damping,
 /// never pulling.
-pub fn pad_force_n(lin: &LoadLinearisation, omega_rad_s: f64, rig: &RigParams) -> f64 {
+pub fn pad_force_n(lin: &Load, omega_rad_s: f64, rig: &RigParams) -> f64 {
     let torque = lin.torque_nm + lin.damping_nm_s_per_rad * omega_rad_s;
     (torque * rig.linkage.force_per_torque()).max(0.0)
 }

@@ -16,7 +16,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::servo::{STALL_TORQUE_NM, TORQUE_LIMIT_MAX};
+use hand_control::sim::MX28_STALL_TORQUE_NM as STALL_TORQUE_NM;
+
+use super::servo::TORQUE_LIMIT_MAX;
 
 /// The finger lever between servo and pad.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -5,7 +5,8 @@
 //! exposes the servo's position, velocity, load, current and overload bit, the pad force, slip,
 //! damage and the [`ContactPatch`](crate::fingertip::ContactPatch) on the fingertip.
 //!
-//! - [`servo`]: the MX-28 (controller, motor and gear, overload shutdown);
+//! - [`servo`]: how the hand tunes its MX-28s (the motor is `hand_control::sim::SimServo`);
+//! - [`plant`]: the object as the servo's load ([`GraspPlant`]);
 //! - [`linkage`]: torque-limit counts → pad force;
 //! - [`object`]: the six objects, their assumed materials and the parameters derived from Table 5;
 //! - [`statics`]: the settled grasp in closed form (predicted holding range);
@@ -38,6 +39,7 @@ pub mod hold;
 pub mod linkage;
 pub mod object;
 pub mod persist;
+pub mod plant;
 pub mod random;
 pub mod rig;
 pub mod servo;
@@ -47,6 +49,7 @@ pub mod statics;
 pub use config::{GraspConfig, ObjectChoice, TorqueStep};
 pub use hold::{HoldOutcome, HoldTest, run_hold, sweep_holding_range};
 pub use object::{ObjectKind, ObjectParams, TABLE5};
+pub use plant::{GraspBody, GraspPlant};
 pub use random::{RandomObject, random_objects};
 pub use rig::{GraspRig, GraspState, RigParams};
 pub use sim::GraspSim;

@@ -1,16 +1,27 @@
 //! One grasp: two opposing fingers, each on an MX-28, squeezing one object, then lifting it.
-//! The plain API the control loop (issue 9) drives: set the torque limit and goal, step, read.
+//! The plain API an open-loop sweep drives in process: set the torque limit and goal, step,
+//! read. The motor is [`hand_control::sim::SimServo`] (the bus simulator's), the object its
+//! [`GraspPlant`]; by symmetry one servo stands for both fingers.
 
+use std::time::Duration;
+
+use hand_control::control_table::MX_28;
+use hand_control::sim::SimServo;
 use hand_traits::Faults;
 use serde::{Deserialize, Serialize};
 
-use super::contact::{self, PAD_SLIDE_LIMIT_M};
 use super::linkage::Linkage;
-use super::object::{G, ObjectParams};
-use super::persist::Persistence;
-use super::servo::{Mx28, ServoParams, positive};
+use super::object::ObjectParams;
+use super::plant::{GraspBody, GraspPlant};
+use super::servo::{ServoTuning, TORQUE_LIMIT_MAX, positive};
 use crate::SimError;
 use crate::fingertip::ContactPatch;
+
+/// The servo angle the grasp starts at, rad: Present Position 2048, mid-range, so the closing
+/// goal stays inside Position Control Mode's 0…4095.
+pub const ORIGIN_RAD: f64 = core::f64::consts::PI;
+/// Servo ID of the grasp hand's (symmetric) finger servo.
+pub const SERVO_ID: u8 = 1;
 
 /// How long the crush force must be exceeded before the object is damaged, s (assumed: paper
 /// and foam creep; an impact peak of milliseconds does not crush them).
@@ -26,8 +37,8 @@ pub const MAX_DT_S: f64 = 1.0;
 pub struct RigParams {
     /// Finger lever and efficiency.
     pub linkage: Linkage,
-    /// Servo gains, speed and inertia.
-    pub servo: ServoParams,
+    /// Servo gains, profile speed and the mechanics it carries.
+    pub servo: ServoTuning,
     /// Pad-to-surface distance at the start, m.
     pub approach_m: f64,
     /// How far past first contact [`GraspRig::close`] sends each pad, m. Position control under
@@ -42,7 +53,7 @@ impl Default for RigParams {
     fn default() -> Self {
         RigParams {
             linkage: Linkage::default(),
-            servo: ServoParams::default(),
+            servo: ServoTuning::default(),
             approach_m: 0.005,
             goal_squeeze_m: 0.015,
             contact_damping_ratio: 0.3,
@@ -51,6 +62,11 @@ impl Default for RigParams {
 }
 
 impl RigParams {
+    /// The closing angle that puts each pad `squeeze_m` past first contact, rad.
+    pub fn goal_for_squeeze_rad(&self, squeeze_m: f64) -> f64 {
+        (self.approach_m + squeeze_m) / self.linkage.lever_m
+    }
+
     /// Checks every value.
     pub fn validate(&self) -> Result<(), SimError> {
         self.servo.validate()?;
@@ -98,76 +114,136 @@ pub struct GraspState {
     pub patch: ContactPatch,
 }
 
+impl GraspState {
+    /// The state of `body` squeezed by `servo`, wherever the servo runs (in process or on the
+    /// bus simulator). The torque limit is read back from Goal PWM on the paper's 0…1023 scale.
+    pub fn of(servo: &SimServo, body: &GraspBody) -> GraspState {
+        let pwm = f64::from(servo.get(MX_28.goal_effort.address));
+        let full = f64::from(MX_28.effort_limit.default);
+        GraspState {
+            t_s: servo.now().as_secs_f64(),
+            position_rad: body.closing_rad(servo.position_rad()),
+            velocity_rad_s: servo.velocity_rad_s(),
+            load_fraction: servo.load_fraction(),
+            current_a: servo.current_a(),
+            torque_limit: (pwm / full * f64::from(TORQUE_LIMIT_MAX)).round() as u16,
+            torque_enabled: servo.torque_enabled(),
+            faults: hand_control::faults_from_hardware_error(servo.hardware_error()),
+            grip_force_n: body.grip_force_n(),
+            slipping: body.slipping(),
+            slip_m: body.slip_m(),
+            damaged: body.damaged(),
+            dropped: body.dropped(),
+            patch: body.patch(),
+        }
+    }
+}
+
 /// One object between two MX-28 fingers.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct GraspRig {
-    object: ObjectParams,
-    params: RigParams,
-    servo: Mx28,
-    t_s: f64,
-    lifted: bool,
-    slide_v: f64,
-    slip_m: f64,
-    crush: Persistence,
-    dropped: bool,
-    force_n: f64,
+    plant: GraspPlant,
+    servo: SimServo,
+    torque_limit: u16,
+    t: Duration,
     steps: u64,
 }
 
+/// A register write the rig makes, as the servo would answer it.
+fn write(servo: &mut SimServo, name: &'static str, value: i32) -> Result<(), SimError> {
+    let reg = MX_28
+        .register(name)
+        .ok_or_else(|| SimError::config(name, "not an MX-28(2.0) register"))?;
+    let bytes = reg.encode(value);
+    servo
+        .write(reg.address, &bytes[..usize::from(reg.width)])
+        .map_err(|e| SimError::config(name, format!("{value} refused: {e:?}")))
+}
+
 impl GraspRig {
-    /// A rig with open fingers `approach_m` from `object`, goal at the start, limit 1023.
+    /// A rig with open fingers `approach_m` from `object`, goal at the start, limit 1023,
+    /// torque on.
     pub fn new(object: ObjectParams, params: RigParams) -> Result<GraspRig, SimError> {
         object.validate()?;
         params.validate()?;
-        Ok(GraspRig {
-            servo: Mx28::new(params.servo)?,
-            object,
-            params,
-            t_s: 0.0,
-            lifted: false,
-            slide_v: 0.0,
-            slip_m: 0.0,
-            crush: Persistence::default(),
-            dropped: false,
-            force_n: 0.0,
+        let plant = GraspPlant::new(GraspBody::new(object, params, ORIGIN_RAD));
+        let mut servo = SimServo::new(SERVO_ID, ORIGIN_RAD, params.servo.params());
+        servo.set_plant(Some(Box::new(plant.clone())));
+        let mut rig = GraspRig {
+            plant,
+            servo,
+            torque_limit: TORQUE_LIMIT_MAX,
+            t: Duration::ZERO,
             steps: 0,
-        })
+        };
+        rig.configure()?;
+        rig.set_torque_limit(TORQUE_LIMIT_MAX)?;
+        rig.set_torque_enabled(true)?;
+        Ok(rig)
     }
 
-    /// Sets the torque limit, 0…1023; more is a typed error.
+    /// Writes the tuning's RAM registers (again after a reboot, as a driver must).
+    fn configure(&mut self) -> Result<(), SimError> {
+        let tuning = self.plant.body().params().servo;
+        for (name, value) in tuning.registers() {
+            write(&mut self.servo, name, value)?;
+        }
+        Ok(())
+    }
+
+    /// Sets the torque limit, 0…1023 (§7), sent as the MX-28(2.0)'s Goal PWM; more is a typed
+    /// error.
     pub fn set_torque_limit(&mut self, count: u16) -> Result<(), SimError> {
-        self.servo.set_torque_limit(count)
+        if count > TORQUE_LIMIT_MAX {
+            return Err(SimError::config(
+                "torque_limit",
+                format!("0…{TORQUE_LIMIT_MAX}, got {count}"),
+            ));
+        }
+        let pwm = MX_28.effort_raw(f32::from(count) / f32::from(TORQUE_LIMIT_MAX));
+        write(&mut self.servo, "Goal PWM", pwm)?;
+        self.torque_limit = count;
+        Ok(())
     }
 
-    /// Sets the servo goal, rad.
+    /// Sets the servo goal, rad from the start (positive closes).
     pub fn set_goal_rad(&mut self, goal_rad: f64) -> Result<(), SimError> {
-        self.servo.set_goal_rad(goal_rad)
+        if !goal_rad.is_finite() {
+            return Err(SimError::config("goal_rad", "finite"));
+        }
+        let raw = ((ORIGIN_RAD + goal_rad) / f64::from(MX_28.position_unit_rad)).round();
+        write(&mut self.servo, "Goal Position", raw as i32)
     }
 
     /// The goal that puts each pad `squeeze_m` past first contact, rad.
     pub fn goal_for_squeeze_rad(&self, squeeze_m: f64) -> f64 {
-        (self.params.approach_m + squeeze_m) / self.params.linkage.lever_m
+        self.plant.body().params().goal_for_squeeze_rad(squeeze_m)
     }
 
     /// Closes: goal `goal_squeeze_m` past first contact.
     pub fn close(&mut self) -> Result<(), SimError> {
-        self.set_goal_rad(self.goal_for_squeeze_rad(self.params.goal_squeeze_m))
+        let squeeze = self.plant.body().params().goal_squeeze_m;
+        self.set_goal_rad(self.goal_for_squeeze_rad(squeeze))
     }
 
     /// Lifts (`true`): from now on gravity pulls the object along the pads and only friction
     /// holds it; `false` puts it back on the table.
     pub fn set_lifted(&mut self, lifted: bool) {
-        self.lifted = lifted;
+        let at = if lifted { 0.0 } else { f64::INFINITY };
+        self.plant.body().lift_at(at);
     }
 
     /// Servo torque on / off (on is refused while the overload bit is set).
     pub fn set_torque_enabled(&mut self, on: bool) -> Result<(), SimError> {
-        self.servo.set_torque_enabled(on)
+        write(&mut self.servo, "Torque Enable", i32::from(on))
     }
 
-    /// The servo's REBOOT: clears the overload bit, torque off.
-    pub fn reboot(&mut self) {
+    /// The servo's REBOOT: clears the overload bit, torque off; the rig restores its RAM
+    /// settings (gains, profile, limit) as a driver does.
+    pub fn reboot(&mut self) -> Result<(), SimError> {
         self.servo.reboot();
+        self.configure()?;
+        self.set_torque_limit(self.torque_limit)
     }
 
     /// Advances by `dt_s` (0 < dt ≤ 1 s) and returns the new state.
@@ -178,87 +254,30 @@ impl GraspRig {
                 format!("0 < dt ≤ {MAX_DT_S} s, got {dt_s}"),
             ));
         }
-        let lin = |theta| {
-            if self.dropped {
-                Default::default()
-            } else {
-                contact::load(theta, &self.object, &self.params)
-            }
-        };
-        self.servo.step(dt_s, lin(self.servo.position_rad()));
-        let after = lin(self.servo.position_rad());
-        self.force_n = contact::pad_force_n(&after, self.servo.velocity_rad_s(), &self.params);
-        self.crush.update(
-            self.force_n >= self.object.damage_force_n,
-            dt_s,
-            CRUSH_TIME_S,
-        );
-        self.slide(dt_s);
-        self.t_s += dt_s;
+        let dt = Duration::from_secs_f64(dt_s);
+        self.t += dt;
+        self.servo.step(dt, self.t);
         self.steps += 1;
         Ok(self.state())
-    }
-
-    /// Gravity against Coulomb friction on both pads (µ static = µ kinetic): the object sticks
-    /// while `2 µ F ≥ m g`, else slides down with `a = g − 2 µ F / m` until it stops or leaves
-    /// the pads.
-    fn slide(&mut self, dt_s: f64) {
-        if !self.lifted || self.dropped {
-            return;
-        }
-        let friction_n = 2.0 * self.object.material.friction * self.force_n;
-        let weight_n = self.object.mass_kg * G;
-        if self.slide_v == 0.0 && friction_n >= weight_n {
-            return;
-        }
-        let a = G - friction_n / self.object.mass_kg;
-        let v0 = self.slide_v;
-        self.slide_v = (v0 + a * dt_s).max(0.0);
-        self.slip_m += 0.5 * (v0 + self.slide_v) * dt_s;
-        if self.slip_m >= PAD_SLIDE_LIMIT_M {
-            self.dropped = true;
-            self.slide_v = 0.0;
-            self.force_n = 0.0;
-        }
     }
 
     /// The present state.
     pub fn state(&self) -> GraspState {
         GraspState {
-            t_s: self.t_s,
-            position_rad: self.servo.position_rad(),
-            velocity_rad_s: self.servo.velocity_rad_s(),
-            load_fraction: self.servo.load_fraction(),
-            current_a: self.servo.current_a(),
-            torque_limit: self.servo.torque_limit(),
-            torque_enabled: self.servo.torque_enabled(),
-            faults: self.servo.faults(),
-            grip_force_n: self.force_n,
-            slipping: self.slide_v > 0.0,
-            slip_m: self.slip_m,
-            damaged: self.crush.tripped(),
-            dropped: self.dropped,
-            patch: if self.dropped {
-                ContactPatch::NONE
-            } else {
-                contact::patch(&self.object, self.force_n)
-            },
+            // The count asked for (Goal PWM's coarser scale may not read back to the same one).
+            torque_limit: self.torque_limit,
+            ..GraspState::of(&self.servo, &self.plant.body())
         }
     }
 
-    /// The servo, for its register-level readouts (ticks, raw load).
-    pub fn servo(&self) -> &Mx28 {
+    /// The servo, for its register-level readouts (Present Position, Present Load).
+    pub fn servo(&self) -> &SimServo {
         &self.servo
     }
 
-    /// The object.
-    pub fn object(&self) -> &ObjectParams {
-        &self.object
-    }
-
-    /// The hand's parameters.
-    pub fn params(&self) -> &RigParams {
-        &self.params
+    /// The object and its state.
+    pub fn body(&self) -> std::sync::MutexGuard<'_, GraspBody> {
+        self.plant.body()
     }
 
     /// Steps taken since built.

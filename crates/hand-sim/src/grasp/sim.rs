@@ -9,7 +9,7 @@ use crate::SimError;
 use crate::scene::Model;
 
 /// The grasp model of a scene.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct GraspSim {
     config: GraspConfig,
     rigs: Vec<GraspRig>,

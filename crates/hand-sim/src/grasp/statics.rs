@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::object::{G, ObjectParams};
 use super::rig::RigParams;
-use super::servo::{OVERLOAD_LOAD_FRACTION, TORQUE_LIMIT_MAX};
+use super::servo::TORQUE_LIMIT_MAX;
 
 /// A range of torque-limit counts that hold an object (inclusive).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -41,7 +41,7 @@ pub fn settled_failures(count: u16, obj: &ObjectParams, rig: &RigParams) -> (boo
     let f = settled_force_n(f64::from(count), obj, rig);
     let slips = 2.0 * obj.material.friction * f < obj.mass_kg * G;
     let crushed = f >= obj.damage_force_n;
-    let overloads = f / rig.linkage.max_force_n() >= OVERLOAD_LOAD_FRACTION;
+    let overloads = f / rig.linkage.max_force_n() >= rig.servo.params().overload_threshold;
     (slips, crushed, overloads)
 }
 

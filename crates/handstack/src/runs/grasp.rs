@@ -2,11 +2,12 @@
 //! (tactile source → contact estimate → the paper's Mamdani controller → torque limit) closes on
 //! each object, the arm lifts at 3 s, the hold lasts `hold_s`.
 //!
-//! Simulated (no `serial_port`): hand-control's Table 5 world (`paper_experiments::grasp_rig`:
-//! hand-sim's two-finger MX-28 rig and the fingertip's three MS5611 chip models read by the
-//! real driver, in simulated time), the code path of docs/grasping. With `[hand] serial_port`:
-//! the real `ServoHand` on that port, on the wall clock, for `hold_s` per object, the fingertip
-//! still hand-sim's (the scene's sensors say so).
+//! Simulated (no `serial_port`): the Table 5 world (`paper_experiments::grasp_rig`): the
+//! Dynamixel driver speaking Protocol 2.0 to the servo-bus simulator, whose MX-28 drives
+//! hand-sim's grasp physics, and the fingertip's three MS5611 chip models read by the real
+//! driver, in simulated time — the code path of docs/grasping. With `[hand] serial_port`: the
+//! real `ServoHand` on that port and the real MS5611s on the fingertip's `i2c_buses` (required:
+//! a hardware grasp never reads a simulated fingertip), on the wall clock, `hold_s` per object.
 
 use super::figure::{Target, measured, paper, target};
 use super::{Part, RunContext};
@@ -15,7 +16,6 @@ use crate::scene::Scene;
 use crate::scene::experiment::Grasp;
 use crate::{Line, Plot};
 use hand_control::grasp_loop::{GraspLoop, LoopConfig, Sample, StdClock, TorqueBand};
-use hand_sim::fingertip::Fingertip;
 use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
 use paper_experiments::grasp_rig::{self, SETTLE_TOL_RAW, SETTLE_WINDOW_US};
 
@@ -66,6 +66,14 @@ pub fn run(scene: &Scene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part, RunE
                             reason: format!("{name}: {e}"),
                         })?;
                     let held = !(o.slipped || o.damaged || o.dropped) && o.faults == 0;
+                    for (what, n) in [("sent", o.packets.sent), ("received", o.packets.received)] {
+                        part.figures.push(measured(
+                            &format!("{name}_packets_{what}"),
+                            &format!("{name}: Protocol 2.0 packets {what} by the driver"),
+                            n as f64,
+                            "",
+                        ));
+                    }
                     part.figures.push(measured(
                         &format!("{name}_peak_force_n"),
                         &format!("{name}: peak pad force (sim truth)"),
@@ -171,11 +179,9 @@ fn real_hold(
     band: TorqueBand,
     hold_s: f64,
 ) -> Result<Vec<Sample<3>>, RunError> {
+    // The sensors first: a bus that cannot be opened fails before any servo command.
+    let tip = crate::stack::fingertip::open_hardware(scene)?;
     let servo = crate::stack::hand::open(hand, port)?;
-    let tip = Fingertip::new(
-        &scene.sim.fingertip.clone().unwrap_or_default(),
-        scene.seed(),
-    )?;
     let config = LoopConfig {
         band,
         ..grasp_rig::config(band)

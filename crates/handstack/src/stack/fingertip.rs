@@ -67,32 +67,47 @@ impl TactileSource for RealFingertip {
 pub fn open(
     scene: &Scene,
 ) -> Result<Box<dyn TactileSource<Frame = PressureFrame<3>, Error = RunError>>, RunError> {
-    let Some(tip) = &scene.file.sensors.fingertip else {
+    let tip = scene_fingertip(scene)?;
+    if tip.i2c_buses.is_some() {
+        return Ok(Box::new(open_hardware(scene)?));
+    }
+    let config = scene.sim.fingertip.clone().unwrap_or_default();
+    let sim = hand_sim::fingertip::Fingertip::new(&config, scene.seed())?;
+    Ok(Box::new(SimSource(sim)))
+}
+
+/// The scene's real fingertip, never a simulated one: a scene that drives real servos must read
+/// real sensors, so naming no `i2c_buses` is an error here, as is a bus that cannot be opened
+/// (both before anything moves).
+pub fn open_hardware(scene: &Scene) -> Result<RealFingertip, RunError> {
+    let tip = scene_fingertip(scene)?;
+    let Some(buses) = &tip.i2c_buses else {
         return Err(RunError::Device {
             device: "sensors.fingertip",
-            reason: "the scene names no fingertip".into(),
+            reason: "a hardware hand needs the fingertip's `i2c_buses`: the simulated fingertip \
+                     is never pressed by a real grasp"
+                .into(),
         });
     };
-    let tip = tip.get_ref();
     let osr = hand_sim::fingertip::model::osr_from_ratio(*tip.osr.get_ref())?;
-    match &tip.i2c_buses {
-        Some(buses) => {
-            let address = match tip.address.as_ref().map(|a| *a.get_ref()) {
-                Some(0x76) => Address::CsbHigh,
-                _ => Address::CsbLow,
-            };
-            Ok(Box::new(RealFingertip::open(
-                buses.get_ref(),
-                address,
-                osr,
-            )?))
-        }
-        None => {
-            let config = scene.sim.fingertip.clone().unwrap_or_default();
-            let sim = hand_sim::fingertip::Fingertip::new(&config, scene.seed())?;
-            Ok(Box::new(SimSource(sim)))
-        }
-    }
+    let address = match tip.address.as_ref().map(|a| *a.get_ref()) {
+        Some(0x76) => Address::CsbHigh,
+        _ => Address::CsbLow,
+    };
+    RealFingertip::open(buses.get_ref(), address, osr)
+}
+
+fn scene_fingertip(scene: &Scene) -> Result<&crate::scene::parts::Fingertip, RunError> {
+    scene
+        .file
+        .sensors
+        .fingertip
+        .as_ref()
+        .map(|t| t.get_ref())
+        .ok_or_else(|| RunError::Device {
+            device: "sensors.fingertip",
+            reason: "the scene names no fingertip".into(),
+        })
 }
 
 /// hand-sim's fingertip with its errors as run errors.

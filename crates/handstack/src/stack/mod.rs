@@ -29,6 +29,11 @@ pub fn check_real_devices(scene: &Scene) -> Result<(), RunError> {
     }
     if let Some(h) = &scene.file.hand {
         if let Some(port) = &h.get_ref().serial_port {
+            // Real servos grasp by real sensors only: a grasp on hardware without the
+            // fingertip's buses is refused here, before the servos hear anything.
+            if scene.file.experiment.get_ref().grasp.is_some() {
+                drop(fingertip::open_hardware(scene)?);
+            }
             drop(hand::open(h.get_ref(), port.get_ref())?);
         }
     }
