@@ -100,9 +100,8 @@ fn a_missing_serial_port_is_a_cannot_open_error() {
                 [experiment.grasp]\nobjects = [\"cube\"]\nhold_s = 1\n";
     let scene = Scene::parse("hw.toml", text).expect("valid scene");
     let hand = scene.file.hand.as_ref().expect("hand").get_ref();
-    let e = handstack::stack::hand::open(hand, "/dev/ttyUSB-handstack-none")
-        .err()
-        .expect("no such port");
+    let e =
+        handstack::stack::hand::open(hand, "/dev/ttyUSB-handstack-none").expect_err("no such port");
     assert!(matches!(e, RunError::Open { device: "hand", .. }), "{e:?}");
     assert!(
         e.to_string()
