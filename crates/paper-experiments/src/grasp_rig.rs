@@ -163,10 +163,12 @@ impl World {
         if t > now {
             self.bus.advance(t - now)?;
         }
-        let changes: Vec<_> = self.plant.body().take_contacts().collect();
-        for (at_ns, patch) in changes {
+        // Straight from the plant's log into the pad: no copy per cycle.
+        let mut body = self.plant.body();
+        for (at_ns, patch) in body.take_contacts() {
             self.tip.physics().set_contact(at_ns, patch)?;
         }
+        drop(body);
         self.tip.idle_until_ns(t_ns);
         let s = self.state();
         self.trace.push(Truth {

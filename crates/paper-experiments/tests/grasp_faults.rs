@@ -16,6 +16,12 @@ use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
 use hand_traits::{Faults, SafeAction};
 use support::{Injected, Injection, SimLoop};
 
+/// Back to grasping as soon as the fault clears, without a reboot.
+const RESUME: Recovery = Recovery::Automatic {
+    cooldown_us: 0,
+    max_reboots: 0,
+};
+
 fn cube() -> ObjectParams {
     ObjectParams::table5(ObjectKind::Cube, &RigParams::default()).expect("cube")
 }
@@ -119,11 +125,7 @@ fn with_injection(kind: Injected, from_s: f64, until_s: f64, cfg_recovery: Recov
 #[test]
 fn lost_status_packet_holds_then_resumes() {
     // One cycle's exchange lost (the injection window covers one 10 ms tick).
-    let auto = Recovery::Automatic {
-        cooldown_us: 0,
-        max_reboots: 0,
-    };
-    let l = with_injection(Injected::Silent, 4.0, 4.01, auto);
+    let l = with_injection(Injected::Silent, 4.0, 4.01, RESUME);
     // A sync write needs no answer: the cycle's state read is what times out.
     let i = common::safe_on_first_fault(l.log(), FaultKind::State, SafeAction::HoldLastSafeEffort);
     assert!((4_000_000..4_010_000).contains(&l.log()[i].t_us));
@@ -154,13 +156,9 @@ fn corrupted_crc_is_a_typed_fault_and_safe() {
 
 #[test]
 fn servo_that_stops_answering_keeps_the_loop_safe_until_it_answers() {
-    let auto = Recovery::Automatic {
-        cooldown_us: 0,
-        max_reboots: 0,
-    };
     // 0.3 s of silence: each cycle waits out the driver's reply allowance (250 ms of wall time
     // on the simulated bus), so the window is kept short.
-    let l = with_injection(Injected::Silent, 4.0, 4.3, auto);
+    let l = with_injection(Injected::Silent, 4.0, 4.3, RESUME);
     let i = common::first_fault(l.log());
     // Silent from 4 s: every cycle logged with the fault and in the safe state.
     let silent = &l.log()[i..i + 30];
@@ -215,11 +213,7 @@ fn out_of_range_goal_refused_by_the_loop_or_by_the_driver_before_sending() {
 #[test]
 fn tactile_bus_failure_holds_the_grip_and_resumes() {
     // No feedback for 50 ms: the loop cannot control, so it holds the last safe effort.
-    let auto = Recovery::Automatic {
-        cooldown_us: 0,
-        max_reboots: 0,
-    };
-    let l = with_injection(Injected::TactileBus, 4.0, 4.05, auto);
+    let l = with_injection(Injected::TactileBus, 4.0, 4.05, RESUME);
     let i = common::safe_on_first_fault(l.log(), FaultKind::Source, SafeAction::HoldLastSafeEffort);
     assert!(matches!(l.events()[0].fault, LoopFault::Source(_)));
     // Five cycles without a frame, each logged and safe, nothing commanded.

@@ -640,6 +640,14 @@ mod tests {
             .unwrap();
     }
 
+    /// `steps` steps of `dt` from where the servo's clock stands.
+    fn run(s: &mut SimServo, dt: Duration, steps: u32) {
+        for _ in 0..steps {
+            let now = s.now() + dt;
+            s.step(dt, now);
+        }
+    }
+
     #[test]
     fn set_point_follows_profile_velocity() {
         let mut s = servo();
@@ -649,11 +657,7 @@ mod tests {
         let start = s.get(132);
         set(&mut s, "Goal Position", start + 400);
         let dt = Duration::from_millis(1);
-        let mut now = Duration::ZERO;
-        for _ in 0..1000 {
-            now += dt;
-            s.step(dt, now);
-        }
+        run(&mut s, dt, 1000);
         // 8 × 0.229 rev/min = 0.192 rad/s: the output trails the set-point slightly.
         let v = 8.0 * f64::from(MX_28.velocity_unit_rad_per_s);
         assert!(
@@ -661,10 +665,7 @@ mod tests {
             "{}",
             s.velocity_rad_s()
         );
-        for _ in 0..5000 {
-            now += dt;
-            s.step(dt, now);
-        }
+        run(&mut s, dt, 5000);
         s.refresh();
         assert!((s.get(132) - (start + 400)).abs() <= 1, "{}", s.get(132));
         assert!(s.load_fraction().abs() < 0.05);
@@ -672,30 +673,24 @@ mod tests {
 
     #[test]
     fn stalled_load_equals_goal_pwm_and_overload_needs_ninety_percent() {
-        // A wall that does not move: all damping.
-        let wall = |_: f64, _: f64, _: Duration| Load {
-            torque_nm: 100.0,
-            stiffness_nm_per_rad: 0.0,
-            damping_nm_s_per_rad: 1e6,
-        };
-        struct Wall<F>(F);
-        impl<F: FnMut(f64, f64, Duration) -> Load + Send> Plant for Wall<F> {
-            fn load(&mut self, th: f64, w: f64, t: Duration) -> Load {
-                (self.0)(th, w, t)
+        /// A wall that does not move: all damping.
+        struct Wall;
+        impl Plant for Wall {
+            fn load(&mut self, _: f64, _: f64, _: Duration) -> Load {
+                Load {
+                    torque_nm: 100.0,
+                    stiffness_nm_per_rad: 0.0,
+                    damping_nm_s_per_rad: 1e6,
+                }
             }
         }
         for (pwm, trips) in [(346, false), (778, false), (805, true), (885, true)] {
             let mut s = servo();
-            s.set_plant(Some(Box::new(Wall(wall))));
+            s.set_plant(Some(Box::new(Wall)));
             set(&mut s, "Torque Enable", 1);
             set(&mut s, "Goal PWM", pwm);
             set(&mut s, "Goal Position", 4000);
-            let dt = Duration::from_millis(1);
-            let mut now = Duration::ZERO;
-            for _ in 0..3000 {
-                now += dt;
-                s.step(dt, now);
-            }
+            run(&mut s, Duration::from_millis(1), 3000);
             assert_eq!(
                 s.hardware_error() == hardware_error::OVERLOAD,
                 trips,
