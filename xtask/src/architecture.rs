@@ -7,7 +7,8 @@
 //! - a product crate (kind `product` or `driver`) never depends on a `reproduction` crate;
 //! - nothing depends on the `composition` root;
 //! - a driver's normal and build dependencies are `hand-traits` among ours and only the
-//!   third-party crates its row lists;
+//!   third-party crates its row lists; a tool's third-party ones are those its row lists (xtask
+//!   stays thin);
 //! - every edge between workspace crates is one the table allows;
 //! - reproduction and tool crates are `publish = false`; product crates are publishable;
 //! - a product crate's `src/` names no repository path (`"fixtures/…"`, `"docs/…"` literals).
@@ -61,7 +62,7 @@ pub struct Rule {
     pub kind: Kind,
     /// Workspace crates it may use; `None` = any (the general rules still apply).
     pub may_use: Option<BTreeSet<String>>,
-    /// Third-party crates a driver may use; `None` = any.
+    /// Third-party crates a driver or a tool may use (normal and build); `None` = any.
     pub third_party: Option<BTreeSet<String>>,
 }
 
@@ -234,13 +235,15 @@ pub fn check(rules: &BTreeMap<String, Rule>, packages: &[Package]) -> Vec<Violat
                 .flatten()
             else {
                 // third party
-                if rule.kind == Kind::Driver && e.kind != "dev" {
-                    let allowed = rule.third_party.as_ref().is_none_or(|t| t.contains(&e.to));
-                    if !allowed {
-                        say(format!(
-                            "{edge}: a driver uses embedded-hal and its listed crates only"
-                        ));
-                    }
+                let limited = matches!(rule.kind, Kind::Driver | Kind::Tool) && e.kind != "dev";
+                let allowed = rule.third_party.as_ref().is_none_or(|t| t.contains(&e.to));
+                if limited && !allowed {
+                    say(match rule.kind {
+                        Kind::Driver => {
+                            format!("{edge}: a driver uses embedded-hal and its listed crates only")
+                        }
+                        _ => format!("{edge}: a tool uses its listed third-party crates only"),
+                    });
                 }
                 continue;
             };

@@ -1,5 +1,11 @@
 //! Developer workflows for the handstack workspace, run as `cargo xtask <command>`.
 //!
+//! xtask stays thin (rust-analyzer's rule): it parses arguments, sets up `.venv` and Chromium,
+//! runs `cargo` and the workspace's binaries — `handstack` (scenes, training, the trade) and
+//! the reproduction's `papers` (plots, docs sections, simulated datasets) — and compares the
+//! generated fixtures. It links neither the simulator nor the learned models nor plotters, so
+//! a first `cargo xtask` compiles in seconds.
+//!
 //! - `test`: sets up `.venv` and Chromium, then fmt check, clippy `-D warnings`, every test, docs, and
 //!   `fixtures --check` (once more with numpy's widest SIMD kernels off): the one command CI runs.
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones
@@ -14,6 +20,8 @@
 //!   curve and its section of `docs/learning.md`.
 //! - `train softness`: trains the softness classifier (LM and Adam), writes its weights,
 //!   metrics, figures and section 2 of `docs/learning.md`.
+//!
+//!   Each trains with `handstack train MODEL`, then draws with `papers docs MODEL` ([`train`]).
 //! - `trade`: the speed / accuracy trade report (`handstack trade`) into `docs/trade.md`.
 //! - `demo [--screenshot]`: runs every scene in `fixtures/scenes/` on the simulated default
 //!   and writes `target/demo/report.html` (`--screenshot`: also `docs/demo-report.png`).
@@ -24,16 +32,12 @@ pub mod bench;
 pub mod bench_doc;
 pub mod chromium;
 pub mod demo;
-pub mod docs_section;
 pub mod fixtures;
-pub mod force_dnn;
 pub mod fuzzy_peers;
 pub mod run;
 pub mod test;
 pub mod trade;
 pub mod train;
-pub mod train_cnn;
-pub mod train_softness;
 pub mod venv;
 
 use std::path::{Path, PathBuf};

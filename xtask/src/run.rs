@@ -1,6 +1,7 @@
 //! Running the steps of a workflow: one announced, timed child process at a time.
 
 use anyhow::{Context, Result, bail};
+use std::ffi::OsStr;
 use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
@@ -27,23 +28,51 @@ pub fn step(name: &str, cmd: &mut Command) -> Result<()> {
     Ok(())
 }
 
-/// Runs the `handstack` binary as the step `name` under the optimised `test` profile (the
-/// profile the tests build, so nothing is compiled twice): `handstack ARGS --root ROOT`.
-pub fn handstack(root: &Path, name: &str, args: &[&str]) -> Result<()> {
-    step(
-        name,
-        cargo(root)
-            .args([
-                "run",
-                "--quiet",
-                "--profile",
-                "test",
-                "-p",
-                "handstack",
-                "--",
-            ])
+/// A workspace binary that a workflow runs through `cargo run`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Binary {
+    /// The package that holds it.
+    pub package: &'static str,
+    /// The `[[bin]]` name.
+    pub name: &'static str,
+    /// Build the package with its default features.
+    pub default_features: bool,
+}
+
+/// The composition root's binary: scenes, `train MODEL` (weights and metrics), `trade`.
+pub const HANDSTACK: Binary = Binary {
+    package: "handstack",
+    name: "handstack",
+    default_features: true,
+};
+
+/// The reproduction's writers: a model's plots and docs, the simulated datasets. Without the
+/// default `arm` feature: they need no Python, so the binary embeds none.
+pub const PAPERS: Binary = Binary {
+    package: "paper-experiments",
+    name: "papers",
+    default_features: false,
+};
+
+impl Binary {
+    /// `cargo run --quiet --profile test -p PACKAGE [--no-default-features] --bin NAME -- ARGS
+    /// --root ROOT`, under the optimised `test` profile: the profile the tests build, so nothing
+    /// is compiled twice, and numeric code runs several times faster than at `opt-level = 0`.
+    pub fn command<S: AsRef<OsStr>>(&self, root: &Path, args: &[S]) -> Command {
+        let mut cmd = cargo(root);
+        cmd.args(["run", "--quiet", "--profile", "test", "-p", self.package]);
+        if !self.default_features {
+            cmd.arg("--no-default-features");
+        }
+        cmd.args(["--bin", self.name, "--"])
             .args(args)
             .arg("--root")
-            .arg(root),
-    )
+            .arg(root);
+        cmd
+    }
+
+    /// Runs `self ARGS --root ROOT` ([`Binary::command`]) as the step `name`.
+    pub fn run<S: AsRef<OsStr>>(&self, root: &Path, name: &str, args: &[S]) -> Result<()> {
+        step(name, &mut self.command(root, args))
+    }
 }

@@ -2,12 +2,13 @@
 //! measures every speed / accuracy knob in one run and writes `docs/trade.md`, one SVG per
 //! task under `docs/trade/` and `docs/trade/points.csv`.
 
+use crate::run::HANDSTACK;
 use anyhow::Result;
 use std::path::Path;
 
 /// Runs `cargo xtask trade`.
 pub fn run(root: &Path) -> Result<()> {
-    crate::run::handstack(root, "trade", &["trade"])?;
+    HANDSTACK.run(root, "trade", &["trade"])?;
     println!(
         "trade: report written to {}",
         root.join("docs/trade.md").display()

@@ -1,268 +1,65 @@
-//! `cargo xtask train MODEL`:
-//! - `contact-mlp` trains the contact-area MLP (seeded: a validation search on repeat 0, then per
-//!   OSR the paper's recipe for both heads and the chosen configuration) and writes
-//!   `fixtures/models/contact_mlp/` (weights, `metrics.json`, `selection.json`), then draws
-//!   `docs/contact-location/contact-mlp-osr.svg` and prints the markdown table of
-//!   `docs/contact-location.md`;
-//! - `force-dnn`: see [`crate::force_dnn`].
+//! `cargo xtask train MODEL [--docs-only]`: retrains a committed model and redraws its docs.
 //!
-//! Training runs as `handstack train MODEL` under the optimised `test` profile (dfdx at
-//! `opt-level = 0`, the xtask's own profile, is several times slower).
+//! Two binaries, both under the optimised `test` profile (dfdx at `opt-level = 0`, the xtask's
+//! own profile, is several times slower): `handstack train MODEL` trains and writes the weights
+//! and metrics below `fixtures/models/`; then `papers docs MODEL` draws the plots and rewrites
+//! the model's section of the docs from those files (`--docs-only`: that step alone).
+//!
+//! - `contact-mlp`: `docs/contact-location/contact-mlp-osr.svg`, and prints the markdown table
+//!   of `docs/contact-location.md`;
+//! - `force-dnn`: the training curve and section 1 of `docs/learning.md`;
+//! - `softness` (`--docs-only`): confusion matrices, training curves and section 2;
+//! - `contact-cnn` (`--docs-only`): Table I side by side, the confusion matrix and section 3,
+//!   quoting the latest `cargo xtask bench contact_cnn` means from `target/criterion`.
 
-use anyhow::{Context, Result, bail};
-use paper_experiments::contact_eval::{METRICS_FILE, MODEL_DIR, chosen_label, row_label};
-use plotters::prelude::*;
+use crate::run::{HANDSTACK, PAPERS};
+use anyhow::{Result, bail};
 use std::path::Path;
-use tactile_nets::contact_mlp::Head;
-use tactile_nets::metrics::MetricsFile;
+use std::time::SystemTime;
 
-/// The plot written next to `docs/contact-location.md`.
-pub const PLOT: &str = "docs/contact-location/contact-mlp-osr.svg";
+const USAGE: &str = "usage: cargo xtask train contact-mlp | force-dnn | softness [--docs-only] | contact-cnn [--docs-only]";
 
-/// Runs `cargo xtask train <model>`.
+/// The models, and whether each takes `--docs-only`.
+const MODELS: [(&str, bool); 4] = [
+    ("contact-mlp", false),
+    ("force-dnn", false),
+    ("softness", true),
+    ("contact-cnn", true),
+];
+
+/// The criterion ids (a prefix) whose means the contact CNN's section quotes.
+const CNN_TIMINGS: &str = "contact_cnn";
+
+/// Runs `cargo xtask train <model> [--docs-only]`.
 pub fn run(root: &Path, args: &[String]) -> Result<()> {
-    match args {
-        [model] if model == "contact-mlp" => contact_mlp(root),
-        [model] if model == "force-dnn" => crate::force_dnn::train(root),
-        [model] if model == "contact-cnn" => crate::train_cnn::run(root, false),
-        [model, flag] if model == "contact-cnn" && flag == "--docs-only" => {
-            crate::train_cnn::run(root, true)
+    let takes_docs_only = |model: &str| MODELS.iter().find(|(m, _)| *m == model).map(|m| m.1);
+    let (model, docs_only) = match args {
+        [model] if takes_docs_only(model).is_some() => (model.as_str(), false),
+        [model, flag] if flag == "--docs-only" && takes_docs_only(model) == Some(true) => {
+            (model.as_str(), true)
         }
-        [model] if model == "softness" => crate::train_softness::run(root, false),
-        [model, flag] if model == "softness" && flag == "--docs-only" => {
-            crate::train_softness::run(root, true)
-        }
-        _ => bail!(
-            "usage: cargo xtask train contact-mlp | force-dnn | softness [--docs-only] | contact-cnn [--docs-only]"
-        ),
-    }
-}
-
-/// Runs `handstack train MODEL --root ROOT` (the training code, `paper_experiments::jobs`) under
-/// the optimised `test` profile: it writes the weights and metrics this command then draws.
-pub fn run_handstack_train(root: &Path, model: &str) -> Result<()> {
-    crate::run::handstack(root, &format!("train ({model})"), &["train", model])
-}
-
-fn contact_mlp(root: &Path) -> Result<()> {
-    run_handstack_train(root, "contact-mlp")?;
-    let path = root.join(MODEL_DIR).join(METRICS_FILE);
-    let metrics = MetricsFile::from_json(
-        &std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?,
-    )?;
-    plot(&metrics, &root.join(PLOT))?;
-    println!("wrote {PLOT}\n\n{}", table(&metrics));
-    Ok(())
-}
-
-/// The OSRs in the metrics rows, ascending.
-fn osrs(metrics: &MetricsFile) -> Vec<u16> {
-    let mut v: Vec<u16> = metrics
-        .rows
-        .iter()
-        .filter_map(|r| r.label.strip_prefix("osr")?.split('/').next()?.parse().ok())
-        .collect();
-    v.sort_unstable();
-    v.dedup();
-    v
-}
-
-/// Which model of an OSR a metrics row belongs to.
-#[derive(Clone, Copy)]
-enum Model {
-    /// The paper's recipe with this head.
-    Paper(Head),
-    /// The configuration chosen on the validation split.
-    Chosen,
-}
-
-impl Model {
-    const ALL: [Model; 3] = [
-        Model::Paper(Head::AverageArea),
-        Model::Paper(Head::CellSet),
-        Model::Chosen,
-    ];
-
-    fn label(self, osr: u16) -> String {
-        match self {
-            Model::Paper(head) => row_label(osr, head),
-            Model::Chosen => chosen_label(osr),
-        }
-    }
-
-    fn name(self) -> &'static str {
-        match self {
-            Model::Paper(Head::AverageArea) => "paper recipe, eq. 4 regression",
-            Model::Paper(Head::CellSet) => "paper recipe, cell-set head",
-            Model::Chosen => "validation-chosen",
-        }
-    }
-}
-
-fn value(metrics: &MetricsFile, osr: u16, model: Model, key: &str) -> f64 {
-    metrics
-        .row(&model.label(osr))
-        .and_then(|r| r.values.get(key).copied())
-        .unwrap_or(f64::NAN)
-}
-
-/// The markdown table: one row per OSR and model.
-pub fn table(metrics: &MetricsFile) -> String {
-    let mut s = String::from(
-        "| OSR | model | 24-area acc. (single-cell taps) | exact set | mean cell error | mean centroid error, cells |\n\
-         |---:|---|---:|---:|---:|---:|\n",
-    );
-    for osr in osrs(metrics) {
-        for m in Model::ALL {
-            let v = |k| value(metrics, osr, m, k);
-            if v("taps").is_nan() {
-                continue;
-            }
-            s += &format!(
-                "| {osr} | {} | {:.1} % | {:.1} % | {:.2} | {:.2} |\n",
-                m.name(),
-                100.0 * v("area_accuracy"),
-                100.0 * v("exact_accuracy"),
-                v("mean_cell_error"),
-                v("mean_centroid_error"),
-            );
-        }
-    }
-    s
-}
-
-fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir)?;
-    }
-    let osrs = osrs(metrics);
-    let n = osrs.len().max(1) as f64;
-    let root = SVGBackend::new(path, (960, 400)).into_drawing_area();
-    root.fill(&WHITE).map_err(plot_err)?;
-    let (left, right) = root.split_horizontally(480);
-    let label_osr = |x: &f64| {
-        osrs.get(x.round() as usize)
-            .filter(|_| (x - x.round()).abs() < 1e-6)
-            .map(|o| o.to_string())
-            .unwrap_or_default()
+        _ => bail!(USAGE),
     };
-    let series = [
-        (
-            Model::Paper(Head::AverageArea),
-            "area_accuracy",
-            "24-area, paper recipe, eq. 4 regression",
-            RED,
-        ),
-        (
-            Model::Paper(Head::CellSet),
-            "area_accuracy",
-            "24-area, paper recipe, cell-set head",
-            BLUE,
-        ),
-        (
-            Model::Chosen,
-            "area_accuracy",
-            "24-area, validation-chosen",
-            GREEN,
-        ),
-        (
-            Model::Chosen,
-            "exact_accuracy",
-            "exact set, validation-chosen",
-            CYAN,
-        ),
-    ];
-    let mut chart = ChartBuilder::on(&left)
-        .caption("Contact-area MLP: held-out accuracy", ("sans-serif", 18))
-        .margin(10)
-        .x_label_area_size(35)
-        .y_label_area_size(45)
-        .build_cartesian_2d(-0.2..n - 0.8, 0.0..100.0)
-        .map_err(plot_err)?;
-    chart
-        .configure_mesh()
-        .x_desc("MS5611 OSR")
-        .y_desc("%")
-        .x_labels(osrs.len())
-        .x_label_formatter(&label_osr)
-        .draw()
-        .map_err(plot_err)?;
-    for (model, key, name, color) in series {
-        let pts: Vec<(f64, f64)> = osrs
-            .iter()
-            .enumerate()
-            .map(|(i, &o)| (i as f64, 100.0 * value(metrics, o, model, key)))
-            .collect();
-        chart
-            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-            .map_err(plot_err)?
-            .label(name)
-            .legend(legend_mark(color));
-        chart
-            .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
-            .map_err(plot_err)?;
+    if !docs_only {
+        HANDSTACK.run(root, &format!("train ({model})"), &["train", model])?;
     }
-    draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
-    let max_err = osrs
-        .iter()
-        .flat_map(|&o| Model::ALL.map(|m| value(metrics, o, m, "mean_cell_error")))
-        .fold(1.0f64, f64::max);
-    let mut chart = ChartBuilder::on(&right)
-        .caption(
-            "Mean cell error (|predicted ∆ touched|)",
-            ("sans-serif", 18),
-        )
-        .margin(10)
-        .x_label_area_size(35)
-        .y_label_area_size(45)
-        .build_cartesian_2d(-0.2..n - 0.8, 0.0..max_err * 1.15)
-        .map_err(plot_err)?;
-    chart
-        .configure_mesh()
-        .x_desc("MS5611 OSR")
-        .y_desc("cells")
-        .x_labels(osrs.len())
-        .x_label_formatter(&label_osr)
-        .draw()
-        .map_err(plot_err)?;
-    for (model, color) in Model::ALL.into_iter().zip([RED, BLUE, GREEN]) {
-        let name = model.name();
-        let pts: Vec<(f64, f64)> = osrs
-            .iter()
-            .enumerate()
-            .map(|(i, &o)| (i as f64, value(metrics, o, model, "mean_cell_error")))
-            .collect();
-        chart
-            .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-            .map_err(plot_err)?
-            .label(name)
-            .legend(legend_mark(color));
+    let mut docs = vec!["docs".to_owned(), model.to_owned()];
+    if model == "contact-cnn" {
+        for (id, mean) in timings(root, CNN_TIMINGS) {
+            docs.push("--timing".to_owned());
+            docs.push(format!("{id}={mean}"));
+        }
     }
-    draw_legend(&mut chart, SeriesLabelPosition::MiddleRight)?;
-    root.present().map_err(plot_err)?;
-    Ok(())
+    PAPERS.run(root, &format!("docs ({model})"), &docs)
 }
 
-/// A series' legend mark: a short line in its colour.
-pub(crate) fn legend_mark(color: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
-    move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color)
-}
-
-/// Draws the chart's series legend in a translucent white box at `position`.
-pub(crate) fn draw_legend<'a, DB: DrawingBackend + 'a, X: Ranged, Y: Ranged>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
-    position: SeriesLabelPosition,
-) -> Result<()> {
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .position(position)
-        .draw()
-        .map_err(plot_err)?;
-    Ok(())
-}
-
-pub(crate) fn plot_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
-    anyhow::anyhow!("plot: {e}")
+/// The latest criterion mean of every benchmark whose id starts with `prefix`, in readable
+/// units; none when nothing was measured (the section then says "not measured").
+fn timings(root: &Path, prefix: &str) -> Vec<(String, String)> {
+    crate::bench::collect(&root.join("target/criterion"), SystemTime::UNIX_EPOCH)
+        .unwrap_or_default()
+        .into_iter()
+        .filter(|m| m.id.starts_with(prefix))
+        .map(|m| (m.id, crate::bench::human(m.mean_ns)))
+        .collect()
 }

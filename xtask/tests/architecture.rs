@@ -77,7 +77,14 @@ fn lawful() -> Vec<Package> {
         package("paper-experiments", true, &[("hand-sim", "normal", false)]),
         package("handstack-benches", true, &[("hand-sim", "normal", false)]),
         package("handstack", true, &[("paper-experiments", "normal", false)]),
-        package("xtask", true, &[("hand-sim", "normal", false)]),
+        package(
+            "xtask",
+            true,
+            &[
+                ("paper-fixtures", "normal", false),
+                ("anyhow", "normal", false),
+            ],
+        ),
     ]
 }
 
@@ -145,6 +152,24 @@ fn a_driver_uses_embedded_hal_and_its_listed_crates_only() {
         after(|p| add(p, "baro-drivers", "embedded-hal-mock", "dev", false)),
         Vec::<String>::new()
     );
+}
+
+#[test]
+fn xtask_stays_thin() {
+    for (to, what) in [
+        ("hand-sim", "not in its row"),
+        ("tactile-nets", "not in its row"),
+        ("paper-experiments", "not in its row"),
+        ("plotters", "a tool uses its listed third-party crates only"),
+        ("dfdx", "a tool uses its listed third-party crates only"),
+    ] {
+        let bad = after(|p| add(p, "xtask", to, "normal", false));
+        assert!(
+            bad.iter()
+                .any(|b| b.contains(&format!("`xtask` → `{to}`")) && b.contains(what)),
+            "xtask → {to}: {bad:?}"
+        );
+    }
 }
 
 #[test]

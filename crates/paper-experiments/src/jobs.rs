@@ -1,7 +1,7 @@
 //! The training commands' bodies: train a model family on its committed dataset and write its
-//! weights and metrics below the workspace root. One code path for `handstack train MODEL`
-//! and the `train_*` examples that `cargo xtask train` runs (which then draw the plots and
-//! the docs sections from what these write).
+//! weights and metrics below the workspace root: the body of `handstack train MODEL`, which
+//! `cargo xtask train MODEL` runs before `papers docs MODEL` draws the plots and the docs
+//! sections from what these write.
 //!
 //! Each job prints one line per model (under a progress bar where training is long) and
 //! returns the files it wrote (empty for a quick run, which writes nothing).

@@ -1,10 +1,10 @@
-//! `cargo xtask train softness`: trains the softness classifier of seed 001 (LM and Adam, one
-//! model per seed) through `handstack train softness` (`paper_experiments::jobs::softness`) under the optimised `test`
-//! profile, then draws the confusion matrices and training curves into `docs/learning/` and
-//! rewrites section 2 of `docs/learning.md` (only that section) from the committed
+//! `papers docs softness`: from the softness classifier's committed files (seed 001, LM and
+//! Adam, one model per seed: `fixtures/models/softness/`, written by `handstack train softness`,
+//! i.e. `paper_experiments::jobs::softness`), draws the confusion matrices and training curves
+//! into `docs/learning/` and rewrites section 2 of `docs/learning.md` (only that section) from
 //! `metrics.json` and `training.json`.
 
-use crate::train::{draw_legend, legend_mark, plot_err};
+use super::plot::{draw_legend, legend_mark, plot_err};
 use anyhow::{Context, Result};
 use hand_sim::underactuated::{ceiling, dataset};
 use paper_experiments::data::underactuated::{self as data, GraspSet};
@@ -21,13 +21,13 @@ use tactile_nets::metrics::MetricsFile;
 use tactile_nets::softness::SoftnessNet;
 
 /// The report this command writes one section of.
-pub const DOC: &str = "docs/learning.md";
+pub(crate) const DOC: &str = "docs/learning.md";
 /// The heading of that section (the text up to the next `## ` is replaced).
-pub const HEADING: &str = "## 2. Softness classifier, Levenberg–Marquardt (seed 001 §3.3–4)";
+pub(crate) const HEADING: &str = "## 2. Softness classifier, Levenberg–Marquardt (seed 001 §3.3–4)";
 /// Confusion matrices of the selected LM and Adam models.
-pub const CONFUSION_SVG: &str = "docs/learning/softness-confusion.svg";
+pub(crate) const CONFUSION_SVG: &str = "docs/learning/softness-confusion.svg";
 /// Training curves of every run.
-pub const CURVES_SVG: &str = "docs/learning/softness-training.svg";
+pub(crate) const CURVES_SVG: &str = "docs/learning/softness-training.svg";
 
 const CLASSES: [&str; 3] = ["soft", "moderate", "hard"];
 const SETS: [(&str, &str, u32); 2] = [
@@ -35,12 +35,8 @@ const SETS: [(&str, &str, u32); 2] = [
     ("irregular", "30 irregular objects", 30),
 ];
 
-/// Runs `cargo xtask train softness` (with `docs_only`, only redraws the figures and the
-/// section from the committed files).
-pub fn run(root: &Path, docs_only: bool) -> Result<()> {
-    if !docs_only {
-        crate::train::run_handstack_train(root, "softness")?;
-    }
+/// Draws the figures and writes the section from the committed files.
+pub(crate) fn write(root: &Path) -> Result<()> {
     let paper = softness_accuracy_in(&root.join("fixtures"))?;
     let dir = root.join(MODEL_DIR);
     let metrics = MetricsFile::from_json(&std::fs::read_to_string(dir.join(METRICS_FILE))?)?;
@@ -57,7 +53,7 @@ pub fn run(root: &Path, docs_only: bool) -> Result<()> {
     let mut section = section(&metrics, &training, &paper)?;
     section += &ours_section(&ours, &validation, &paper)?;
     section += &differ(root, &metrics, &ours, &validation, &paper)?;
-    crate::docs_section::write(&root.join(DOC), HEADING, &section)?;
+    super::section::write(&root.join(DOC), HEADING, &section)?;
     println!("wrote {CONFUSION_SVG}, {CURVES_SVG} and {DOC} § 2\n\n{section}");
     Ok(())
 }

@@ -5,7 +5,7 @@ use std::path::Path;
 
 /// `doc` with the body of the section whose heading line starts with `heading` replaced by
 /// `body`: everything after the heading line up to the next `## ` heading (or the end).
-pub fn replace(doc: &str, heading: &str, body: &str) -> Result<String> {
+pub(crate) fn replace(doc: &str, heading: &str, body: &str) -> Result<String> {
     let mut lines = doc.split_inclusive('\n');
     let mut out = String::with_capacity(doc.len() + body.len());
     let mut found = false;
@@ -35,7 +35,7 @@ pub fn replace(doc: &str, heading: &str, body: &str) -> Result<String> {
 }
 
 /// Rewrites the section `heading` of the markdown file at `path` (see [`replace`]).
-pub fn write(path: &Path, heading: &str, body: &str) -> Result<()> {
+pub(crate) fn write(path: &Path, heading: &str, body: &str) -> Result<()> {
     let doc =
         std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
     std::fs::write(path, replace(&doc, heading, body)?)

@@ -1,9 +1,9 @@
-//! `cargo xtask train force-dnn`: trains the force / weight DNN (seeded: the Table 1 fit, its
-//! 13 leave-one-out models and the simulated-series model), writes
-//! `fixtures/models/force_dnn/` (weights, `metrics.json`, `training_curve.csv`), draws
-//! [`PLOT`] and rewrites the section [`SECTION`] of `docs/learning.md` from those files.
+//! `papers docs force-dnn`: from the force / weight DNN's committed files
+//! (`fixtures/models/force_dnn/`: `metrics.json`, `training_curve.csv`, written by `handstack
+//! train force-dnn`: the Table 1 fit, its 13 leave-one-out models and the simulated-series
+//! model), draws [`PLOT`] and rewrites the section [`SECTION`] of `docs/learning.md`.
 
-use crate::train::{plot_err, run_handstack_train};
+use super::plot::plot_err;
 use anyhow::{Context, Result};
 use paper_experiments::force_eval::{CURVE_FILE, METRICS_FILE, MODEL_DIR, row_key};
 use paper_fixtures::seed000::WeightRow;
@@ -13,11 +13,11 @@ use std::path::Path;
 use tactile_nets::metrics::MetricsFile;
 
 /// The training-curve plot.
-pub const PLOT: &str = "docs/learning/force-dnn-training.svg";
+pub(crate) const PLOT: &str = "docs/learning/force-dnn-training.svg";
 /// The document and the heading of the section this command owns.
-pub const DOC: &str = "docs/learning.md";
+pub(crate) const DOC: &str = "docs/learning.md";
 /// The heading of the force DNN's section.
-pub const SECTION: &str = "## 1. Force / weight DNN";
+pub(crate) const SECTION: &str = "## 1. Force / weight DNN";
 
 /// Measured with `cargo bench -p paper-experiments --bench force_dnn` (what `cargo xtask bench
 /// force_dnn` runs) on the 2-core dev machine shared with ~6 other builds (load average ~8), so
@@ -31,9 +31,8 @@ const BENCH: &str = "\
 | `force_dnn/train/sim_epoch`: one epoch of the simulated recipe (4 644 frames, 73 batches of 64); the recipe runs 200 | 6.0 ms | 5.8 … 6.1 ms |
 ";
 
-/// Trains (`handstack train force-dnn`), then the plot and the docs section.
-pub fn train(root: &Path) -> Result<()> {
-    run_handstack_train(root, "force-dnn")?;
+/// Draws the plot and writes the docs section from the committed files.
+pub(crate) fn write(root: &Path) -> Result<()> {
     let dir = root.join(MODEL_DIR);
     let metrics = MetricsFile::from_json(
         &std::fs::read_to_string(dir.join(METRICS_FILE)).context("reading the metrics")?,
@@ -41,7 +40,7 @@ pub fn train(root: &Path) -> Result<()> {
     let curves = std::fs::read_to_string(dir.join(CURVE_FILE)).context("reading the curves")?;
     plot(&parse_curves(&curves), &root.join(PLOT))?;
     let paper = paper_fixtures::seed000::table1_weight()?;
-    crate::docs_section::write(&root.join(DOC), SECTION, &section(&metrics, &paper))?;
+    super::section::write(&root.join(DOC), SECTION, &section(&metrics, &paper))?;
     println!("wrote {PLOT} and the section `{SECTION}` of {DOC}");
     Ok(())
 }
@@ -70,7 +69,7 @@ fn value(metrics: &MetricsFile, row: &str, key: &str) -> f64 {
 }
 
 /// The markdown body of [`SECTION`].
-pub fn section(metrics: &MetricsFile, paper: &[WeightRow]) -> String {
+pub(crate) fn section(metrics: &MetricsFile, paper: &[WeightRow]) -> String {
     let mut s = String::new();
     let v = |row: &str, key: &str| value(metrics, row, key);
     let base = paper.first().map(|r| r.pressure_hpa).unwrap_or_default();

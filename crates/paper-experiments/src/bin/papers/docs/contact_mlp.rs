@@ -1,0 +1,214 @@
+//! `papers docs contact-mlp`: from the contact-area MLP's committed `metrics.json`
+//! (`fixtures/models/contact_mlp/`, written by `handstack train contact-mlp`), draws
+//! `docs/contact-location/contact-mlp-osr.svg` and prints the markdown table of
+//! `docs/contact-location.md`.
+
+use super::plot::{draw_legend, legend_mark, plot_err};
+use anyhow::{Context, Result};
+use paper_experiments::contact_eval::{METRICS_FILE, MODEL_DIR, chosen_label, row_label};
+use plotters::prelude::*;
+use std::path::Path;
+use tactile_nets::contact_mlp::Head;
+use tactile_nets::metrics::MetricsFile;
+
+/// The plot written next to `docs/contact-location.md`.
+pub(crate) const PLOT: &str = "docs/contact-location/contact-mlp-osr.svg";
+
+/// Draws the plot and prints the table from the committed metrics.
+pub(crate) fn write(root: &Path) -> Result<()> {
+    let path = root.join(MODEL_DIR).join(METRICS_FILE);
+    let metrics = MetricsFile::from_json(
+        &std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?,
+    )?;
+    plot(&metrics, &root.join(PLOT))?;
+    println!("wrote {PLOT}\n\n{}", table(&metrics));
+    Ok(())
+}
+
+/// The OSRs in the metrics rows, ascending.
+fn osrs(metrics: &MetricsFile) -> Vec<u16> {
+    let mut v: Vec<u16> = metrics
+        .rows
+        .iter()
+        .filter_map(|r| r.label.strip_prefix("osr")?.split('/').next()?.parse().ok())
+        .collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// Which model of an OSR a metrics row belongs to.
+#[derive(Clone, Copy)]
+enum Model {
+    /// The paper's recipe with this head.
+    Paper(Head),
+    /// The configuration chosen on the validation split.
+    Chosen,
+}
+
+impl Model {
+    const ALL: [Model; 3] = [
+        Model::Paper(Head::AverageArea),
+        Model::Paper(Head::CellSet),
+        Model::Chosen,
+    ];
+
+    fn label(self, osr: u16) -> String {
+        match self {
+            Model::Paper(head) => row_label(osr, head),
+            Model::Chosen => chosen_label(osr),
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Model::Paper(Head::AverageArea) => "paper recipe, eq. 4 regression",
+            Model::Paper(Head::CellSet) => "paper recipe, cell-set head",
+            Model::Chosen => "validation-chosen",
+        }
+    }
+}
+
+fn value(metrics: &MetricsFile, osr: u16, model: Model, key: &str) -> f64 {
+    metrics
+        .row(&model.label(osr))
+        .and_then(|r| r.values.get(key).copied())
+        .unwrap_or(f64::NAN)
+}
+
+/// The markdown table: one row per OSR and model.
+pub(crate) fn table(metrics: &MetricsFile) -> String {
+    let mut s = String::from(
+        "| OSR | model | 24-area acc. (single-cell taps) | exact set | mean cell error | mean centroid error, cells |\n\
+         |---:|---|---:|---:|---:|---:|\n",
+    );
+    for osr in osrs(metrics) {
+        for m in Model::ALL {
+            let v = |k| value(metrics, osr, m, k);
+            if v("taps").is_nan() {
+                continue;
+            }
+            s += &format!(
+                "| {osr} | {} | {:.1} % | {:.1} % | {:.2} | {:.2} |\n",
+                m.name(),
+                100.0 * v("area_accuracy"),
+                100.0 * v("exact_accuracy"),
+                v("mean_cell_error"),
+                v("mean_centroid_error"),
+            );
+        }
+    }
+    s
+}
+
+fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    let osrs = osrs(metrics);
+    let n = osrs.len().max(1) as f64;
+    let root = SVGBackend::new(path, (960, 400)).into_drawing_area();
+    root.fill(&WHITE).map_err(plot_err)?;
+    let (left, right) = root.split_horizontally(480);
+    let label_osr = |x: &f64| {
+        osrs.get(x.round() as usize)
+            .filter(|_| (x - x.round()).abs() < 1e-6)
+            .map(|o| o.to_string())
+            .unwrap_or_default()
+    };
+    let series = [
+        (
+            Model::Paper(Head::AverageArea),
+            "area_accuracy",
+            "24-area, paper recipe, eq. 4 regression",
+            RED,
+        ),
+        (
+            Model::Paper(Head::CellSet),
+            "area_accuracy",
+            "24-area, paper recipe, cell-set head",
+            BLUE,
+        ),
+        (
+            Model::Chosen,
+            "area_accuracy",
+            "24-area, validation-chosen",
+            GREEN,
+        ),
+        (
+            Model::Chosen,
+            "exact_accuracy",
+            "exact set, validation-chosen",
+            CYAN,
+        ),
+    ];
+    let mut chart = ChartBuilder::on(&left)
+        .caption("Contact-area MLP: held-out accuracy", ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(45)
+        .build_cartesian_2d(-0.2..n - 0.8, 0.0..100.0)
+        .map_err(plot_err)?;
+    chart
+        .configure_mesh()
+        .x_desc("MS5611 OSR")
+        .y_desc("%")
+        .x_labels(osrs.len())
+        .x_label_formatter(&label_osr)
+        .draw()
+        .map_err(plot_err)?;
+    for (model, key, name, color) in series {
+        let pts: Vec<(f64, f64)> = osrs
+            .iter()
+            .enumerate()
+            .map(|(i, &o)| (i as f64, 100.0 * value(metrics, o, model, key)))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+            .map_err(plot_err)?
+            .label(name)
+            .legend(legend_mark(color));
+        chart
+            .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+            .map_err(plot_err)?;
+    }
+    draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
+    let max_err = osrs
+        .iter()
+        .flat_map(|&o| Model::ALL.map(|m| value(metrics, o, m, "mean_cell_error")))
+        .fold(1.0f64, f64::max);
+    let mut chart = ChartBuilder::on(&right)
+        .caption(
+            "Mean cell error (|predicted ∆ touched|)",
+            ("sans-serif", 18),
+        )
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(45)
+        .build_cartesian_2d(-0.2..n - 0.8, 0.0..max_err * 1.15)
+        .map_err(plot_err)?;
+    chart
+        .configure_mesh()
+        .x_desc("MS5611 OSR")
+        .y_desc("cells")
+        .x_labels(osrs.len())
+        .x_label_formatter(&label_osr)
+        .draw()
+        .map_err(plot_err)?;
+    for (model, color) in Model::ALL.into_iter().zip([RED, BLUE, GREEN]) {
+        let name = model.name();
+        let pts: Vec<(f64, f64)> = osrs
+            .iter()
+            .enumerate()
+            .map(|(i, &o)| (i as f64, value(metrics, o, model, "mean_cell_error")))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+            .map_err(plot_err)?
+            .label(name)
+            .legend(legend_mark(color));
+    }
+    draw_legend(&mut chart, SeriesLabelPosition::MiddleRight)?;
+    root.present().map_err(plot_err)?;
+    Ok(())
+}

@@ -1,0 +1,110 @@
+//! `papers`: the reproduction's writers that need the simulator, the learned models or plotters,
+//! so that `cargo xtask` links none of them (rust-analyzer's rule: xtask stays thin and runs
+//! this binary, `cargo run --profile test -p paper-experiments --no-default-features --bin
+//! papers -- …`).
+//!
+//! - `docs MODEL`: a trained model's plots and its section of `docs/` ([`docs`]);
+//! - `fixtures NAME --out DIR`: a generated fixture folder that needs the simulator ([`fixtures`]).
+
+mod docs;
+mod fixtures;
+
+use anyhow::{Context, Result, bail};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+const USAGE: &str = "usage: papers <command> --root ROOT
+
+commands (run by `cargo xtask`; ROOT is the workspace root):
+  docs MODEL [--timing ID=MEAN]...
+                            draw MODEL's plots and rewrite its section of docs/ from its committed
+                            weights and metrics (contact-mlp, force-dnn, softness, contact-cnn);
+                            --timing: a criterion mean the section quotes (contact-cnn)
+  fixtures NAME --out DIR   write the generated fixture folder NAME into DIR
+                            (fingertip-datasets, imu-pad-taps, underactuated)";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("papers: error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// The command line: the command's words, then its options in any order.
+#[derive(Debug, Default)]
+struct CommandLine {
+    words: Vec<String>,
+    root: Option<PathBuf>,
+    out: Option<PathBuf>,
+    timings: docs::Timings,
+}
+
+impl CommandLine {
+    fn parse(args: &[String]) -> Result<CommandLine> {
+        let mut line = CommandLine::default();
+        let mut args = args.iter();
+        while let Some(arg) = args.next() {
+            let mut value = || args.next().with_context(|| format!("{arg} needs a value"));
+            match arg.as_str() {
+                "--root" => line.root = Some(value()?.into()),
+                "--out" => line.out = Some(value()?.into()),
+                "--timing" => {
+                    let (id, mean) = value()?.split_once('=').context("--timing takes ID=MEAN")?;
+                    line.timings.insert(id.to_owned(), mean.to_owned());
+                }
+                flag if flag.starts_with('-') => bail!("unknown option `{flag}`\n\n{USAGE}"),
+                word => line.words.push(word.to_owned()),
+            }
+        }
+        Ok(line)
+    }
+}
+
+fn run(args: &[String]) -> Result<()> {
+    if matches!(args, [a] if a == "help" || a == "-h" || a == "--help") {
+        println!("{USAGE}");
+        return Ok(());
+    }
+    let line = CommandLine::parse(args)?;
+    let root = || line.root.as_deref().context("--root ROOT is required");
+    match &line.words[..] {
+        [command, model] if command == "docs" => docs::write(root()?, model, &line.timings),
+        [command, name] if command == "fixtures" => {
+            let out = line.out.as_deref().context("fixtures needs --out DIR")?;
+            fixtures::write(name, out)
+        }
+        _ => bail!("unknown command\n\n{USAGE}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(args: &[&str]) -> Result<CommandLine> {
+        CommandLine::parse(&args.iter().map(|a| a.to_string()).collect::<Vec<_>>())
+    }
+
+    #[test]
+    fn options_come_in_any_order_and_timings_split_at_the_first_equals() -> Result<()> {
+        let line = parse(&[
+            "docs",
+            "--timing",
+            "contact_cnn/paper/infer=8.34 µs",
+            "contact-cnn",
+            "--root",
+            "/w",
+        ])?;
+        assert_eq!(line.words, ["docs", "contact-cnn"]);
+        assert_eq!(line.root, Some(PathBuf::from("/w")));
+        assert_eq!(line.timings["contact_cnn/paper/infer"], "8.34 µs");
+        assert!(parse(&["docs", "--timing", "no-equals"]).is_err());
+        assert!(parse(&["docs", "--root"]).is_err());
+        assert!(parse(&["docs", "--verbose"]).is_err());
+        Ok(())
+    }
+}
