@@ -43,9 +43,7 @@ impl PressSchedule {
 
 /// A rectangle of cells from its top-left corner (row 1…4, column 1…6) and size.
 pub fn rect(row: u8, col: u8, rows: u8, cols: u8) -> Result<CellSet, CycleError> {
-    Cell::new(row, col)
-        .and_then(|c| CellSet::rect(c, rows, cols))
-        .filter(|s| !s.is_empty())
+    CellSet::rect(row, col, rows, cols)
         .ok_or_else(|| CycleError::Config(format!("{rows} × {cols} cells at ({row}, {col})")))
 }
 

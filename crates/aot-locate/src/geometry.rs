@@ -5,6 +5,7 @@
 //! centre. Areas are numbered 0…8 row-major from the top-left (the paper's `Arr_1…Arr_9`
 //! minus one); sensors 0…2 are the paper's sensors 1…3.
 
+use crate::label::{COLS, Cell, ROWS};
 use crate::trilateration::Trilateration;
 
 /// Sensors on a fingertip (seed 000 §3: three MS5611 in an inverted triangle).
@@ -37,6 +38,37 @@ impl AreaGrid {
             let (row, col) = ((n / 3) as f32, (n % 3) as f32);
             [(col - 1.0) * w, (1.0 - row) * h]
         })
+    }
+
+    /// A point given in 1-based (row, column) units of the 4 × 6 cells that tile this pad, cell
+    /// centres at whole numbers (as [`crate::CellSet::centroid`] gives them), in pad mm.
+    ///
+    /// ```
+    /// use aot_locate::AreaGrid;
+    /// let pad = AreaGrid::SIMULATED_PAD; // 3 mm cells
+    /// assert_eq!(pad.grid_point_mm([1.0, 1.0]), [-7.5, 4.5]);
+    /// assert_eq!(pad.grid_point_mm([2.5, 3.5]), [0.0, 0.0]);
+    /// ```
+    pub fn grid_point_mm(&self, [row, col]: [f32; 2]) -> [f32; 2] {
+        let (pitch_x, pitch_y) = (
+            self.width_mm / f32::from(COLS),
+            self.height_mm / f32::from(ROWS),
+        );
+        [
+            (col - 0.5) * pitch_x - self.width_mm / 2.0,
+            self.height_mm / 2.0 - (row - 0.5) * pitch_y,
+        ]
+    }
+
+    /// The centre of `cell`, pad mm.
+    ///
+    /// ```
+    /// use aot_locate::{AreaGrid, Cell};
+    /// let cell = Cell::new(4, 6).unwrap();
+    /// assert_eq!(AreaGrid::SIMULATED_PAD.cell_centre_mm(cell), [7.5, -4.5]);
+    /// ```
+    pub fn cell_centre_mm(&self, cell: Cell) -> [f32; 2] {
+        self.grid_point_mm([f32::from(cell.row()), f32::from(cell.col())])
     }
 
     /// The area (0…8) holding the point `p_mm`; points off the pad fall in the nearest edge

@@ -13,6 +13,96 @@ pub const COLS: u8 = 6;
 /// Cells of the fine grid.
 pub const CELLS: usize = ROWS as usize * COLS as usize;
 
+/// One cell of the 4 × 6 grid: 1-based row (1…4, top first) and column (1…6, left first), so
+/// cell `r.c` carries the paper's unique area number `r.c` (§4: `Arr_1 = 1.1`,
+/// `Arr_24 = 4.6`). Ordered row-major, as its index.
+///
+/// ```
+/// use aot_locate::Cell;
+/// let cell = Cell::new(2, 3).unwrap();
+/// assert_eq!(cell.index(), 8);
+/// assert_eq!(Cell::from_index(8), Some(cell));
+/// assert_eq!(cell.average_area().value(), 2.3);
+/// // Row 2 of 4 has its centre in the middle third of the pad's height: the middle area.
+/// assert_eq!(cell.aot_area(), 4);
+/// assert_eq!(Cell::new(5, 1), None);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Cell {
+    row: u8,
+    col: u8,
+}
+
+impl Cell {
+    /// The cell at 1-based `row` (1…4) and `col` (1…6), `None` off the grid.
+    pub const fn new(row: u8, col: u8) -> Option<Cell> {
+        if row >= 1 && row <= ROWS && col >= 1 && col <= COLS {
+            Some(Cell { row, col })
+        } else {
+            None
+        }
+    }
+
+    /// The cell of row-major index `i` (`0..24`), `None` off the grid.
+    pub const fn from_index(i: usize) -> Option<Cell> {
+        if i < CELLS {
+            Some(Cell {
+                row: (i / COLS as usize) as u8 + 1,
+                col: (i % COLS as usize) as u8 + 1,
+            })
+        } else {
+            None
+        }
+    }
+
+    /// 1-based row.
+    pub const fn row(self) -> u8 {
+        self.row
+    }
+
+    /// 1-based column.
+    pub const fn col(self) -> u8 {
+        self.col
+    }
+
+    /// Row-major index, `0..24` (the cell's bit in a [`CellSet`]).
+    pub const fn index(self) -> usize {
+        (self.row as usize - 1) * COLS as usize + (self.col as usize - 1)
+    }
+
+    /// Every cell, row-major.
+    pub fn all() -> impl Iterator<Item = Cell> {
+        (0..CELLS).filter_map(Cell::from_index)
+    }
+
+    /// The cell's unique number `row.col` as an eq. 4 label of size 1.
+    pub const fn average_area(self) -> AverageArea {
+        AverageArea::of(CellSet(1 << self.index()))
+    }
+
+    /// The 3 × 3 Arrival-of-Time area (0…8, row-major) holding the cell's centre.
+    pub const fn aot_area(self) -> usize {
+        aot_area_of(self.row as u32, self.col as u32, 1)
+    }
+}
+
+/// The 3 × 3 area holding the mean cell centre of `n` cells whose 1-based rows sum to `rows`
+/// and columns to `cols`, in exact integers. The areas divide the rectangle the cells tile, so
+/// in cell units a centre `(R/n − ½, C/n − ½)` lies in area band `⌊3 (2R − n) / (2 n ROWS)⌋`
+/// (and likewise for columns); a centre on a border goes to the band after it, as
+/// [`crate::AreaGrid::area_at`]'s floor does.
+const fn aot_area_of(rows: u32, cols: u32, n: u32) -> usize {
+    area_band(rows, n, ROWS as u32) * 3 + area_band(cols, n, COLS as u32)
+}
+
+/// One axis of [`aot_area_of`]: `sum` of `n` 1-based indices on an axis of `cells` cells.
+const fn area_band(sum: u32, n: u32, cells: u32) -> usize {
+    // n ≤ sum ≤ n·cells for real sets, so the band is 0…2 already; the saturation and the
+    // clamp only keep the arithmetic total.
+    let b = 3 * (2 * sum).saturating_sub(n) / (2 * n * cells);
+    if b > 2 { 2 } else { b as usize }
+}
+
 /// A set of cells of the 4 × 6 grid as a 24-bit mask: bit `i` is the cell of row-major index
 /// `i` (bit 0 is area 1.1, bit 23 area 4.6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -68,11 +158,10 @@ impl CellSet {
 
     /// Whether the cell at 1-based (`row`, `col`) is in the set.
     pub const fn contains(self, row: u8, col: u8) -> bool {
-        row >= 1
-            && row <= ROWS
-            && col >= 1
-            && col <= COLS
-            && self.0 & (1 << ((row - 1) as u32 * COLS as u32 + (col - 1) as u32)) != 0
+        match Cell::new(row, col) {
+            Some(cell) => self.0 & (1 << cell.index()) != 0,
+            None => false,
+        }
     }
 
     /// The mean 1-based (row, column) of the cells, `None` for the empty set.
@@ -81,19 +170,70 @@ impl CellSet {
         if n == 0 {
             return None;
         }
-        let (mut rs, mut cs) = (0u32, 0u32);
-        for i in 0..CELLS as u32 {
-            if self.0 & (1 << i) != 0 {
-                rs += i / COLS as u32 + 1;
-                cs += i % COLS as u32 + 1;
-            }
-        }
+        let (rs, cs) = self.index_sums();
         Some([rs as f32 / n as f32, cs as f32 / n as f32])
     }
 
     /// Eq. 4's label for this set.
     pub const fn average_area(self) -> AverageArea {
         AverageArea::of(self)
+    }
+
+    /// This set with `cell` added. Takes anything that names a grid cell, so a simulator's
+    /// own cell type (one that also knows where the cell sits on its skin) adds directly.
+    ///
+    /// ```
+    /// use aot_locate::{Cell, CellSet};
+    /// let whole_pad = Cell::all().fold(CellSet::EMPTY, CellSet::with);
+    /// assert_eq!(whole_pad, CellSet::rect(1, 1, 4, 6).unwrap());
+    /// ```
+    pub fn with(self, cell: impl Into<Cell>) -> CellSet {
+        CellSet(self.0 | 1 << cell.into().index())
+    }
+
+    /// The cells, row-major.
+    ///
+    /// ```
+    /// use aot_locate::{Cell, CellSet};
+    /// let bar = CellSet::rect(3, 2, 1, 2).unwrap();
+    /// assert!(bar.iter().eq([Cell::new(3, 2).unwrap(), Cell::new(3, 3).unwrap()]));
+    /// ```
+    pub fn iter(self) -> impl Iterator<Item = Cell> {
+        Cell::all().filter(move |c| self.0 & (1 << c.index()) != 0)
+    }
+
+    /// The 3 × 3 Arrival-of-Time area (0…8, row-major) holding the set's centroid, `None` for
+    /// the empty set: the area label of a tap. Exact (integer arithmetic), so a centroid on
+    /// the border between two areas always goes to the one to its right or below.
+    ///
+    /// ```
+    /// use aot_locate::CellSet;
+    /// // A 2 × 2 square over columns 2–3: its centroid is on the border of columns 0 and 1.
+    /// assert_eq!(CellSet::rect(1, 2, 2, 2).unwrap().aot_area(), Some(1));
+    /// assert_eq!(CellSet::rect(4, 6, 1, 1).unwrap().aot_area(), Some(8));
+    /// assert_eq!(CellSet::EMPTY.aot_area(), None);
+    /// ```
+    pub const fn aot_area(self) -> Option<usize> {
+        let n = self.len();
+        if n == 0 {
+            return None;
+        }
+        let (rows, cols) = self.index_sums();
+        Some(aot_area_of(rows, cols, n))
+    }
+
+    /// The sums of the cells' 1-based rows and columns.
+    const fn index_sums(self) -> (u32, u32) {
+        let (mut rows, mut cols) = (0u32, 0u32);
+        let mut i = 0;
+        while i < CELLS as u32 {
+            if self.0 & (1 << i) != 0 {
+                rows += i / COLS as u32 + 1;
+                cols += i % COLS as u32 + 1;
+            }
+            i += 1;
+        }
+        (rows, cols)
     }
 }
 
@@ -114,16 +254,10 @@ impl AverageArea {
 
     /// Eq. 4 for `cells`.
     pub const fn of(cells: CellSet) -> AverageArea {
-        let mut sum = 0u16;
-        let mut i = 0;
-        while i < CELLS as u32 {
-            if cells.0 & (1 << i) != 0 {
-                sum += (10 * (i / COLS as u32 + 1) + i % COLS as u32 + 1) as u16;
-            }
-            i += 1;
-        }
+        // Σ (10·row + col) = 10·Σ row + Σ col; at most 24 · 46 = 1104, so u16 holds it.
+        let (rows, cols) = cells.index_sums();
         AverageArea {
-            tenths_sum: sum,
+            tenths_sum: (10 * rows + cols) as u16,
             size: cells.len() as u8,
         }
     }
@@ -340,6 +474,45 @@ mod tests {
         assert_eq!(nine, one);
         assert_ne!(AverageArea::NONE, one);
         assert_eq!(AverageArea::NONE, CellSet::EMPTY.average_area());
+    }
+
+    #[test]
+    fn cells_index_row_major_and_sets_iterate_them() {
+        for (i, cell) in Cell::all().enumerate() {
+            assert_eq!(cell.index(), i);
+            assert_eq!(Cell::new(cell.row(), cell.col()), Some(cell));
+            let one = CellSet::EMPTY.with(cell);
+            assert_eq!(one.bits(), 1 << i);
+            assert!(one.contains(cell.row(), cell.col()));
+            assert_eq!(cell.average_area(), one.average_area());
+            assert!(one.iter().eq([cell]));
+        }
+        assert_eq!(Cell::all().count(), CELLS);
+        assert_eq!(Cell::from_index(CELLS), None);
+        assert_eq!(Cell::new(0, 1), None);
+        assert_eq!(Cell::new(1, 7), None);
+        let bar = CellSet::rect(2, 3, 1, 4).unwrap();
+        assert_eq!(bar.iter().fold(CellSet::EMPTY, CellSet::with), bar);
+        assert!(bar.iter().map(Cell::col).eq(3..=6));
+    }
+
+    #[test]
+    fn aot_areas_are_the_grids_areas_of_the_centroid() {
+        let pad = crate::AreaGrid::SIMULATED_PAD;
+        // Every Figure 7 placement: centroids on area borders included (a 2 × 2 square over
+        // columns 2–3 sits on the border of area columns 0 and 1; f32 holds those exactly).
+        for set in figure7_placements().skip(1) {
+            let centroid = set.centroid().map(|c| pad.grid_point_mm(c));
+            assert_eq!(set.aot_area(), centroid.map(|c| pad.area_at(c)), "{set:?}");
+        }
+        for cell in Cell::all() {
+            assert_eq!(cell.aot_area(), pad.area_at(pad.cell_centre_mm(cell)));
+        }
+        let whole = CellSet::rect(1, 1, ROWS, COLS).unwrap();
+        assert_eq!(whole.aot_area(), Some(4));
+        assert_eq!(CellSet::rect(1, 1, 2, 2).unwrap().aot_area(), Some(0));
+        assert_eq!(CellSet::rect(1, 2, 2, 2).unwrap().aot_area(), Some(1));
+        assert_eq!(CellSet::rect(3, 4, 2, 2).unwrap().aot_area(), Some(8));
     }
 
     #[test]

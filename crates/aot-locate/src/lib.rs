@@ -14,8 +14,8 @@ mod trilateration;
 pub use arrival::{ArrivalDetector, ChannelDetector, DetectorConfig};
 pub use geometry::{AREAS, AreaGrid, Geometry, GeometryError, SENSORS};
 pub use label::{
-    AverageArea, CELLS, COLS, Candidates, CellSet, DECODE_TOLERANCE, FIGURE7_SHAPES, LabelError,
-    MAX_CANDIDATES, ROWS, Shape, decode, decode_among, figure7_placements,
+    AverageArea, CELLS, COLS, Candidates, Cell, CellSet, DECODE_TOLERANCE, FIGURE7_SHAPES,
+    LabelError, MAX_CANDIDATES, ROWS, Shape, decode, decode_among, figure7_placements,
 };
 pub use locator::{AotLocator, Scorer};
 pub use ranging::{Ranging, RangingError, RangingFit};

@@ -5,13 +5,13 @@ use hand_sim::fingertip::dataset::{FIGURE7_SHAPES, weights};
 
 #[test]
 fn figure7_shapes_slide_over_every_position_on_the_4x6_pad() {
-    let counts: Vec<(&str, usize, usize)> = FIGURE7_SHAPES
+    let counts: Vec<(&str, usize, u32)> = FIGURE7_SHAPES
         .iter()
         .map(|s| {
             (
                 s.name,
                 s.placements().count(),
-                CellSet::from(s.placements().next().unwrap()).len(),
+                s.placements().next().unwrap().len(),
             )
         })
         .collect();
@@ -28,11 +28,12 @@ fn figure7_shapes_slide_over_every_position_on_the_4x6_pad() {
         ]
     );
     // The first placement is the top-left one: for size 1 that is area 1.1 (§4, eq. 4).
-    let first = CellSet::from(FIGURE7_SHAPES[0].placements().next().unwrap());
-    assert_eq!(first.average_area(), 1.1);
-    // Size 4-1 at the top left averages areas 1.1, 1.2, 2.1, 2.2.
-    let square = CellSet::from(FIGURE7_SHAPES[1].placements().next().unwrap());
-    assert!((square.average_area() - (1.1 + 1.2 + 2.1 + 2.2) / 4.0).abs() < 1e-12);
+    let first = FIGURE7_SHAPES[0].placements().next().unwrap();
+    assert_eq!(first.average_area().value(), 1.1);
+    // Size 4-1 at the top left averages areas 1.1, 1.2, 2.1, 2.2, written as taps.csv does.
+    let square = FIGURE7_SHAPES[1].placements().next().unwrap();
+    assert_eq!(square, CellSet::rect(1, 1, 2, 2).unwrap());
+    assert_eq!(format!("{:.4}", square.average_area().value()), "1.6500");
 }
 
 #[test]

@@ -25,8 +25,15 @@
 //! assert_eq!(effort.to_torque_limit_raw(), 409); // 0.4 of the MX-28's 0…1023 scale
 //! # Ok::<(), core::convert::Infallible>(())
 //! ```
+//!
+//! Feature `sim` adds `sim::SimClock`, the simulated time every simulated device of the
+//! stack shares (std-free: `alloc` and 64-bit atomics); firmware leaves it off, and the crate
+//! then has no dependency at all.
 #![no_std]
 #![forbid(unsafe_code)]
+
+#[cfg(feature = "sim")]
+extern crate alloc;
 
 mod arm;
 mod contact;
@@ -34,6 +41,8 @@ mod force;
 mod frames;
 mod gripper;
 mod policy;
+#[cfg(feature = "sim")]
+pub mod sim;
 mod softness;
 mod source;
 

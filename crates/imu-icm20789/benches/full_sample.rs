@@ -28,7 +28,7 @@ const SAMPLE_BITS: u64 = bits(1, 14) + bits(2, 0) + bits(0, 9);
 
 fn full_sample(c: &mut Criterion) {
     let chip = ChipModel::new(Truth::constant([0.0, 0.0, 9.81], [0.0; 3], 101_325.0), 42);
-    let clock = chip.clock();
+    let bus = chip.bus();
     let mut delay = chip.delay();
     let mut icm = Icm20789::new_with_i2c(chip);
     icm.init(&mut delay).expect("model answers");
@@ -43,9 +43,9 @@ fn full_sample(c: &mut Criterion) {
         let baro = icm.read_pressure(conversion).expect("baro");
         (imu, baro)
     };
-    let before = clock.bus_bits();
+    let before = bus.bits();
     black_box(sample(&mut icm, &mut delay));
-    let sim_bits = clock.bus_bits() - before;
+    let sim_bits = bus.bits() - before;
     let bound_us = (SAMPLE_BITS * BIT_NS_400KHZ) as f64 / 1_000.0;
     let sim_us = (sim_bits * BIT_NS_400KHZ) as f64 / 1_000.0;
     println!(

@@ -268,8 +268,8 @@ impl Border {
         let line = (centres[a][axis] + centres[b][axis]) / 2.0;
         let cells = aot_locate::CellSet::from_bits(tap.mask).unwrap_or_default();
         let mut sides = [0u32; 2];
-        for i in (0..aot_locate::CELLS).filter(|i| cells.bits() & (1 << i) != 0) {
-            sides[usize::from(cell_centre_mm(i)[axis] > line)] += 1;
+        for cell in cells.iter() {
+            sides[usize::from(grid.cell_centre_mm(cell)[axis] > line)] += 1;
         }
         self.even_cells += u32::from(sides[0] == sides[1]);
         let [r, c] = cells.centroid().unwrap_or([0.0, 0.0]);
@@ -283,11 +283,6 @@ impl Border {
                 .push((p[axis] - f64::from(centroid[axis])) * f64::from(side));
         }
     }
-}
-
-/// The centre of 4 × 6 cell `i` (row-major), pad millimetres.
-fn cell_centre_mm(i: usize) -> [f32; 2] {
-    grid_mm([(i / 6 + 1) as f32, (i % 6 + 1) as f32])
 }
 
 /// The areas (0…8) whose closed rectangle on the simulated pad holds the point `c` (mm).
@@ -397,11 +392,6 @@ pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> 
 
 /// The patch centroid in pad millimetres (x right, y up, origin at the centre; 3 mm cells).
 pub fn centroid_mm(mask: u32) -> Option<[f32; 2]> {
-    let [r, c] = aot_locate::CellSet::from_bits(mask)?.centroid()?;
-    Some(grid_mm([r, c]))
-}
-
-/// 1-based (row, column) on the 4 × 6 grid, cell centres at whole numbers, to pad millimetres.
-fn grid_mm([r, c]: [f32; 2]) -> [f32; 2] {
-    [(c - 0.5) * 3.0 - 9.0, 6.0 - (r - 0.5) * 3.0]
+    let centroid = aot_locate::CellSet::from_bits(mask)?.centroid()?;
+    Some(aot_locate::AreaGrid::SIMULATED_PAD.grid_point_mm(centroid))
 }

@@ -2,9 +2,10 @@
 //! interface: the tactile source is hand-sim's barometric [`Fingertip`] read through the real
 //! MS5611 driver; the actuator is [`ServoHand`], the Dynamixel driver, talking Protocol 2.0 over
 //! a pseudo-terminal to the servo-bus simulator ([`SimBus`]), whose MX-28 drives hand-sim's
-//! grasp physics ([`GraspPlant`]); the clock is the bus's simulated time. Waiting on the clock
-//! steps the physics, so a 120 s hold runs in simulated time. Shared by the closed-loop and
-//! fault tests, the `grasp_report` example (docs/grasping) and handstack's grasp scene.
+//! grasp physics ([`GraspPlant`]); the clock is the fingertip chips' [`SimClock`], to which the
+//! servo bus is stepped. Waiting on the clock steps the physics, so a 120 s hold runs in
+//! simulated time. Shared by the closed-loop and fault tests, the `grasp_report` example
+//! (docs/grasping) and handstack's grasp scene.
 //!
 //! Faults are injected where they happen on hardware: on the wire (a servo that stops
 //! answering, a status packet with a corrupted CRC) and on the fingertip's bus.
@@ -23,6 +24,7 @@ use hand_sim::SimError;
 use hand_sim::fingertip::{Fingertip, FingertipConfig};
 use hand_sim::grasp::rig::{ORIGIN_RAD, SERVO_ID};
 use hand_sim::grasp::{GraspBody, GraspPlant, GraspState, ObjectParams, RigParams};
+use hand_traits::sim::SimClock;
 use hand_traits::{PressureFrame, TactileSource};
 
 /// Physics step, s (hand-sim's grasp tests use the same).
@@ -101,6 +103,9 @@ pub struct Truth {
 
 /// The shared world: the bus simulator with its plant, and the fingertip.
 pub struct World {
+    /// The world's one time: the fingertip chips' clock, which the loop waits on and the
+    /// servo bus is stepped to.
+    pub clock: SimClock,
     /// The servo-bus simulator (the hand's servo and its plant).
     pub bus: SimBus,
     /// The object between the pads.
@@ -169,7 +174,7 @@ impl World {
             self.tip.physics().set_contact(at_ns, patch)?;
         }
         drop(body);
-        self.tip.idle_until_ns(t_ns);
+        self.clock.advance_to_ns(t_ns);
         let s = self.state();
         self.trace.push(Truth {
             t_s: s.t_s,
@@ -224,6 +229,7 @@ pub fn world(object: ObjectParams, seed: u64) -> Result<(Shared, ServoHand), Rig
         seed,
     )?;
     let world = World {
+        clock: tip.clock(),
         bus,
         plant,
         tip,
@@ -243,7 +249,7 @@ impl TactileSource for Source {
     type Error = SimError;
     fn read_frame(&mut self) -> Result<PressureFrame<3>, SimError> {
         let mut w = self.0.borrow_mut();
-        let t_s = w.tip.now_ns() as f64 * 1e-9;
+        let t_s = w.clock.now_ns() as f64 * 1e-9;
         if w.injected(t_s) == Some(Injected::TactileBus) {
             return Err(SimError::Driver {
                 model: "fingertip",
@@ -259,9 +265,12 @@ pub struct Clock(pub Shared);
 
 impl LoopClock for Clock {
     fn now_us(&mut self) -> u64 {
-        // The fingertip's bus runs ahead of the servo bus by the frame just read.
+        // One time for the world: the fingertip's clock, which its chips advance as their bus
+        // carries bits. An exchange on the servo bus moves the bus's time by its wire time, so
+        // the clock catches up with it before anyone reads it.
         let w = self.0.borrow();
-        (w.bus.now().as_nanos() as u64).max(w.tip.now_ns()) / 1000
+        w.clock.advance_to_ns(w.bus.now().as_nanos() as u64);
+        w.clock.now_us()
     }
 
     fn wait_until_us(&mut self, t_us: u64) {

@@ -6,7 +6,6 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
-use super::clock::SimClock;
 use super::environment::Environment;
 use super::error::SimError;
 use super::inverse::{pressure_code, temperature_code};
@@ -16,6 +15,7 @@ use crate::compensation::Calibration;
 use crate::interface::Address;
 use crate::osr::Osr;
 use crate::prom::Prom;
+use hand_traits::sim::SimClock;
 
 /// The coefficients of the datasheet's worked example (MS5611-01BA03, p. 7), which the model
 /// holds unless given another PROM.

@@ -1,5 +1,6 @@
 //! Simulation (feature `sim`): an MS5611 chip model speaking the real command set over
-//! embedded-hal I2C and SPI, a TCA9548A switch model, and a shared simulated clock.
+//! embedded-hal I2C and SPI and a TCA9548A switch model, on the stack's one simulated clock
+//! ([`SimClock`], `hand-traits`' type, re-exported here).
 //!
 //! ```
 //! use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock};
@@ -17,7 +18,6 @@
 //! ```
 
 mod chip;
-mod clock;
 mod environment;
 mod error;
 mod i2c;
@@ -27,9 +27,11 @@ mod spi;
 mod timing;
 
 pub use chip::{ConversionTime, DATASHEET_COEFFICIENTS, Ms5611Sim};
-pub use clock::{SimClock, SimDelay};
 pub use environment::{Conditions, Environment};
 pub use error::SimError;
+/// The stack's one simulated clock (`hand-traits`' `sim`), re-exported: the chip models run on
+/// it, so their users need no other import.
+pub use hand_traits::sim::{SimClock, SimDelay};
 pub use i2c::I2cTarget;
 pub use mux::Tca9548aSim;
 pub use timing::BusTiming;

@@ -5,10 +5,10 @@ use std::vec::Vec;
 
 use embedded_hal::i2c::{ErrorType, I2c, Operation, SevenBitAddress};
 
-use super::clock::SimClock;
 use super::error::SimError;
 use super::i2c::I2cTarget;
 use super::timing::BusTiming;
+use hand_traits::sim::SimClock;
 
 /// A TCA9548A with up to eight downstream channels of simulated I2C targets.
 #[derive(Debug)]

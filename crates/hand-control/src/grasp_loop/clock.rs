@@ -46,6 +46,34 @@ impl LoopClock for StdClock {
     }
 }
 
+/// The stack's simulated clock (feature `sim`), on which waiting is advancing: the loop runs
+/// on the same time as the simulated chips and buses that share the clock, as fast as the CPU
+/// allows. Another thread holding a clone sees the loop's time.
+///
+/// ```
+/// use hand_control::grasp_loop::{FixedRate, LoopClock};
+/// use hand_traits::sim::SimClock;
+///
+/// let mut clock = SimClock::new();
+/// let chip = clock.clone(); // e.g. given to a chip model
+/// let mut rate = FixedRate::new(10_000, 0);
+/// for _ in 0..3 {
+///     rate.wait(&mut clock);
+/// }
+/// assert_eq!(chip.now_us(), 20_000);
+/// ```
+#[cfg(feature = "sim")]
+impl LoopClock for hand_traits::sim::SimClock {
+    fn now_us(&mut self) -> u64 {
+        // The inherent method (path resolution prefers it over this trait's).
+        hand_traits::sim::SimClock::now_us(self)
+    }
+
+    fn wait_until_us(&mut self, t_us: u64) {
+        self.advance_to_ns(t_us.saturating_mul(1_000));
+    }
+}
+
 /// Ticks every `period_us` on a fixed grid: a late cycle does not shift later ticks, and ticks
 /// missed while a cycle overran are skipped (and counted) rather than run back to back.
 ///
@@ -113,5 +141,44 @@ impl FixedRate {
     /// The period, µs.
     pub fn period_us(&self) -> u64 {
         self.period_us
+    }
+}
+
+#[cfg(all(test, feature = "sim"))]
+mod tests {
+    use super::*;
+    use hand_traits::sim::SimClock;
+
+    #[test]
+    fn the_simulated_clock_waits_by_advancing_and_never_goes_back() {
+        let mut clock = SimClock::new();
+        clock.advance_ns(1_500);
+        assert_eq!(LoopClock::now_us(&mut clock), 1);
+        clock.wait_until_us(40);
+        assert_eq!(clock.now_ns(), 40_000);
+        clock.wait_until_us(10); // in the past: no change
+        assert_eq!(clock.now_ns(), 40_000);
+        clock.wait_until_us(u64::MAX); // saturates rather than wrapping to a past time
+        assert_eq!(clock.now_ns(), u64::MAX);
+    }
+
+    #[test]
+    fn a_fixed_rate_loop_on_another_thread_shares_the_time() {
+        let clock = SimClock::new();
+        let mut looped = clock.clone();
+        let ticks = std::thread::spawn(move || {
+            let mut rate = FixedRate::new(10_000, 0);
+            (0..5).map(|_| rate.wait(&mut looped)).collect::<Vec<_>>()
+        })
+        .join()
+        .expect("the loop does not panic");
+        assert_eq!(ticks, [0, 10_000, 20_000, 30_000, 40_000]);
+        assert_eq!(clock.now_us(), 40_000);
+        // Overran: at 75 ms, a loop due at 50 ms skips the ticks at 50, 60 and 70 ms.
+        let mut clock = clock;
+        let mut rate = FixedRate::new(10_000, 50_000);
+        clock.advance_ns(35_000_000);
+        assert_eq!(rate.wait(&mut clock), 80_000);
+        assert_eq!(rate.missed_ticks(), 3);
     }
 }

@@ -49,7 +49,7 @@ pub fn taps(seed: u64) -> Result<(String, String), SimError> {
     let mut id = 0u32;
     for osr in TAP_OSRS {
         for shape in FIGURE7_SHAPES {
-            for cells in shape.placements().map(CellSet::from) {
+            for cells in shape.placements() {
                 for force_kgf in TAP_FORCES_KGF {
                     for repeat in 0..TAP_REPEATS {
                         let corner = cells
@@ -91,14 +91,17 @@ pub fn taps(seed: u64) -> Result<(String, String), SimError> {
                                 n += 1.0;
                             }
                         }
-                        let centroid = super::geometry::aot_region_at(cells.centroid_mm());
+                        let label = cells.average_area().value();
+                        let centroid = cells
+                            .aot_area()
+                            .ok_or_else(|| SimError::config("shape", "empty"))?;
                         writeln!(
                             taps,
                             "{id},{osr},{},{},{},{:.4},{centroid},{force_kgf},{repeat},{:.1},{:.1},{:.1}",
                             shape.name,
                             cells.len(),
                             cells.bits(),
-                            cells.average_area(),
+                            label,
                             held[0] / n,
                             held[1] / n,
                             held[2] / n

@@ -1,183 +1,158 @@
-//! The fingertip pad's geometry: the 4 × 6 cell grid of seed 000 §4, its 3 × 3 Arrival-of-Time
-//! partition (§3), and the three sensors in an inverted triangle (§3, Figure 5).
+//! The fingertip pad on the simulated skin: `aot-locate`'s 4 × 6 cells (seed 000 §4), their
+//! eq. 4 labels and 3 × 3 Arrival-of-Time areas (§3) — the one copy, re-exported — placed in
+//! millimetres for the physics, and the three sensors in an inverted triangle (§3, Figure 5).
 //!
 //! Coordinates are millimetres in the pad plane, x to the right along a row, y up, origin at
 //! the pad centre. Row 1 is the top row, column 1 the left column, so cell `r.c` carries the
 //! paper's unique area number `r.c` (`Arr_1 = 1.1`, `Arr_6 = 1.6`, `Arr_24 = 4.6`).
 //!
 //! The paper gives no dimensions. A 3 mm cell pitch (an 18 × 12 mm pad) is our assumption,
-//! the size of a robot fingertip; the sensor positions are [`super::LawParams::CALIBRATED`]'s.
+//! the size of a robot fingertip, and `aot-locate`'s [`AreaGrid::SIMULATED_PAD`]; the sensor
+//! positions are [`super::LawParams::CALIBRATED`]'s.
+//!
+//! ```
+//! use hand_sim::fingertip::{Cell, CellSet};
+//! let square = CellSet::rect(1, 1, 2, 2).unwrap(); // areas 1.1, 1.2, 2.1, 2.2
+//! assert!((square.average_area().value() - 1.65).abs() < 1e-6); // eq. 4
+//! assert_eq!(square.aot_area(), Some(0)); // the top-left Arrival-of-Time area
+//! assert_eq!(Cell::new(1, 1).unwrap().centre_mm(), [-7.5, 4.5]);
+//! ```
 
-/// Rows of the fine grid.
-pub const ROWS: u8 = 4;
-/// Columns of the fine grid.
-pub const COLS: u8 = 6;
-/// Cells of the fine grid.
-pub const CELLS: usize = (ROWS as usize) * (COLS as usize);
-/// Cell pitch, mm (assumed; see the module docs).
-pub const PITCH_MM: f64 = 3.0;
+use aot_locate::{AreaGrid, Geometry};
+
+pub use aot_locate::{CELLS, COLS, CellSet, ROWS, SENSORS};
+
+/// The simulated pad: 4 × 6 cells of 3 mm (see the module docs).
+pub const PAD: AreaGrid = AreaGrid::SIMULATED_PAD;
 /// Pad width (x), mm.
-pub const WIDTH_MM: f64 = PITCH_MM * COLS as f64;
+pub const WIDTH_MM: f64 = PAD.width_mm as f64;
 /// Pad height (y), mm.
-pub const HEIGHT_MM: f64 = PITCH_MM * ROWS as f64;
+pub const HEIGHT_MM: f64 = PAD.height_mm as f64;
+/// Cell pitch, mm (assumed; see the module docs).
+pub const PITCH_MM: f64 = WIDTH_MM / COLS as f64;
 
-/// One cell of the 4 × 6 grid.
+/// The three sensors, mm, in the paper's numbering: sensor 1 top right, sensor 2 bottom
+/// centre, sensor 3 top left (an inverted triangle; which top corner is 1 follows from Table 2,
+/// where area 1.1 rises sensor 3 more and area 1.5 sensor 1 more). `aot-locate`'s
+/// [`Geometry::SIMULATED_SENSORS_MM`] in `f64` (exact: whole and half millimetres).
+pub const SENSORS_MM: [[f64; 2]; SENSORS] = {
+    let s = Geometry::SIMULATED_SENSORS_MM;
+    [
+        [s[0][0] as f64, s[0][1] as f64],
+        [s[1][0] as f64, s[1][1] as f64],
+        [s[2][0] as f64, s[2][1] as f64],
+    ]
+};
+
+/// One cell of the pad where the skin's physics sees it: `aot-locate`'s grid cell (row,
+/// column, index, eq. 4 number and Arrival-of-Time area, through `Deref`) and its centre on
+/// the simulated skin in `f64` millimetres.
+///
+/// ```
+/// use hand_sim::fingertip::{Cell, CellSet};
+/// let cell = Cell::new(2, 3).unwrap();
+/// assert_eq!((cell.row(), cell.col(), cell.index()), (2, 3, 8));
+/// assert_eq!(cell.centre_mm(), [-1.5, 1.5]);
+/// assert_eq!(CellSet::EMPTY.with(cell).bits(), 1 << 8);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Cell {
-    row: u8,
-    col: u8,
-}
+pub struct Cell(aot_locate::Cell);
 
 impl Cell {
     /// Cell at 1-based `row` (1…4) and `col` (1…6), if on the pad.
     pub fn new(row: u8, col: u8) -> Option<Cell> {
-        ((1..=ROWS).contains(&row) && (1..=COLS).contains(&col)).then_some(Cell { row, col })
+        aot_locate::Cell::new(row, col).map(Cell)
     }
 
     /// The cell with 0-based index `i` (row-major), if on the pad.
     pub fn from_index(i: usize) -> Option<Cell> {
-        (i < CELLS).then(|| Cell {
-            row: (i / COLS as usize) as u8 + 1,
-            col: (i % COLS as usize) as u8 + 1,
-        })
-    }
-
-    /// 1-based row.
-    pub fn row(self) -> u8 {
-        self.row
-    }
-
-    /// 1-based column.
-    pub fn col(self) -> u8 {
-        self.col
-    }
-
-    /// 0-based row-major index, `0..24`.
-    pub fn index(self) -> usize {
-        usize::from(self.row - 1) * usize::from(COLS) + usize::from(self.col - 1)
-    }
-
-    /// The paper's unique area number `row.col` (§4: `Arr_1 = 1.1`, `Arr_24 = 4.6`).
-    ///
-    /// ```
-    /// use hand_sim::fingertip::geometry::Cell;
-    /// assert_eq!(Cell::new(1, 1).unwrap().label(), 1.1);
-    /// assert_eq!(Cell::from_index(23).unwrap().label(), 4.6);
-    /// ```
-    pub fn label(self) -> f64 {
-        f64::from(self.row) + f64::from(self.col) / 10.0
-    }
-
-    /// The cell centre, mm.
-    pub fn centre_mm(self) -> [f64; 2] {
-        [
-            (f64::from(self.col) - 0.5) * PITCH_MM - WIDTH_MM / 2.0,
-            HEIGHT_MM / 2.0 - (f64::from(self.row) - 0.5) * PITCH_MM,
-        ]
-    }
-
-    /// The 3 × 3 Arrival-of-Time region (0-based, row-major) holding this cell's centre.
-    pub fn aot_region(self) -> usize {
-        aot_region_at(self.centre_mm())
+        aot_locate::Cell::from_index(i).map(Cell)
     }
 
     /// Every cell, row-major.
     pub fn all() -> impl Iterator<Item = Cell> {
-        (0..CELLS).filter_map(Cell::from_index)
-    }
-}
-
-/// A set of cells, as a 24-bit mask (bit `i` is the cell of index `i`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct CellSet(u32);
-
-impl CellSet {
-    /// No cell.
-    pub const EMPTY: CellSet = CellSet(0);
-
-    /// The cells of a `rows` × `cols` rectangle whose top-left cell is `top_left`, if it fits.
-    ///
-    /// ```
-    /// use hand_sim::fingertip::geometry::{Cell, CellSet};
-    /// let square = CellSet::rect(Cell::new(1, 1).unwrap(), 2, 2).unwrap();
-    /// assert_eq!(square.len(), 4);
-    /// assert!(CellSet::rect(Cell::new(4, 6).unwrap(), 2, 1).is_none());
-    /// ```
-    pub fn rect(top_left: Cell, rows: u8, cols: u8) -> Option<CellSet> {
-        let mut set = CellSet::EMPTY;
-        for r in 0..rows {
-            for c in 0..cols {
-                set = set.with(Cell::new(top_left.row + r, top_left.col + c)?);
-            }
-        }
-        Some(set)
+        aot_locate::Cell::all().map(Cell)
     }
 
-    /// This set with `cell` added.
-    pub fn with(self, cell: Cell) -> CellSet {
-        CellSet(self.0 | 1 << cell.index())
-    }
-
-    /// Whether `cell` is in the set.
-    pub fn contains(self, cell: Cell) -> bool {
-        self.0 & (1 << cell.index()) != 0
-    }
-
-    /// How many cells the set holds (the paper's contact "size").
-    pub fn len(self) -> usize {
-        self.0.count_ones() as usize
-    }
-
-    /// Whether the set is empty.
-    pub fn is_empty(self) -> bool {
-        self.0 == 0
-    }
-
-    /// The cells, row-major.
-    pub fn iter(self) -> impl Iterator<Item = Cell> {
-        Cell::all().filter(move |c| self.contains(*c))
-    }
-
-    /// The raw mask.
-    pub fn bits(self) -> u32 {
+    /// The grid cell.
+    pub fn grid(self) -> aot_locate::Cell {
         self.0
     }
 
-    /// The mean of the cells' centres, mm (the pad centre for an empty set).
-    pub fn centroid_mm(self) -> [f64; 2] {
-        let n = self.len().max(1) as f64;
-        self.iter().fold([0.0, 0.0], |acc, c| {
-            let [x, y] = c.centre_mm();
-            [acc[0] + x / n, acc[1] + y / n]
-        })
+    /// The cell centre, mm: [`PAD`]'s, exact in `f64` (multiples of half the 3 mm pitch).
+    pub fn centre_mm(self) -> [f64; 2] {
+        PAD.cell_centre_mm(self.0).map(f64::from)
     }
+}
 
-    /// Eq. 4's average-area label: the mean of the cells' unique numbers (0 for no contact).
-    pub fn average_area(self) -> f64 {
-        if self.is_empty() {
-            0.0
-        } else {
-            self.iter().map(Cell::label).sum::<f64>() / self.len() as f64
+impl core::ops::Deref for Cell {
+    type Target = aot_locate::Cell;
+
+    fn deref(&self) -> &aot_locate::Cell {
+        &self.0
+    }
+}
+
+impl From<aot_locate::Cell> for Cell {
+    fn from(cell: aot_locate::Cell) -> Cell {
+        Cell(cell)
+    }
+}
+
+/// A skin cell adds to a [`CellSet`] as its grid cell.
+impl From<Cell> for aot_locate::Cell {
+    fn from(cell: Cell) -> aot_locate::Cell {
+        cell.0
+    }
+}
+
+/// The mean of the cells' centres on the skin, mm (the pad centre for an empty set): where a
+/// contact's load is centred, for the law's arrival delays. `f64` and summed row-major as the
+/// law was calibrated with; the eq. 4 and Arrival-of-Time labels come from the exact
+/// [`CellSet::average_area`] and [`CellSet::aot_area`] instead.
+///
+/// ```
+/// use hand_sim::fingertip::{CellSet, geometry::centroid_mm};
+/// assert_eq!(centroid_mm(CellSet::rect(1, 1, 2, 2).unwrap()), [-6.0, 3.0]);
+/// assert_eq!(centroid_mm(CellSet::EMPTY), [0.0, 0.0]);
+/// ```
+pub fn centroid_mm(cells: CellSet) -> [f64; 2] {
+    let n = f64::from(cells.len().max(1));
+    cells.iter().fold([0.0, 0.0], |acc, c| {
+        let [x, y] = Cell(c).centre_mm();
+        [acc[0] + x / n, acc[1] + y / n]
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_skin_is_the_3_mm_pad_of_aot_locate() {
+        assert_eq!((WIDTH_MM, HEIGHT_MM, PITCH_MM), (18.0, 12.0, 3.0));
+        // Corner cells sit half a pitch in from the pad's corners.
+        let first = Cell::from_index(0).unwrap().centre_mm();
+        let last = Cell::from_index(CELLS - 1).unwrap().centre_mm();
+        assert_eq!(first, [-WIDTH_MM / 2.0 + 1.5, HEIGHT_MM / 2.0 - 1.5]);
+        assert_eq!(last, [WIDTH_MM / 2.0 - 1.5, -HEIGHT_MM / 2.0 + 1.5]);
+        for cell in Cell::all() {
+            let [x, y] = cell.centre_mm();
+            let grid = [f32::from(cell.row()), f32::from(cell.col())];
+            assert_eq!([x as f32, y as f32], PAD.grid_point_mm(grid));
         }
     }
-}
 
-/// `aot-locate` numbers the same 4 × 6 cells the same way (row-major, bit 0 = area 1.1).
-impl From<aot_locate::CellSet> for CellSet {
-    fn from(cells: aot_locate::CellSet) -> CellSet {
-        CellSet(cells.bits())
+    #[test]
+    fn sensors_are_aot_locates() {
+        assert_eq!(SENSORS_MM, [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]]);
+    }
+
+    #[test]
+    fn the_whole_pad_is_centred() {
+        let all = Cell::all().fold(CellSet::EMPTY, CellSet::with);
+        assert_eq!(all.len() as usize, CELLS);
+        let [x, y] = centroid_mm(all);
+        assert!(x.abs() < 1e-12 && y.abs() < 1e-12, "{x} {y}");
     }
 }
-
-/// The 3 × 3 Arrival-of-Time region (0-based, row-major) holding the pad point `p` (mm);
-/// points off the pad fall in the nearest edge region.
-pub fn aot_region_at(p: [f64; 2]) -> usize {
-    let [x, y] = p;
-    let band = |v: f64, span: f64| ((v / (span / 3.0)).max(0.0) as usize).min(2);
-    band(HEIGHT_MM / 2.0 - y, HEIGHT_MM) * 3 + band(x + WIDTH_MM / 2.0, WIDTH_MM)
-}
-
-/// The three sensors, in the paper's numbering: sensor 1 top right, sensor 2 bottom centre,
-/// sensor 3 top left (an inverted triangle; which top corner is 1 follows from Table 2, where
-/// area 1.1 rises sensor 3 more and area 1.5 sensor 1 more).
-pub const SENSORS: usize = 3;

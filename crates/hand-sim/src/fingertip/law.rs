@@ -23,7 +23,7 @@
 //! is its distance to the patch centroid, and approaches its steady rise with time constant `T`.
 
 use super::contact::ContactPatch;
-use super::geometry::SENSORS;
+use super::geometry::{Cell, SENSORS, centroid_mm};
 
 /// Every parameter of the law.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,13 +68,13 @@ impl LawParams {
         if n == 0 || patch.force_n.is_nan() || patch.force_n <= 0.0 {
             return [0.0; SENSORS];
         }
-        let per_cell = patch.force_n.min(MAX_FORCE_N) / n as f64;
+        let per_cell = patch.force_n.min(MAX_FORCE_N) / f64::from(n);
         core::array::from_fn(|k| {
             let u: f64 = patch
                 .cells
                 .iter()
                 .map(|c| {
-                    let ([x, y], [sx, sy]) = (c.centre_mm(), self.sensors_mm[k]);
+                    let ([x, y], [sx, sy]) = (Cell::from(c).centre_mm(), self.sensors_mm[k]);
                     let e = (x - sx).powi(2) / (2.0 * self.sigma_x_mm.powi(2))
                         + (y - sy).powi(2) / (2.0 * self.sigma_y_mm.powi(2));
                     per_cell * (-e).exp()
@@ -88,7 +88,7 @@ impl LawParams {
 
     /// When sensor `k` starts to rise after a contact at `patch` begins, ms.
     pub fn arrival_delay_ms(&self, patch: &ContactPatch, k: usize) -> f64 {
-        let centroid = patch.cells.centroid_mm();
+        let centroid = centroid_mm(patch.cells);
         self.delay_base_ms + dist2(centroid, self.sensors_mm[k]).sqrt() / self.front_speed_mm_per_ms
     }
 }

@@ -7,9 +7,9 @@
 //! 1018 hPa). The script works in kgf; the law in newton. Residuals are listed in
 //! docs/sim-calibration.md and held by tests/fingertip_calibration.rs.
 //!
-//! The sensor positions are fixed, not fitted: an inverted triangle (§3, Figure 5) with the two
-//! upper sensors level with row 2 and 4.5 mm either side of the centre, sensor 2 on the bottom
-//! row's centre line. Freeing them lets the optimiser pile all three sensors into one corner,
+//! The sensor positions are fixed, not fitted ([`super::geometry::SENSORS_MM`], `aot-locate`'s
+//! simulated pad): an inverted triangle (§3, Figure 5) with the two upper sensors level with
+//! row 2 and 4.5 mm either side of the centre, sensor 2 on the bottom row's centre line. Freeing them lets the optimiser pile all three sensors into one corner,
 //! which fits slightly better and would wreck Arrival-of-Time geometry.
 //!
 //! The across-row spread σy is held at 3.1 mm, not fitted freely (`fingertip_law.py … 3.1`;
@@ -31,7 +31,7 @@ use super::law::LawParams;
 impl LawParams {
     /// The law fitted to seed 000 Tables 1 and 2.
     pub const CALIBRATED: LawParams = LawParams {
-        sensors_mm: [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]],
+        sensors_mm: super::geometry::SENSORS_MM,
         sigma_x_mm: 13.986577784260398,
         sigma_y_mm: 3.1,
         linear_hpa_per_n: 6.1922221816324585 / KGF_N,

@@ -1,6 +1,7 @@
 //! The barometric fingertip of seed 000: three MS5611 under a silicone pad.
 //!
-//! - [`geometry`]: the 4 × 6 cell grid, its 3 × 3 Arrival-of-Time partition, eq. 4 labels;
+//! - [`geometry`]: `aot-locate`'s 4 × 6 cells, eq. 4 labels and 3 × 3 Arrival-of-Time areas,
+//!   placed on the skin in millimetres;
 //! - [`contact`]: which cells are pressed, how hard, when;
 //! - [`law`]: contact → each sensor's steady rise and arrival delay (calibrated to Tables 1–2);
 //! - [`physics`]: true pressures over time (baseline, drift, re-zero, first-order response);

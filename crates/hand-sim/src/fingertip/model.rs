@@ -8,8 +8,9 @@ use super::law::LawParams;
 use super::physics::FingertipPhysics;
 use crate::SimError;
 use crate::scene::Model;
-use baro_drivers::sim::{Conditions, Environment, Ms5611Sim, SimClock};
+use baro_drivers::sim::{Conditions, Environment, Ms5611Sim};
 use baro_drivers::{Measurement, Ms5611, Osr, Ready, Scheduler, SpiInterface};
+use hand_traits::sim::SimClock;
 use hand_traits::{PressureFrame, TactileSource};
 use rand::Rng;
 use serde::Deserialize;
@@ -90,16 +91,16 @@ impl Default for FingertipConfig {
 impl TapConfig {
     /// The tap's cells, or a config error naming what is off the pad.
     pub fn cells(&self) -> Result<CellSet, SimError> {
-        let corner = Cell::new(self.row, self.col)
-            .ok_or_else(|| SimError::config("taps.row/col", "row 1…4, col 1…6"))?;
-        CellSet::rect(corner, self.rows, self.cols)
-            .filter(|s| !s.is_empty())
-            .ok_or_else(|| {
-                SimError::config(
-                    "taps.rows/cols",
-                    "a rectangle of at least one cell inside the 4 × 6 pad",
-                )
-            })
+        if Cell::new(self.row, self.col).is_none() {
+            return Err(SimError::config("taps.row/col", "row 1…4, col 1…6"));
+        }
+        // `None` for an empty rectangle too.
+        CellSet::rect(self.row, self.col, self.rows, self.cols).ok_or_else(|| {
+            SimError::config(
+                "taps.rows/cols",
+                "a rectangle of at least one cell inside the 4 × 6 pad",
+            )
+        })
     }
 }
 
@@ -212,6 +213,12 @@ impl Fingertip {
         self.physics.borrow_mut().set_contact(now, patch)
     }
 
+    /// The clock the chips run on (a clone sharing its counter): a loop that waits on it, or
+    /// steps other simulated devices to it, keeps one time with the fingertip.
+    pub fn clock(&self) -> SimClock {
+        self.clock.clone()
+    }
+
     /// The bus clock, ns of simulated time.
     pub fn now_ns(&self) -> u64 {
         self.clock.now_ns()
@@ -220,10 +227,7 @@ impl Fingertip {
     /// Lets the bus idle until `t_ns` (no conversion, no frame): a control loop waiting for its
     /// next tick. An earlier time changes nothing.
     pub fn idle_until_ns(&mut self, t_ns: u64) {
-        let now = self.clock.now_ns();
-        if t_ns > now {
-            self.clock.advance_ns(t_ns - now);
-        }
+        self.clock.advance_to_ns(t_ns);
     }
 
     /// Keeps every frame read for [`frames`](Self::frames) (the default), or not: a control

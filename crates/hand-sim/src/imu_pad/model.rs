@@ -8,8 +8,9 @@ use crate::imu_pad::config::ImuPadConfig;
 use crate::imu_pad::tap::{PadTruth, RealisedTap};
 use crate::scene::Model;
 use crate::seed;
+use hand_traits::sim::SimDelay;
 use hand_traits::{ImuFrame, TactileSource};
-use imu_icm20789::sim::{ChipModel, SimDelay};
+use imu_icm20789::sim::ChipModel;
 use imu_icm20789::{AccelScale, BaroMode, FrameOrder, GyroDlpf, GyroScale, Icm20789};
 use rand::Rng;
 
@@ -121,8 +122,7 @@ impl ImuPad {
 
     /// Lets the chip's clock run until `t_ns` (the host idles between frames).
     fn wait_until(&self, t_ns: u64) {
-        let clock = self.delay.clock();
-        clock.advance_ns(t_ns.saturating_sub(clock.now_ns()));
+        self.delay.clock().advance_to_ns(t_ns);
     }
 
     /// One frame at sample time `t_ns`, as the paper's Arduino read it: start a Low Noise

@@ -4,13 +4,14 @@
 use std::boxed::Box;
 
 use embedded_hal::i2c::{ErrorKind, ErrorType, NoAcknowledgeSource, Operation};
+use hand_traits::sim::{SimClock, SimDelay};
 
 use crate::baro::BARO_ADDRESS;
 use crate::baro::otp::Calibration;
 use crate::imu::ImuAddress;
 use crate::imu::registers as reg;
 use crate::sim::baro_model::{BaroModel, Refusal};
-use crate::sim::clock::{SimClock, SimDelay};
+use crate::sim::bus::BusAccount;
 use crate::sim::environment::Environment;
 use crate::sim::imu_model::ImuModel;
 use crate::sim::noise::{NoiseSource, SimNoise};
@@ -41,14 +42,14 @@ pub struct ChipModel {
     env: Box<dyn Environment>,
     noise: NoiseSource,
     sim_noise: SimNoise,
-    clock: SimClock,
+    bus: BusAccount,
 }
 
 impl core::fmt::Debug for ChipModel {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("ChipModel")
             .field("imu_address", &self.imu_address)
-            .field("now_ns", &self.clock.now_ns())
+            .field("now_ns", &self.bus.clock().now_ns())
             .finish_non_exhaustive()
     }
 }
@@ -63,8 +64,25 @@ impl ChipModel {
             env: Box::new(env),
             noise: NoiseSource::new(seed),
             sim_noise: SimNoise::default(),
-            clock: SimClock::default(),
+            bus: BusAccount::default(),
         }
+    }
+
+    /// Runs on `clock` (shared with other chip models, their delays or a loop) from now on,
+    /// with a fresh bus account on it.
+    ///
+    /// ```
+    /// use imu_icm20789::sim::{ChipModel, SimClock, Truth};
+    ///
+    /// let clock = SimClock::new();
+    /// let chip = ChipModel::new(Truth::constant([0.0; 3], [0.0; 3], 101_325.0), 3)
+    ///     .with_clock(clock.clone());
+    /// clock.advance_ns(1_000);
+    /// assert_eq!(chip.clock().now_ns(), 1_000);
+    /// ```
+    pub fn with_clock(mut self, clock: SimClock) -> Self {
+        self.bus = BusAccount::new(clock);
+        self
     }
 
     /// Uses another noise setting.
@@ -105,12 +123,17 @@ impl ChipModel {
 
     /// The model's clock (shared: clones see the same time).
     pub fn clock(&self) -> SimClock {
-        self.clock.clone()
+        self.bus.clock().clone()
     }
 
     /// A delay on the model's clock.
     pub fn delay(&self) -> SimDelay {
-        SimDelay::new(self.clock())
+        self.bus.clock().delay()
+    }
+
+    /// The account of the bits the model's bus carried (shared: clones see the same count).
+    pub fn bus(&self) -> BusAccount {
+        self.bus.clone()
     }
 
     fn refuse(refusal: Refusal) -> SimError {
@@ -140,7 +163,7 @@ impl ChipModel {
     }
 
     fn imu_transaction(&mut self, operations: &mut [Operation<'_>]) -> Result<(), SimError> {
-        let now = self.clock.now_ns();
+        let now = self.bus.clock().now_ns();
         self.imu
             .update(now, self.env.as_mut(), &mut self.noise, &self.sim_noise);
         let mut pointer = None;
@@ -176,7 +199,7 @@ impl ChipModel {
         if !self.imu.bypass_enabled() {
             return Err(Self::refuse(Refusal::Address)); // not connected to the main bus
         }
-        let now = self.clock.now_ns();
+        let now = self.bus.clock().now_ns();
         for op in operations {
             match op {
                 Operation::Write(bytes) => self.baro.command(bytes, now),
@@ -205,7 +228,7 @@ impl embedded_hal::i2c::I2c for ChipModel {
         operations: &mut [Operation<'_>],
     ) -> Result<(), Self::Error> {
         // The transfer ends before the chip acts on it: clock the bits first.
-        self.clock.clock_bits(Self::transaction_bits(operations));
+        self.bus.clock_bits(Self::transaction_bits(operations));
         if address == self.imu_address {
             self.imu_transaction(operations)
         } else if address == BARO_ADDRESS {
