@@ -20,6 +20,9 @@
 //! `baro-drivers` and `imu-icm20789`, decoded by the real drivers, so a dataset holds exactly
 //! what a driver would have read.
 //!
+//! The datasets are written in one CSV dialect, each file through one serde record
+//! ([`records`]) that paper-experiments' readers deserialize too.
+//!
 //! What is and is not modelled, and how each model compares with the papers' figures, is in
 //! `docs/sim-calibration.md`.
 
@@ -27,6 +30,7 @@ pub mod error;
 pub mod fingertip;
 pub mod grasp;
 pub mod imu_pad;
+pub mod records;
 pub mod scene;
 pub mod seed;
 pub mod underactuated;

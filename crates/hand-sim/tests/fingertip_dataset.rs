@@ -1,7 +1,8 @@
 //! The fingertip datasets: Figure 7's shapes at every position, and seeded, deterministic text.
 
 use hand_sim::fingertip::CellSet;
-use hand_sim::fingertip::dataset::{FIGURE7_SHAPES, weights};
+use hand_sim::fingertip::dataset::{FIGURE7_SHAPES, WeightRow, weights};
+use hand_sim::records;
 
 #[test]
 fn figure7_shapes_slide_over_every_position_on_the_4x6_pad() {
@@ -42,13 +43,18 @@ fn weight_series_is_deterministic_for_a_seed_and_grows_with_weight() {
     assert_eq!(a, weights(7).unwrap());
     assert_ne!(a, weights(8).unwrap());
     // Run 0: mean of sensor 1 over the last second at 0 gf vs at 200 gf.
-    let rows: Vec<Vec<f64>> = a
-        .lines()
-        .filter(|l| l.starts_with("0,"))
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+    let rows: Vec<WeightRow> = records::parse::<WeightRow>("weights.csv".as_ref(), &a)
+        .unwrap()
+        .into_iter()
+        .map(|r| r.record)
+        .filter(|r| r.run == 0)
         .collect();
     let mean_at = |gf: f64| {
-        let v: Vec<f64> = rows.iter().filter(|r| r[2] == gf).map(|r| r[3]).collect();
+        let v: Vec<f64> = rows
+            .iter()
+            .filter(|r| r.weight_gf.0 == gf)
+            .map(|r| f64::from(r.p1_pa.0))
+            .collect();
         v[v.len() / 2..].iter().sum::<f64>() / (v.len() - v.len() / 2) as f64
     };
     let rise_hpa = (mean_at(200.0) - mean_at(0.0)) / 100.0;

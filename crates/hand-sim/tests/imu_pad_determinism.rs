@@ -1,7 +1,8 @@
 //! Same seed, same bytes; another seed, other noise.
 
-use hand_sim::imu_pad::dataset::{DatasetSpec, generate, to_csv};
+use hand_sim::imu_pad::dataset::{DatasetSpec, ImuTapRow, generate, to_csv};
 use hand_sim::imu_pad::{ImuPad, ImuPadConfig, TapPosition};
+use hand_sim::records;
 use hand_sim::scene::Model;
 
 fn small(seed: u64) -> DatasetSpec {
@@ -21,12 +22,20 @@ fn csv(seed: u64) -> String {
     to_csv(&generate(&spec).unwrap(), spec.seed)
 }
 
+fn rows(csv: &str) -> Vec<ImuTapRow> {
+    records::parse::<ImuTapRow>("taps.csv".as_ref(), csv)
+        .unwrap()
+        .into_iter()
+        .map(|r| r.record)
+        .collect()
+}
+
 #[test]
 fn same_seed_gives_the_same_dataset_bytes() {
     let (a, b) = (csv(3), csv(3));
     assert_eq!(a.as_bytes(), b.as_bytes());
-    // 2 depths × 2 repeats × 3 positions, after the comment block and the header.
-    assert_eq!(a.lines().filter(|l| !l.starts_with('#')).count(), 1 + 12);
+    // 2 depths × 2 repeats × 3 positions.
+    assert_eq!(rows(&a).len(), 12);
 }
 
 #[test]
@@ -34,10 +43,10 @@ fn another_seed_gives_other_noise() {
     let (a, b) = (csv(3), csv(4));
     assert_ne!(a, b);
     // …but the same labels in the same order.
-    let labels = |s: &str| -> Vec<String> {
-        s.lines()
-            .filter(|l| !l.starts_with('#'))
-            .map(|l| l.split(',').take(5).collect::<Vec<_>>().join(","))
+    let labels = |s: &str| -> Vec<_> {
+        rows(s)
+            .into_iter()
+            .map(|r| (r.depth_mm, r.repeat, r.column, r.row, r.region))
             .collect()
     };
     assert_eq!(labels(&a), labels(&b));

@@ -29,9 +29,12 @@ pub enum RunError {
     /// The simulated physics refused a configuration or a driver failed.
     #[error("simulation: {0}")]
     Sim(#[from] hand_sim::SimError),
-    /// A model or dataset failed to load or evaluate.
+    /// A model failed to load or evaluate.
     #[error("model: {0}")]
     Net(#[from] tactile_nets::NetError),
+    /// A committed dataset could not be read.
+    #[error("dataset: {0}")]
+    Data(#[from] paper_experiments::data::DatasetError),
     /// A paper fixture failed to load.
     #[error("paper fixture: {0}")]
     Fixture(#[from] paper_fixtures::FixtureError),

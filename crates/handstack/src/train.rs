@@ -72,9 +72,9 @@ pub enum TrainError {
     /// Reading Table 1.
     #[error("Table 1 (fixtures/paper): {0}")]
     Paper(String),
-    /// Training, a dataset or writing.
+    /// Reading the dataset, training or writing.
     #[error(transparent)]
-    Net(#[from] tactile_nets::NetError),
+    Job(#[from] paper_experiments::jobs::JobError),
 }
 
 fn name(model: Model) -> &'static str {
@@ -186,7 +186,7 @@ mod tests {
         // A valid option on a missing workspace fails on the data, not with a panic.
         assert!(matches!(
             run(root, Model::ContactMlp, &epochs),
-            Err(TrainError::Net(_))
+            Err(TrainError::Job(paper_experiments::jobs::JobError::Data(_)))
         ));
     }
 }

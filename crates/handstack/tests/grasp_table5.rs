@@ -8,57 +8,49 @@ mod common;
 
 use common::{root, run_scene, value};
 use handstack::Plot;
+use paper_experiments::data::grasp_results;
 
 #[test]
 fn grasp_scene_reproduces_the_committed_grasp_results() {
     let o = run_scene("grasp-table5");
-    let csv = std::fs::read_to_string(root().join("docs/grasping/results.csv")).expect("results");
-    let mut header = Vec::new();
     let mut checked = 0;
-    for line in csv.lines() {
-        let cells: Vec<&str> = line.split(',').collect();
-        if header.is_empty() {
-            header = cells.iter().map(|s| s.to_string()).collect();
-            continue;
-        }
-        let get = |k: &str| cells[header.iter().position(|h| h == k).expect("column")];
-        let name = get("object");
+    for r in grasp_results::load(&root()).expect("the committed results") {
+        let name = &r.object;
         if o.figure(&format!("{name}_settled_torque")).is_none() {
             continue; // the randomised objects are not in the scene
         }
-        let num = |k: &str| get(k).parse::<f64>().expect("number");
         // The CSV rounds: settled to 0.1, times to 0.01 s, forces to 0.01 N.
         assert!(
-            (value(&o, &format!("{name}_settled_torque")) - num("settled_torque")).abs() <= 0.051,
+            (value(&o, &format!("{name}_settled_torque")) - f64::from(r.settled_torque.0)).abs()
+                <= 0.051,
             "{name}"
         );
         assert_eq!(
             value(&o, &format!("{name}_window_min")),
-            num("window_min"),
+            f64::from(r.window_min),
             "{name}"
         );
         assert_eq!(
             value(&o, &format!("{name}_window_max")),
-            num("window_max"),
+            f64::from(r.window_max),
             "{name}"
         );
         assert!(
-            (value(&o, &format!("{name}_settling_time_s")) - num("settling_time_s")).abs()
-                <= 0.0051,
+            (value(&o, &format!("{name}_settling_time_s")) - r.settling_time_s.0).abs() <= 0.0051,
             "{name}"
         );
         assert!(
-            (value(&o, &format!("{name}_peak_force_n")) - num("peak_force_n")).abs() <= 0.0051,
+            (value(&o, &format!("{name}_peak_force_n")) - r.peak_force_n.0).abs() <= 0.0051,
             "{name}"
         );
         assert_eq!(
             value(&o, &format!("{name}_held")),
-            f64::from(u8::from(get("held") == "true"))
+            f64::from(u8::from(r.held))
         );
         // Every hold went over Protocol 2.0: the driver's packet counts, as committed.
-        for what in ["sent", "received"] {
+        for (what, committed) in [("sent", r.packets_sent), ("received", r.packets_received)] {
             let n = value(&o, &format!("{name}_packets_{what}"));
-            assert_eq!(n, num(&format!("packets_{what}")), "{name} {what}");
+            assert_eq!(n, committed as f64, "{name} {what}");
             assert!(n > 12_000.0, "{name}: {n} packets {what}");
         }
         let settled = o.figure(&format!("{name}_settled_torque")).expect("figure");

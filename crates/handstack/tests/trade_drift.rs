@@ -10,7 +10,7 @@ use std::path::PathBuf;
 fn committed() -> Vec<CsvRow> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
     let text = std::fs::read_to_string(root.join(trade::POINTS)).expect("docs/trade/points.csv");
-    trade::parse_csv(&text).expect("points.csv parses")
+    trade::parse_csv(trade::POINTS.as_ref(), &text).expect("points.csv parses")
 }
 
 fn row<'a>(rows: &'a [CsvRow], task: &str, setting: &str) -> &'a CsvRow {
@@ -68,4 +68,11 @@ fn the_committed_fronts_are_the_fronts_of_the_committed_points() {
         let committed: Vec<bool> = mine.iter().map(|r| r.pareto).collect();
         assert_eq!(front, committed, "{}", task.id);
     }
+}
+
+#[test]
+fn the_committed_file_is_its_rows_written_again() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let text = std::fs::read_to_string(root.join(trade::POINTS)).expect("docs/trade/points.csv");
+    assert_eq!(hand_sim::records::render("", committed()), text);
 }

@@ -16,7 +16,7 @@ fn bench(c: &mut Criterion) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let taps = imu_pad::load(&root).expect("committed dataset");
     let case = Case::Depth(1000);
-    let data = cnn_eval::augment(&case.taps(&taps), NOISY_COPIES, SNR_DB, SEED);
+    let data = cnn_eval::augment(&taps, &case.taps(&taps), NOISY_COPIES, SNR_DB, SEED);
     let x = data.windows[0];
     let mut group = c.benchmark_group("contact_cnn");
     for variant in Variant::ALL {

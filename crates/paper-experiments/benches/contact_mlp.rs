@@ -10,7 +10,7 @@ use tactile_nets::contact_mlp::{ContactMlp, Head, features};
 
 fn bench(c: &mut Criterion) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let records = fingertip::load(&root).expect("committed dataset");
+    let records = fingertip::load(&root).expect("committed dataset").records();
     let (_, test) = split(&records, 4096);
     let x = features(&test[0].reading);
     let mut group = c.benchmark_group("contact_mlp");

@@ -4,7 +4,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use paper_experiments::data::underactuated::{self, GraspSet};
-use paper_experiments::softness_eval::{MODEL_DIR, labelled, model_file, recipe};
+use paper_experiments::softness_eval::{MODEL_DIR, labelled, model_file, recipe, refs};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
@@ -29,6 +29,7 @@ fn bench(c: &mut Criterion) {
     group.finish();
 
     let train_set = labelled(&grasps, GraspSet::Train);
+    let train_set = refs(&train_set);
     let mut group = c.benchmark_group("softness_training");
     group
         .sample_size(10)

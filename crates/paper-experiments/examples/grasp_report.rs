@@ -3,6 +3,7 @@
 //! position, pad pressure and motor current over the first 10 s (as seed 000 Figures 23–24).
 //! Run: `cargo run --profile test -p paper-experiments --example grasp_report`.
 
+use paper_experiments::data::grasp_results::{self, GraspResult};
 use paper_experiments::grasp_rig as support;
 
 use hand_control::grasp_loop::TorqueBand;
@@ -10,40 +11,18 @@ use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams, random_objects};
 use paper_fixtures::seed000::table5_grasp_torque;
 use plotters::prelude::*;
 use std::error::Error;
-use std::fmt::Write as _;
 use std::path::Path;
 
 /// Seconds shown in the plots: closing, squeeze, lift at 3 s and the start of the hold.
 const PLOT_S: f64 = 10.0;
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/grasping");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = root.join("docs/grasping");
     std::fs::create_dir_all(&out)?;
     let rig = RigParams::default();
-    let mut csv = String::from(
-        "object,table5_min,table5_max,settled_torque,window_min,window_max,settling_time_s,\
-         peak_force_n,final_force_n,final_pressure_pa,held,packets_sent,packets_received\n",
-    );
-    let mut row = |o: &support::Outcome| {
-        let held = !(o.slipped || o.damaged || o.dropped) && o.faults == 0;
-        let _ = writeln!(
-            csv,
-            "{},{},{},{:.1},{},{},{:.2},{:.2},{:.2},{:.0},{},{},{}",
-            o.name,
-            o.band.0,
-            o.band.1,
-            o.settled_raw,
-            o.window_raw.0,
-            o.window_raw.1,
-            o.settling_time_s,
-            o.peak_force_n,
-            o.final_force_n,
-            o.final_pressure_pa,
-            held,
-            o.packets.sent,
-            o.packets.received
-        );
-    };
+    let mut rows = Vec::new();
+    let mut row = |o: &support::Outcome| rows.push(GraspResult::new(o));
     for r in table5_grasp_torque()? {
         let kind = ObjectKind::from_name(&r.object).ok_or("a Table 5 object")?;
         let (lo, hi) = (r.torque_min as u16, r.torque_max as u16);
@@ -62,7 +41,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         let (o, _, _) = support::hold(&r.params.name.clone(), r.params, band, 100 + i as u64)?;
         row(&o);
     }
-    std::fs::write(out.join("results.csv"), &csv)?;
+    let csv = grasp_results::to_csv(rows);
+    std::fs::write(root.join(grasp_results::RESULTS_FILE), &csv)?;
     print!("{csv}");
     Ok(())
 }

@@ -1,109 +1,22 @@
-//! Evaluates Arrival-of-Time on the simulated fingertip taps (`fixtures/datasets/fingertip/`).
+//! Evaluates Arrival-of-Time on the simulated fingertip taps (`fixtures/datasets/fingertip/`,
+//! read by [`crate::data::fingertip`]).
 //!
 //! Shared by the `aot_eval` example (which writes `docs/contact-location.md`), the drift test
 //! (which re-runs one OSR and compares with the doc) and handstack's contact-location scene.
 
+use crate::data::fingertip::{Dataset, Tap, TapSeries};
 use aot_locate::{
     ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, Ranging, RangingFit, Scores, eq3,
 };
 use std::collections::BTreeMap;
-use std::path::Path;
-
-/// One row of `taps.csv`.
-#[derive(Debug, Clone)]
-pub struct Tap {
-    /// Tap id (joins `series.csv`).
-    pub id: u32,
-    /// MS5611 oversampling ratio the tap was read at.
-    pub osr: u16,
-    /// Figure 7 shape name.
-    pub shape: String,
-    /// Touched cells, bit i = cell i of the 4 × 6 grid.
-    pub mask: u32,
-    /// Press force, kgf.
-    pub force_kgf: u32,
-    /// Repeat index (0 trains the ranging fit, 1 is held out).
-    pub repeat: u32,
-    /// The 3 × 3 area (0…8, row-major) of the patch centroid: the label.
-    pub aot_region: usize,
-    /// Mean held pressure per sensor, Pa.
-    pub held_pa: [f32; 3],
-}
-
-/// One frame of `series.csv`.
-#[derive(Debug, Clone, Copy)]
-pub struct Frame {
-    /// Time from contact onset, µs.
-    pub t_us: i64,
-    /// Sensors 1–3 as the driver decoded them, Pa.
-    pub p_pa: [f32; 3],
-}
-
-/// The tap table and each tap's frames.
-pub struct Dataset {
-    /// The taps kept.
-    pub taps: Vec<Tap>,
-    /// Each kept tap's frames, by id.
-    pub series: BTreeMap<u32, Vec<Frame>>,
-}
-
-fn rows(text: &str) -> impl Iterator<Item = Vec<&str>> {
-    text.lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .skip(1) // header
-        .map(|l| l.split(',').collect())
-}
-
-fn field<T: std::str::FromStr>(row: &[&str], i: usize) -> Result<T, String> {
-    row.get(i)
-        .ok_or_else(|| format!("missing column {i} in {row:?}"))?
-        .trim()
-        .parse()
-        .map_err(|_| format!("bad column {i} in {row:?}"))
-}
-
-impl Dataset {
-    /// Reads `taps.csv` and `series.csv` from `dir`, keeping the taps `keep` accepts.
-    pub fn load(dir: &Path, keep: impl Fn(&Tap) -> bool) -> Result<Dataset, String> {
-        let read = |f: &str| std::fs::read_to_string(dir.join(f)).map_err(|e| format!("{f}: {e}"));
-        let mut taps = Vec::new();
-        for r in rows(&read("taps.csv")?) {
-            let tap = Tap {
-                id: field(&r, 0)?,
-                osr: field(&r, 1)?,
-                shape: field(&r, 2)?,
-                mask: field(&r, 4)?,
-                aot_region: field(&r, 6)?,
-                force_kgf: field(&r, 7)?,
-                repeat: field(&r, 8)?,
-                held_pa: [field(&r, 9)?, field(&r, 10)?, field(&r, 11)?],
-            };
-            if keep(&tap) {
-                taps.push(tap);
-            }
-        }
-        let wanted: std::collections::BTreeSet<u32> = taps.iter().map(|t| t.id).collect();
-        let mut series: BTreeMap<u32, Vec<Frame>> = BTreeMap::new();
-        for r in rows(&read("series.csv")?) {
-            let id: u32 = field(&r, 0)?;
-            if wanted.contains(&id) {
-                series.entry(id).or_default().push(Frame {
-                    t_us: field(&r, 1)?,
-                    p_pa: [field(&r, 2)?, field(&r, 3)?, field(&r, 4)?],
-                });
-            }
-        }
-        Ok(Dataset { taps, series })
-    }
-}
 
 /// What one tap gives eq. 3: arrival times from the series (detected sample by sample, onset
 /// at t = 0 as the dataset defines it) and the held pressures read against the baseline the
 /// detector tracked before arrival (the steady rise, as Table 2 reports pressures while held).
-pub fn tap_event(tap: &Tap, frames: &[Frame], config: DetectorConfig) -> ArrivalEvent {
+pub fn tap_event(tap: &Tap, series: &TapSeries, config: DetectorConfig) -> ArrivalEvent {
     let mut d = ArrivalDetector::new(config);
-    for f in frames {
-        d.push(f.t_us, f.p_pa);
+    for (t_us, p) in series.frames() {
+        d.push(t_us, [p[0], p[1], p[2]]);
     }
     d.event(0, tap.held_pa)
 }
@@ -275,7 +188,7 @@ impl Border {
         let [r, c] = cells.centroid().unwrap_or([0.0, 0.0]);
         let half = |v: f32| (v - v.floor() - 0.5).abs() < 1e-4;
         self.eq4_tie += u32::from(half(r) || half(c));
-        let label = centres[tap.aot_region][axis] - centroid[axis];
+        let label = centres[usize::from(tap.aot_region)][axis] - centroid[axis];
         let side = if label > 0.0 { 1 } else { -1 };
         self.label_side[usize::from(centroid[axis] > 0.0)] = Some(side);
         if let Some(p) = ranging {
@@ -314,12 +227,8 @@ pub fn distances_mm(mask: u32) -> Option<[f32; 3]> {
 pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> Report {
     let mut rep = Report::default();
     let events: Vec<(&Tap, ArrivalEvent)> = data
-        .taps
         .iter()
-        .map(|tap| {
-            let frames = data.series.get(&tap.id).map(Vec::as_slice).unwrap_or(&[]);
-            (tap, tap_event(tap, frames, config))
-        })
+        .map(|(tap, series)| (tap, tap_event(tap, series, config)))
         .collect();
     let mut fits = BTreeMap::new();
     for (tap, _) in &events {
@@ -367,14 +276,14 @@ pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> 
             if let Some(p) = pick {
                 rep.picked.entry(rule).or_default()[p] += 1;
             }
-            let hit = pick == Some(tap.aot_region);
+            let hit = pick == Some(usize::from(tap.aot_region));
             rep.by_interior
                 .entry((rule, tap.osr, holding.len() == 1))
                 .or_default()
                 .add(hit);
             rep.by_osr.entry((rule, tap.osr)).or_default().add(hit);
             rep.by_region
-                .entry((rule, tap.osr, tap.aot_region))
+                .entry((rule, tap.osr, usize::from(tap.aot_region)))
                 .or_default()
                 .add(hit);
             rep.by_shape

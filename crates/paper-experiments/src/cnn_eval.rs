@@ -20,7 +20,8 @@
 //! Accuracy is the fraction of held-out windows whose arg-max region is right; a row of the
 //! metrics file holds the mean and (n − 1) standard deviation over the trials or folds, in %.
 
-use crate::data::imu_pad::{CHANNELS, ImuTap, REGIONS, WINDOW, WINDOW_VALUES, depths_um};
+use crate::data::imu_pad::{CHANNELS, Dataset, REGIONS, WINDOW, WINDOW_VALUES};
+use ndarray::Axis;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
@@ -69,11 +70,16 @@ impl Augmented {
     }
 }
 
-/// Each tap plus `copies` noisy copies at `snr_db` (see the module docs), seeded by `seed`.
-pub fn augment(taps: &[&ImuTap], copies: usize, snr_db: f32, seed: u64) -> Augmented {
+/// Each tap of `data` at `idx` plus `copies` noisy copies at `snr_db` (see the module docs),
+/// seeded by `seed`; [`Augmented::taps`] indexes `idx`.
+pub fn augment(data: &Dataset, idx: &[usize], copies: usize, snr_db: f32, seed: u64) -> Augmented {
     let mut out = Augmented::default();
     let ratio = 10f32.powf(snr_db / 10.0);
-    for (t, tap) in taps.iter().enumerate() {
+    for (t, (tap, window)) in idx
+        .iter()
+        .filter_map(|&i| Some((data.taps.get(i)?, data.window(i)?)))
+        .enumerate()
+    {
         // One stream per tap, keyed by what the tap is, so a case's copies do not depend on
         // which other taps are in the case.
         let key =
@@ -81,14 +87,18 @@ pub fn augment(taps: &[&ImuTap], copies: usize, snr_db: f32, seed: u64) -> Augme
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         rng.set_stream(key);
         let sigma: [f32; CHANNELS] = core::array::from_fn(|c| {
-            let s = &tap.window[c * WINDOW..(c + 1) * WINDOW];
+            let s = window.index_axis(Axis(0), c);
             (s.iter().map(|v| v * v).sum::<f32>() / WINDOW as f32 / ratio).sqrt()
         });
-        out.windows.push(tap.window);
+        let mut values = [0.0f32; WINDOW_VALUES];
+        for (v, w) in values.iter_mut().zip(window.iter()) {
+            *v = *w;
+        }
+        out.windows.push(values);
         for _ in 0..copies {
             let w: [f32; WINDOW_VALUES] = core::array::from_fn(|i| {
                 let n: f32 = rng.sample(StandardNormal);
-                tap.window[i] + sigma[i / WINDOW] * n
+                values[i] + sigma[i / WINDOW] * n
             });
             out.windows.push(w);
         }
@@ -109,9 +119,9 @@ pub enum Case {
 }
 
 impl Case {
-    /// Table I's rows: each depth in `taps`, then all.
-    pub fn all(taps: &[ImuTap]) -> Vec<Case> {
-        let mut v: Vec<Case> = depths_um(taps).into_iter().map(Case::Depth).collect();
+    /// Table I's rows: each depth in `data`, then all.
+    pub fn all(data: &Dataset) -> Vec<Case> {
+        let mut v: Vec<Case> = data.depths_um().into_iter().map(Case::Depth).collect();
         v.push(Case::All);
         v
     }
@@ -124,11 +134,11 @@ impl Case {
         }
     }
 
-    /// The taps of this case.
-    pub fn taps(self, taps: &[ImuTap]) -> Vec<&ImuTap> {
-        taps.iter()
-            .filter(|t| match self {
-                Case::Depth(um) => t.depth_um == um,
+    /// The indices in `data` of this case's taps.
+    pub fn taps(self, data: &Dataset) -> Vec<usize> {
+        (0..data.len())
+            .filter(|&i| match self {
+                Case::Depth(um) => data.taps[i].depth_um == um,
                 Case::All => true,
             })
             .collect()
@@ -352,12 +362,12 @@ pub fn model_file(variant: Variant) -> String {
 /// held-out split: (accuracy, confusion counts).
 pub fn evaluate_committed(
     root: &Path,
-    taps: &[ImuTap],
+    taps: &Dataset,
     variant: Variant,
 ) -> Result<(f64, [[u32; REGIONS]; REGIONS]), NetError> {
     let job = committed_job(variant);
     let model = ContactCnn::load(&root.join(MODEL_DIR).join(model_file(variant)))?;
-    let data = augment(&job.case.taps(taps), NOISY_COPIES, SNR_DB, SEED);
+    let data = augment(taps, &job.case.taps(taps), NOISY_COPIES, SNR_DB, SEED);
     let (_, test) = split(&data, job.protocol, job.grouping, job.run, SEED);
     Ok((
         accuracy(&model, &data, &test)?,

@@ -184,7 +184,7 @@ pub const SELECTION_OSR: u16 = 256;
 /// contacts stays whole. Deterministic; repeat 1 never enters.
 pub fn validation_split<'a>(train: &[&'a TapRecord]) -> (Vec<&'a TapRecord>, Vec<&'a TapRecord>) {
     train.iter().partition(|r| {
-        let force_index = ((r.tap.force_kgf - 5.0) / 2.0).round().max(0.0) as u32;
+        let force_index = r.tap.force_kgf.saturating_sub(5).div_ceil(2);
         (r.tap.mask + force_index) % 3 != 0
     })
 }

@@ -12,7 +12,7 @@
 //! Every model spans the rated range [`RATED_RANGE_GF`] (Table 1's 0–200 gf), fixed before
 //! training so a held-out end row is an honest extrapolation.
 
-use crate::data::weights::{self, WeightFrame, WeightSample};
+use crate::data::weights::{WeightSample, WeightSeries};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -100,19 +100,19 @@ pub struct Models {
 
 /// The simulated training and held-out frames, tared per run.
 pub fn sim_split(
-    frames: &[WeightFrame],
+    frames: &WeightSeries,
 ) -> Result<(Vec<WeightSample>, Vec<WeightSample>), NetError> {
     let mut train = Vec::new();
     for run in SIM_TRAIN_RUNS {
-        train.extend(weights::frame_samples(frames, run)?);
+        train.extend(frames.frame_samples(run)?);
     }
-    Ok((train, weights::frame_samples(frames, SIM_TEST_RUN)?))
+    Ok((train, frames.frame_samples(SIM_TEST_RUN)?))
 }
 
 /// Trains every model with the committed recipes.
 pub fn train_all(
     table: &[WeightSample],
-    frames: &[WeightFrame],
+    frames: &WeightSeries,
     seed: u64,
     progress: bool,
 ) -> Result<Models, NetError> {
@@ -218,7 +218,7 @@ fn estimates(model: &ForceDnn, samples: &[WeightSample]) -> Result<Vec<(f32, f32
 pub fn metrics_file(
     models: &Models,
     table: &[WeightSample],
-    frames: &[WeightFrame],
+    frames: &WeightSeries,
     seed: u64,
 ) -> Result<MetricsFile, NetError> {
     let fit = estimates(&models.table, table)?;
@@ -234,7 +234,7 @@ pub fn metrics_file(
         }
     };
     let (_, test) = sim_split(frames)?;
-    let steps = weights::step_samples(frames, SIM_TEST_RUN)?;
+    let steps = frames.step_samples(SIM_TEST_RUN)?;
     Ok(MetricsFile {
         model: "force_dnn".into(),
         description: "Force / weight DNN (seed 000 §2.2): Table 1 fit and leave-one-out \

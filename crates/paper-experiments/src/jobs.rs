@@ -11,6 +11,7 @@ use crate::contact_eval::{self, SELECTION_FILE, SELECTION_OSR};
 use crate::data::{fingertip, imu_pad, underactuated, weights};
 use crate::force_eval;
 use crate::softness_eval::{self, OPTIMISERS, SEEDS};
+use hand_sim::records::DatasetError;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -20,15 +21,33 @@ use tactile_nets::contact_cnn::Variant;
 use tactile_nets::softness_features::Features;
 use tactile_nets::train::TrainConfig;
 
+/// Why a training job stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum JobError {
+    /// A committed dataset could not be read.
+    #[error("dataset: {0}")]
+    Data(#[from] DatasetError),
+    /// Training, evaluating or writing failed.
+    #[error(transparent)]
+    Net(#[from] NetError),
+}
+
+/// Writing a file failed: a [`JobError::Net`], as the models' own writing reports it.
+impl From<std::io::Error> for JobError {
+    fn from(e: std::io::Error) -> Self {
+        JobError::Net(NetError::Io(e))
+    }
+}
+
 /// Trains the contact-area MLP on the committed fingertip taps: the validation search at
 /// [`SELECTION_OSR`] (repeat 0 only), then per OSR the paper's recipe (both heads) and the
 /// chosen configuration; writes the weights, `metrics.json` and `selection.json` to
 /// [`contact_eval::MODEL_DIR`]. `epochs` (quick experiments): no search, paper recipe only
 /// at that many epochs, nothing written.
 ///
-/// Errors: the dataset, training or writing, as [`NetError`].
-pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, NetError> {
-    let records = fingertip::load(root)?;
+/// Errors: the dataset ([`JobError::Data`]), training or writing ([`JobError::Net`]).
+pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, JobError> {
+    let records = fingertip::load(root)?.records();
     let seed = contact_eval::SEED;
     let start = Instant::now();
     let mut selection = None;
@@ -81,8 +100,8 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, N
 /// pressures hPa)` rows, its leave-one-out models, the simulated-series model) and writes the
 /// weights, metrics and training curves to [`force_eval::MODEL_DIR`].
 ///
-/// Errors: the dataset, training or writing, as [`NetError`].
-pub fn force_dnn(root: &Path, table1: &[(f64, [f64; 3])]) -> Result<Vec<PathBuf>, NetError> {
+/// Errors: the dataset ([`JobError::Data`]), training or writing ([`JobError::Net`]).
+pub fn force_dnn(root: &Path, table1: &[(f64, [f64; 3])]) -> Result<Vec<PathBuf>, JobError> {
     let seed = force_eval::SEED;
     let table = weights::tared_table(table1)?;
     let frames = weights::load_series(root)?;
@@ -104,7 +123,12 @@ pub fn force_dnn(root: &Path, table1: &[(f64, [f64; 3])]) -> Result<Vec<PathBuf>
         "training time: {seconds:.1} s for {} models",
         models.loo.len() + 2
     );
-    force_eval::save_all(&root.join(force_eval::MODEL_DIR), &models, &table, &metrics)
+    Ok(force_eval::save_all(
+        &root.join(force_eval::MODEL_DIR),
+        &models,
+        &table,
+        &metrics,
+    )?)
 }
 
 /// Trains the softness classifier (seed 001) with Levenberg–Marquardt and with Adam, one model
@@ -112,8 +136,8 @@ pub fn force_dnn(root: &Path, table1: &[(f64, [f64; 3])]) -> Result<Vec<PathBuf>
 /// `metrics.json` and `training.json` to [`softness_eval::MODEL_DIR`]. `only` (an index into
 /// [`OPTIMISERS`]) trains one optimiser; `dry_run` writes nothing.
 ///
-/// Errors: the dataset, training or writing, as [`NetError`].
-pub fn softness(root: &Path, only: Option<usize>, dry_run: bool) -> Result<Vec<PathBuf>, NetError> {
+/// Errors: the dataset ([`JobError::Data`]), training or writing ([`JobError::Net`]).
+pub fn softness(root: &Path, only: Option<usize>, dry_run: bool) -> Result<Vec<PathBuf>, JobError> {
     let grasps = underactuated::load(root)?;
     let bar = ProgressBar::new((OPTIMISERS.len() * SEEDS.len()) as u64);
     if let Ok(style) =
@@ -213,12 +237,12 @@ pub const CNN_THREADS: usize = 2;
 /// on [`CNN_THREADS`] threads; each is seeded by what it is, so results do not depend on the
 /// thread count or order.
 ///
-/// Errors: the dataset, a training job or writing, as [`NetError`].
+/// Errors: the dataset ([`JobError::Data`]), a training job or writing ([`JobError::Net`]).
 pub fn contact_cnn(
     root: &Path,
     epochs: Option<usize>,
     only: Option<&str>,
-) -> Result<Vec<PathBuf>, NetError> {
+) -> Result<Vec<PathBuf>, JobError> {
     let seed = cnn_eval::SEED;
     let quick = epochs.is_some() || only.is_some();
     let taps = imu_pad::load(root)?;
@@ -228,7 +252,7 @@ pub fn contact_cnn(
         .map(|&c| {
             (
                 c,
-                cnn_eval::augment(&c.taps(&taps), NOISY_COPIES, SNR_DB, seed),
+                cnn_eval::augment(&taps, &c.taps(&taps), NOISY_COPIES, SNR_DB, seed),
             )
         })
         .collect();
@@ -297,7 +321,7 @@ pub fn contact_cnn(
     });
     bar.finish();
     if let Some(e) = failure.into_inner().unwrap_or_else(|e| e.into_inner()) {
-        return Err(NetError::Training(e));
+        return Err(NetError::Training(e).into());
     }
     let results = results.into_inner().unwrap_or_else(|e| e.into_inner());
     let protocol_seconds = start.elapsed().as_secs_f64();

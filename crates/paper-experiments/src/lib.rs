@@ -3,7 +3,9 @@
 //! the repository's `fixtures/`, trains and evaluates on them, and prints progress.
 //!
 //! - [`data`]: one reader per committed dataset (fingertip taps and weights, the ICM-20789
-//!   pad's windows, the underactuated hand's grasps);
+//!   pad's windows, the underactuated hand's grasps), each through the file's
+//!   `hand_sim::records` schema, into `ndarray` arrays where the data is an array) and the
+//!   committed closed-loop grasp results;
 //! - [`force_eval`], [`contact_eval`], [`cnn_eval`], [`softness_eval`]: each model's recipes,
 //!   held-out protocols and committed models (seed 000 §2.2 and §4, seed 002 §IV-A, seed 001);
 //! - [`aot_eval`]: Arrival-of-Time on the fingertip taps (seed 000 §3);
@@ -35,7 +37,10 @@ pub mod tap_run;
 /// One reader per committed dataset.
 pub mod data {
     pub mod fingertip;
+    pub mod grasp_results;
     pub mod imu_pad;
     pub mod underactuated;
     pub mod weights;
+
+    pub use hand_sim::records::DatasetError;
 }

@@ -67,13 +67,21 @@ impl Confusion {
     }
 }
 
-/// The labelled grasps of `set` as (series, class) pairs (empty grasps left out).
-pub fn labelled(grasps: &[Grasp], set: GraspSet) -> Vec<(&[[f32; N_VARIABLES]], Softness)> {
+/// The labelled grasps of `set` as (series samples, class) pairs (empty grasps left out); the
+/// functions below take them through [`refs`].
+pub fn labelled(grasps: &[Grasp], set: GraspSet) -> Vec<(Vec<[f32; N_VARIABLES]>, Softness)> {
     grasps
         .iter()
         .filter(|g| g.set == set)
-        .filter_map(|g| Some((g.series.as_slice(), g.label?)))
+        .filter_map(|g| Some((g.series.samples(), g.label?)))
         .collect()
+}
+
+/// `pairs` with each series borrowed, as the training and evaluation functions take them.
+pub fn refs(
+    pairs: &[(Vec<[f32; N_VARIABLES]>, Softness)],
+) -> Vec<(&[[f32; N_VARIABLES]], Softness)> {
+    pairs.iter().map(|(r, l)| (r.as_slice(), *l)).collect()
 }
 
 /// Classifies every grasp of `pairs` from its whole series.
@@ -154,23 +162,20 @@ impl Evaluation {
     }
 }
 
-/// `soft`, `moderate` or `hard`.
+/// `soft`, `moderate` or `hard`, as the dataset's `label` column names it.
 pub fn class_name(s: Softness) -> &'static str {
-    match s {
-        Softness::Soft => "soft",
-        Softness::Moderate => "moderate",
-        Softness::Hard => "hard",
-    }
+    hand_sim::underactuated::dataset::class_name(Some(s))
 }
 
 /// Evaluates `net` on the dataset's three sets.
 pub fn evaluate(net: &SoftnessNet, grasps: &[Grasp]) -> Result<Evaluation, NetError> {
+    let on = |set| confusion(net, &refs(&labelled(grasps, set)));
     let train = labelled(grasps, GraspSet::Train);
     Ok(Evaluation {
-        train: confusion(net, &train)?,
-        regular: confusion(net, &labelled(grasps, GraspSet::TestRegular))?,
-        irregular: confusion(net, &labelled(grasps, GraspSet::TestIrregular))?,
-        train_mse: training_mse(net, &train)?,
+        train: confusion(net, &refs(&train))?,
+        regular: on(GraspSet::TestRegular)?,
+        irregular: on(GraspSet::TestIrregular)?,
+        train_mse: training_mse(net, &refs(&train))?,
     })
 }
 
@@ -214,7 +219,7 @@ pub fn row_label(optimiser: &str, seed: u64) -> String {
 pub fn train_one(grasps: &[Grasp], optimiser: Optimiser, seed: u64) -> Result<Run, NetError> {
     let pairs = labelled(grasps, GraspSet::Train);
     let start = Instant::now();
-    let (net, report) = train(&pairs, &recipe(optimiser, seed))?;
+    let (net, report) = train(&refs(&pairs), &recipe(optimiser, seed))?;
     let seconds = start.elapsed().as_secs_f64();
     Ok(Run {
         optimiser: optimiser.name().to_owned(),
@@ -384,12 +389,8 @@ fn feature_pairs<'a>(
 ) -> Vec<(Vec<[f32; N_VARIABLES]>, Softness)> {
     grasps
         .into_iter()
-        .filter_map(|g| Some((features.rows(&g.series), g.label?)))
+        .filter_map(|g| Some((features.rows(&g.series.samples()), g.label?)))
         .collect()
-}
-
-fn refs(pairs: &[(Vec<[f32; N_VARIABLES]>, Softness)]) -> Vec<(&[[f32; N_VARIABLES]], Softness)> {
-    pairs.iter().map(|(r, l)| (r.as_slice(), *l)).collect()
 }
 
 /// Trains the variant with LM and `seed` on `train` grasps.
@@ -436,7 +437,7 @@ pub fn validate_features(grasps: &[Grasp], features: Features) -> Result<f64, Ne
             let truth = g
                 .label
                 .ok_or_else(|| NetError::Training("unlabelled".into()))?;
-            c.add(truth, model.predict(&g.series)?);
+            c.add(truth, model.predict(&g.series.samples())?);
         }
     }
     Ok(c.accuracy())
@@ -463,7 +464,7 @@ pub fn evaluate_pooled(model: &Pooled, grasps: &[Grasp]) -> Result<Evaluation, N
         let mut c = Confusion::default();
         for g in grasps.iter().filter(|g| g.set == set) {
             if let Some(truth) = g.label {
-                c.add(truth, model.predict(&g.series)?);
+                c.add(truth, model.predict(&g.series.samples())?);
             }
         }
         Ok(c)

@@ -3,6 +3,7 @@
 
 use aot_locate::{DetectorConfig, Geometry};
 use paper_experiments::aot_eval as eval;
+use paper_experiments::data::fingertip;
 use std::path::PathBuf;
 
 /// The OSR re-run: 4096 has the shortest series, so the test stays fast.
@@ -44,8 +45,8 @@ fn doc_table_matches_a_rerun_of_one_osr() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
     let doc = std::fs::read_to_string(root.join("docs/contact-location.md")).unwrap();
     let stated = doc_row(&doc, OSR).expect("the doc has an AoT row for OSR 4096");
-    let data =
-        eval::Dataset::load(&root.join("fixtures/datasets/fingertip"), |t| t.osr == OSR).unwrap();
+    let mut data = fingertip::load(&root).unwrap();
+    data.retain(|t| t.osr == OSR);
     let rep = eval::evaluate(&data, &Geometry::simulated_pad(), DetectorConfig::DEFAULT);
     let measured: Vec<(u32, u32)> = eval::Rule::ALL
         .iter()

@@ -4,6 +4,7 @@
 //! objects, lifts at 3 s and holds 120 s: no slip, no damage, no fault, settled torque inside
 //! the object's range.
 
+use paper_experiments::data::grasp_results;
 use paper_experiments::grasp_rig as support;
 
 use hand_control::grasp_loop::{Mode, TorqueBand};
@@ -13,21 +14,13 @@ use support::Outcome;
 
 /// The committed `docs/grasping/results.csv` row for `name`: (settled torque, peak force N).
 fn committed(name: &str) -> (f32, f64) {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../docs/grasping/results.csv"
-    );
-    let text = std::fs::read_to_string(path).expect("committed results (grasp_report example)");
-    let row: Vec<&str> = text
-        .lines()
-        .find(|l| l.split(',').next() == Some(name))
-        .unwrap_or_else(|| panic!("{name} not in results.csv"))
-        .split(',')
-        .collect();
-    (
-        row[3].parse().expect("settled torque"),
-        row[7].parse().expect("peak force"),
-    )
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let rows = grasp_results::load(&root).expect("committed results (grasp_report example)");
+    let row = rows
+        .iter()
+        .find(|r| r.object == name)
+        .unwrap_or_else(|| panic!("{name} not in results.csv"));
+    (row.settled_torque.0, row.peak_force_n.0)
 }
 
 fn check(o: &Outcome) {

@@ -9,7 +9,7 @@ use hand_traits::ContactLocator;
 use paper_experiments::cnn_eval::{
     self, Case, METRICS_FILE, MODEL_DIR, NOISY_COPIES, SEED, SNR_DB,
 };
-use paper_experiments::data::imu_pad::{self, ImuTap, WINDOW_VALUES};
+use paper_experiments::data::imu_pad::{self, CHANNELS, Dataset, WINDOW, WINDOW_VALUES};
 use proptest::prelude::*;
 use tactile_nets::NetError;
 use tactile_nets::activations::softmax;
@@ -17,7 +17,7 @@ use tactile_nets::contact_cnn::{ContactCnn, Variant};
 use tactile_nets::metrics::MetricsFile;
 use tactile_nets::train::TrainConfig;
 
-fn taps() -> Vec<ImuTap> {
+fn taps() -> Dataset {
     imu_pad::load(&root()).expect("the committed imu_pad dataset parses")
 }
 
@@ -26,11 +26,11 @@ fn tiny(seed: u64) -> TrainConfig {
 }
 
 /// The 1.6 mm taps' windows and regions (360 taps: a small, quick training set).
-fn depth_set(taps: &[ImuTap]) -> (Vec<[f32; WINDOW_VALUES]>, Vec<u8>) {
+fn depth_set(taps: &Dataset) -> (Vec<[f32; WINDOW_VALUES]>, Vec<u8>) {
     let t = Case::Depth(1600).taps(taps);
     (
-        t.iter().map(|t| t.window).collect(),
-        t.iter().map(|t| t.region).collect(),
+        t.iter().filter_map(|&i| taps.window_values(i)).collect(),
+        t.iter().map(|&i| taps.taps[i].region).collect(),
     )
 }
 
@@ -38,22 +38,23 @@ fn depth_set(taps: &[ImuTap]) -> (Vec<[f32; WINDOW_VALUES]>, Vec<u8>) {
 fn dataset_is_the_papers_collection() {
     let taps = taps();
     assert_eq!(taps.len(), 2880, "72 positions x 8 depths x 5 repeats");
+    assert_eq!(taps.windows.dim(), (2880, CHANNELS, WINDOW));
     assert_eq!(
-        imu_pad::depths_um(&taps),
+        taps.depths_um(),
         [200, 400, 600, 800, 1000, 1200, 1400, 1600]
     );
     // Region = 3 · row group + column − 1 (§IV-A: 3 groups of 8 rows × 3 columns).
     assert!(
-        taps.iter().all(|t| usize::from(t.region)
+        taps.taps.iter().all(|t| usize::from(t.region)
             == 3 * ((usize::from(t.row) - 1) / 8) + usize::from(t.column) - 1)
     );
     // Augmentation: 1 + 20 windows per tap (5 → 105 per position); the copies are the tap
     // plus noise at 30 dB per signal.
     let one = Case::Depth(800).taps(&taps);
-    let a = cnn_eval::augment(&one[..2], NOISY_COPIES, SNR_DB, SEED);
+    let a = cnn_eval::augment(&taps, &one[..2], NOISY_COPIES, SNR_DB, SEED);
     assert_eq!(a.windows.len(), 2 * 21);
     let (orig, copies) = (&a.windows[0], &a.windows[1..21]);
-    assert_eq!(orig, &one[0].window);
+    assert_eq!(Some(*orig), taps.window_values(one[0]));
     for c in 0..4 {
         let s = &orig[c * 38..(c + 1) * 38];
         let power = s.iter().map(|v| v * v).sum::<f32>() / 38.0;

@@ -15,7 +15,9 @@ use tactile_nets::metrics::MetricsFile;
 use tactile_nets::train::TrainConfig;
 
 fn records() -> Vec<TapRecord> {
-    fingertip::load(&root()).expect("the committed fingertip dataset parses")
+    fingertip::load(&root())
+        .expect("the committed fingertip dataset parses")
+        .records()
 }
 
 fn tiny(seed: u64) -> TrainConfig {

@@ -175,7 +175,7 @@ fn frozen_inference_agrees_with_dfdx_on_seeded_inputs() -> Result<(), NetError> 
 #[test]
 fn committed_metrics_match_a_re_evaluation_of_the_committed_weights() -> Result<(), NetError> {
     let table = table();
-    let frames = weights::load_series(&root())?;
+    let frames = weights::load_series(&root()).expect("the committed weight series parses");
     let committed = MetricsFile::from_json(&std::fs::read_to_string(
         root().join(MODEL_DIR).join(METRICS_FILE),
     )?)?;

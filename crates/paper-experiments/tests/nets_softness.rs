@@ -5,7 +5,7 @@
 use hand_traits::{Softness, SoftnessClassifier};
 use paper_experiments::data::underactuated::{self, Grasp, GraspSet, N_VARIABLES};
 use paper_experiments::softness_eval::{
-    self, METRICS_FILE, MODEL_DIR, labelled, model_file, selected,
+    self, METRICS_FILE, MODEL_DIR, labelled, model_file, refs, selected,
 };
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
@@ -58,6 +58,7 @@ fn training_is_deterministic_and_save_load_is_bit_identical() -> Result<(), NetE
         .into_iter()
         .step_by(6)
         .collect();
+    let train_set = refs(&train_set);
     let tests = labelled(&grasps, GraspSet::TestIrregular);
     for opt in ["lm", "adam"] {
         let (a, ra) = train(&train_set, &quick(opt, 3))?;
@@ -263,7 +264,7 @@ fn committed_variant_matches_its_metrics_and_ignores_finger_order() -> Result<()
             .iter()
             .map(|s| [s[2], s[0], s[3], s[1], s[6], s[4], s[7], s[5]])
             .collect();
-        assert_eq!(model.predict(series)?, model.predict(&swapped)?);
+        assert_eq!(model.predict(&series)?, model.predict(&swapped)?);
     }
     // Bad input: typed errors, as the paper net.
     assert!(matches!(

@@ -8,18 +8,22 @@
 //!   frame).
 //! - [`weights`]: seed 000 Table 1's experiment — 0 → 200 gf in 10 gf steps on the whole pad,
 //!   one step every 2 s, read at OSR 4096 — three seeded runs, one row per frame.
+//!
+//! Each file's row is one [`Schema`] record: [`TapRow`] (`taps.csv`), [`SeriesRow`]
+//! (`series.csv`) and [`WeightRow`] (`weights.csv`), which paper-experiments reads back.
 
 use super::geometry::{Cell, CellSet};
 use super::model::{Fingertip, FingertipConfig, TapConfig};
 use crate::SimError;
+use crate::records::{self, Fixed, Schema, Shortest};
 use crate::scene::Model;
 use hand_traits::TactileSource;
-use std::fmt::Write;
+use serde::{Deserialize, Serialize};
 
 pub use aot_locate::{FIGURE7_SHAPES, Shape};
 
 /// The forces of Figure 9 / Table 2, kgf.
-pub const TAP_FORCES_KGF: [f64; 3] = [5.0, 7.0, 9.0];
+pub const TAP_FORCES_KGF: [u32; 3] = [5, 7, 9];
 /// Repeats of each shape, position and force.
 pub const TAP_REPEATS: u32 = 2;
 /// Every OSR the taps are read at.
@@ -32,20 +36,68 @@ const WINDOW_NS: (u64, u64) = (30_000_000, 90_000_000);
 const HOLD_NS: u64 = 400_000_000;
 const HELD_FROM_NS: u64 = 250_000_000;
 
+/// One row of `taps.csv`: one tap.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TapRow {
+    /// Tap id (the `tap` of its rows in `series.csv`), 0, 1, 2… in file order.
+    pub tap: u32,
+    /// MS5611 oversampling ratio the pad was read at.
+    pub osr: u16,
+    /// Figure 7 shape name (`1`, `4-1`, `9`, `16`, `12`, `4-2`).
+    pub shape: String,
+    /// Cells touched.
+    pub size: u8,
+    /// Cell set: bit `i` = cell `i` of the 4 × 6 pad, row-major, cell 0 = area 1.1.
+    pub mask: u32,
+    /// Eq. 4 average-area label.
+    pub average_area: Fixed<f32, 4>,
+    /// 3 × 3 region (0–8, row-major) of the patch centroid.
+    pub aot_region: u8,
+    /// Contact force, kgf.
+    pub force_kgf: u32,
+    /// Repeat index (0 or 1).
+    pub repeat: u32,
+    /// Mean held pressure of sensor 1 over 250–350 ms into the hold, Pa.
+    pub held1_pa: Fixed<f64, 1>,
+    /// The same for sensor 2, Pa.
+    pub held2_pa: Fixed<f64, 1>,
+    /// The same for sensor 3, Pa.
+    pub held3_pa: Fixed<f64, 1>,
+}
+
+impl Schema for TapRow {}
+
+/// One row of `series.csv`: one frame of a tap, from 30 ms before to 90 ms after onset.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SeriesRow {
+    /// The tap (`tap` of `taps.csv`).
+    pub tap: u32,
+    /// Time relative to contact onset, µs.
+    pub t_us: i64,
+    /// Sensor 1 as the MS5611 driver decoded it, Pa.
+    pub p1_pa: Shortest<f32>,
+    /// Sensor 2, Pa.
+    pub p2_pa: Shortest<f32>,
+    /// Sensor 3, Pa.
+    pub p3_pa: Shortest<f32>,
+}
+
+impl Schema for SeriesRow {}
+
+/// The `#` lines of `taps.csv`.
+pub const TAPS_PREAMBLE: &str = "# hand-sim fingertip taps (seed 000 Figure 7 shapes x positions x 5/7/9 kgf x repeats x OSR).\n\
+     # mask: 24-bit cell set (bit i = cell i, row-major, cell 0 = area 1.1); average_area: eq. 4 label;\n\
+     # aot_region: 3 x 3 region (0-8, row-major) of the patch centroid; held*_pa: mean reading over\n\
+     # 250-350 ms into the 400 ms hold; onset at t_us = 0 in series.csv.\n";
+
+/// The `#` lines of `series.csv`.
+pub const SERIES_PREAMBLE: &str = "# hand-sim fingertip tap series: every frame from 30 ms before to 90 ms after contact onset,\n\
+     # pressures in Pa exactly as the MS5611 driver decoded them; t_us relative to onset.\n";
+
 /// The tap dataset: (`taps.csv`, `series.csv`).
 pub fn taps(seed: u64) -> Result<(String, String), SimError> {
-    let mut taps = String::from(
-        "# hand-sim fingertip taps (seed 000 Figure 7 shapes x positions x 5/7/9 kgf x repeats x OSR).\n\
-         # mask: 24-bit cell set (bit i = cell i, row-major, cell 0 = area 1.1); average_area: eq. 4 label;\n\
-         # aot_region: 3 x 3 region (0-8, row-major) of the patch centroid; held*_pa: mean reading over\n\
-         # 250-350 ms into the 400 ms hold; onset at t_us = 0 in series.csv.\n\
-         tap,osr,shape,size,mask,average_area,aot_region,force_kgf,repeat,held1_pa,held2_pa,held3_pa\n",
-    );
-    let mut series = String::from(
-        "# hand-sim fingertip tap series: every frame from 30 ms before to 90 ms after contact onset,\n\
-         # pressures in Pa exactly as the MS5611 driver decoded them; t_us relative to onset.\n\
-         tap,t_us,p1_pa,p2_pa,p3_pa\n",
-    );
+    let mut taps = Vec::new();
+    let mut series = Vec::new();
     let mut id = 0u32;
     for osr in TAP_OSRS {
         for shape in FIGURE7_SHAPES {
@@ -63,7 +115,7 @@ pub fn taps(seed: u64) -> Result<(String, String), SimError> {
                             col: corner.col(),
                             rows: shape.rows,
                             cols: shape.cols,
-                            force_kgf,
+                            force_kgf: f64::from(force_kgf),
                         };
                         let config = FingertipConfig {
                             osr,
@@ -78,9 +130,14 @@ pub fn taps(seed: u64) -> Result<(String, String), SimError> {
                         for f in tip.frames() {
                             let t_ns = f.t_us * 1000;
                             if t_ns + WINDOW_NS.0 >= ONSET_NS && t_ns <= ONSET_NS + WINDOW_NS.1 {
-                                let t_us = f.t_us as i64 - (ONSET_NS / 1000) as i64;
                                 let [a, b, c] = f.pressure_pa;
-                                writeln!(series, "{id},{t_us},{a},{b},{c}").map_err(fmt_error)?;
+                                series.push(SeriesRow {
+                                    tap: id,
+                                    t_us: f.t_us as i64 - (ONSET_NS / 1000) as i64,
+                                    p1_pa: Shortest(a),
+                                    p2_pa: Shortest(b),
+                                    p3_pa: Shortest(c),
+                                });
                             }
                             if (ONSET_NS + HELD_FROM_NS..=ONSET_NS + HOLD_NS - 50_000_000)
                                 .contains(&t_ns)
@@ -91,29 +148,38 @@ pub fn taps(seed: u64) -> Result<(String, String), SimError> {
                                 n += 1.0;
                             }
                         }
-                        let label = cells.average_area().value();
-                        let centroid = cells
+                        let region = cells
                             .aot_area()
                             .ok_or_else(|| SimError::config("shape", "empty"))?;
-                        writeln!(
-                            taps,
-                            "{id},{osr},{},{},{},{:.4},{centroid},{force_kgf},{repeat},{:.1},{:.1},{:.1}",
-                            shape.name,
-                            cells.len(),
-                            cells.bits(),
-                            label,
-                            held[0] / n,
-                            held[1] / n,
-                            held[2] / n
-                        )
-                        .map_err(fmt_error)?;
+                        taps.push(TapRow {
+                            tap: id,
+                            osr,
+                            shape: shape.name.to_owned(),
+                            size: small(cells.len() as usize, "shape size")?,
+                            mask: cells.bits(),
+                            average_area: Fixed(cells.average_area().value()),
+                            aot_region: small(region, "aot region")?,
+                            force_kgf,
+                            repeat,
+                            held1_pa: Fixed(held[0] / n),
+                            held2_pa: Fixed(held[1] / n),
+                            held3_pa: Fixed(held[2] / n),
+                        });
                         id += 1;
                     }
                 }
             }
         }
     }
-    Ok((taps, series))
+    Ok((
+        records::render(TAPS_PREAMBLE, taps),
+        records::render(SERIES_PREAMBLE, series),
+    ))
+}
+
+/// `n` as a `u8` column, or an error naming `what`.
+fn small(n: usize, what: &'static str) -> Result<u8, SimError> {
+    u8::try_from(n).map_err(|_| SimError::config(what, format!("{n} does not fit the column")))
 }
 
 /// How long each weight of the series is held, ns (Table 1's experiment: one step every 2 s).
@@ -166,23 +232,52 @@ pub fn weight_run(
     Ok(out)
 }
 
+/// One row of `weights.csv`: one frame of a weight-series run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct WeightRow {
+    /// Run index (0, 1, 2).
+    pub run: u32,
+    /// Bus time when the frame was read, µs since the run started.
+    pub t_us: u64,
+    /// The weight on the pad, gf.
+    pub weight_gf: Shortest<f64>,
+    /// Sensor 1 as the MS5611 driver decoded it, Pa.
+    pub p1_pa: Shortest<f32>,
+    /// Sensor 2, Pa.
+    pub p2_pa: Shortest<f32>,
+    /// Sensor 3, Pa.
+    pub p3_pa: Shortest<f32>,
+}
+
+impl Schema for WeightRow {}
+
+impl WeightRow {
+    /// The row of `reading` in run `run`.
+    pub fn new(run: u32, reading: &WeightReading) -> Self {
+        let [a, b, c] = reading.pressure_pa;
+        WeightRow {
+            run,
+            t_us: reading.t_us,
+            weight_gf: Shortest(reading.weight_gf),
+            p1_pa: Shortest(a),
+            p2_pa: Shortest(b),
+            p3_pa: Shortest(c),
+        }
+    }
+}
+
+/// The `#` lines of `weights.csv`.
+pub const WEIGHTS_PREAMBLE: &str = "# hand-sim fingertip weight series (seed 000 Table 1's experiment): 0 -> 200 gf in 10 gf steps\n\
+     # on the whole pad, one step every 2 s, read at OSR 4096 with 0.1 hPa/min drift; three runs.\n";
+
 /// The weight-series dataset (`weights.csv`).
 pub fn weights(seed: u64) -> Result<String, SimError> {
-    let mut out = String::from(
-        "# hand-sim fingertip weight series (seed 000 Table 1's experiment): 0 -> 200 gf in 10 gf steps\n\
-         # on the whole pad, one step every 2 s, read at OSR 4096 with 0.1 hPa/min drift; three runs.\n\
-         run,t_us,weight_gf,p1_pa,p2_pa,p3_pa\n",
-    );
+    let mut rows = Vec::new();
     for run in 0..3u32 {
         let mut tip = Fingertip::new(&FingertipConfig::default(), weight_run_seed(seed, run))?;
         for r in weight_run(&mut tip, WEIGHT_STEPS, |_| {})? {
-            let [a, b, c] = r.pressure_pa;
-            writeln!(out, "{run},{},{},{a},{b},{c}", r.t_us, r.weight_gf).map_err(fmt_error)?;
+            rows.push(WeightRow::new(run, &r));
         }
     }
-    Ok(out)
-}
-
-fn fmt_error(_: std::fmt::Error) -> SimError {
-    SimError::config("dataset", "formatting failed")
+    Ok(records::render(WEIGHTS_PREAMBLE, rows))
 }

@@ -21,13 +21,20 @@
 //! The IMU values are the driver's readings (±2 g, ±250 °/s) rounded to a resolution well
 //! below the chip model's noise (1 mm/s² vs 20 mm/s²; 0.1 mrad/s vs 1.5 mrad/s rms).
 
-use std::fmt::Write;
+//!
+//! A row is one [`ImuTapRow`] ([`Schema`]), which paper-experiments reads back.
+
+use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use serde::ser::{SerializeTuple, Serializer};
+use serde::{Deserialize, Serialize};
+use std::fmt;
 
 use crate::SimError;
 use crate::imu_pad::config::{ImuPadConfig, TapSpec};
 use crate::imu_pad::grid::TapPosition;
 use crate::imu_pad::model::ImuPad;
 use crate::imu_pad::window::{TapWindow, WINDOW_SAMPLES, pressure_peak_pa};
+use crate::records::{self, Fixed, Schema};
 use crate::scene::Model;
 use crate::seed;
 
@@ -133,16 +140,165 @@ fn run_taps(config: &ImuPadConfig, seed: u64, repeat: u32) -> Result<Vec<TapReco
         .collect()
 }
 
-/// The CSV header line (without newline).
-pub fn csv_header() -> String {
-    let mut h = String::from("depth_mm,repeat,column,row,region,force_n,pressure_peak_counts");
-    for name in ["ax", "ay", "gx", "gy"] {
-        for i in 0..WINDOW_SAMPLES {
-            // Writing to a String cannot fail.
-            let _ = write!(h, ",{name}_{i:02}");
+/// One row of `taps.csv`: a tap's labels and its window as the file holds them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ImuTapRow {
+    /// Nominal contact depth, mm.
+    pub depth_mm: Fixed<f64, 1>,
+    /// Repeat 0…4.
+    pub repeat: u32,
+    /// Grid column 1…3.
+    pub column: u8,
+    /// Grid row 1…24.
+    pub row: u8,
+    /// §IV-A region 0…8, `3 · ((row − 1) / 8) + column − 1`.
+    pub region: u8,
+    /// True peak normal force of the tap, N.
+    pub force_n: Fixed<f64, 3>,
+    /// Driver-read pressure peak over the rest mean, counts.
+    pub pressure_peak_counts: Fixed<f64, 1>,
+    /// The window: columns `ax_00`…`ay_37`, then `gx_00`…`gy_37`.
+    pub window: WindowRow,
+}
+
+impl Schema for ImuTapRow {
+    fn columns() -> Vec<String> {
+        let mut columns: Vec<String> = [
+            "depth_mm",
+            "repeat",
+            "column",
+            "row",
+            "region",
+            "force_n",
+            "pressure_peak_counts",
+        ]
+        .map(String::from)
+        .into();
+        for name in SIGNAL_NAMES {
+            columns.extend((0..WINDOW_SAMPLES).map(|i| format!("{name}_{i:02}")));
+        }
+        columns
+    }
+}
+
+/// The window's signals as the file names them, in column order.
+pub const SIGNAL_NAMES: [&str; 4] = ["ax", "ay", "gx", "gy"];
+
+/// A tap's 4 × 38 window as written: the accelerometer in whole mm/s², the gyroscope in
+/// mrad/s to 0.1 — resolutions well below the chip model's noise (20 mm/s², 1.5 mrad/s rms).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WindowRow {
+    /// Acceleration x, then y, mm/s².
+    pub accel_mm_s2: [[i64; WINDOW_SAMPLES]; 2],
+    /// Angular rate x, then y, mrad/s.
+    pub gyro_mrad_s: [[Fixed<f64, 1>; WINDOW_SAMPLES]; 2],
+}
+
+impl WindowRow {
+    /// The window of `w` (driver units: m/s², rad/s) at the file's resolution.
+    pub fn new(w: &TapWindow) -> Self {
+        let [ax, ay, gx, gy] = &w.signals;
+        let accel = |s: &[f32; WINDOW_SAMPLES]| s.map(|v| (f64::from(v) * 1e3).round() as i64);
+        let gyro = |s: &[f32; WINDOW_SAMPLES]| s.map(|v| Fixed(f64::from(v) * 1e3));
+        WindowRow {
+            accel_mm_s2: [accel(ax), accel(ay)],
+            gyro_mrad_s: [gyro(gx), gyro(gy)],
         }
     }
-    h
+
+    /// The four signals in the file's units (mm/s², mrad/s), channel-major: ax, ay, gx, gy.
+    pub fn signals(&self) -> [[f64; WINDOW_SAMPLES]; 4] {
+        let [ax, ay] = self.accel_mm_s2.map(|s| s.map(|v| v as f64));
+        let [gx, gy] = self.gyro_mrad_s.map(|s| s.map(|v| v.0));
+        [ax, ay, gx, gy]
+    }
+}
+
+/// Values in a row: 2 × 38 accelerometer, then 2 × 38 gyroscope.
+const WINDOW_VALUES: usize = 4 * WINDOW_SAMPLES;
+
+impl Serialize for WindowRow {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut t = s.serialize_tuple(WINDOW_VALUES)?;
+        for v in self.accel_mm_s2.iter().flatten() {
+            t.serialize_element(v)?;
+        }
+        for v in self.gyro_mrad_s.iter().flatten() {
+            t.serialize_element(v)?;
+        }
+        t.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for WindowRow {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Values;
+        impl<'de> Visitor<'de> for Values {
+            type Value = WindowRow;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "{WINDOW_VALUES} window values")
+            }
+
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<WindowRow, A::Error> {
+                let mut w = WindowRow {
+                    accel_mm_s2: [[0; WINDOW_SAMPLES]; 2],
+                    gyro_mrad_s: [[Fixed(0.0); WINDOW_SAMPLES]; 2],
+                };
+                let mut n = 0;
+                for v in w.accel_mm_s2.iter_mut().flatten() {
+                    *v = Self::next(&mut seq, &mut n)?;
+                }
+                for v in w.gyro_mrad_s.iter_mut().flatten() {
+                    *v = Self::next(&mut seq, &mut n)?;
+                }
+                Ok(w)
+            }
+        }
+        impl Values {
+            /// Element `n` of `seq` (counted on), or an error saying how many there were.
+            fn next<'de, A: SeqAccess<'de>, T: Deserialize<'de>>(
+                seq: &mut A,
+                n: &mut usize,
+            ) -> Result<T, A::Error> {
+                *n += 1;
+                seq.next_element()?
+                    .ok_or_else(|| de::Error::invalid_length(*n - 1, &Values))
+            }
+        }
+        d.deserialize_tuple(WINDOW_VALUES, Values)
+    }
+}
+
+impl ImuTapRow {
+    /// The row of `r`.
+    pub fn new(r: &TapRecord) -> Self {
+        ImuTapRow {
+            depth_mm: Fixed(r.depth_mm),
+            repeat: r.repeat,
+            column: r.position.column(),
+            row: r.position.row(),
+            region: r.position.region(),
+            force_n: Fixed(r.force_n),
+            pressure_peak_counts: Fixed(r.pressure_peak_counts),
+            window: WindowRow::new(&r.window),
+        }
+    }
+}
+
+/// The CSV header line (without newline).
+pub fn csv_header() -> String {
+    ImuTapRow::columns().join(",")
+}
+
+/// The `#` lines of a dataset seeded `seed`.
+pub fn preamble(seed: u64) -> String {
+    format!(
+        "# hand-sim imu_pad tap dataset (seed 002 §III-C / §IV-A), seed {seed}.\n\
+         # One row per tap; windows are what the imu-icm20789 driver read from the chip model.\n\
+         # ax/ay in mm/s^2 (integers), gx/gy in mrad/s (0.1); pressure in counts (1 count = 1 Pa\n\
+         # over the tap's rest mean); force_n is the true tap force. Format: hand_sim::imu_pad::dataset.\n"
+    )
 }
 
 /// `records` as the documented CSV, with a comment block naming `seed`.
@@ -153,36 +309,5 @@ pub fn csv_header() -> String {
 /// assert!(csv.lines().any(|l| l == csv_header()));
 /// ```
 pub fn to_csv(records: &[TapRecord], seed: u64) -> String {
-    let mut out = format!(
-        "# hand-sim imu_pad tap dataset (seed 002 §III-C / §IV-A), seed {seed}.\n\
-         # One row per tap; windows are what the imu-icm20789 driver read from the chip model.\n\
-         # ax/ay in mm/s^2 (integers), gx/gy in mrad/s (0.1); pressure in counts (1 count = 1 Pa\n\
-         # over the tap's rest mean); force_n is the true tap force. Format: hand_sim::imu_pad::dataset.\n"
-    );
-    out.push_str(&csv_header());
-    out.push('\n');
-    for r in records {
-        let _ = write!(
-            out,
-            "{:.1},{},{},{},{},{:.3},{:.1}",
-            r.depth_mm,
-            r.repeat,
-            r.position.column(),
-            r.position.row(),
-            r.position.region(),
-            r.force_n,
-            r.pressure_peak_counts
-        );
-        for (s, signal) in r.window.signals.iter().enumerate() {
-            for v in signal {
-                let _ = if s < 2 {
-                    write!(out, ",{}", (f64::from(*v) * 1e3).round() as i64)
-                } else {
-                    write!(out, ",{:.1}", f64::from(*v) * 1e3)
-                };
-            }
-        }
-        out.push('\n');
-    }
-    out
+    records::render(&preamble(seed), records.iter().map(ImuTapRow::new))
 }

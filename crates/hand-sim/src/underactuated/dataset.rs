@@ -8,16 +8,20 @@
 //! a feature — a cap, a rib, a hollow — of the adjacent class) and a different local width:
 //! the paper's explanation of its irregular-set errors, "lack of similarity softness between
 //! certain sides" (§4).
+//!
+//! The files' rows are [`GraspRow`] (`grasps.csv`) and [`SampleRow`] (`train.csv`,
+//! `test_regular.csv`, `test_irregular.csv`), [`Schema`] records paper-experiments reads back.
 
 use super::UnderactuatedConfig;
 use super::grasp::{GraspSeries, record_grasp};
 use super::object::{MODEL_SIZES_MM, Material, ObjectConfig, Shape};
 use crate::SimError;
+use crate::records::{self, Exp, Fixed, Schema};
 use hand_traits::Softness;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use std::fmt::Write;
+use serde::{Deserialize, Serialize};
 
 /// Poses per model object in the training set.
 pub const REPEATS: usize = 5;
@@ -37,8 +41,9 @@ pub const FEATURE_PROBABILITY: f64 = 0.3;
 /// overall one, away from a feature.
 pub const LOCAL_MODULUS_SD: f64 = 0.5;
 
-/// Which part of the protocol a grasp belongs to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+/// Which part of the protocol a grasp belongs to (the `set` column: [`Set::name`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Set {
     /// Model objects, household objects and empty grasps.
     Train,
@@ -274,6 +279,42 @@ pub fn class_name(label: Option<Softness>) -> &'static str {
     }
 }
 
+/// The label named `name` ([`class_name`]'s inverse); `None` for a name it does not give.
+pub fn class_from_name(name: &str) -> Option<Option<Softness>> {
+    [
+        Some(Softness::Soft),
+        Some(Softness::Moderate),
+        Some(Softness::Hard),
+        None,
+    ]
+    .into_iter()
+    .find(|&l| class_name(l) == name)
+}
+
+/// The `label` column as [`class_name`] writes it.
+mod label {
+    use super::{Softness, class_from_name, class_name};
+    use serde::{Deserialize, Deserializer, Serializer, de};
+
+    pub(super) fn serialize<S: Serializer>(
+        label: &Option<Softness>,
+        s: S,
+    ) -> Result<S::Ok, S::Error> {
+        s.serialize_str(class_name(*label))
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Option<Softness>, D::Error> {
+        let name = <&str>::deserialize(d)?;
+        class_from_name(name).ok_or_else(|| {
+            de::Error::custom(format!(
+                "unknown label `{name}`, expected `soft`, `moderate`, `hard` or `none`"
+            ))
+        })
+    }
+}
+
 /// The sanity features of a grasp: the 8 readings at the end of the series (4 forces in N, 4
 /// distal angles in degrees) — the paper's 8 variables at t₂.
 pub fn end_features(grasp: &Grasp) -> [f64; 8] {
@@ -285,51 +326,126 @@ pub fn end_features(grasp: &Grasp) -> [f64; 8] {
     })
 }
 
-/// `grasps.csv`: one row per grasp.
-pub fn grasps_csv(grasps: &[Grasp]) -> String {
-    let mut out =
-        String::from("grasp,set,object,kind,shape,size_mm,modulus_pa,label,t1_s,samples\n");
-    for g in grasps {
+/// One row of `grasps.csv`: one grasp.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GraspRow {
+    /// Grasp id: 0, 1, 2… in file order, over all sets.
+    pub grasp: usize,
+    /// Protocol set (also the stem of the file holding the grasp's series).
+    pub set: Set,
+    /// Object name; repeats of a model object share it.
+    pub object: String,
+    /// `model`, `regular`, `household` or `empty`.
+    pub kind: String,
+    /// The object's shape, `none` for an empty grasp.
+    pub shape: String,
+    /// Side or diameter, mm.
+    pub size_mm: Fixed<f64, 1>,
+    /// Overall effective modulus, Pa.
+    pub modulus_pa: Exp<f64, 4>,
+    /// The object's overall softness ([`class_name`]); `None` for an empty grasp.
+    #[serde(with = "label")]
+    pub label: Option<Softness>,
+    /// First contact, s after the actuator started; empty for an empty grasp.
+    pub t1_s: Option<Fixed<f64, 3>>,
+    /// Rows of the grasp in its series file.
+    pub samples: usize,
+}
+
+impl Schema for GraspRow {}
+
+impl GraspRow {
+    /// The row of `g`.
+    pub fn new(g: &Grasp) -> Self {
         let s = &g.spec;
-        let t1 = g
-            .series
-            .first_contact_s
-            .map_or(String::new(), |t| format!("{t:.3}"));
-        let _ = writeln!(
-            out,
-            "{},{},{},{},{},{:.1},{:.4e},{},{t1},{}",
-            s.id,
-            s.set.name(),
-            s.object_id,
-            s.kind,
-            if s.kind == "empty" {
+        GraspRow {
+            grasp: s.id,
+            set: s.set,
+            object: s.object_id.clone(),
+            kind: s.kind.to_owned(),
+            shape: if s.kind == "empty" {
                 "none"
             } else {
                 s.object.shape.name()
-            },
-            s.object.size_mm,
-            s.object.modulus(),
-            class_name(s.label),
-            g.series.frames.len(),
-        );
+            }
+            .to_owned(),
+            size_mm: Fixed(s.object.size_mm),
+            modulus_pa: Exp(s.object.modulus()),
+            label: s.label,
+            t1_s: g.series.first_contact_s.map(Fixed),
+            samples: g.series.frames.len(),
+        }
     }
-    out
+}
+
+/// One row of a series file: one sample of a grasp, [`SAMPLE_HZ`] from first contact.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SampleRow {
+    /// The grasp (`grasp` of `grasps.csv`).
+    pub grasp: usize,
+    /// Time since first contact, s.
+    pub t_s: Fixed<f64, 1>,
+    /// Finger 1's FSR force, N.
+    pub f1_n: Fixed<f32, 3>,
+    /// Finger 2's FSR force, N.
+    pub f2_n: Fixed<f32, 3>,
+    /// Finger 3's FSR force, N.
+    pub f3_n: Fixed<f32, 3>,
+    /// Finger 4's FSR force, N.
+    pub f4_n: Fixed<f32, 3>,
+    /// Finger 1's distal joint angle, degrees.
+    pub a1_deg: Fixed<f32, 2>,
+    /// Finger 2's distal joint angle, degrees.
+    pub a2_deg: Fixed<f32, 2>,
+    /// Finger 3's distal joint angle, degrees.
+    pub a3_deg: Fixed<f32, 2>,
+    /// Finger 4's distal joint angle, degrees.
+    pub a4_deg: Fixed<f32, 2>,
+}
+
+impl Schema for SampleRow {}
+
+impl SampleRow {
+    /// The readings in column order: 4 forces (N), then 4 distal angles (degrees).
+    pub fn readings(&self) -> [f32; 8] {
+        [
+            self.f1_n.0,
+            self.f2_n.0,
+            self.f3_n.0,
+            self.f4_n.0,
+            self.a1_deg.0,
+            self.a2_deg.0,
+            self.a3_deg.0,
+            self.a4_deg.0,
+        ]
+    }
+}
+
+/// `grasps.csv`: one row per grasp.
+pub fn grasps_csv(grasps: &[Grasp]) -> String {
+    records::render("", grasps.iter().map(GraspRow::new))
 }
 
 /// `<set>.csv`: every sample of the set's grasps, time since first contact.
 pub fn series_csv(grasps: &[Grasp], set: Set) -> String {
-    let mut out = String::from("grasp,t_s,f1_n,f2_n,f3_n,f4_n,a1_deg,a2_deg,a3_deg,a4_deg\n");
-    for g in grasps.iter().filter(|g| g.spec.set == set) {
-        for (k, f) in g.series.frames.iter().enumerate() {
-            let _ = write!(out, "{},{:.1}", g.spec.id, k as f64 / SAMPLE_HZ);
-            for x in f.force_n {
-                let _ = write!(out, ",{x:.3}");
+    let rows = grasps.iter().filter(|g| g.spec.set == set).flat_map(|g| {
+        g.series.frames.iter().enumerate().map(|(k, f)| {
+            let [f1_n, f2_n, f3_n, f4_n] = f.force_n.map(Fixed);
+            let [a1_deg, a2_deg, a3_deg, a4_deg] =
+                f.distal_angle_rad.map(|a| Fixed(a.to_degrees()));
+            SampleRow {
+                grasp: g.spec.id,
+                t_s: Fixed(k as f64 / SAMPLE_HZ),
+                f1_n,
+                f2_n,
+                f3_n,
+                f4_n,
+                a1_deg,
+                a2_deg,
+                a3_deg,
+                a4_deg,
             }
-            for a in f.distal_angle_rad {
-                let _ = write!(out, ",{:.2}", a.to_degrees());
-            }
-            out.push('\n');
-        }
-    }
-    out
+        })
+    });
+    records::render("", rows)
 }

@@ -61,16 +61,9 @@ pub enum ReportError {
         /// What plotters said.
         message: String,
     },
-    /// A line of the trade points CSV is malformed.
-    #[error("{path}:{line}: {problem}")]
-    TradeCsv {
-        /// The CSV file.
-        path: PathBuf,
-        /// 1-based line number.
-        line: usize,
-        /// What is wrong with it.
-        problem: String,
-    },
+    /// The trade points CSV is malformed (the error names the file, line and column).
+    #[error(transparent)]
+    TradeCsv(#[from] paper_experiments::data::DatasetError),
     /// Reading or writing a file failed.
     #[error("{path}: {source}")]
     Io {

@@ -1,9 +1,9 @@
 //! The speed/accuracy trade points the report draws: `docs/trade/points.csv`, written by
-//! `handstack trade`, one row per knob setting (parsed by the trade module's own reader, so
-//! the writer and both readers agree on one format).
+//! `handstack trade`, one row per knob setting (read through the trade module's schema,
+//! [`CsvRow`], so the writer and every reader agree on one format).
 
 use super::ReportError;
-use crate::trade::{CsvRow, TradeError, parse_csv};
+use crate::trade::{CsvRow, parse_csv};
 use crate::{Line, Plot};
 use std::path::{Path, PathBuf};
 
@@ -57,18 +57,7 @@ impl TradeSection {
 /// # Ok::<(), handstack::report::ReportError>(())
 /// ```
 pub fn parse(text: &str, path: &Path) -> Result<Vec<TradePoint>, ReportError> {
-    parse_csv(text).map_err(|e| match e {
-        TradeError::Csv { line, detail } => ReportError::TradeCsv {
-            path: path.to_path_buf(),
-            line,
-            problem: detail,
-        },
-        other => ReportError::TradeCsv {
-            path: path.to_path_buf(),
-            line: 0,
-            problem: other.to_string(),
-        },
-    })
+    Ok(parse_csv(path, text)?)
 }
 
 /// The tasks in first-seen order.
@@ -135,7 +124,7 @@ mod tests {
             (
                 format!("{HEADER}\nforce,osr,256,fast,80,%,true\n"),
                 2,
-                "not a number",
+                "column `cost_us`: `fast`",
             ),
             (format!("{HEADER}\nforce,osr,256,1.0,80,%\n"), 2, "6 fields"),
             (
@@ -143,15 +132,19 @@ mod tests {
                 3,
                 "pareto",
             ),
-            ("task,knob,setting\n".to_owned(), 1, "header"),
-            (String::new(), 1, "header"),
+            (
+                "task,knob,setting\n".to_owned(),
+                1,
+                "missing column `cost_us`",
+            ),
+            (String::new(), 1, "missing column `task`"),
         ];
         for (csv, line, word) in cases {
             match parse(&csv, Path::new("p.csv")) {
-                Err(ReportError::TradeCsv {
-                    line: l, problem, ..
-                }) => {
-                    assert_eq!(l, line, "{csv:?}");
+                Err(ReportError::TradeCsv(e)) => {
+                    assert_eq!(e.line, Some(line), "{csv:?}");
+                    let problem = e.to_string();
+                    assert!(problem.starts_with(&format!("p.csv:{line}: ")), "{problem}");
                     assert!(problem.contains(word), "{problem} lacks {word}");
                 }
                 other => panic!("{csv:?} gave {other:?}"),

@@ -40,14 +40,13 @@ pub fn run(scene: &Scene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, Ru
             _ => None,
         })
         .collect();
+    if rules.is_empty() && !locators.contains(&Locator::Mlp) {
+        return Ok(part);
+    }
+    let mut data = fingertip::load(&cx.root)?;
+    data.retain(|t| t.osr == osr);
     if !rules.is_empty() {
         cx.progress.stage("contact: arrival-of-time", 0);
-        let dir = cx.root.join("fixtures/datasets/fingertip");
-        let data =
-            aot_eval::Dataset::load(&dir, |t| t.osr == osr).map_err(|reason| RunError::Device {
-                device: "fingertip dataset",
-                reason,
-            })?;
         let rep = aot_eval::evaluate(&data, &Geometry::simulated_pad(), DetectorConfig::DEFAULT);
         for rule in rules {
             aot_part(&rep, rule, osr, &mut part);
@@ -55,7 +54,7 @@ pub fn run(scene: &Scene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, Ru
     }
     if locators.contains(&Locator::Mlp) {
         cx.progress.stage("contact: MLP", 0);
-        let records = fingertip::load(&cx.root)?;
+        let records = data.records();
         let (_, test) = contact_eval::split(&records, osr);
         let (file, _) = exp.mlp.file_and_label(osr);
         let mlp = ContactMlp::load(&cx.root.join(contact_eval::MODEL_DIR).join(file))?;

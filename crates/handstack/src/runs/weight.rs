@@ -16,7 +16,7 @@ use crate::scene::parts::ForceModel;
 use crate::{Line, Plot};
 use hand_sim::fingertip::Fingertip;
 use hand_sim::fingertip::dataset::{weight_run, weight_run_seed};
-use paper_experiments::data::weights::{self, WeightFrame};
+use paper_experiments::data::weights::{self, WeightSeries};
 use paper_experiments::force_eval::{self, MODEL_DIR, SIM_FILE, TABLE_FILE};
 use tactile_nets::force_dnn::ForceDnn;
 
@@ -128,23 +128,15 @@ fn series(
         }
     })?;
     cx.progress.advance(1);
-    let frames: Vec<WeightFrame> = readings
-        .iter()
-        .map(|r| WeightFrame {
-            run: exp.run,
-            t_us: r.t_us as i64,
-            weight_gf: r.weight_gf as f32,
-            pressure_pa: r.pressure_pa,
-        })
-        .collect();
+    let frames = WeightSeries::from_readings(exp.run, &readings);
     let estimate = |samples: &[weights::WeightSample]| -> Result<Vec<(f32, f32)>, RunError> {
         samples
             .iter()
             .map(|s| Ok((dnn.estimate_gf(&s.rise_hpa)?, s.weight_gf)))
             .collect()
     };
-    let per_frame = estimate(&weights::frame_samples(&frames, exp.run)?)?;
-    let per_step = estimate(&weights::step_samples(&frames, exp.run)?)?;
+    let per_frame = estimate(&frames.frame_samples(exp.run)?)?;
+    let per_step = estimate(&frames.step_samples(exp.run)?)?;
     let osr = config.osr;
     for (what, pairs) in [("frames", &per_frame), ("steps", &per_step)] {
         let e = force_eval::error_values(pairs);

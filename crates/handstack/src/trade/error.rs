@@ -27,14 +27,6 @@ pub enum TradeError {
         /// The underlying error.
         detail: String,
     },
-    /// `points.csv` does not parse.
-    #[error("points.csv line {line}: {detail}")]
-    Csv {
-        /// 1-based line number.
-        line: usize,
-        /// What is wrong with it.
-        detail: String,
-    },
 }
 
 impl TradeError {

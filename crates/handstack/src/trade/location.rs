@@ -114,13 +114,12 @@ pub(crate) struct AotRun {
     /// `(rule name, osr, percent correct)`, rules in order, OSRs ascending.
     rows: Vec<(&'static str, u16, f64)>,
     report: aot_eval::Report,
-    data: aot_eval::Dataset,
+    data: fingertip::Dataset,
 }
 
 /// The AoT rules' held-out 3 × 3 accuracy per OSR (and what timing them needs).
 pub(crate) fn aot_accuracy(root: &Path) -> Result<AotRun, TradeError> {
-    let data = aot_eval::Dataset::load(&root.join("fixtures/datasets/fingertip"), |_| true)
-        .map_err(|e| TradeError::input("fingertip dataset", e))?;
+    let data = fingertip::load(root).map_err(|e| TradeError::input("fingertip dataset", e))?;
     let report = aot_eval::evaluate(&data, &Geometry::simulated_pad(), DetectorConfig::DEFAULT);
     let rows = report
         .by_osr
@@ -132,7 +131,9 @@ pub(crate) fn aot_accuracy(root: &Path) -> Result<AotRun, TradeError> {
 
 /// The committed chosen MLPs' held-out 24-area accuracy per OSR, %, with the models.
 pub fn mlp_accuracy(root: &Path) -> Result<(Vec<Trained>, Vec<fingertip::TapRecord>), TradeError> {
-    let records = fingertip::load(root).map_err(|e| TradeError::input("fingertip dataset", e))?;
+    let records = fingertip::load(root)
+        .map_err(|e| TradeError::input("fingertip dataset", e))?
+        .records();
     let models = contact_eval::load_committed(root, &records)
         .map_err(|e| TradeError::input("committed contact MLPs", e))?
         .into_iter()
@@ -152,10 +153,7 @@ pub struct CommittedCnn {
 }
 
 /// The committed CNNs, re-evaluated on their held-out split.
-pub fn cnn_accuracy(
-    root: &Path,
-    taps: &[imu_pad::ImuTap],
-) -> Result<Vec<CommittedCnn>, TradeError> {
+pub fn cnn_accuracy(root: &Path, taps: &imu_pad::Dataset) -> Result<Vec<CommittedCnn>, TradeError> {
     let mut out = Vec::new();
     for variant in Variant::ALL {
         let (acc, _) = cnn_eval::evaluate_committed(root, taps, variant)
@@ -220,13 +218,9 @@ pub fn points(root: &Path) -> Result<Vec<Point>, TradeError> {
             continue;
         };
         let held_out: Vec<_> = data
-            .taps
             .iter()
-            .filter(|t| t.osr == osr && t.repeat != aot_eval::TRAIN_REPEAT)
-            .map(|t| {
-                let frames = data.series.get(&t.id).map(Vec::as_slice).unwrap_or(&[]);
-                (t, aot_eval::tap_event(t, frames, DetectorConfig::DEFAULT))
-            })
+            .filter(|(t, _)| t.osr == osr && t.repeat != aot_eval::TRAIN_REPEAT)
+            .map(|(t, s)| (t, aot_eval::tap_event(t, s, DetectorConfig::DEFAULT)))
             .collect();
         let fit = rep.fits.get(&osr);
         let mut k = 0;
@@ -289,10 +283,13 @@ pub fn points(root: &Path) -> Result<Vec<Point>, TradeError> {
         model,
     } in &cnn_accuracy(root, &taps)?
     {
+        let windows: Vec<_> = (0..taps.len())
+            .filter_map(|i| taps.window_values(i))
+            .collect();
         let mut k = 0;
         let cost = median_us(CALLS, || {
-            k = (k + 1) % taps.len().max(1);
-            taps.get(k).map(|t| model.predict(&t.window).ok())
+            k = (k + 1) % windows.len().max(1);
+            windows.get(k).map(|w| model.predict(w).ok())
         });
         for (task, knob, setting) in [
             (

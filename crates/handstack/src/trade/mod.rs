@@ -19,7 +19,7 @@ pub mod timing;
 
 pub use error::TradeError;
 pub use pareto::{Better, pareto_front};
-pub use point::{CSV_HEADER, CostKind, CsvRow, Point, Task, mark_fronts, parse_csv, to_csv};
+pub use point::{CostKind, CsvRow, Point, Task, mark_fronts, parse_csv, to_csv};
 pub use report::markdown;
 
 use std::path::Path;

@@ -3,6 +3,9 @@
 
 use super::error::TradeError;
 use super::pareto::{Better, pareto_front};
+use hand_sim::records::{self, DatasetError, Schema};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
 
 /// What a cost figure is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -82,30 +85,27 @@ pub fn mark_fronts(tasks: &[Task], points: &mut [Point]) -> Result<(), TradeErro
     Ok(())
 }
 
-/// The CSV header.
-pub const CSV_HEADER: &str = "task,knob,setting,cost_us,accuracy,accuracy_unit,pareto";
-
 /// `points.csv`: one row per point (fields never contain commas: settings use `;`).
 pub fn to_csv(tasks: &[Task], points: &[Point]) -> String {
-    let mut s = format!("{CSV_HEADER}\n");
-    for p in points {
-        let unit = tasks.iter().find(|t| t.id == p.task).map_or("", |t| t.unit);
-        s += &format!(
-            "{},{},{},{:.4},{:.6},{},{}\n",
-            p.task,
-            p.knob.replace(',', ";"),
-            p.setting.replace(',', ";"),
-            p.cost_us,
-            p.accuracy,
-            unit,
-            p.pareto
-        );
-    }
-    s
+    let rows = points.iter().map(|p| CsvRow {
+        task: p.task.to_owned(),
+        knob: p.knob.replace(',', ";"),
+        setting: p.setting.replace(',', ";"),
+        cost_us: p.cost_us,
+        accuracy: p.accuracy,
+        unit: tasks
+            .iter()
+            .find(|t| t.id == p.task)
+            .map_or("", |t| t.unit)
+            .to_owned(),
+        pareto: p.pareto,
+    });
+    records::render("", rows)
 }
 
-/// One parsed row of `points.csv`: (task, knob, setting, cost µs, accuracy, unit, pareto).
-#[derive(Debug, Clone, PartialEq)]
+/// One row of `points.csv` (its schema: columns
+/// `task,knob,setting,cost_us,accuracy,accuracy_unit,pareto`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CsvRow {
     /// Task id.
     pub task: String,
@@ -113,54 +113,31 @@ pub struct CsvRow {
     pub knob: String,
     /// Setting.
     pub setting: String,
-    /// Cost, µs.
+    /// Cost, µs (written with 4 decimals).
+    #[serde(serialize_with = "records::fixed::<_, 4, _>")]
     pub cost_us: f64,
-    /// Quality figure.
+    /// Quality figure (written with 6 decimals).
+    #[serde(serialize_with = "records::fixed::<_, 6, _>")]
     pub accuracy: f64,
     /// Its unit.
+    #[serde(rename = "accuracy_unit")]
     pub unit: String,
     /// On the Pareto front.
     pub pareto: bool,
 }
 
-/// Parses `points.csv` (what the drift test and the report read back).
+impl Schema for CsvRow {}
+
+/// Parses `points.csv` text (what the drift test and the report read back); `file` names it in
+/// errors.
 ///
-/// Errors: [`TradeError::Csv`] with the line number for a wrong header, field count or number.
-pub fn parse_csv(text: &str) -> Result<Vec<CsvRow>, TradeError> {
-    let mut lines = text.lines();
-    if lines.next() != Some(CSV_HEADER) {
-        return Err(TradeError::Csv {
-            line: 1,
-            detail: format!("expected the header `{CSV_HEADER}`"),
-        });
-    }
-    lines
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty())
-        .map(|(i, l)| {
-            let line = i + 2;
-            let bad = |detail: String| TradeError::Csv { line, detail };
-            let f: Vec<&str> = l.split(',').collect();
-            let [task, knob, setting, cost, acc, unit, pareto] = f[..] else {
-                return Err(bad(format!("{} fields, expected 7", f.len())));
-            };
-            let num = |s: &str| {
-                s.parse::<f64>()
-                    .map_err(|e| bad(format!("`{s}` is not a number: {e}")))
-            };
-            Ok(CsvRow {
-                task: task.into(),
-                knob: knob.into(),
-                setting: setting.into(),
-                cost_us: num(cost)?,
-                accuracy: num(acc)?,
-                unit: unit.into(),
-                pareto: pareto
-                    .parse()
-                    .map_err(|_| bad(format!("pareto `{pareto}` is not true / false")))?,
-            })
-        })
-        .collect()
+/// Errors: [`DatasetError`] naming the line and column of a wrong header, field count or
+/// value.
+pub fn parse_csv(file: &Path, text: &str) -> Result<Vec<CsvRow>, DatasetError> {
+    Ok(records::parse(file, text)?
+        .into_iter()
+        .map(|r| r.record)
+        .collect())
 }
 
 #[cfg(test)]
@@ -204,7 +181,11 @@ mod tests {
             pts.iter().map(|p| p.pareto).collect::<Vec<_>>(),
             [true, true, false, true]
         );
-        let rows = parse_csv(&to_csv(&tasks, &pts)).unwrap();
+        let csv = to_csv(&tasks, &pts);
+        let first = "task,knob,setting,cost_us,accuracy,accuracy_unit,pareto\n\
+                     a,k,a; b,1.0000,50.000000,%,true\n";
+        assert!(csv.starts_with(first), "{csv}");
+        let rows = parse_csv("points.csv".as_ref(), &csv).unwrap();
         assert_eq!(rows.len(), 4);
         assert_eq!(rows[3].setting, "a; b");
         assert_eq!(
@@ -222,14 +203,11 @@ mod tests {
             Err(TradeError::NotFinite { index: 1 })
         );
         assert!(mark_fronts(&tasks, &mut [point("zz", 1.0, 1.0)]).is_err());
-        let bad = format!("{CSV_HEADER}\na,k,s,1.0,x,%,true\n");
-        assert!(matches!(
-            parse_csv(&bad),
-            Err(TradeError::Csv { line: 2, .. })
-        ));
-        assert!(matches!(
-            parse_csv("nope"),
-            Err(TradeError::Csv { line: 1, .. })
-        ));
+        let header = "task,knob,setting,cost_us,accuracy,accuracy_unit,pareto";
+        let bad = format!("{header}\na,k,s,1.0,x,%,true\n");
+        let e = parse_csv("p.csv".as_ref(), &bad).unwrap_err();
+        assert_eq!((e.line, e.column.as_deref()), (Some(2), Some("accuracy")));
+        let e = parse_csv("p.csv".as_ref(), "nope").unwrap_err();
+        assert_eq!((e.line, e.column.as_deref()), (Some(1), Some("task")));
     }
 }

@@ -8,6 +8,7 @@
 use aot_locate::{DetectorConfig, Geometry};
 use eval::{Report, Rule};
 use paper_experiments::aot_eval as eval;
+use paper_experiments::data::fingertip;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -17,7 +18,7 @@ const PLOT: &str = "contact-location/aot-accuracy-vs-osr.svg";
 
 fn main() -> Result<(), String> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let data = eval::Dataset::load(&root.join("fixtures/datasets/fingertip"), |_| true)?;
+    let data = fingertip::load(&root).map_err(|e| e.to_string())?;
     let rep = eval::evaluate(&data, &Geometry::simulated_pad(), DetectorConfig::DEFAULT);
     let section = section(&rep).map_err(|e| e.to_string())?;
     print!("{section}");

@@ -1,25 +1,31 @@
 //! The simulated barometric fingertip's tap dataset (`fixtures/datasets/fingertip/`, written by
 //! `hand-sim`): `taps.csv` (one row per tap: shape, cell mask, eq. 4 label, force, held
-//! pressures) and `series.csv` (the raw driver readings from 30 ms before to 90 ms after onset).
+//! pressures; schema [`TapRow`]) and `series.csv` (the raw driver readings from 30 ms before to
+//! 90 ms after onset; schema [`SeriesRow`]), read into one [`Dataset`]: the taps and each
+//! tap's series as arrays.
 //!
 //! From the series this module takes each sensor's resting baseline (mean and spread of the
 //! frames before onset) and its arrival time: the first moment the reading rises more than
 //! [`ARRIVAL_SIGMAS`] spreads (at least [`ARRIVAL_MIN_PA`]) above the baseline, linearly
 //! interpolated between the two frames around the crossing.
 
+use hand_sim::fingertip::dataset::{SeriesRow, TapRow};
+use hand_sim::records::{self, DatasetError, Row};
+use ndarray::{Array1, Array2, ArrayView1, Axis};
 use std::path::{Path, PathBuf};
-use tactile_nets::NetError;
 pub use tactile_nets::contact_mlp::{ContactExample, TapReading};
 
 /// Rise above baseline, in baseline standard deviations, that counts as arrival.
 pub const ARRIVAL_SIGMAS: f32 = 5.0;
 /// Smallest rise that counts as arrival, Pa (the driver reports whole pascals).
 pub const ARRIVAL_MIN_PA: f32 = 4.0;
+/// The dataset's directory below the workspace root.
+pub const DATASET_DIR: &str = "fixtures/datasets/fingertip";
 
 /// One tap of `taps.csv`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tap {
-    /// Tap id (row of `series.csv`).
+    /// Tap id: its index in the dataset, and its rows' `tap` in `series.csv`.
     pub id: u32,
     /// MS5611 oversampling ratio the pad was read at.
     pub osr: u16,
@@ -31,14 +37,87 @@ pub struct Tap {
     pub mask: u32,
     /// Eq. 4 average-area label.
     pub average_area: f32,
-    /// 3 × 3 region (0–8) of the patch centroid.
+    /// 3 × 3 region (0–8, row-major) of the patch centroid: the Arrival-of-Time label.
     pub aot_region: u8,
     /// Contact force, kgf.
-    pub force_kgf: f32,
+    pub force_kgf: u32,
     /// Repeat index (0 or 1).
     pub repeat: u32,
     /// Held pressure of sensors 1–3, Pa.
     pub held_pa: [f32; 3],
+}
+
+/// A tap's frames from 30 ms before to 90 ms after contact onset, in time order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TapSeries {
+    /// Each frame's time relative to onset, µs (strictly increasing).
+    pub t_us: Array1<i64>,
+    /// Frames × 3: sensors 1–3 as the MS5611 driver decoded them, Pa.
+    pub pressure_pa: Array2<f32>,
+}
+
+impl TapSeries {
+    /// Each frame as (time from onset µs, the three pressures Pa), in time order.
+    pub fn frames(&self) -> impl Iterator<Item = (i64, ArrayView1<'_, f32>)> {
+        self.t_us
+            .iter()
+            .copied()
+            .zip(self.pressure_pa.axis_iter(Axis(0)))
+    }
+}
+
+/// The tap dataset: every tap with its series, which has a frame before onset.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dataset {
+    taps: Vec<Tap>,
+    series: Vec<TapSeries>,
+}
+
+impl Dataset {
+    /// The taps, by id as read (`taps()[i].id == i`; [`Dataset::retain`] keeps the ids).
+    pub fn taps(&self) -> &[Tap] {
+        &self.taps
+    }
+
+    /// The series, one per tap: `series()[i]` is the series of `taps()[i]`.
+    pub fn series(&self) -> &[TapSeries] {
+        &self.series
+    }
+
+    /// Each tap with its series.
+    pub fn iter(&self) -> impl Iterator<Item = (&Tap, &TapSeries)> {
+        self.taps.iter().zip(&self.series)
+    }
+
+    /// Keeps the taps `keep` accepts (with their series).
+    pub fn retain(&mut self, keep: impl Fn(&Tap) -> bool) {
+        let (taps, series) = std::mem::take(&mut self.taps)
+            .into_iter()
+            .zip(std::mem::take(&mut self.series))
+            .filter(|(t, _)| keep(t))
+            .unzip();
+        self.taps = taps;
+        self.series = series;
+    }
+
+    /// Every tap with its reading: the baseline before onset, the held pressures and the
+    /// arrival times (the contact MLP's input).
+    pub fn records(&self) -> Vec<TapRecord> {
+        // Every series of a dataset has a frame before onset, so every tap has a baseline.
+        self.iter()
+            .filter_map(|(tap, s)| {
+                let (baseline_pa, spread_pa) = baseline(s)?;
+                Some(TapRecord {
+                    tap: tap.clone(),
+                    reading: TapReading {
+                        baseline_pa,
+                        held_pa: tap.held_pa,
+                        arrival_ms: arrival_ms(s, baseline_pa, spread_pa),
+                    },
+                })
+            })
+            .collect()
+    }
 }
 
 /// A tap with its reading.
@@ -60,161 +139,122 @@ impl TapRecord {
     }
 }
 
-/// One frame of `series.csv`: time from onset, µs, and the three pressures, Pa.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Frame {
-    /// Time relative to contact onset, µs.
-    pub t_us: i64,
-    /// Sensors 1–3, Pa.
-    pub pressure_pa: [f32; 3],
-}
-
 /// `taps.csv` and `series.csv` below the workspace root `root`.
 pub fn dataset_paths(root: &Path) -> (PathBuf, PathBuf) {
-    let dir = root.join("fixtures/datasets/fingertip");
+    let dir = root.join(DATASET_DIR);
     (dir.join("taps.csv"), dir.join("series.csv"))
 }
 
-/// Reads and joins the committed dataset below the workspace root `root`.
-pub fn load(root: &Path) -> Result<Vec<TapRecord>, NetError> {
+/// Reads the committed dataset below the workspace root `root`.
+pub fn load(root: &Path) -> Result<Dataset, DatasetError> {
     let (taps, series) = dataset_paths(root);
-    parse(
-        &std::fs::read_to_string(taps)?,
-        &std::fs::read_to_string(series)?,
+    join(
+        &taps,
+        records::read(&taps)?,
+        &series,
+        records::read(&series)?,
     )
 }
 
-/// Parses `taps.csv` and `series.csv` text and joins them by tap id.
-pub fn parse(taps_csv: &str, series_csv: &str) -> Result<Vec<TapRecord>, NetError> {
-    let taps = parse_taps(taps_csv)?;
-    let series = parse_series(series_csv)?;
-    taps.into_iter()
-        .map(|tap| {
-            let frames = series
-                .get(tap.id as usize)
-                .filter(|f| !f.is_empty())
-                .ok_or_else(|| NetError::Data {
-                    line: 0,
-                    reason: format!("tap {} has no series", tap.id),
-                })?;
-            let (baseline_pa, spread_pa) = baseline(frames).ok_or_else(|| NetError::Data {
-                line: 0,
-                reason: format!("tap {} has no frame before onset", tap.id),
-            })?;
-            let reading = TapReading {
-                baseline_pa,
-                held_pa: tap.held_pa,
-                arrival_ms: arrival_ms(frames, baseline_pa, spread_pa),
-            };
-            Ok(TapRecord { tap, reading })
-        })
-        .collect()
+/// Parses `taps.csv` and `series.csv` text (named so in errors) and joins them by tap id.
+pub fn parse(taps_csv: &str, series_csv: &str) -> Result<Dataset, DatasetError> {
+    let (taps, series) = (Path::new("taps.csv"), Path::new("series.csv"));
+    join(
+        taps,
+        records::parse(taps, taps_csv)?,
+        series,
+        records::parse(series, series_csv)?,
+    )
 }
 
-/// Data lines of a CSV text with their 1-based line numbers (comments and header skipped).
-pub(crate) fn data_lines<'a>(
-    text: &'a str,
-    header: &'a str,
-) -> impl Iterator<Item = (usize, &'a str)> {
-    text.lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(move |(_, l)| !l.is_empty() && !l.starts_with('#') && !l.starts_with(header))
-}
-
-/// Field `i` of a split line parsed as `T`, or a [`NetError::Data`] naming it.
-pub(crate) fn field<T: std::str::FromStr>(
-    fields: &[&str],
-    i: usize,
-    name: &str,
-    line: usize,
-) -> Result<T, NetError> {
-    fields
-        .get(i)
-        .and_then(|s| s.parse().ok())
-        .ok_or_else(|| NetError::Data {
-            line,
-            reason: format!("bad or missing `{name}`"),
-        })
-}
-
-/// Parses `taps.csv`.
-pub fn parse_taps(text: &str) -> Result<Vec<Tap>, NetError> {
-    data_lines(text, "tap,")
-        .map(|(line, l)| {
-            let f: Vec<&str> = l.split(',').collect();
-            if f.len() != 12 {
-                return Err(NetError::Data {
-                    line,
-                    reason: format!("{} fields, expected 12", f.len()),
-                });
-            }
-            Ok(Tap {
-                id: field(&f, 0, "tap", line)?,
-                osr: field(&f, 1, "osr", line)?,
-                shape: f[2].to_owned(),
-                size: field(&f, 3, "size", line)?,
-                mask: field(&f, 4, "mask", line)?,
-                average_area: field(&f, 5, "average_area", line)?,
-                aot_region: field(&f, 6, "aot_region", line)?,
-                force_kgf: field(&f, 7, "force_kgf", line)?,
-                repeat: field(&f, 8, "repeat", line)?,
-                held_pa: [
-                    field(&f, 9, "held1_pa", line)?,
-                    field(&f, 10, "held2_pa", line)?,
-                    field(&f, 11, "held3_pa", line)?,
-                ],
-            })
-        })
-        .collect()
-}
-
-/// Parses `series.csv` into frames per tap id (index = id).
-pub fn parse_series(text: &str) -> Result<Vec<Vec<Frame>>, NetError> {
-    let mut out: Vec<Vec<Frame>> = Vec::new();
-    for (line, l) in data_lines(text, "tap,") {
-        let f: Vec<&str> = l.split(',').collect();
-        if f.len() != 5 {
-            return Err(NetError::Data {
+/// The dataset of the rows of both files. Taps are numbered 0, 1, 2… in file order; every
+/// series row names one of them, a tap's frames run forward in time and every tap has a
+/// frame before onset (its baseline).
+fn join(
+    taps_file: &Path,
+    tap_rows: Vec<Row<TapRow>>,
+    series_file: &Path,
+    series_rows: Vec<Row<SeriesRow>>,
+) -> Result<Dataset, DatasetError> {
+    let mut taps = Vec::with_capacity(tap_rows.len());
+    for Row { line, record: r } in tap_rows {
+        if r.tap as usize != taps.len() {
+            return Err(DatasetError::value(
+                taps_file,
                 line,
-                reason: format!("{} fields, expected 5", f.len()),
-            });
+                "tap",
+                format!("tap {} where tap {} belongs", r.tap, taps.len()),
+            ));
         }
-        let id: usize = field(&f, 0, "tap", line)?;
-        if id >= out.len() {
-            out.resize(id + 1, Vec::new());
-        }
-        out[id].push(Frame {
-            t_us: field(&f, 1, "t_us", line)?,
-            pressure_pa: [
-                field(&f, 2, "p1_pa", line)?,
-                field(&f, 3, "p2_pa", line)?,
-                field(&f, 4, "p3_pa", line)?,
-            ],
+        taps.push(Tap {
+            id: r.tap,
+            osr: r.osr,
+            shape: r.shape,
+            size: r.size,
+            mask: r.mask,
+            average_area: r.average_area.0,
+            aot_region: r.aot_region,
+            force_kgf: r.force_kgf,
+            repeat: r.repeat,
+            held_pa: [r.held1_pa.0, r.held2_pa.0, r.held3_pa.0].map(|p| p as f32),
         });
     }
-    Ok(out)
+    let mut frames: Vec<(Vec<i64>, Vec<f32>)> = vec![(Vec::new(), Vec::new()); taps.len()];
+    for Row { line, record: r } in series_rows {
+        let (t_us, p) = frames.get_mut(r.tap as usize).ok_or_else(|| {
+            DatasetError::value(series_file, line, "tap", format!("no tap {}", r.tap))
+        })?;
+        if t_us.last().is_some_and(|&t| t >= r.t_us) {
+            return Err(DatasetError::value(
+                series_file,
+                line,
+                "t_us",
+                format!("tap {} goes back in time to {} µs", r.tap, r.t_us),
+            ));
+        }
+        t_us.push(r.t_us);
+        p.extend([r.p1_pa.0, r.p2_pa.0, r.p3_pa.0]);
+    }
+    let series = frames
+        .into_iter()
+        .enumerate()
+        .map(|(id, (t_us, p))| {
+            if t_us.first().is_none_or(|&t| t >= 0) {
+                return Err(DatasetError::rule(
+                    series_file,
+                    None,
+                    format!("tap {id} has no frame before onset"),
+                ));
+            }
+            let pressure_pa = Array2::from_shape_vec((t_us.len(), 3), p)
+                .map_err(|e| DatasetError::rule(series_file, None, e.to_string()))?;
+            Ok(TapSeries {
+                t_us: Array1::from(t_us),
+                pressure_pa,
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(Dataset { taps, series })
 }
 
 /// Mean and standard deviation of each sensor over the frames before onset (`t_us < 0`);
 /// `None` when there is no such frame.
-pub fn baseline(frames: &[Frame]) -> Option<([f32; 3], [f32; 3])> {
-    let before: Vec<&Frame> = frames.iter().filter(|f| f.t_us < 0).collect();
+pub fn baseline(series: &TapSeries) -> Option<([f32; 3], [f32; 3])> {
+    let before: Vec<usize> = (0..series.t_us.len())
+        .filter(|&i| series.t_us[i] < 0)
+        .collect();
     if before.is_empty() {
         return None;
     }
-    let n = before.len() as f64;
     let mut mean = [0.0f32; 3];
     let mut spread = [0.0f32; 3];
-    for k in 0..3 {
-        let m = before
+    let rows = series.pressure_pa.select(Axis(0), &before);
+    let n = before.len() as f64;
+    for (k, column) in rows.axis_iter(Axis(1)).enumerate() {
+        let m = column.iter().map(|&p| f64::from(p)).sum::<f64>() / n;
+        let var = column
             .iter()
-            .map(|f| f64::from(f.pressure_pa[k]))
-            .sum::<f64>()
-            / n;
-        let var = before
-            .iter()
-            .map(|f| (f64::from(f.pressure_pa[k]) - m).powi(2))
+            .map(|&p| (f64::from(p) - m).powi(2))
             .sum::<f64>()
             / n;
         mean[k] = m as f32;
@@ -225,28 +265,28 @@ pub fn baseline(frames: &[Frame]) -> Option<([f32; 3], [f32; 3])> {
 
 /// Each sensor's arrival time after onset, ms (see the module docs); `None` if it never rose.
 pub fn arrival_ms(
-    frames: &[Frame],
+    series: &TapSeries,
     baseline_pa: [f32; 3],
     spread_pa: [f32; 3],
 ) -> [Option<f32>; 3] {
     let mut out = [None; 3];
     for (k, slot) in out.iter_mut().enumerate() {
         let threshold = (ARRIVAL_SIGMAS * spread_pa[k]).max(ARRIVAL_MIN_PA);
-        let rise = |f: &Frame| f.pressure_pa[k] - baseline_pa[k];
-        let mut prev: Option<&Frame> = None;
-        for f in frames.iter().filter(|f| f.t_us >= 0) {
-            if rise(f) > threshold {
-                let t = match prev {
-                    Some(p) if rise(f) > rise(p) => {
-                        let frac = ((threshold - rise(p)) / (rise(f) - rise(p))).clamp(0.0, 1.0);
-                        p.t_us as f32 + frac * (f.t_us - p.t_us) as f32
+        let rise = |p: &ArrayView1<'_, f32>| p[k] - baseline_pa[k];
+        let mut prev: Option<(i64, ArrayView1<'_, f32>)> = None;
+        for (t_us, p) in series.frames().filter(|(t, _)| *t >= 0) {
+            if rise(&p) > threshold {
+                let t = match &prev {
+                    Some((pt, pp)) if rise(&p) > rise(pp) => {
+                        let frac = ((threshold - rise(pp)) / (rise(&p) - rise(pp))).clamp(0.0, 1.0);
+                        *pt as f32 + frac * (t_us - pt) as f32
                     }
-                    _ => f.t_us as f32,
+                    _ => t_us as f32,
                 };
                 *slot = Some(t / 1000.0);
                 break;
             }
-            prev = Some(f);
+            prev = Some((t_us, p));
         }
     }
     out
@@ -255,6 +295,7 @@ pub fn arrival_ms(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use hand_sim::records::ErrorKind;
 
     const TAPS: &str = "# comment\n\
         tap,osr,shape,size,mask,average_area,aot_region,force_kgf,repeat,held1_pa,held2_pa,held3_pa\n\
@@ -264,8 +305,10 @@ mod tests {
         0,1000,111,200,300\n0,2000,131,200,400\n";
 
     #[test]
-    fn parses_and_finds_arrivals() -> Result<(), NetError> {
-        let r = parse(TAPS, SERIES)?;
+    fn parses_and_finds_arrivals() -> Result<(), DatasetError> {
+        let data = parse(TAPS, SERIES)?;
+        assert_eq!(data.series()[0].pressure_pa.dim(), (5, 3));
+        let r = data.records();
         assert_eq!(r.len(), 1);
         assert_eq!(r[0].tap.mask, 1);
         assert_eq!(r[0].tap.held_pa[2], 103412.7);
@@ -278,19 +321,49 @@ mod tests {
         Ok(())
     }
 
+    fn error(taps: &str, series: &str) -> DatasetError {
+        match parse(taps, series) {
+            Err(e) => e,
+            Ok(d) => panic!("parsed {} taps of a bad dataset", d.taps().len()),
+        }
+    }
+
     #[test]
-    fn bad_lines_are_typed_errors() {
-        assert!(matches!(
-            parse_taps("0,256,1\n"),
-            Err(NetError::Data { line: 1, .. })
-        ));
-        assert!(matches!(
-            parse_series("x,1,2,3,4\n"),
-            Err(NetError::Data { line: 1, .. })
-        ));
-        assert!(matches!(
-            parse(TAPS, "tap,t_us\n"),
-            Err(NetError::Data { .. })
-        ));
+    fn bad_files_are_errors_naming_file_line_and_column() {
+        // A bad row, a missing column, NaN: the file, the line and the column.
+        let e = error(&TAPS.replace(",1,1,1.1000,", ",1,x,1.1000,"), SERIES);
+        assert_eq!(
+            (e.file.as_path(), e.line, e.column.as_deref()),
+            (Path::new("taps.csv"), Some(3), Some("mask"))
+        );
+        let e = error(TAPS, "tap,t_us,p1_pa,p2_pa\n0,-1,1,2\n");
+        assert!(matches!(e.kind, ErrorKind::MissingColumn));
+        assert_eq!(
+            (e.file.as_path(), e.line, e.column.as_deref()),
+            (Path::new("series.csv"), Some(1), Some("p3_pa"))
+        );
+        let e = error(TAPS, &SERIES.replace("0,1000,111,", "0,1000,NaN,"));
+        assert!(matches!(e.kind, ErrorKind::NotFinite { .. }));
+        assert_eq!((e.line, e.column.as_deref()), (Some(5), Some("p1_pa")));
+        // The join: unknown taps, time running back, no baseline, ids out of order.
+        let e = error(TAPS, &SERIES.replace("0,2000,", "1,2000,"));
+        assert_eq!((e.line, e.column.as_deref()), (Some(6), Some("tap")));
+        let e = error(TAPS, &SERIES.replace("0,2000,", "0,500,"));
+        assert_eq!((e.line, e.column.as_deref()), (Some(6), Some("t_us")));
+        let e = error(TAPS, "tap,t_us,p1_pa,p2_pa,p3_pa\n0,0,1,2,3\n");
+        assert!(matches!(e.kind, ErrorKind::Rule(_)));
+        let e = error(&TAPS.replace("\n0,256,", "\n1,256,"), SERIES);
+        assert_eq!((e.line, e.column.as_deref()), (Some(3), Some("tap")));
+    }
+
+    #[test]
+    fn retain_keeps_taps_and_series_together() -> Result<(), DatasetError> {
+        let two = format!("{TAPS}1,512,1,1,2,1.2000,0,7,1,1.0,2.0,3.0\n");
+        let mut data = parse(&two, &format!("{SERIES}1,-5,7,8,9\n"))?;
+        data.retain(|t| t.osr == 512);
+        assert_eq!(data.taps().len(), 1);
+        assert_eq!(data.taps()[0].id, 1);
+        assert_eq!(data.series()[0].t_us.to_vec(), [-5]);
+        Ok(())
     }
 }

@@ -1,50 +1,20 @@
 //! The simulated underactuated hand's softness grasps (`fixtures/datasets/underactuated/`,
 //! written by `hand-sim`, protocol of seed 001 §3.1, §3.3, §4): `grasps.csv` (one row per
-//! grasp: set, object, kind, label) and `train.csv` / `test_regular.csv` / `test_irregular.csv`
-//! (the series, 10 Hz from first contact to 14 s after it: 4 FSR forces in N, then 4 distal
-//! joint angles in degrees).
+//! grasp: set, object, kind, label; schema [`GraspRow`]) and `train.csv` / `test_regular.csv` /
+//! `test_irregular.csv` (the series, 10 Hz from first contact to 14 s after it: 4 FSR forces in
+//! N, then 4 distal joint angles in degrees; schema [`SampleRow`]), read into one [`Grasp`]
+//! per grasp with its series as a samples × 8 array.
 
-use crate::data::fingertip::{data_lines, field};
+use hand_sim::records::{self, DatasetError, Row};
+use hand_sim::underactuated::dataset::{GraspRow, SampleRow};
 use hand_traits::Softness;
-use std::path::Path;
-use tactile_nets::error::NetError;
+use ndarray::{Array2, ArrayView2};
+use std::path::{Path, PathBuf};
 
+pub use hand_sim::underactuated::dataset::Set as GraspSet;
 pub use tactile_nets::softness::{N_VARIABLES, VARIABLE_NAMES};
 /// Directory of the dataset below the workspace root.
 pub const DATASET_DIR: &str = "fixtures/datasets/underactuated";
-
-/// Which part of the protocol a grasp belongs to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum GraspSet {
-    /// 27 model objects × poses, 18 household objects, 6 empty grasps.
-    Train,
-    /// 24 regular-shape objects.
-    TestRegular,
-    /// 30 irregular household objects.
-    TestIrregular,
-}
-
-impl GraspSet {
-    /// All sets, in file order.
-    pub const ALL: [GraspSet; 3] = [
-        GraspSet::Train,
-        GraspSet::TestRegular,
-        GraspSet::TestIrregular,
-    ];
-
-    /// The `set` column's value, which is also the series file's stem.
-    pub fn name(self) -> &'static str {
-        match self {
-            GraspSet::Train => "train",
-            GraspSet::TestRegular => "test_regular",
-            GraspSet::TestIrregular => "test_irregular",
-        }
-    }
-
-    fn from_name(s: &str) -> Option<GraspSet> {
-        GraspSet::ALL.into_iter().find(|g| g.name() == s)
-    }
-}
 
 /// One grasp with its series.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,127 +30,185 @@ pub struct Grasp {
     /// The object's overall softness; `None` for the empty grasps (the paper states no label).
     pub label: Option<Softness>,
     /// The series: one sample of [`N_VARIABLES`] readings per 0.1 s, from first contact.
-    pub series: Vec<[f32; N_VARIABLES]>,
+    pub series: GraspSeries,
 }
 
-/// The label column's value as a class (`none` → `None`).
-pub fn parse_label(s: &str) -> Result<Option<Softness>, String> {
-    match s {
-        "soft" => Ok(Some(Softness::Soft)),
-        "moderate" => Ok(Some(Softness::Moderate)),
-        "hard" => Ok(Some(Softness::Hard)),
-        "none" => Ok(None),
-        other => Err(format!("unknown label `{other}`")),
+/// A grasp's series: samples × [`N_VARIABLES`] (4 FSR forces N, 4 distal angles degrees), in
+/// time order, stored row-major.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GraspSeries(Array2<f32>);
+
+impl GraspSeries {
+    /// The series of `samples`, in time order.
+    pub fn new(samples: Vec<[f32; N_VARIABLES]>) -> GraspSeries {
+        GraspSeries(Array2::from(samples))
+    }
+
+    /// The samples × [`N_VARIABLES`] array.
+    pub fn view(&self) -> ArrayView2<'_, f32> {
+        self.0.view()
+    }
+
+    /// Samples in the series.
+    pub fn len(&self) -> usize {
+        self.0.nrows()
+    }
+
+    /// Whether it has no sample.
+    pub fn is_empty(&self) -> bool {
+        self.0.nrows() == 0
+    }
+
+    /// The readings sample after sample (row-major), as the softness net reads a series.
+    pub fn as_flattened(&self) -> &[f32] {
+        // Built from rows in order, the array is always in standard (row-major) layout.
+        self.0.as_slice().unwrap_or_default()
+    }
+
+    /// The samples as rows, for the feature and training functions that take them.
+    pub fn samples(&self) -> Vec<[f32; N_VARIABLES]> {
+        self.as_flattened()
+            .chunks_exact(N_VARIABLES)
+            .map(|c| core::array::from_fn(|k| c[k]))
+            .collect()
     }
 }
 
 /// Reads every grasp of the committed dataset below the workspace root `root`.
-pub fn load(root: &Path) -> Result<Vec<Grasp>, NetError> {
+pub fn load(root: &Path) -> Result<Vec<Grasp>, DatasetError> {
     let dir = root.join(DATASET_DIR);
-    let grasps = std::fs::read_to_string(dir.join("grasps.csv"))?;
+    let grasps = dir.join("grasps.csv");
     let mut series = Vec::new();
     for set in GraspSet::ALL {
-        series.push(std::fs::read_to_string(
-            dir.join(format!("{}.csv", set.name())),
-        )?);
+        let path = dir.join(format!("{}.csv", set.name()));
+        let rows = records::read(&path)?;
+        series.push((path, Some(set), rows));
     }
-    parse(
-        &grasps,
-        &series.iter().map(String::as_str).collect::<Vec<_>>(),
-    )
+    join(&grasps, records::read(&grasps)?, series)
 }
 
-/// Parses `grasps.csv` and the series files' texts, joined by grasp id. Every grasp must have
-/// exactly its `samples` rows.
-pub fn parse(grasps_csv: &str, series_csvs: &[&str]) -> Result<Vec<Grasp>, NetError> {
-    let mut grasps = Vec::new();
-    let mut expected = Vec::new();
-    for (line, l) in data_lines(grasps_csv, "grasp,") {
-        let f: Vec<&str> = l.split(',').collect();
-        if f.len() != 10 {
-            return Err(NetError::Data {
+/// Parses `grasps.csv` and the series files' texts (named `grasps.csv`, `series0.csv`…),
+/// joined by grasp id.
+pub fn parse(grasps_csv: &str, series_csvs: &[&str]) -> Result<Vec<Grasp>, DatasetError> {
+    let grasps = Path::new("grasps.csv");
+    let mut series = Vec::new();
+    for (i, text) in series_csvs.iter().enumerate() {
+        let path = PathBuf::from(format!("series{i}.csv"));
+        let rows = records::parse(&path, text)?;
+        series.push((path, None, rows));
+    }
+    join(grasps, records::parse(grasps, grasps_csv)?, series)
+}
+
+/// A series file: its path, the set it holds (if known) and its rows.
+type SeriesFile = (PathBuf, Option<GraspSet>, Vec<Row<SampleRow>>);
+
+/// The grasps of `grasps.csv` with their series. Grasps are numbered 0, 1, 2… in file order;
+/// every series row names one of them, in its own set's file; every grasp has exactly its
+/// `samples` rows.
+fn join(
+    grasps_file: &Path,
+    grasp_rows: Vec<Row<GraspRow>>,
+    series: Vec<SeriesFile>,
+) -> Result<Vec<Grasp>, DatasetError> {
+    let mut heads = Vec::with_capacity(grasp_rows.len());
+    for Row { line, record: r } in grasp_rows {
+        if r.grasp != heads.len() {
+            return Err(DatasetError::value(
+                grasps_file,
                 line,
-                reason: format!("{} fields, expected 10", f.len()),
-            });
+                "grasp",
+                format!("grasp {} where grasp {} belongs", r.grasp, heads.len()),
+            ));
         }
-        let bad = |reason: String| NetError::Data { line, reason };
-        let id: u32 = field(&f, 0, "grasp", line)?;
-        if id as usize != grasps.len() {
-            return Err(bad(format!("grasp id {id} out of order")));
-        }
-        grasps.push(Grasp {
-            id,
-            set: GraspSet::from_name(f[1]).ok_or_else(|| bad(format!("unknown set `{}`", f[1])))?,
-            object: f[2].to_owned(),
-            kind: f[3].to_owned(),
-            label: parse_label(f[7]).map_err(bad)?,
-            series: Vec::new(),
-        });
-        expected.push(field::<usize>(&f, 9, "samples", line)?);
+        heads.push((line, r));
     }
-    for text in series_csvs {
-        for (line, l) in data_lines(text, "grasp,") {
-            let f: Vec<&str> = l.split(',').collect();
-            if f.len() != 2 + N_VARIABLES {
-                return Err(NetError::Data {
-                    line,
-                    reason: format!("{} fields, expected {}", f.len(), 2 + N_VARIABLES),
-                });
+    let mut samples: Vec<Vec<[f32; N_VARIABLES]>> = vec![Vec::new(); heads.len()];
+    for (file, set, rows) in &series {
+        for Row { line, record: r } in rows {
+            let Some((_, head)) = heads.get(r.grasp) else {
+                return Err(DatasetError::value(
+                    file,
+                    *line,
+                    "grasp",
+                    format!("grasp {} is not in grasps.csv", r.grasp),
+                ));
+            };
+            if set.is_some_and(|set| set != head.set) {
+                return Err(DatasetError::value(
+                    file,
+                    *line,
+                    "grasp",
+                    format!("grasp {} belongs to {}", r.grasp, head.set.name()),
+                ));
             }
-            let id: usize = field(&f, 0, "grasp", line)?;
-            let mut sample = [0.0f32; N_VARIABLES];
-            for (k, v) in sample.iter_mut().enumerate() {
-                *v = field(&f, 2 + k, VARIABLE_NAMES[k], line)?;
-            }
-            grasps
-                .get_mut(id)
-                .ok_or_else(|| NetError::Data {
+            samples[r.grasp].push(r.readings());
+        }
+    }
+    heads
+        .into_iter()
+        .zip(samples)
+        .map(|((line, r), series)| {
+            if series.len() != r.samples {
+                return Err(DatasetError::value(
+                    grasps_file,
                     line,
-                    reason: format!("grasp {id} is not in grasps.csv"),
-                })?
-                .series
-                .push(sample);
-        }
-    }
-    for (g, &n) in grasps.iter().zip(&expected) {
-        if g.series.len() != n {
-            return Err(NetError::Data {
-                line: 0,
-                reason: format!(
-                    "grasp {} has {} samples, expected {n}",
-                    g.id,
-                    g.series.len()
-                ),
-            });
-        }
-    }
-    Ok(grasps)
+                    "samples",
+                    format!(
+                        "grasp {} has {} samples in its series, not {}",
+                        r.grasp,
+                        series.len(),
+                        r.samples
+                    ),
+                ));
+            }
+            let id = u32::try_from(r.grasp)
+                .map_err(|_| DatasetError::value(grasps_file, line, "grasp", "too large"))?;
+            Ok(Grasp {
+                id,
+                set: r.set,
+                object: r.object,
+                kind: r.kind,
+                label: r.label,
+                series: GraspSeries::new(series),
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use hand_sim::records::ErrorKind;
+
+    const GRASPS: &str = "grasp,set,object,kind,shape,size_mm,modulus_pa,label,t1_s,samples\n\
+                          0,train,o,model,sphere,65.0,1.0000e4,soft,1.000,2\n";
+    const SERIES: &str = "grasp,t_s,f1_n,f2_n,f3_n,f4_n,a1_deg,a2_deg,a3_deg,a4_deg\n\
+                          0,0.0,1,2,3,4,5,6,7,8\n0,0.1,1,2,3,4,5,6,7,9\n";
 
     #[test]
-    fn parses_and_checks_sample_counts() -> Result<(), NetError> {
-        let grasps = "grasp,set,object,kind,shape,size_mm,modulus_pa,label,t1_s,samples\n\
-                      0,train,o,model,sphere,65.0,1e4,soft,1.0,2\n";
-        let series = "grasp,t_s,f1_n,f2_n,f3_n,f4_n,a1_deg,a2_deg,a3_deg,a4_deg\n\
-                      0,0.0,1,2,3,4,5,6,7,8\n0,0.1,1,2,3,4,5,6,7,9\n";
-        let g = parse(grasps, &[series])?;
+    fn parses_and_checks_sample_counts() -> Result<(), DatasetError> {
+        let g = parse(GRASPS, &[SERIES])?;
         assert_eq!(g[0].label, Some(Softness::Soft));
-        assert_eq!(g[0].series[1][7], 9.0);
-        let short =
-            "grasp,t_s,f1_n,f2_n,f3_n,f4_n,a1_deg,a2_deg,a3_deg,a4_deg\n0,0.0,1,2,3,4,5,6,7,8\n";
-        assert!(matches!(
-            parse(grasps, &[short]),
-            Err(NetError::Data { .. })
-        ));
-        let bad = grasps.replace("soft", "squishy");
-        assert!(matches!(
-            parse(&bad, &[series]),
-            Err(NetError::Data { line: 2, .. })
-        ));
+        assert_eq!(g[0].series.view().dim(), (2, N_VARIABLES));
+        assert_eq!(g[0].series.view()[[1, 7]], 9.0);
+        assert_eq!(g[0].series.as_flattened()[15], 9.0);
+        assert_eq!(g[0].series.samples()[1][7], 9.0);
+        let short = &SERIES[..SERIES.rfind("0,0.1").unwrap_or(0)];
+        let e = parse(GRASPS, &[short]).expect_err("a sample short");
+        assert_eq!((e.line, e.column.as_deref()), (Some(2), Some("samples")));
+        let e = parse(&GRASPS.replace("soft", "squishy"), &[SERIES]).expect_err("a label");
+        assert_eq!((e.line, e.column.as_deref()), (Some(2), Some("label")));
+        let e = parse(GRASPS, &[&SERIES.replace("\n0,0.1,", "\n1,0.1,")]).expect_err("grasp 1");
+        assert_eq!((e.line, e.column.as_deref()), (Some(3), Some("grasp")));
+        let e = parse(GRASPS, &[&SERIES.replace(",7,9\n", ",7,NaN\n")]).expect_err("NaN");
+        assert!(matches!(e.kind, ErrorKind::NotFinite { .. }));
+        assert_eq!(
+            (e.file.as_path(), e.line, e.column.as_deref()),
+            (Path::new("series0.csv"), Some(3), Some("a4_deg"))
+        );
+        let e = parse(&GRASPS.replace(",kind,", ",type,"), &[SERIES]).expect_err("a column");
+        assert!(matches!(&e.kind, ErrorKind::WrongColumn { found } if found == "type"));
         Ok(())
     }
 }
