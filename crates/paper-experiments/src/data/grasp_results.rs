@@ -85,8 +85,9 @@ mod tests {
     #[test]
     fn rows_round_trip_and_bad_rows_are_named() -> Result<(), DatasetError> {
         let text = "object,table5_min,table5_max,settled_torque,window_min,window_max,\
-                    settling_time_s,peak_force_n,final_force_n,final_pressure_pa,held\n\
-                    cube,80,400,265.7,264,267,0.00,3.95,3.89,178,true\n";
+                    settling_time_s,peak_force_n,final_force_n,final_pressure_pa,held,\
+                    packets_sent,packets_received\n\
+                    cube,80,400,265.7,264,267,0.00,3.95,3.89,178,true,36885,12305\n";
         let rows: Vec<GraspResult> = records::parse(Path::new("r.csv"), text)?
             .into_iter()
             .map(|r| r.record)
