@@ -22,8 +22,9 @@
 //!
 //! The responder also counts the goal packets it receives and the status replies decode to
 //! scripted values, one of them byte-stuffed on the wire (`FF FF FD` in Present Load /
-//! Velocity), so the windows measure calls that did their work. One `#[test]` only: tests run
-//! in parallel threads and would count each other's blocks.
+//! Velocity), so the windows measure calls that did their work. A plain `main`, no test harness:
+//! dhat counts every thread's blocks, the responder's included, so the responder allocates
+//! nothing while it serves a window (it answers from prepared replies).
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -182,7 +183,6 @@ fn blocks(mut f: impl FnMut()) -> u64 {
     dhat::HeapStats::get().total_blocks - before
 }
 
-#[test]
 fn bus_calls_allocate_nothing_once_warm() {
     let _profiler = dhat::Profiler::builder().testing().build();
     // The canary: the counting allocator is installed and a window sees a block.
@@ -311,4 +311,11 @@ fn bus_calls_allocate_nothing_once_warm() {
         cycle, 0,
         "command + state allocated {cycle} blocks in {CALLS} calls"
     );
+}
+
+// No libtest harness (`harness = false`): its main thread allocates (the running-test table, the
+// timeout queue) while a test thread runs, and dhat counts every thread's blocks.
+fn main() {
+    bus_calls_allocate_nothing_once_warm();
+    println!("bus_calls_allocate_nothing_once_warm: ok");
 }
