@@ -1,20 +1,139 @@
 //! Naming real hardware really opens it: a hardware grasp scene (a `serial_port`, here the pty
-//! of a running bus simulator) reads only real fingertip buses and fails before any servo
-//! command when they are missing or cannot be opened; a scene whose `host` is a started
+//! of a running bus simulator) reads its pressure frames from the fingertip buses it names (here
+//! a substitute platform's: MS5611 chip models that nothing in hand-sim drives), and fails
+//! before any servo command when they are missing or cannot be opened; a scene whose `host` is a started
 //! ur-bridge simulator moves that arm; a missing I2C bus or serial port is a typed "cannot open
 //! …" error naming the path; the readout experiment reads the simulated fingertip.
 
 mod common;
 
-use handstack::RunError;
+use baro_drivers::sim::{Conditions, Ms5611Sim};
+use embedded_hal::delay::DelayNs;
+use hand_control::grasp_loop::LoopClock;
 use handstack::progress::Quiet;
 use handstack::runs::{RunContext, run};
 use handstack::scene::Scene;
+use handstack::stack::platform::{I2cBus, Platform};
+use handstack::{Plot, RunError};
 use std::net::Ipv4Addr;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 fn run_text(text: &str) -> Result<handstack::Outcome, RunError> {
     let scene = Scene::parse("hw.toml", text)?;
     run(&scene, &RunContext::new(&Quiet))
+}
+
+/// The hardware grasp scene for the servos on the pty at `path`, with `sensors` (the
+/// fingertip's buses) and a hold of `hold_s`.
+fn grasp_scene(path: &str, sensors: &str, hold_s: f64) -> String {
+    format!(
+        "title = \"pty hand\"\n[sensors.fingertip]\nosr = 1024\n{sensors}[controller]\n\
+         preset = \"grasp\"\n[hand]\nmodel = \"mx28\"\nids = [1, 2]\nserial_port = \"{path}\"\n\
+         reply_timeout_ms = 250\n[experiment.grasp]\nobjects = [\"cube\"]\nhold_s = {hold_s}\n"
+    )
+}
+
+/// A substitute platform: its I2C buses `sub-0` … `sub-2` each hold an MS5611 chip model (no
+/// noise) at 1000 mbar that is pressed by `k + 1` mbar from `PRESS_NS` on, all on one simulated
+/// clock that is also the platform's delay and loop clock. It counts the conversions its chips
+/// run, so a test sees the frames came from here.
+struct Substitute {
+    clock: hand_traits::sim::SimClock,
+    conversions: Arc<AtomicUsize>,
+}
+
+/// When the substitute pad is pressed, ns (after the loop's 10 tare cycles).
+const PRESS_NS: u64 = 300_000_000;
+
+impl Platform for Substitute {
+    fn open_i2c(&self, path: &str) -> Result<I2cBus, String> {
+        let k = ["sub-0", "sub-1", "sub-2"]
+            .iter()
+            .position(|p| *p == path)
+            .ok_or_else(|| format!("no substitute bus {path}"))?;
+        let conversions = Arc::clone(&self.conversions);
+        let env = move |t_ns: u64| {
+            conversions.fetch_add(1, Ordering::Relaxed);
+            let press = if t_ns >= PRESS_NS {
+                k as f64 + 1.0
+            } else {
+                0.0
+            };
+            Conditions {
+                pressure_mbar: 1000.0 + press,
+                temperature_celsius: 25.0,
+            }
+        };
+        Ok(I2cBus::new(
+            Ms5611Sim::new(env, self.clock.clone()).with_noise(false),
+        ))
+    }
+
+    fn delay(&self) -> Box<dyn DelayNs + Send> {
+        Box::new(self.clock.delay())
+    }
+
+    fn clock(&self) -> Box<dyn LoopClock + Send> {
+        Box::new(self.clock.clone())
+    }
+}
+
+#[test]
+fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_servos() {
+    use hand_control::sim::{SimBus, SimConfig};
+    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
+    drop(port);
+    let path = bus.client_path().display().to_string();
+    let text = grasp_scene(
+        &path,
+        "i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n",
+        1.0,
+    );
+    let scene = Scene::parse("hw.toml", &text).expect("valid scene");
+    let conversions = Arc::new(AtomicUsize::new(0));
+    let cx = RunContext::new(&Quiet).with_platform(Substitute {
+        clock: hand_traits::sim::SimClock::new(),
+        conversions: Arc::clone(&conversions),
+    });
+    let o = run(&scene, &cx).unwrap_or_else(|e| panic!("{e}"));
+    // The loop's pressure is the substitute's press: a mean rise of (1 + 2 + 3) / 3 mbar =
+    // 200 Pa once pressed (the compensation rounds to 1 Pa), nothing before.
+    let Some(Plot::Lines { lines, .. }) = o
+        .plots
+        .iter()
+        .find(|p| matches!(p, Plot::Lines { title, .. } if title.contains("pressure rise")))
+    else {
+        panic!("no pressure plot")
+    };
+    let points = &lines[0].points;
+    // Every frame the loop read is three conversions or more on the substitute buses.
+    let n = conversions.load(Ordering::Relaxed);
+    assert!(
+        n >= 3 * points.len(),
+        "{n} conversions for {} frames",
+        points.len()
+    );
+    let (before, after): (Vec<_>, Vec<_>) = points.iter().partition(|(t, _)| *t < 0.29);
+    assert!(before.len() >= 15 && after.len() >= 60, "{points:?}");
+    assert!(before.iter().all(|(_, p)| p.abs() <= 1.0), "{before:?}");
+    let pressed = &after[after.len() / 2..];
+    assert!(
+        pressed.iter().all(|(_, p)| (p - 200.0).abs() <= 1.0),
+        "{pressed:?}"
+    );
+    // And the controller acted on it over Protocol 2.0: both servos hold torque and a Goal
+    // PWM the loop wrote (no longer the power-on value).
+    let table = &hand_control::control_table::MX_28;
+    for id in [1, 2] {
+        let (on, pwm) = bus
+            .with_servo(id, |s| {
+                (s.torque_enabled(), s.get(table.goal_effort.address))
+            })
+            .expect("servo");
+        assert!(on, "servo {id} torque");
+        assert_ne!(pwm, table.effort_limit.default, "servo {id} Goal PWM");
+    }
 }
 
 /// The servos of `bus` have had no command: torque off, Goal PWM at its power-on value.
@@ -37,13 +156,7 @@ fn a_hardware_grasp_never_reads_a_simulated_fingertip_and_fails_before_any_servo
     let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
     drop(port); // the scene opens the pty by its path, as it would /dev/ttyUSB0
     let path = bus.client_path().display().to_string();
-    let scene = |sensors: &str| {
-        format!(
-            "title = \"pty hand\"\n[sensors.fingertip]\nosr = 1024\n{sensors}[controller]\n\
-             preset = \"grasp\"\n[hand]\nmodel = \"mx28\"\nids = [1, 2]\nserial_port = \"{path}\"\n\
-             reply_timeout_ms = 250\n[experiment.grasp]\nobjects = [\"cube\"]\nhold_s = 0.3\n"
-        )
-    };
+    let scene = |sensors: &str| grasp_scene(&path, sensors, 0.3);
     // Real servos, no sensor buses named: refused (the simulated pad is never pressed by a
     // real grasp), and nothing reached the servos.
     let e = run_text(&scene("")).expect_err("a hardware hand needs its fingertip's buses");

@@ -12,6 +12,18 @@ pub trait LoopClock {
     fn wait_until_us(&mut self, t_us: u64);
 }
 
+/// A boxed clock is a clock: a stack that picks its clock at run time (hardware or simulated)
+/// hands the loop a `Box<dyn LoopClock>`.
+impl<C: LoopClock + ?Sized> LoopClock for Box<C> {
+    fn now_us(&mut self) -> u64 {
+        (**self).now_us()
+    }
+
+    fn wait_until_us(&mut self, t_us: u64) {
+        (**self).wait_until_us(t_us);
+    }
+}
+
 /// Wall time from [`std::time::Instant`], waiting by sleeping.
 #[derive(Debug, Clone, Copy)]
 pub struct StdClock {

@@ -7,7 +7,8 @@
 //! hand-sim's grasp physics, and the fingertip's three MS5611 chip models read by the real
 //! driver, in simulated time — the code path of docs/grasping. With `[hand] serial_port`: the
 //! real `ServoHand` on that port and the real MS5611s on the fingertip's `i2c_buses` (required:
-//! a hardware grasp never reads a simulated fingertip), on the wall clock, `hold_s` per object.
+//! a hardware grasp never reads a simulated fingertip), opened through the run's platform and
+//! on its clock (Linux: the wall clock), `hold_s` per object.
 
 use super::figure::{Target, measured, paper, target};
 use super::{Part, RunContext};
@@ -15,7 +16,7 @@ use crate::error::RunError;
 use crate::scene::Scene;
 use crate::scene::experiment::Grasp;
 use crate::{Line, Plot};
-use hand_control::grasp_loop::{GraspLoop, LoopConfig, Sample, StdClock, TorqueBand};
+use hand_control::grasp_loop::{GraspLoop, LoopConfig, Sample, TorqueBand};
 use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
 use paper_experiments::grasp_rig::{self, SETTLE_TOL_RAW, SETTLE_WINDOW_US};
 
@@ -53,7 +54,7 @@ pub fn run(scene: &Scene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part, RunE
         })?;
         let log =
             match (&hand, &port) {
-                (Some(h), Some(port)) => real_hold(scene, h, port, band, hold_s)?,
+                (Some(h), Some(port)) => real_hold(scene, cx, h, port, band, hold_s)?,
                 _ => {
                     let kind = ObjectKind::from_name(name).ok_or_else(|| RunError::Device {
                         device: "grasp",
@@ -171,28 +172,29 @@ fn summarise(name: &str, band: (u16, u16), log: &[Sample<3>], part: &mut Part) {
     ));
 }
 
-/// One hold on the real hand: the loop on the wall clock for `hold_s`.
+/// One hold on the real hand: the loop on the platform's clock for `hold_s`.
 fn real_hold(
     scene: &Scene,
+    cx: &RunContext<'_>,
     hand: &crate::scene::parts::Hand,
     port: &str,
     band: TorqueBand,
     hold_s: f64,
 ) -> Result<Vec<Sample<3>>, RunError> {
     // The sensors first: a bus that cannot be opened fails before any servo command.
-    let tip = crate::stack::fingertip::open_hardware(scene)?;
+    let tip = crate::stack::fingertip::open_hardware(scene, &*cx.platform)?;
     let servo = crate::stack::hand::open(hand, port)?;
     let config = LoopConfig {
         band,
         ..grasp_rig::config(band)
     };
     let policy = fuzzy_mamdani::grasp_controller().with_torque_band(band.min_raw(), band.max_raw());
-    let mut l = GraspLoop::new(tip, policy, servo, StdClock::new(), config).map_err(|e| {
-        RunError::Device {
+    let clock = cx.platform.clock();
+    let mut l =
+        GraspLoop::new(tip, policy, servo, clock, config).map_err(|e| RunError::Device {
             device: "grasp loop",
             reason: e.to_string(),
-        }
-    })?;
+        })?;
     l.run_until((hold_s * 1e6) as u64);
     if let Some(e) = l.events().first() {
         return Err(RunError::Device {

@@ -13,6 +13,7 @@ pub mod weight;
 use crate::error::RunError;
 use crate::progress::Progress;
 use crate::scene::Scene;
+use crate::stack::platform::{LinuxPlatform, Platform};
 use crate::{Figure, Outcome, Plot};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -24,6 +25,8 @@ pub struct RunContext<'a> {
     pub root: PathBuf,
     /// Where progress goes.
     pub progress: &'a dyn Progress,
+    /// Where hardware buses, delays and the clock come from (Linux by default).
+    pub platform: Box<dyn Platform>,
 }
 
 impl<'a> RunContext<'a> {
@@ -34,6 +37,16 @@ impl<'a> RunContext<'a> {
         Self {
             root: fixtures.parent().map_or(fixtures.clone(), PathBuf::from),
             progress,
+            platform: Box::new(LinuxPlatform::new()),
+        }
+    }
+
+    /// This context with its hardware opened through `platform` instead of Linux's device
+    /// files (another OS, a bridge, a test's substitute bus).
+    pub fn with_platform(self, platform: impl Platform + 'static) -> Self {
+        Self {
+            platform: Box::new(platform),
+            ..self
         }
     }
 }
@@ -52,7 +65,7 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
     let start = Instant::now();
     let x = scene.file.experiment.get_ref();
     cx.progress.stage("opening real devices", 0);
-    crate::stack::check_real_devices(scene)?;
+    crate::stack::check_real_devices(scene, &*cx.platform)?;
     let mut parts = Vec::new();
     if let Some(w) = &x.weight {
         parts.push(weight::run(scene, w.get_ref(), cx)?);

@@ -12,7 +12,7 @@ use crate::{Line, Plot};
 /// Runs the readout experiment of `scene`.
 pub fn run(scene: &Scene, exp: &Readout, cx: &RunContext<'_>) -> Result<Part, RunError> {
     let n = *exp.frames.get_ref();
-    let mut source = crate::stack::fingertip::open(scene)?;
+    let mut source = crate::stack::fingertip::open(scene, &*cx.platform)?;
     cx.progress.stage("readout: fingertip frames", n as u64);
     let mut frames = Vec::with_capacity(n);
     for _ in 0..n {

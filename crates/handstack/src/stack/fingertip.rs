@@ -1,25 +1,36 @@
 //! The fingertip a scene names: hand-sim's pad with three MS5611 chip models behind the real
-//! driver, or three real MS5611 on Linux I2C buses (linux-embedded-hal), one per sensor.
+//! driver, or three real MS5611 on the I2C buses the scene names, one per sensor, opened
+//! through the run's [`Platform`] (Linux device files by default).
 
+use super::platform::{I2cBus, Platform};
 use crate::error::RunError;
 use crate::scene::Scene;
 use baro_drivers::{Address, I2cInterface, Measurement, Ms5611, Osr, Ready, Scheduler};
+use embedded_hal::delay::DelayNs;
+use hand_control::grasp_loop::LoopClock;
 use hand_traits::{PressureFrame, TactileSource};
-use linux_embedded_hal::{Delay, I2cdev};
-use std::time::Instant;
 
-type Chip = Ms5611<I2cInterface<I2cdev>, Ready>;
+type Chip = Ms5611<I2cInterface<I2cBus>, Ready>;
 
-/// Three real MS5611 read by the driver's scheduler; frames stamped with the wall clock.
+/// Three MS5611 on the platform's buses, read by the driver's scheduler; frames stamped by the
+/// platform's clock (the loop's time).
 pub struct RealFingertip {
     sensors: Vec<Chip>,
     scheduler: Scheduler,
-    start: Instant,
+    delay: Box<dyn DelayNs + Send>,
+    clock: Box<dyn LoopClock + Send>,
 }
 
 impl RealFingertip {
-    /// Opens each of `buses`, resets the MS5611 at `address` and checks its PROM CRC.
-    pub fn open(buses: &[String], address: Address, osr: Osr) -> Result<Self, RunError> {
+    /// Opens each of `buses` on `platform`, resets the MS5611 at `address` and checks its PROM
+    /// CRC.
+    pub fn open(
+        platform: &dyn Platform,
+        buses: &[String],
+        address: Address,
+        osr: Osr,
+    ) -> Result<Self, RunError> {
+        let mut delay = platform.delay();
         let mut sensors = Vec::with_capacity(buses.len());
         for bus in buses {
             let fail = |reason: String| RunError::Open {
@@ -27,16 +38,17 @@ impl RealFingertip {
                 path: bus.clone(),
                 reason,
             };
-            let dev = I2cdev::new(bus).map_err(|e| fail(e.to_string()))?;
+            let dev = platform.open_i2c(bus).map_err(fail)?;
             let chip = Ms5611::new_with_i2c(dev, address)
-                .init(&mut Delay)
-                .map_err(|e| fail(format!("MS5611 at {:#04x}: {:?}", address.addr(), e.error)))?;
+                .init(&mut &mut *delay)
+                .map_err(|e| fail(format!("MS5611 at {:#04x}: {}", address.addr(), e.error)))?;
             sensors.push(chip);
         }
         Ok(Self {
             sensors,
             scheduler: Scheduler::new(osr),
-            start: Instant::now(),
+            delay,
+            clock: platform.clock(),
         })
     }
 }
@@ -51,13 +63,13 @@ impl TactileSource for RealFingertip {
             pressure_pa: 0,
         }; 3];
         self.scheduler
-            .sample_all(&mut self.sensors, &mut Delay, &mut out)
+            .sample_all(&mut self.sensors, &mut &mut *self.delay, &mut out)
             .map_err(|e| RunError::Device {
                 device: "sensors.fingertip",
-                reason: format!("sensor {}: {:?}", e.sensor + 1, e.error),
+                reason: format!("sensor {}: {}", e.sensor + 1, e.error),
             })?;
         Ok(PressureFrame {
-            t_us: self.start.elapsed().as_micros() as u64,
+            t_us: self.clock.now_us(),
             pressure_pa: out.map(|m| m.pressure_pa as f32),
         })
     }
@@ -66,10 +78,11 @@ impl TactileSource for RealFingertip {
 /// The scene's fingertip as a boxed source: real when it names `i2c_buses`, else hand-sim's.
 pub fn open(
     scene: &Scene,
+    platform: &dyn Platform,
 ) -> Result<Box<dyn TactileSource<Frame = PressureFrame<3>, Error = RunError>>, RunError> {
     let tip = scene_fingertip(scene)?;
     if tip.i2c_buses.is_some() {
-        return Ok(Box::new(open_hardware(scene)?));
+        return Ok(Box::new(open_hardware(scene, platform)?));
     }
     let config = scene.sim.fingertip.clone().unwrap_or_default();
     let sim = hand_sim::fingertip::Fingertip::new(&config, scene.seed())?;
@@ -79,7 +92,7 @@ pub fn open(
 /// The scene's real fingertip, never a simulated one: a scene that drives real servos must read
 /// real sensors, so naming no `i2c_buses` is an error here, as is a bus that cannot be opened
 /// (both before anything moves).
-pub fn open_hardware(scene: &Scene) -> Result<RealFingertip, RunError> {
+pub fn open_hardware(scene: &Scene, platform: &dyn Platform) -> Result<RealFingertip, RunError> {
     let tip = scene_fingertip(scene)?;
     let Some(buses) = &tip.i2c_buses else {
         return Err(RunError::Device {
@@ -94,7 +107,7 @@ pub fn open_hardware(scene: &Scene) -> Result<RealFingertip, RunError> {
         Some(0x76) => Address::CsbHigh,
         _ => Address::CsbLow,
     };
-    RealFingertip::open(buses.get_ref(), address, osr)
+    RealFingertip::open(platform, buses.get_ref(), address, osr)
 }
 
 fn scene_fingertip(scene: &Scene) -> Result<&crate::scene::parts::Fingertip, RunError> {

@@ -1,0 +1,127 @@
+//! Where the stack opens hardware. [`LinuxPlatform`], the default, opens Linux I2C device files
+//! through linux-embedded-hal, sleeps for a driver's delays and stamps frames with the wall
+//! clock. Another platform (a USB–I2C bridge, another OS, or a test's substitute bus) supplies
+//! its own buses, delay and clock; the stack holds every bus as an [`I2cBus`], so the drivers
+//! above it and the runners above them never know which platform they are on.
+//!
+//! ```no_run
+//! use handstack::stack::platform::{LinuxPlatform, Platform};
+//!
+//! let platform = LinuxPlatform::new();
+//! let bus = platform.open_i2c("/dev/i2c-1")?; // any embedded-hal `I2c`, errors as text
+//! # Ok::<(), String>(())
+//! ```
+
+use embedded_hal::delay::DelayNs;
+use embedded_hal::i2c::{ErrorKind, ErrorType, I2c, Operation, SevenBitAddress};
+use hand_control::grasp_loop::{LoopClock, StdClock};
+
+/// A bus error, as the bus described it.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{detail}")]
+pub struct BusError {
+    /// embedded-hal's classification (NACK, arbitration loss, …).
+    pub kind: ErrorKind,
+    /// The bus's own error, formatted.
+    pub detail: String,
+}
+
+impl embedded_hal::i2c::Error for BusError {
+    fn kind(&self) -> ErrorKind {
+        self.kind
+    }
+}
+
+/// Any embedded-hal I2C bus, its errors as [`BusError`]: what a [`Platform`] hands the stack.
+pub struct I2cBus(Box<dyn I2c<Error = BusError> + Send>);
+
+impl I2cBus {
+    /// Wraps `bus`.
+    pub fn new<B: I2c + Send + 'static>(bus: B) -> I2cBus {
+        I2cBus(Box::new(Erased(bus)))
+    }
+}
+
+impl core::fmt::Debug for I2cBus {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("I2cBus")
+    }
+}
+
+impl ErrorType for I2cBus {
+    type Error = BusError;
+}
+
+impl I2c for I2cBus {
+    fn transaction(
+        &mut self,
+        address: SevenBitAddress,
+        operations: &mut [Operation<'_>],
+    ) -> Result<(), BusError> {
+        self.0.transaction(address, operations)
+    }
+}
+
+/// A bus whose errors become [`BusError`]s (formatting only on the error path).
+struct Erased<B>(B);
+
+impl<B: I2c> ErrorType for Erased<B> {
+    type Error = BusError;
+}
+
+impl<B: I2c> I2c for Erased<B> {
+    fn transaction(
+        &mut self,
+        address: SevenBitAddress,
+        operations: &mut [Operation<'_>],
+    ) -> Result<(), BusError> {
+        self.0
+            .transaction(address, operations)
+            .map_err(|e| BusError {
+                kind: embedded_hal::i2c::Error::kind(&e),
+                detail: format!("{e:?}"),
+            })
+    }
+}
+
+/// What the stack opens hardware through.
+pub trait Platform {
+    /// Opens the I2C bus at `path` (a device file such as `/dev/i2c-1` on Linux); the error
+    /// says why it cannot be opened.
+    fn open_i2c(&self, path: &str) -> Result<I2cBus, String>;
+    /// A delay for the drivers' conversion waits.
+    fn delay(&self) -> Box<dyn DelayNs + Send>;
+    /// A clock for the devices' frame stamps and the loops. Every clock a platform hands out
+    /// shares one epoch, so a frame's stamp and the loop reading it agree.
+    fn clock(&self) -> Box<dyn LoopClock + Send>;
+}
+
+/// Linux: I2C through `/dev/i2c-*` (linux-embedded-hal), delays by sleeping, the wall clock
+/// from when the platform was made.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LinuxPlatform {
+    clock: StdClock,
+}
+
+impl LinuxPlatform {
+    /// The platform, its clock's epoch now.
+    pub fn new() -> LinuxPlatform {
+        LinuxPlatform::default()
+    }
+}
+
+impl Platform for LinuxPlatform {
+    fn open_i2c(&self, path: &str) -> Result<I2cBus, String> {
+        linux_embedded_hal::I2cdev::new(path)
+            .map(I2cBus::new)
+            .map_err(|e| e.to_string())
+    }
+
+    fn delay(&self) -> Box<dyn DelayNs + Send> {
+        Box::new(linux_embedded_hal::Delay)
+    }
+
+    fn clock(&self) -> Box<dyn LoopClock + Send> {
+        Box::new(self.clock)
+    }
+}
