@@ -7,12 +7,11 @@
 //! cycle (see `tests/zero_alloc.rs` for what that log costs) and talks to a real port.
 
 use crate::CycleError;
-use crate::dxl::GoalWriter;
 use crate::fingertip::{Press, PressSchedule, PressedFingertip, rect};
 use fuzzy_mamdani::GraspController;
-use hand_control::RawGoals;
 use hand_control::control_table::MX_28;
 use hand_control::grasp_loop::{ContactEstimate, LoopConfig, PressureEstimator, TorqueBand};
+use hand_control::{GoalPackets, RawGoals, encode_goals};
 use hand_traits::{GraspPolicy, GripperCommand, PressureFrame};
 
 /// Resting frames averaged into the estimator's zero.
@@ -44,7 +43,7 @@ pub struct GraspCycle {
     config: LoopConfig,
     band: TorqueBand,
     policy: GraspController,
-    writer: GoalWriter,
+    packets: GoalPackets,
     tared: u64,
 }
 
@@ -85,7 +84,7 @@ impl GraspCycle {
             policy: fuzzy_mamdani::grasp_controller().with_torque_band(lo, hi),
             band,
             config,
-            writer: GoalWriter::new(&MX_28, &SERVO_IDS),
+            packets: GoalPackets::new(&MX_28, &SERVO_IDS),
             tared: 0,
         })
     }
@@ -121,9 +120,13 @@ impl GraspCycle {
         })
     }
 
-    /// Encode: the command's raw goals and both sync writes.
+    /// Encode: the command's raw goals and both sync writes, framed by hand-control's
+    /// [`GoalPackets`], the encoder `ServoHand::write_goals` sends (only its port write is
+    /// left out, so the bench times compute, not the tty).
     pub fn encode(&mut self, cmd: &GripperCommand) -> Result<(RawGoals, &[u8]), CycleError> {
-        self.writer.encode(cmd)
+        let goals = encode_goals(&MX_28, cmd).map_err(|e| CycleError::Config(e.to_string()))?;
+        let wire = self.packets.encode(&goals);
+        Ok((goals, wire))
     }
 
     /// One full cycle.

@@ -41,7 +41,6 @@
 //! ```
 
 pub mod contact;
-pub mod dxl;
 mod error;
 pub mod fingertip;
 pub mod full_hand;

@@ -6,20 +6,23 @@
 
 use hand_control::control_table::MX_28;
 use hand_control::grasp_loop::{GraspLoop, LoopClock, LoopConfig, RebootableActuator, Sample};
+use hand_control::{GoalPackets, encode_goals};
 use hand_sim::fingertip::{Fingertip, FingertipConfig};
 use hand_traits::{Faults, GripperActuator, GripperCommand, GripperState, SafeAction};
-use handstack_benches::dxl::GoalWriter;
 
 #[global_allocator]
 static ALLOC: dhat::Alloc = dhat::Alloc;
 
-/// A gripper in memory: encodes each command as the real sync writes, reports no fault.
-struct InProcessGripper(GoalWriter, usize);
+/// A gripper in memory: encodes each command as `ServoHand::write_goals` does (without the
+/// port write), reports no fault.
+struct InProcessGripper(GoalPackets, usize);
 
 impl GripperActuator for InProcessGripper {
     type Error = handstack_benches::CycleError;
     fn command(&mut self, cmd: &GripperCommand) -> Result<(), Self::Error> {
-        self.1 += self.0.encode(cmd)?.1.len();
+        let goals = encode_goals(&MX_28, cmd)
+            .map_err(|e| handstack_benches::CycleError::Config(e.to_string()))?;
+        self.1 += self.0.encode(&goals).len();
         Ok(())
     }
     fn state(&mut self) -> Result<GripperState, Self::Error> {
@@ -65,7 +68,7 @@ fn the_grasp_loop_allocates_only_to_grow_its_log() {
     };
     let mut tip = Fingertip::new(&config, 13).expect("fingertip");
     tip.set_frame_log(false);
-    let gripper = InProcessGripper(GoalWriter::new(&MX_28, &[1, 2]), 0);
+    let gripper = InProcessGripper(GoalPackets::new(&MX_28, &[1, 2]), 0);
     let policy = fuzzy_mamdani::grasp_controller().with_torque_band(80, 400);
     let mut grasp =
         GraspLoop::new(tip, policy, gripper, SimTime(0), LoopConfig::new()).expect("valid config");

@@ -44,5 +44,6 @@ pub mod sim;
 
 pub use error::{Error, InstructionError, faults_from_hardware_error};
 pub use servo_hand::{
-    DEFAULT_REPLY_LATENCY, PacketCounts, RawGoals, RawServoState, ServoHand, encode_goals,
+    DEFAULT_REPLY_LATENCY, GoalPackets, PacketCounts, RawGoals, RawServoState, ServoHand,
+    encode_goals,
 };

@@ -2,7 +2,10 @@
 //! effort limit (seed 000 §6–7), through `dynamixel2`.
 
 mod actuator;
+mod goal_packets;
 mod status;
+
+pub use goal_packets::GoalPackets;
 
 use std::time::Duration;
 
@@ -85,6 +88,8 @@ pub struct ServoHand {
     pending: Option<RawGoals>,
     /// RAM settings (address, value) written again after every REBOOT.
     ram: Vec<(u16, i32)>,
+    /// The goal sync writes, framed in a buffer kept between cycles.
+    goal_packets: GoalPackets,
 }
 
 /// The reply allowance a real bus needs: the ROBOTIS SDK's flat 34 ms (as `dynamixel2`).
@@ -144,6 +149,7 @@ impl ServoHand {
             last_safe: None,
             pending: None,
             ram: Vec::new(),
+            goal_packets: GoalPackets::new(&crate::control_table::MX_28, ids),
         };
         let table = hand.identify(first)?;
         for &id in &ids[1..] {
@@ -157,6 +163,7 @@ impl ServoHand {
             }
         }
         hand.table = table;
+        hand.goal_packets = GoalPackets::new(table, ids);
         let (start, len) = table.state_block();
         hand.sync_read.reserve_exact(4 + ids.len());
         hand.sync_read.extend_from_slice(&start.to_le_bytes());
@@ -379,29 +386,16 @@ impl ServoHand {
 
     /// Sync-writes raw goals to every servo (two broadcast packets: effort, then position).
     ///
-    /// Allocates nothing: each packet's parameters are written straight into the bus's write
-    /// buffer (`dynamixel2`'s `Bus::sync_write` takes an iterator of per-servo data).
+    /// Allocates nothing: [`GoalPackets`] frames both packets in a buffer the hand keeps, and
+    /// they go out in one write.
     ///
     /// # Errors
     /// A serial-port error (sync write has no status packets).
     pub fn write_goals(&mut self, goals: &RawGoals) -> Result<(), Error> {
-        let t = self.table;
-        for (reg, value) in [
-            (t.goal_effort, goals.effort),
-            (t.goal_position, goals.position),
-        ] {
-            let bytes = reg.encode(value);
-            let data = &bytes[..usize::from(reg.width)];
-            let per_servo = self
-                .ids
-                .iter()
-                .map(|&motor_id| SyncWriteData { motor_id, data });
-            self.link
-                .bus
-                .sync_write(reg.address, u16::from(reg.width), per_servo)
-                .map_err(Error::from_write)?;
-            self.link.packets.sent += 1;
-        }
+        let wire = self.goal_packets.encode(goals);
+        self.link.send(wire)?;
+        // Two instruction packets, sent in one write.
+        self.link.packets.sent += 2;
         Ok(())
     }
 

@@ -98,6 +98,14 @@ impl Link {
 
     /// Makes room for exchanges of up to `answers` status packets of `count` data bytes each,
     /// so they allocate nothing.
+    /// Sends instruction packets framed elsewhere (no answer expected), dropping any stale
+    /// input first as `dynamixel2` does before every instruction it writes.
+    pub(super) fn send(&mut self, wire: &[u8]) -> std::io::Result<()> {
+        let port = self.bus.serial_port();
+        port.discard_input_buffer()?;
+        port.write_all(wire)
+    }
+
     pub(super) fn reserve(&mut self, answers: usize, count: u16) {
         self.slots.reserve(answers);
         self.data
