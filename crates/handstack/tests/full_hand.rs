@@ -51,7 +51,10 @@ fn full_hand_composes_every_part_in_one_outcome() {
     let cycles = value(&o, "loop_cycles");
     assert!(cycles >= 1300.0, "{cycles}");
     let pad = value(&o, "loop_pad_reads");
-    assert!((pad - cycles * 0.3).abs() <= 1.0, "{pad} pad reads in {cycles} cycles");
+    assert!(
+        (pad - cycles * 0.3).abs() <= 1.0,
+        "{pad} pad reads in {cycles} cycles"
+    );
     assert_eq!(value(&o, "loop_overruns"), 0.0);
     assert_eq!(value(&o, "loop_jitter_max_us"), 0.0);
     assert_eq!(value(&o, "loop_fault"), 0.0, "{:?}", o.figure("loop_fault"));

@@ -406,11 +406,18 @@ where
         }
     }
 
-    /// Runs on until the arm has finished its moves, for at most `extra_us` of loop time (the
-    /// hand keeps its period meanwhile).
+    /// Runs on until the arm has finished its moves (the hand keeps its period meanwhile), for
+    /// at most `extra_us` of loop time and the arm's move timeout of wall time: the arm moves
+    /// in its controller's time, which a simulated loop clock may outrun many times over.
     pub fn finish_moves(&mut self, extra_us: u64) {
         let until = self.next_tick_us().saturating_add(extra_us);
-        while self.fault.is_none() && self.arm.busy() && self.next_tick_us() < until {
+        let wall = Instant::now();
+        let timeout = self.arm.arm.config().move_timeout;
+        while self.fault.is_none()
+            && self.arm.busy()
+            && self.next_tick_us() < until
+            && wall.elapsed() < timeout
+        {
             self.cycle();
         }
     }
@@ -583,8 +590,9 @@ pub mod scene {
 
     /// The pad's rate, Hz (seed 002 §III-C).
     pub const PAD_HZ: u32 = 30;
-    /// Loop time the loop may run on after the hold for the arm to finish its moves, µs.
-    pub const FINISH_MOVES_US: u64 = 60_000_000;
+    /// Loop time the loop may run on after the hold for the arm to finish its moves, µs (in
+    /// simulated time the loop runs far ahead of the arm's wall-time controller).
+    pub const FINISH_MOVES_US: u64 = 600_000_000;
 
     /// Whether `scene` names the whole hand: a simulated fingertip grasp and the pad's taps.
     pub fn applies(scene: &Scene) -> bool {
