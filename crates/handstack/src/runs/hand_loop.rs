@@ -276,6 +276,12 @@ impl ArmPart {
         }
     }
 
+    /// Sends the arm to `target` next: started at once if the arm is free, else when the move
+    /// in flight ends (a later request replaces an earlier one still waiting).
+    pub fn request(&mut self, target: Pose) {
+        self.pending = Some(target);
+    }
+
     /// Whether a move is in flight or waiting to start.
     pub fn busy(&self) -> bool {
         self.active.is_some() || self.pending.is_some()
@@ -497,7 +503,7 @@ where
                 self.stats.cnn_triggers += 1;
                 self.stats.located.push(c.region);
                 match self.arm.grid.pose(c.region) {
-                    Ok(p) => self.arm.pending = Some(*p),
+                    Ok(p) => self.arm.request(*p),
                     Err(e) => self.end("arm", s, e.to_string(), true),
                 }
             }
@@ -613,13 +619,62 @@ pub mod scene {
         move |reason| RunError::Device { device, reason }
     }
 
+    /// The loop over the simulated stack.
+    pub type SimHandLoop = HandLoop<
+        grasp_rig::Source,
+        fuzzy_mamdani::GraspController,
+        hand_control::ServoHand,
+        grasp_rig::Clock,
+        ImuPad,
+    >;
+
+    /// The loop of a scene, built, with what the run keeps beside it.
+    pub struct Built {
+        /// The loop.
+        pub hand_loop: SimHandLoop,
+        /// The grasp world (the fingertip, servo bus and physics on one clock).
+        pub world: grasp_rig::Shared,
+        /// The first grasp object's name.
+        pub object: String,
+        /// Loop time the hold ends, µs (lift at 3 s + `hold_s`).
+        pub until_us: u64,
+        /// Where the arm is connected.
+        pub host: String,
+        /// The arm's simulator, when the scene named no host.
+        pub sim: Option<ur_bridge::sim::UrSim>,
+    }
+
     /// Runs the fused loop of `scene`: the first grasp object closed, lifted at 3 s and held
     /// `hold_s`, the pad's taps of one round located and sent to the arm, then on until the
     /// arm's moves are done.
     pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Part, RunError> {
+        let Some(mut b) = build(scene, cx)? else {
+            return Ok(Part::default());
+        };
+        b.hand_loop.run_until(b.until_us);
+        b.hand_loop.finish_moves(FINISH_MOVES_US);
+        if let Some(e) = b.world.borrow_mut().world_error.take() {
+            return Err(dev("hand")(e.to_string()));
+        }
+        let mut part = Part::default();
+        let l = &b.hand_loop;
+        figures(
+            l.stats(),
+            l.overruns(),
+            l.fault(),
+            &b.object,
+            &b.host,
+            &mut part,
+        );
+        Ok(part)
+    }
+
+    /// Builds the fused loop of `scene` on the simulated stack (`None`: the scene names no
+    /// grasp or no tap).
+    pub fn build(scene: &Scene, cx: &RunContext<'_>) -> Result<Option<Built>, RunError> {
         let x = scene.file.experiment.get_ref();
         let (Some(g), Some(tap)) = (&x.grasp, &x.tap) else {
-            return Ok(Part::default());
+            return Ok(None);
         };
         let (g, tap) = (g.get_ref(), tap.get_ref());
         cx.progress.stage("full hand: one control loop", 0);
@@ -697,7 +752,7 @@ pub mod scene {
         let arm_part = ArmPart::new(arm.arm, grid, trigger.motion);
         let policy = fuzzy_mamdani::grasp_controller()
             .with_torque_band(config.band.min_raw(), config.band.max_raw());
-        let mut l = HandLoop::new(
+        let hand_loop = HandLoop::new(
             grasp_rig::Source(world.clone()),
             policy,
             hand,
@@ -709,23 +764,14 @@ pub mod scene {
         )
         .map_err(|e| dev("hand loop")(e.to_string()))?;
         let hold_s = *g.hold_s.get_ref();
-        l.run_until(((LIFT_AT_S + hold_s) * 1e6) as u64);
-        l.finish_moves(FINISH_MOVES_US);
-        if let Some(e) = world.borrow_mut().world_error.take() {
-            return Err(dev("hand")(e.to_string()));
-        }
-        let mut part = Part::default();
-        figures(
-            &l.stats,
-            l.overruns(),
-            l.fault(),
-            &name,
-            &arm.host,
-            &mut part,
-        );
-        drop(l);
-        drop(arm.sim);
-        Ok(part)
+        Ok(Some(Built {
+            hand_loop,
+            world,
+            object: name,
+            until_us: ((LIFT_AT_S + hold_s) * 1e6) as u64,
+            host: arm.host,
+            sim: arm.sim,
+        }))
     }
 
     /// The loop's figures.
