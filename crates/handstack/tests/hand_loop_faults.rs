@@ -102,3 +102,16 @@ fn losing_the_arm_mid_move_ends_the_loop_in_the_hold_within_its_cycle() {
     assert!(b.hand_loop.stats().cycles > before);
     assert!(t_us >= 1_100_000, "{t_us}");
 }
+
+#[test]
+fn a_dropped_servo_status_ends_the_loop_in_the_hold_within_its_cycle() {
+    let mut b = built();
+    b.world.borrow_mut().injections.push(Injection {
+        from_s: 6.0,
+        until_s: 6.5,
+        kind: Injected::Silent,
+    });
+    b.hand_loop.run_until(b.until_us);
+    let t_us = ended_in_safe_state(&b, "hand");
+    assert!((6_000_000..=6_020_000).contains(&t_us), "{t_us}");
+}
