@@ -5,6 +5,7 @@
 pub mod contact;
 mod figure;
 pub mod grasp;
+pub mod hand_loop;
 pub mod readout;
 pub mod softness;
 pub mod tap;
@@ -84,6 +85,10 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
     }
     if let Some(r) = &x.readout {
         parts.push(readout::run(scene, r.get_ref(), cx)?);
+    }
+    // The whole hand named: its parts again, fused into one 100 Hz control loop.
+    if hand_loop::scene::applies(scene) {
+        parts.push(hand_loop::scene::run(scene, cx)?);
     }
     let (mut figures, mut plots) = (Vec::new(), Vec::new());
     for p in parts {

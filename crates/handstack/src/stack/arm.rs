@@ -11,6 +11,13 @@ use ur_bridge::sim::{SimConfig, UrSim};
 /// run side by side in one process do not share ports; ur-bridge's own tests use lower ones.
 static NEXT_OCTET: AtomicU8 = AtomicU8::new(60);
 
+/// Hands out simulator addresses from 127.0.0.`octet` on (never lower than the default 60, nor
+/// below an address already handed out): a test binary that must stay off another's loopback
+/// range moves this process's range before it opens a scene.
+pub fn sim_addresses_from(octet: u8) {
+    NEXT_OCTET.fetch_max(octet, Ordering::Relaxed);
+}
+
 /// A connected arm, and the simulator behind it when the scene named none.
 pub struct ArmStack {
     /// The ur_rtde client.
