@@ -97,31 +97,14 @@ impl ContactCycle {
     pub fn estimate(&mut self, frame: &PressureFrame<3>) -> ContactEstimate {
         let t_us = frame.t_us as i64;
         let p = frame.pressure_pa;
-        let ch = self.detector.channels();
-        // Every sensor back within half the threshold of its baseline: the press is over.
-        let at_rest = ch
-            .iter()
-            .zip(p)
-            .all(|(c, p)| c.rise_pa(p) < 0.5 * DetectorConfig::DEFAULT.threshold_pa);
-        if self.detector.any_arrived() && at_rest {
-            self.detector.rearm();
-        }
-        self.detector.push(t_us, p);
-        let ch = self.detector.channels();
-        let Some(onset) = ch.iter().filter_map(|c| c.arrival_us()).min() else {
+        let Some(onset) = self.detector.push_streaming(t_us, p) else {
             return ContactEstimate {
                 frame: *frame,
                 event: None,
                 reading: None,
             };
         };
-        let reading = TapReading {
-            baseline_pa: core::array::from_fn(|k| ch[k].baseline_pa().unwrap_or(p[k])),
-            held_pa: p,
-            arrival_ms: core::array::from_fn(|k| {
-                ch[k].arrival_us().map(|t| (t - onset) as f32 / 1000.0)
-            }),
-        };
+        let reading = TapReading::from_detector(&self.detector, p, onset);
         ContactEstimate {
             frame: *frame,
             event: Some(self.detector.event(onset, p)),

@@ -154,6 +154,38 @@ impl ArrivalDetector {
         self.channels.iter_mut().for_each(ChannelDetector::rearm);
     }
 
+    /// Streams one frame of a live sensor: when a contact has arrived and every sensor is back
+    /// within half the threshold of its baseline (the press is over), forgets the arrivals
+    /// first; then feeds the frame. Returns the contact's onset, the earliest arrival, once one
+    /// has arrived.
+    ///
+    /// ```
+    /// use aot_locate::{ArrivalDetector, DetectorConfig};
+    ///
+    /// let mut d = ArrivalDetector::new(DetectorConfig::DEFAULT);
+    /// let rest = [101_000.0; 3];
+    /// let pressed = [101_400.0, 101_300.0, 101_200.0];
+    /// let mut onsets = Vec::new();
+    /// for (t, p) in (0..200).map(|i| (i * 1_000, if (50..100).contains(&i) { pressed } else { rest })) {
+    ///     onsets.push(d.push_streaming(t, p));
+    /// }
+    /// assert_eq!(onsets[49], None);
+    /// assert!(onsets[99].is_some_and(|t| (50_000..=60_000).contains(&t)));
+    /// assert_eq!(onsets[199], None); // released: rearmed
+    /// ```
+    pub fn push_streaming(&mut self, t_us: i64, pressure_pa: [f32; SENSORS]) -> Option<i64> {
+        let at_rest = self
+            .channels
+            .iter()
+            .zip(pressure_pa)
+            .all(|(c, p)| c.rise_pa(p) < 0.5 * c.config.threshold_pa);
+        if self.any_arrived() && at_rest {
+            self.rearm();
+        }
+        self.push(t_us, pressure_pa);
+        self.channels.iter().filter_map(|c| c.arrival_us).min()
+    }
+
     /// The eq. 3 input: `pressure_pa` read against each channel's baseline, and arrival times
     /// counted from `onset_us` (the contact onset on the same clock). An arrival before the
     /// onset counts as 0 µs, one more than `u32::MAX` µs after as `u32::MAX`.

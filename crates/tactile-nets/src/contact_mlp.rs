@@ -49,6 +49,26 @@ pub struct TapReading {
     pub arrival_ms: [Option<f32>; 3],
 }
 
+impl TapReading {
+    /// The reading of a live contact: each sensor's baseline and arrival from `detector`
+    /// (arrivals counted from `onset_us`, the contact's onset on the detector's clock) and the
+    /// pressures `held_pa` read now. A sensor with no baseline yet reads its own pressure.
+    pub fn from_detector(
+        detector: &aot_locate::ArrivalDetector,
+        held_pa: [f32; 3],
+        onset_us: i64,
+    ) -> TapReading {
+        let ch = detector.channels();
+        TapReading {
+            baseline_pa: core::array::from_fn(|k| ch[k].baseline_pa().unwrap_or(held_pa[k])),
+            held_pa,
+            arrival_ms: core::array::from_fn(|k| {
+                ch[k].arrival_us().map(|t| (t - onset_us) as f32 / 1000.0)
+            }),
+        }
+    }
+}
+
 /// One training example: a reading and the cells that were touched.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactExample {

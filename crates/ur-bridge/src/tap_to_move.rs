@@ -82,16 +82,133 @@ pub enum ExperimentError<S: core::fmt::Debug, L: core::fmt::Debug, A: core::fmt:
 pub type CycleError<S, L, A> =
     ExperimentError<<S as TactileSource>::Error, <L as ContactLocator>::Error, <A as Arm>::Error>;
 
-/// A contact window (the frames around the trigger) and the trigger frame's time, µs.
-type Window = (VecDeque<ImuFrame>, u64);
+/// A contact window (the frames around the trigger, oldest first) and the trigger frame's
+/// time, µs.
+pub type Window<'a> = (&'a [ImuFrame], u64);
+
+/// Finds taps in a stream of pad frames, one frame at a time: the pressure rising
+/// `threshold_pa` over a resting baseline (the mean of the first `baseline_samples` readings of
+/// each wait) triggers, and the `frames_before` frames before the trigger frame plus the
+/// `frames_after` from it on make the window. After a window the next wait first lets the press
+/// end (half the threshold above the old rest) before it takes a new baseline: a baseline taken
+/// mid-press would hide the next tap. [`TapToMove`] waits with it; a loop that must keep its own
+/// period pushes each frame as it reads it. Allocates nothing after [`TapTrigger::new`].
+///
+/// ```
+/// use hand_traits::ImuFrame;
+/// use ur_bridge::tap_to_move::{TapToMoveConfig, TapTrigger};
+///
+/// let config = TapToMoveConfig { frames_before: 2, frames_after: 2, ..Default::default() };
+/// let mut trigger = TapTrigger::new(config);
+/// let frame = |t_us, pa| ImuFrame { t_us, pressure_pa: Some(pa), ..ImuFrame::default() };
+/// let mut windows = Vec::new();
+/// for t in 0..20u64 {
+///     let pa = if (14..17).contains(&t) { 100_050.0 } else { 100_000.0 };
+///     if let Some((window, trigger_t_us)) = trigger.push(frame(t, pa)) {
+///         windows.push((window.iter().map(|f| f.t_us).collect::<Vec<_>>(), trigger_t_us));
+///     }
+/// }
+/// assert_eq!(windows, [(vec![12, 13, 14, 15], 14)]);
+/// ```
+#[derive(Debug, Clone)]
+pub struct TapTrigger {
+    config: TapToMoveConfig,
+    recent: VecDeque<ImuFrame>,
+    sum: f64,
+    n: usize,
+    /// The resting pressure of the last wait.
+    rest_pa: Option<f32>,
+    released: bool,
+    trigger_t_us: Option<u64>,
+    /// The last push returned a window: the next one starts a new wait.
+    done: bool,
+}
+
+impl TapTrigger {
+    /// A trigger with `config`'s threshold, baseline and window.
+    pub fn new(config: TapToMoveConfig) -> TapTrigger {
+        TapTrigger {
+            recent: VecDeque::with_capacity(config.frames_before + config.frames_after),
+            config,
+            sum: 0.0,
+            n: 0,
+            rest_pa: None,
+            released: true,
+            trigger_t_us: None,
+            done: false,
+        }
+    }
+
+    /// Starts a new wait (the frames so far dropped, the last rest kept for the release).
+    pub fn restart(&mut self) {
+        self.recent.clear();
+        self.sum = 0.0;
+        self.n = 0;
+        self.released = self.rest_pa.is_none();
+        self.trigger_t_us = None;
+        self.done = false;
+    }
+
+    /// The window the last [`push`](Self::push) returned (contiguous since it did).
+    fn window(&self) -> Window<'_> {
+        (self.recent.as_slices().0, self.trigger_t_us.unwrap_or(0))
+    }
+
+    /// Whether a contact has triggered and the window is filling.
+    pub fn is_triggered(&self) -> bool {
+        self.trigger_t_us.is_some()
+    }
+
+    /// Adds a frame. Once the window is complete returns it, oldest frame first, with the
+    /// trigger frame's time (µs).
+    pub fn push(&mut self, f: ImuFrame) -> Option<Window<'_>> {
+        if self.done {
+            self.restart();
+        }
+        let c = self.config;
+        if let Some(t) = self.trigger_t_us {
+            self.recent.push_back(f);
+            if self.recent.len() < c.frames_before + c.frames_after {
+                return None;
+            }
+            self.done = true;
+            return Some((self.recent.make_contiguous(), t));
+        }
+        if let Some(p) = f.pressure_pa.filter(|p| p.is_finite()) {
+            if !self.released {
+                self.released = self
+                    .rest_pa
+                    .is_none_or(|rest| p - rest < 0.5 * c.threshold_pa);
+            } else if self.n < c.baseline_samples {
+                self.sum += f64::from(p);
+                self.n += 1;
+                if self.n == c.baseline_samples {
+                    self.rest_pa = Some((self.sum / self.n as f64) as f32);
+                }
+            } else if p - (self.sum / self.n as f64) as f32 > c.threshold_pa
+                && self.recent.len() == c.frames_before
+            {
+                // The trigger frame is the first of the `frames_after`.
+                self.trigger_t_us = Some(f.t_us);
+                return self.push(f);
+            }
+        }
+        if self.recent.len() == c.frames_before {
+            self.recent.pop_front();
+        }
+        self.recent.push_back(f);
+        None
+    }
+}
 
 /// The tap-to-move experiment over a grid.
 #[derive(Debug, Clone)]
 pub struct TapToMove<'g> {
     grid: &'g RegionToGrid,
     config: TapToMoveConfig,
-    /// The resting pressure of the last wait: the next wait first lets the last press end.
-    rest_pa: Option<f32>,
+    /// The contact detector; it keeps the last wait's rest so the next first lets that press
+    /// end.
+    trigger: TapTrigger,
 }
 
 impl<'g> TapToMove<'g> {
@@ -100,7 +217,7 @@ impl<'g> TapToMove<'g> {
         Self {
             grid,
             config,
-            rest_pa: None,
+            trigger: TapTrigger::new(config),
         }
     }
 
@@ -130,11 +247,11 @@ impl<'g> TapToMove<'g> {
         }
         arm.move_linear(self.grid.home(), &self.config.motion)
             .map_err(|e| halt(arm, ExperimentError::Arm(e)))?;
-        let (mut window, trigger_t_us) = self.wait_for_contact(source).map_err(|e| halt(arm, e))?;
+        let (window, trigger_t_us) = self.wait_for_contact(source).map_err(|e| halt(arm, e))?;
         let window_wait_us = window
-            .back()
+            .last()
             .map_or(0, |f| f.t_us.saturating_sub(trigger_t_us));
-        let input = to_input(window.make_contiguous());
+        let input = to_input(window);
         let t0 = Instant::now();
         let contact = locator
             .locate(input.borrow())
@@ -157,53 +274,33 @@ impl<'g> TapToMove<'g> {
         })
     }
 
-    /// Reads frames until the pressure rises `threshold_pa` over the resting baseline, then the
-    /// rest of the window. Returns the window and the trigger frame's time.
+    /// Reads frames until the pressure rises `threshold_pa` over the resting baseline (at most
+    /// `max_wait_frames`), then the rest of the window ([`TapTrigger`]). Returns the window and
+    /// the trigger frame's time.
     fn wait_for_contact<S, LE, AE>(
         &mut self,
         source: &mut S,
-    ) -> Result<Window, ExperimentError<S::Error, LE, AE>>
+    ) -> Result<Window<'_>, ExperimentError<S::Error, LE, AE>>
     where
         S: TactileSource<Frame = ImuFrame>,
         LE: core::fmt::Debug,
         AE: core::fmt::Debug,
     {
-        let c = &self.config;
-        let mut recent: VecDeque<ImuFrame> =
-            VecDeque::with_capacity(c.frames_before + c.frames_after);
-        let (mut sum, mut n) = (0.0_f64, 0_usize);
-        // Until the previous press is released (half the threshold above the old rest), no new
-        // baseline: a baseline taken mid-press would hide the next tap.
-        let mut released = self.rest_pa.is_none();
-        for _ in 0..c.max_wait_frames {
-            let f = source.read_frame().map_err(ExperimentError::Source)?;
-            if let Some(p) = f.pressure_pa.filter(|p| p.is_finite()) {
-                if !released {
-                    released = self
-                        .rest_pa
-                        .is_none_or(|rest| p - rest < 0.5 * c.threshold_pa);
-                } else if n < c.baseline_samples {
-                    sum += f64::from(p);
-                    n += 1;
-                    if n == c.baseline_samples {
-                        self.rest_pa = Some((sum / n as f64) as f32);
-                    }
-                } else if p - (sum / n as f64) as f32 > c.threshold_pa
-                    && recent.len() == c.frames_before
-                {
-                    // The trigger frame is the first of the `frames_after`.
-                    recent.push_back(f);
-                    while recent.len() < c.frames_before + c.frames_after {
-                        recent.push_back(source.read_frame().map_err(ExperimentError::Source)?);
-                    }
-                    return Ok((recent, f.t_us));
+        self.trigger.restart();
+        let mut waited = 0;
+        loop {
+            if !self.trigger.is_triggered() {
+                if waited == self.config.max_wait_frames {
+                    return Err(ExperimentError::NoContact(waited));
                 }
+                waited += 1;
             }
-            if recent.len() == c.frames_before {
-                recent.pop_front();
+            let f = source.read_frame().map_err(ExperimentError::Source)?;
+            // Ends the borrow before the loop reads again (a window borrows the trigger).
+            if self.trigger.push(f).is_some() {
+                break;
             }
-            recent.push_back(f);
         }
-        Err(ExperimentError::NoContact(c.max_wait_frames))
+        Ok(self.trigger.window())
     }
 }

@@ -31,7 +31,6 @@
 //! the loop clock's time when the wait returned minus the tick; overruns are the ticks the grasp
 //! loop's scheduler skipped.
 
-use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
 use aot_locate::{AotLocator, ArrivalDetector, DetectorConfig};
@@ -44,7 +43,7 @@ use hand_traits::{
 use tactile_nets::contact_cnn::ContactCnn;
 use tactile_nets::contact_mlp::{ContactMlp, TapReading, features};
 use tactile_nets::force_dnn::ForceDnn;
-use ur_bridge::tap_to_move::TapToMoveConfig;
+use ur_bridge::tap_to_move::TapTrigger;
 use ur_bridge::{MoveHandle, RegionToGrid, UrArm};
 
 /// The loop clock with the wall time spent waiting on it counted, and the loop time at which
@@ -126,21 +125,13 @@ impl Estimators {
             });
             out.force_gf = Some(self.force.estimate_gf(&rise).map_err(|e| e.to_string())?);
         }
-        let ch = self.detector.channels();
-        let at_rest = ch
-            .iter()
-            .zip(p)
-            .all(|(c, p)| c.rise_pa(p) < 0.5 * DetectorConfig::DEFAULT.threshold_pa);
-        if self.detector.any_arrived() && at_rest {
-            self.detector.rearm();
-        }
-        let was_arrived = self.detector.any_arrived();
-        self.detector.push(frame.t_us as i64, p);
-        let ch = self.detector.channels();
-        let Some(onset) = ch.iter().filter_map(|c| c.arrival_us()).min() else {
+        // A contact is new when none had arrived before this frame (a finished press rearms
+        // on a frame at rest, which cannot itself arrive).
+        let had_arrived = self.detector.any_arrived();
+        let Some(onset) = self.detector.push_streaming(frame.t_us as i64, p) else {
             return Ok(());
         };
-        if !was_arrived {
+        if !had_arrived {
             out.contacts += 1;
         }
         let event = self.detector.event(onset, p);
@@ -151,89 +142,13 @@ impl Estimators {
                 .region,
         );
         if let Some(mlp) = &self.mlp {
-            let reading = TapReading {
-                baseline_pa: core::array::from_fn(|k| ch[k].baseline_pa().unwrap_or(p[k])),
-                held_pa: p,
-                arrival_ms: core::array::from_fn(|k| {
-                    ch[k].arrival_us().map(|t| (t - onset) as f32 / 1000.0)
-                }),
-            };
+            let reading = TapReading::from_detector(&self.detector, p, onset);
             let pred = mlp
                 .predict(&features(&reading))
                 .map_err(|e| e.to_string())?;
             out.mlp_area = Some(pred.region);
         }
         Ok(())
-    }
-}
-
-/// A streaming tap trigger over the pad's frames: the pressure rising `threshold_pa` over the
-/// resting baseline, with `frames_before` frames kept before the trigger frame and
-/// `frames_after` collected from it (ur-bridge's `TapToMove` wait, one frame at a time).
-pub struct TapTrigger {
-    config: TapToMoveConfig,
-    recent: VecDeque<ImuFrame>,
-    sum: f64,
-    n: usize,
-    rest_pa: Option<f32>,
-    released: bool,
-    trigger_t_us: Option<u64>,
-}
-
-impl TapTrigger {
-    /// A trigger with `config`'s threshold, baseline and window.
-    pub fn new(config: TapToMoveConfig) -> Self {
-        Self {
-            recent: VecDeque::with_capacity(config.frames_before + config.frames_after),
-            config,
-            sum: 0.0,
-            n: 0,
-            rest_pa: None,
-            released: true,
-            trigger_t_us: None,
-        }
-    }
-
-    /// Adds a frame; returns the window once the frames after a trigger are in.
-    pub fn push(&mut self, f: ImuFrame) -> Option<Vec<ImuFrame>> {
-        let c = &self.config;
-        let len = c.frames_before + c.frames_after;
-        if self.trigger_t_us.is_some() {
-            self.recent.push_back(f);
-            if self.recent.len() >= len {
-                // The next wait starts over and first lets this press end.
-                self.trigger_t_us = None;
-                self.sum = 0.0;
-                self.n = 0;
-                self.released = self.rest_pa.is_none();
-                return Some(self.recent.drain(..).collect());
-            }
-            return None;
-        }
-        if let Some(p) = f.pressure_pa.filter(|p| p.is_finite()) {
-            if !self.released {
-                self.released = self
-                    .rest_pa
-                    .is_none_or(|rest| p - rest < 0.5 * c.threshold_pa);
-            } else if self.n < c.baseline_samples {
-                self.sum += f64::from(p);
-                self.n += 1;
-                if self.n == c.baseline_samples {
-                    self.rest_pa = Some((self.sum / self.n as f64) as f32);
-                }
-            } else if p - (self.sum / self.n as f64) as f32 > c.threshold_pa
-                && self.recent.len() == c.frames_before
-            {
-                self.trigger_t_us = Some(f.t_us);
-                self.recent.push_back(f);
-                return None;
-            }
-        }
-        if self.recent.len() == c.frames_before {
-            self.recent.pop_front();
-        }
-        self.recent.push_back(f);
-        None
     }
 }
 
@@ -478,8 +393,11 @@ where
             match self.pad.pad.read_frame() {
                 Ok(f) => {
                     self.stats.pad_reads += 1;
-                    if let Some(window) = self.pad.trigger.push(f) {
-                        self.locate(&window, &s);
+                    // The window borrows the trigger: make the CNN's input before locating.
+                    let pad = &mut self.pad;
+                    if let Some((window, _)) = pad.trigger.push(f) {
+                        let input = (pad.to_input)(window);
+                        self.locate(&input, &s);
                     }
                 }
                 Err(e) => self.end("sensors.imu_pad", &s, format!("{e:?}"), true),
@@ -496,9 +414,8 @@ where
         self.fault.is_none()
     }
 
-    fn locate(&mut self, window: &[ImuFrame], s: &hand_control::grasp_loop::Sample<3>) {
-        let input = (self.pad.to_input)(window);
-        match self.pad.cnn.locate(&input) {
+    fn locate(&mut self, input: &[f32], s: &hand_control::grasp_loop::Sample<3>) {
+        match self.pad.cnn.locate(input) {
             Ok(c) => {
                 self.stats.cnn_triggers += 1;
                 self.stats.located.push(c.region);

@@ -1,6 +1,6 @@
 //! Composition: the devices a scene names, opened — simulated ones speaking their real
 //! interfaces, real ones by the port, bus or host the scene gives, their buses opened through
-//! the run's [`Platform`](platform::Platform).
+//! the run's [`Platform`].
 
 pub mod arm;
 pub mod fingertip;
