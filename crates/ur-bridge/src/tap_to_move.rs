@@ -100,7 +100,12 @@ pub type Window<'a> = (&'a [ImuFrame], u64);
 ///
 /// let config = TapToMoveConfig { frames_before: 2, frames_after: 2, ..Default::default() };
 /// let mut trigger = TapTrigger::new(config);
-/// let frame = |t_us, pa| ImuFrame { t_us, pressure_pa: Some(pa), ..ImuFrame::default() };
+/// let frame = |t_us, pa| ImuFrame {
+///     t_us,
+///     accel_mps2: [0.0; 3],
+///     gyro_rps: [0.0; 3],
+///     pressure_pa: Some(pa),
+/// };
 /// let mut windows = Vec::new();
 /// for t in 0..20u64 {
 ///     let pa = if (14..17).contains(&t) { 100_050.0 } else { 100_000.0 };
