@@ -1,8 +1,8 @@
 //! Developer workflows for the handstack workspace, run as `cargo xtask <command>`.
 //!
 //! xtask stays thin (rust-analyzer's rule): it parses arguments, sets up `.venv` and Chromium,
-//! runs `cargo` and the workspace's binaries — `handstack` (scenes, training, the trade) and
-//! the reproduction's `papers` (plots, docs sections, simulated datasets) — and compares the
+//! runs `cargo` and the workspace's binaries — `handstack` (scenes) and the reproduction's
+//! `papers` (training, plots, docs sections, simulated datasets, the trade) — and compares the
 //! generated fixtures. It links neither the simulator nor the learned models nor plotters, so
 //! a first `cargo xtask` compiles in seconds.
 //!
@@ -21,8 +21,8 @@
 //! - `train softness`: trains the softness classifier (LM and Adam), writes its weights,
 //!   metrics, figures and section 2 of `docs/learning.md`.
 //!
-//!   Each trains with `handstack train MODEL`, then draws with `papers docs MODEL` ([`train`]).
-//! - `trade`: the speed / accuracy trade report (`handstack trade`) into `docs/trade.md`.
+//!   Each trains with `papers train MODEL`, then draws with `papers docs MODEL` ([`train`]).
+//! - `trade`: the speed / accuracy trade report (`papers trade`) into `docs/trade.md`.
 //! - `demo [--screenshot]`: runs every scene in `fixtures/scenes/` on the simulated default
 //!   and writes `target/demo/report.html` (`--screenshot`: also `docs/demo-report.png`).
 //! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.

@@ -39,15 +39,9 @@ pub struct Binary {
     pub default_features: bool,
 }
 
-/// The composition root's binary: scenes, `train MODEL` (weights and metrics), `trade`.
-pub const HANDSTACK: Binary = Binary {
-    package: "handstack",
-    name: "handstack",
-    default_features: true,
-};
-
-/// The reproduction's writers: a model's plots and docs, the simulated datasets. Without the
-/// default `arm` feature: they need no Python, so the binary embeds none.
+/// The reproduction's writers: training (`train MODEL`: weights and metrics), a model's plots
+/// and docs, the simulated datasets, the speed / accuracy trade. Without the default `arm`
+/// feature: they need no Python, so the binary embeds none.
 pub const PAPERS: Binary = Binary {
     package: "paper-experiments",
     name: "papers",

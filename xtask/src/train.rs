@@ -1,7 +1,7 @@
 //! `cargo xtask train MODEL [--docs-only]`: retrains a committed model and redraws its docs.
 //!
 //! Two binaries, both under the optimised `test` profile (dfdx at `opt-level = 0`, the xtask's
-//! own profile, is several times slower): `handstack train MODEL` trains and writes the weights
+//! own profile, is several times slower): `papers train MODEL` trains and writes the weights
 //! and metrics below `fixtures/models/`; then `papers docs MODEL` draws the plots and rewrites
 //! the model's section of the docs from those files (`--docs-only`: that step alone).
 //!
@@ -12,7 +12,7 @@
 //! - `contact-cnn` (`--docs-only`): Table I side by side, the confusion matrix and section 3,
 //!   quoting the latest `cargo xtask bench contact_cnn` means from `target/criterion`.
 
-use crate::run::{HANDSTACK, PAPERS};
+use crate::run::PAPERS;
 use anyhow::{Result, bail};
 use std::path::Path;
 use std::time::SystemTime;
@@ -41,7 +41,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
         _ => bail!(USAGE),
     };
     if !docs_only {
-        HANDSTACK.run(root, &format!("train ({model})"), &["train", model])?;
+        PAPERS.run(root, &format!("train ({model})"), &["train", model])?;
     }
     let mut docs = vec!["docs".to_owned(), model.to_owned()];
     if model == "contact-cnn" {

@@ -9,11 +9,11 @@
 //! - [`scene`]: the scene schema, parsed with spans and validated (errors name file, line,
 //!   column, key and what is allowed);
 //! - [`runs`]: one runner per experiment, joined into the scene's [`Outcome`];
-//! - [`progress`]: where a run reports its stages;
-//! - [`trade`]: `handstack trade`, the speed / accuracy trade report;
-//! - [`train`]: `handstack train MODEL`.
+//! - [`progress`]: where a run reports its stages.
+//!
+//! The papers' training (`papers train MODEL`) and speed / accuracy trade (`papers trade`) are
+//! the reproduction's: `paper_experiments::{train, trade}`.
 
-mod axis;
 pub mod error;
 pub mod outcome;
 pub mod progress;
@@ -22,8 +22,6 @@ pub mod runs;
 pub mod scene;
 pub mod stack;
 pub mod summary;
-pub mod trade;
-pub mod train;
 
 pub use error::RunError;
 pub use outcome::{Figure, Line, Outcome, Plot};

@@ -1,5 +1,6 @@
-//! `handstack`: run scene files (`handstack run SCENE... [--json]`), train the committed models
-//! (`handstack train MODEL`), measure the speed / accuracy trade (`handstack trade`).
+//! `handstack`: run scene files (`handstack run SCENE... [--json] [--report PATH]`). Training
+//! the committed models and the speed / accuracy trade are the reproduction's (`papers train
+//! MODEL`, `papers trade`).
 
 use clap::{Parser, Subcommand};
 use handstack::progress::{Progress, Quiet};
@@ -31,30 +32,6 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         report: Option<PathBuf>,
     },
-    /// Train one committed model family and write its weights and metrics.
-    Train {
-        /// contact-mlp | force-dnn | softness | contact-cnn
-        model: String,
-        /// Workspace root (default: the nearest directory holding fixtures/models).
-        #[arg(long)]
-        root: Option<PathBuf>,
-        /// contact-mlp, contact-cnn: quick run at this many epochs (writes nothing).
-        #[arg(long)]
-        epochs: Option<usize>,
-        /// contact-cnn: only protocol rows starting with this label (writes nothing);
-        /// softness: only optimiser 0 (LM) or 1 (Adam).
-        #[arg(long)]
-        only: Option<String>,
-        /// softness: train and report, write nothing.
-        #[arg(long)]
-        dry_run: bool,
-    },
-    /// Measure cost against accuracy for every knob; write docs/trade.md and docs/trade/.
-    Trade {
-        /// Workspace root (default: the nearest directory holding fixtures/models).
-        #[arg(long)]
-        root: Option<PathBuf>,
-    },
 }
 
 /// A progress bar per stage on stderr.
@@ -78,14 +55,6 @@ fn main() -> ExitCode {
             json,
             report: html,
         } => run(&scenes, json, html.as_deref()),
-        Command::Train {
-            model,
-            root,
-            epochs,
-            only,
-            dry_run,
-        } => report(train(&model, root, epochs, only, dry_run)),
-        Command::Trade { root } => report(trade(root)),
     }
 }
 
@@ -154,57 +123,4 @@ fn run(scenes: &[PathBuf], json: bool, report: Option<&std::path::Path>) -> Exit
     } else {
         ExitCode::SUCCESS
     }
-}
-
-/// Prints `result`'s error, if any, as the exit status says.
-fn report(result: Result<(), String>) -> ExitCode {
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
-}
-
-/// `root`, or the nearest directory at or above the current one holding fixtures/models.
-fn workspace(root: Option<PathBuf>) -> Result<PathBuf, String> {
-    root.or_else(|| {
-        std::env::current_dir()
-            .ok()
-            .and_then(|d| handstack::train::find_root(&d))
-    })
-    .ok_or_else(|| "no fixtures/models here or above: pass --root".into())
-}
-
-fn train(
-    model: &str,
-    root: Option<PathBuf>,
-    epochs: Option<usize>,
-    only: Option<String>,
-    dry_run: bool,
-) -> Result<(), String> {
-    let model = handstack::train::Model::from_name(model).map_err(|e| e.to_string())?;
-    let options = handstack::train::TrainOptions {
-        epochs,
-        only,
-        dry_run,
-    };
-    let written =
-        handstack::train::run(&workspace(root)?, model, &options).map_err(|e| e.to_string())?;
-    for path in written {
-        println!("wrote {}", path.display());
-    }
-    Ok(())
-}
-
-fn trade(root: Option<PathBuf>) -> Result<(), String> {
-    let root = workspace(root)?;
-    let trade = handstack::trade::run(&root, |step| eprintln!("trade: {step}"))
-        .map_err(|e| e.to_string())?;
-    for file in handstack::trade::write(&root, &trade).map_err(|e| e.to_string())? {
-        println!("wrote {file}");
-    }
-    println!("trade run: {:.1} s", trade.wall_s);
-    Ok(())
 }

@@ -1,5 +1,5 @@
 //! The training commands' bodies: train a model family on its committed dataset and write its
-//! weights and metrics below the workspace root: the body of `handstack train MODEL`, which
+//! weights and metrics below the workspace root: the body of `papers train MODEL`, which
 //! `cargo xtask train MODEL` runs before `papers docs MODEL` draws the plots and the docs
 //! sections from what these write.
 //!

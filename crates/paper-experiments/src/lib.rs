@@ -9,8 +9,10 @@
 //! - [`force_eval`], [`contact_eval`], [`cnn_eval`], [`softness_eval`]: each model's recipes,
 //!   held-out protocols and committed models (seed 000 §2.2 and §4, seed 002 §IV-A, seed 001);
 //! - [`aot_eval`]: Arrival-of-Time on the fingertip taps (seed 000 §3);
-//! - [`jobs`]: the training commands (`handstack train MODEL`, which `cargo xtask train MODEL`
-//!   runs);
+//! - [`jobs`]: the training jobs, and [`train`], the command over them (`papers train MODEL`,
+//!   which `cargo xtask train MODEL` runs);
+//! - [`trade`]: the speed / accuracy trade (`papers trade`, run by `cargo xtask trade`), with
+//!   [`axis`], the chart axes it shares with handstack's report;
 //! - [`grasp_rig`]: the Table 5 grasp world (hand-sim's rig and fingertip) behind the grasp
 //!   loop's parts (seed 000 §5–7);
 //! - `tap_run` (feature `arm`, default): seed 002 §IV-B end to end on hand-sim's pad and the
@@ -19,12 +21,13 @@
 //! The crate's binary, `papers` (`src/bin/papers/`), holds the writers `cargo xtask` runs
 //! rather than links, so that xtask stays free of the simulator, the models and plotters:
 //! `papers docs MODEL` draws a trained model's plots and rewrites its section of `docs/` from
-//! the committed weights and metrics (after `handstack train MODEL`), and `papers fixtures NAME
+//! the committed weights and metrics (after `papers train MODEL`), and `papers fixtures NAME
 //! --out DIR` writes a simulated dataset (`fixtures/datasets/`) for `cargo xtask fixtures` to
 //! compare or commit. xtask builds it without `arm` (no Python):
 //! `cargo run --profile test -p paper-experiments --no-default-features --bin papers -- …`.
 
 pub mod aot_eval;
+pub mod axis;
 pub mod cnn_eval;
 pub mod contact_eval;
 pub mod force_eval;
@@ -33,6 +36,8 @@ pub mod jobs;
 pub mod softness_eval;
 #[cfg(feature = "arm")]
 pub mod tap_run;
+pub mod trade;
+pub mod train;
 
 /// One reader per committed dataset.
 pub mod data {

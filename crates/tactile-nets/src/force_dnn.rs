@@ -97,7 +97,7 @@ pub const HIDDEN: usize = 16;
 pub const OUTPUT_SPAN: [f32; 2] = [0.1, 0.9];
 
 /// Hidden widths a force DNN can be built with: the committed models use [`HIDDEN`]; the
-/// others are the model-size knob of the trade report (`handstack trade`).
+/// others are the model-size knob of the trade report (`papers trade`).
 pub const WIDTHS: [usize; 4] = [4, 8, HIDDEN, 32];
 
 type Arch<const H: usize> = (

@@ -44,11 +44,11 @@ pub use provenance::Provenance;
 pub use trade_points::{TradePoint, TradeSection};
 
 use crate::Outcome;
-use crate::axis::fmt_num;
+use paper_experiments::axis::fmt_num;
 use std::path::{Path, PathBuf};
 
-/// Where `handstack trade` writes the trade points, relative to the workspace root.
-pub use crate::trade::POINTS as TRADE_POINTS;
+/// Where `papers trade` writes the trade points, relative to the workspace root.
+pub use paper_experiments::trade::POINTS as TRADE_POINTS;
 
 /// What can go wrong while writing a report.
 #[derive(Debug, thiserror::Error)]

@@ -2,8 +2,8 @@
 //! text it writes). Non-finite values are skipped or drawn grey, never panicked on.
 
 use super::ReportError;
-use crate::axis::{fmt_num, fmt_tick, padded, span, wants_log};
 use crate::{Line, Plot};
+use paper_experiments::axis::{fmt_num, fmt_tick, padded, span, wants_log};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;

@@ -1,10 +1,10 @@
 //! The speed/accuracy trade points the report draws: `docs/trade/points.csv`, written by
-//! `handstack trade`, one row per knob setting (read through the trade module's schema,
+//! `papers trade`, one row per knob setting (read through the trade module's schema,
 //! [`CsvRow`], so the writer and every reader agree on one format).
 
 use super::ReportError;
-use crate::trade::{CsvRow, parse_csv};
 use crate::{Line, Plot};
+use paper_experiments::trade::{CsvRow, parse_csv};
 use std::path::{Path, PathBuf};
 
 /// One measured knob setting: a row of `points.csv`.

@@ -4,13 +4,17 @@
 //! papers -- …`).
 //!
 //! - `docs MODEL`: a trained model's plots and its section of `docs/` ([`docs`]);
-//! - `fixtures NAME --out DIR`: a generated fixture folder that needs the simulator ([`fixtures`]).
+//! - `fixtures NAME --out DIR`: a generated fixture folder that needs the simulator ([`fixtures`]);
+//! - `train MODEL [--epochs N] [--only X] [--dry-run]`: trains a committed model family and
+//!   writes its weights and metrics ([`paper_experiments::train`]);
+//! - `trade`: the speed / accuracy trade into `docs/trade.md` and `docs/trade/`
+//!   ([`paper_experiments::trade`]).
 
 mod docs;
 mod fixtures;
 
 use anyhow::{Context, Result, bail};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 const USAGE: &str = "usage: papers <command> --root ROOT
@@ -21,7 +25,14 @@ commands (run by `cargo xtask`; ROOT is the workspace root):
                             weights and metrics (contact-mlp, force-dnn, softness, contact-cnn);
                             --timing: a criterion mean the section quotes (contact-cnn)
   fixtures NAME --out DIR   write the generated fixture folder NAME into DIR
-                            (fingertip-datasets, imu-pad-taps, underactuated)";
+                            (fingertip-datasets, imu-pad-taps, underactuated)
+  train MODEL [--epochs N] [--only X] [--dry-run]
+                            train MODEL (contact-mlp, force-dnn, softness, contact-cnn) and write
+                            its weights and metrics; --epochs: a quick run (contact-mlp,
+                            contact-cnn; writes nothing); --only: protocol rows starting with X
+                            (contact-cnn) or optimiser 0 / 1 (softness); --dry-run: write nothing
+  trade                     measure cost against accuracy for every knob; write docs/trade.md
+                            and docs/trade/";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -41,6 +52,7 @@ struct CommandLine {
     root: Option<PathBuf>,
     out: Option<PathBuf>,
     timings: docs::Timings,
+    train: paper_experiments::train::TrainOptions,
 }
 
 impl CommandLine {
@@ -52,6 +64,12 @@ impl CommandLine {
             match arg.as_str() {
                 "--root" => line.root = Some(value()?.into()),
                 "--out" => line.out = Some(value()?.into()),
+                "--epochs" => {
+                    let n = value()?;
+                    line.train.epochs = Some(n.parse().with_context(|| format!("--epochs {n}"))?);
+                }
+                "--only" => line.train.only = Some(value()?.clone()),
+                "--dry-run" => line.train.dry_run = true,
                 "--timing" => {
                     let (id, mean) = value()?.split_once('=').context("--timing takes ID=MEAN")?;
                     line.timings.insert(id.to_owned(), mean.to_owned());
@@ -77,8 +95,29 @@ fn run(args: &[String]) -> Result<()> {
             let out = line.out.as_deref().context("fixtures needs --out DIR")?;
             fixtures::write(name, out)
         }
+        [command, model] if command == "train" => train(root()?, model, &line.train),
+        [command] if command == "trade" => trade(root()?),
         _ => bail!("unknown command\n\n{USAGE}"),
     }
+}
+
+/// Trains `model` below `root` with `options` and names the files written.
+fn train(root: &Path, model: &str, options: &paper_experiments::train::TrainOptions) -> Result<()> {
+    let model = paper_experiments::train::Model::from_name(model)?;
+    for path in paper_experiments::train::run(root, model, options)? {
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Measures the trade below `root` and writes its report.
+fn trade(root: &Path) -> Result<()> {
+    let trade = paper_experiments::trade::run(root, |step| eprintln!("trade: {step}"))?;
+    for file in paper_experiments::trade::write(root, &trade)? {
+        println!("wrote {file}");
+    }
+    println!("trade run: {:.1} s", trade.wall_s);
+    Ok(())
 }
 
 #[cfg(test)]

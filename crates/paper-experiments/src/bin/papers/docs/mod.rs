@@ -1,5 +1,5 @@
 //! `papers docs MODEL`: a trained model's plots and report section, drawn from its committed
-//! weights and metrics (what `handstack train MODEL` writes). `cargo xtask train MODEL` runs it
+//! weights and metrics (what `papers train MODEL` writes). `cargo xtask train MODEL` runs it
 //! after training, or alone with `--docs-only`.
 
 mod contact_cnn;

@@ -6,12 +6,12 @@ use super::error::TradeError;
 use super::pareto::Better;
 use super::point::{CostKind, Point, Task};
 use super::timing::median_us;
+use crate::aot_eval;
+use crate::cnn_eval;
+use crate::contact_eval::{self, Trained};
+use crate::data::{fingertip, imu_pad};
 use aot_locate::{DetectorConfig, Geometry};
 use baro_drivers::{Osr, Scheduler};
-use paper_experiments::aot_eval;
-use paper_experiments::cnn_eval;
-use paper_experiments::contact_eval::{self, Trained};
-use paper_experiments::data::{fingertip, imu_pad};
 use std::path::Path;
 use tactile_nets::contact_cnn::{ContactCnn, Variant};
 use tactile_nets::contact_mlp::features;
@@ -42,7 +42,7 @@ pub fn tasks() -> Vec<Task> {
             note: "Cost: `Scheduler::cycle_bound_ns` — the three sensors convert in parallel, \
                    D2 then D1, each the datasheet's maximum conversion time (MS5611-01BA03 p. 3), \
                    so one fingertip frame takes 2 × t_conv whatever the sensor count; the CPU is \
-                   free meanwhile. Accuracy: `paper_experiments::aot_eval` (the evaluator behind \
+                   free meanwhile. Accuracy: `crate::aot_eval` (the evaluator behind \
                    docs/contact-location.md) on the held-out repeat of \
                    `fixtures/datasets/fingertip/`, ranging constants fitted on repeat 0. The \
                    dataset was simulated per OSR (chip noise and sample period of that OSR)."

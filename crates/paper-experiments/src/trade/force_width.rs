@@ -6,8 +6,8 @@ use super::error::TradeError;
 use super::pareto::Better;
 use super::point::{CostKind, Point, Task};
 use super::timing::median_us;
-use paper_experiments::data::weights::{self, WeightSample};
-use paper_experiments::force_eval::{self, error_values, loo_models, loo_pairs};
+use crate::data::weights::{self, WeightSample};
+use crate::force_eval::{self, error_values, loo_models, loo_pairs};
 use std::path::Path;
 use tactile_nets::force_dnn::{HIDDEN, WIDTHS};
 

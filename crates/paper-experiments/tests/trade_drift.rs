@@ -4,7 +4,7 @@
 //! are wall-clock and are not compared; a mismatch means the controller, the chip model or the
 //! driver changed: rerun `cargo xtask trade` and review the diff.
 
-use handstack::trade::{self, CsvRow, defuzz, icm_mode, location};
+use paper_experiments::trade::{self, CsvRow, defuzz, icm_mode, location};
 use std::path::PathBuf;
 
 fn committed() -> Vec<CsvRow> {

@@ -1,4 +1,4 @@
-//! `handstack trade`: per-cycle cost against accuracy for each speed / accuracy knob of the
+//! `papers trade`: per-cycle cost against accuracy for each speed / accuracy knob of the
 //! stack, measured in one run, with the Pareto front per task; writes `docs/trade.md`, one SVG
 //! per task and the raw points (`docs/trade/points.csv`).
 //!

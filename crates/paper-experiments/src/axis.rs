@@ -1,10 +1,10 @@
 //! Axis ranges and tick labels shared by every chart the crate draws (the report's inline
-//! SVGs and `handstack trade`'s files), so both read data the same way.
+//! SVGs and `papers trade`'s files), so both read data the same way.
 
 use std::ops::Range;
 
 /// A number for people: four significant digits, no exponent for everyday magnitudes.
-pub(crate) fn fmt_num(v: f64) -> String {
+pub fn fmt_num(v: f64) -> String {
     if !v.is_finite() {
         return format!("{v}");
     }
@@ -26,7 +26,7 @@ pub(crate) fn fmt_num(v: f64) -> String {
 }
 
 /// `lo..hi` of the finite values, widened when empty or a single value.
-pub(crate) fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
+pub fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
@@ -42,19 +42,19 @@ pub(crate) fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
 }
 
 /// The span with 4 % of its width added on each side, so end points are not on the frame.
-pub(crate) fn padded((lo, hi): (f64, f64)) -> Range<f64> {
+pub fn padded((lo, hi): (f64, f64)) -> Range<f64> {
     let pad = 0.04 * (hi - lo);
     lo - pad..hi + pad
 }
 
 /// Whether positive values spanning `lo..hi` read better on a log axis: two decades or more
 /// (costs from nanoseconds to milliseconds).
-pub(crate) fn wants_log((lo, hi): (f64, f64)) -> bool {
+pub fn wants_log((lo, hi): (f64, f64)) -> bool {
     lo > 0.0 && hi / lo >= 100.0
 }
 
 /// An axis tick: [`fmt_num`], with rounding noise around zero (`-2.2e-16`) shown as `0`.
-pub(crate) fn fmt_tick(v: f64, axis: &Range<f64>) -> String {
+pub fn fmt_tick(v: f64, axis: &Range<f64>) -> String {
     if v.abs() <= 1e-9 * (axis.end - axis.start).abs() {
         "0".into()
     } else {

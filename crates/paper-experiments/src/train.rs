@@ -1,6 +1,6 @@
-//! `handstack train MODEL`: trains one committed model family with a progress bar and writes
+//! `papers train MODEL`: trains one committed model family with a progress bar and writes
 //! its weights and metrics — the code `cargo xtask train MODEL` runs before drawing the
-//! plots and docs ([`paper_experiments::jobs`]).
+//! plots and docs ([`crate::jobs`]).
 
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -30,7 +30,7 @@ impl Model {
     /// The model named `name` on the command line.
     ///
     /// ```
-    /// use handstack::train::Model;
+    /// use paper_experiments::train::Model;
     /// assert_eq!(Model::from_name("force-dnn").ok(), Some(Model::ForceDnn));
     /// assert!(Model::from_name("cnn").unwrap_err().to_string().contains("contact-cnn"));
     /// ```
@@ -55,7 +55,7 @@ pub struct TrainOptions {
     pub dry_run: bool,
 }
 
-/// What `handstack train` can fail with.
+/// What `papers train` can fail with.
 #[derive(Debug, Error)]
 pub enum TrainError {
     /// No such model.
@@ -74,7 +74,7 @@ pub enum TrainError {
     Paper(String),
     /// Reading the dataset, training or writing.
     #[error(transparent)]
-    Job(#[from] paper_experiments::jobs::JobError),
+    Job(#[from] crate::jobs::JobError),
 }
 
 fn name(model: Model) -> &'static str {
@@ -109,7 +109,7 @@ pub fn run(root: &Path, model: Model, options: &TrainOptions) -> Result<Vec<Path
         return Err(refuse("--only"));
     }
     Ok(match model {
-        Model::ContactMlp => paper_experiments::jobs::contact_mlp(root, *epochs)?,
+        Model::ContactMlp => crate::jobs::contact_mlp(root, *epochs)?,
         Model::ForceDnn => {
             let rows: Vec<(f64, [f64; 3])> =
                 paper_fixtures::seed000::table1_weight_in(&root.join("fixtures"))
@@ -117,7 +117,7 @@ pub fn run(root: &Path, model: Model, options: &TrainOptions) -> Result<Vec<Path
                     .iter()
                     .map(|r| (r.weight_gf, r.pressure_hpa))
                     .collect();
-            paper_experiments::jobs::force_dnn(root, &rows)?
+            crate::jobs::force_dnn(root, &rows)?
         }
         Model::Softness => {
             let only = only
@@ -125,16 +125,16 @@ pub fn run(root: &Path, model: Model, options: &TrainOptions) -> Result<Vec<Path
                 .map(|s| {
                     s.parse::<usize>()
                         .ok()
-                        .filter(|&i| i < paper_experiments::softness_eval::OPTIMISERS.len())
+                        .filter(|&i| i < crate::softness_eval::OPTIMISERS.len())
                         .ok_or_else(|| TrainError::Option {
                             model: name(model),
                             detail: format!("--only takes 0 (LM) or 1 (Adam), not `{s}`"),
                         })
                 })
                 .transpose()?;
-            paper_experiments::jobs::softness(root, only, *dry_run)?
+            crate::jobs::softness(root, only, *dry_run)?
         }
-        Model::ContactCnn => paper_experiments::jobs::contact_cnn(root, *epochs, only.as_deref())?,
+        Model::ContactCnn => crate::jobs::contact_cnn(root, *epochs, only.as_deref())?,
     })
 }
 
@@ -143,7 +143,7 @@ pub fn run(root: &Path, model: Model, options: &TrainOptions) -> Result<Vec<Path
 ///
 /// ```
 /// let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-/// let root = handstack::train::find_root(here).unwrap();
+/// let root = paper_experiments::train::find_root(here).unwrap();
 /// assert!(root.join("fixtures/models").is_dir());
 /// ```
 pub fn find_root(start: &Path) -> Option<PathBuf> {
@@ -186,7 +186,7 @@ mod tests {
         // A valid option on a missing workspace fails on the data, not with a panic.
         assert!(matches!(
             run(root, Model::ContactMlp, &epochs),
-            Err(TrainError::Job(paper_experiments::jobs::JobError::Data(_)))
+            Err(TrainError::Job(crate::jobs::JobError::Data(_)))
         ));
     }
 }

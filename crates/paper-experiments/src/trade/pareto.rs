@@ -30,11 +30,11 @@ impl Better {
 /// (a NaN compares false both ways and would silently sit on the front).
 ///
 /// ```
-/// use handstack::trade::{Better, pareto_front};
+/// use paper_experiments::trade::{Better, pareto_front};
 /// // (µs, % correct): the 3 µs point is dominated by the 2 µs one.
 /// let front = pareto_front(&[(1.0, 80.0), (2.0, 90.0), (3.0, 85.0)], Better::Higher)?;
 /// assert_eq!(front, [true, true, false]);
-/// # Ok::<(), handstack::trade::TradeError>(())
+/// # Ok::<(), paper_experiments::trade::TradeError>(())
 /// ```
 pub fn pareto_front(points: &[(f64, f64)], better: Better) -> Result<Vec<bool>, TradeError> {
     if let Some(index) = points
