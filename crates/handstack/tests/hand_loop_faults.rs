@@ -32,15 +32,7 @@ fn ended_in_safe_state(b: &Built, device: &str) -> u64 {
     assert_eq!(f.mode, Mode::Safe, "{f:?}");
     assert_eq!(l.stats().cycles, f.cycle + 1, "no cycle after the fault's");
     assert_eq!(l.grasp().log().last().map(|s| s.cycle), Some(f.cycle));
-    let mut part = handstack::runs::Part::default();
-    scene::figures(
-        l.stats(),
-        l.overruns(),
-        l.fault(),
-        &b.object,
-        &b.host,
-        &mut part,
-    );
+    let part = b.figures();
     let fig = |n: &str| part.figures.iter().find(|x| x.name == n).expect(n).clone();
     assert_eq!(fig("loop_fault").value, 1.0);
     assert!(

@@ -24,13 +24,7 @@ const MLP_TARGET_PCT: f64 = 95.0;
 /// Runs the contact experiment of `scene`.
 pub fn run(scene: &Scene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, RunError> {
     let osr = scene.sim.fingertip.as_ref().map_or(4096, |f| f.osr);
-    let locators = scene
-        .file
-        .estimators
-        .contact
-        .as_ref()
-        .map(|c| c.get_ref().locators.get_ref().clone())
-        .unwrap_or_default();
+    let locators = scene.locators();
     let mut part = Part::default();
     let rules: Vec<Rule> = locators
         .iter()

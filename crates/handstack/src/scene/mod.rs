@@ -99,4 +99,14 @@ impl Scene {
     pub fn seed(&self) -> u64 {
         self.sim.seed
     }
+
+    /// The contact locators `[estimators.contact]` names (none without that table).
+    pub fn locators(&self) -> Vec<parts::Locator> {
+        self.file
+            .estimators
+            .contact
+            .as_ref()
+            .map(|c| c.get_ref().locators.get_ref().clone())
+            .unwrap_or_default()
+    }
 }

@@ -82,17 +82,24 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Part, RunError> {
     if let Some(e) = b.world.borrow_mut().world_error.take() {
         return Err(dev("hand")(e.to_string()));
     }
-    let mut part = Part::default();
-    let l = &b.hand_loop;
-    figures(
-        l.stats(),
-        l.overruns(),
-        l.fault(),
-        &b.object,
-        &b.host,
-        &mut part,
-    );
-    Ok(part)
+    Ok(b.figures())
+}
+
+impl Built {
+    /// The loop's figures so far.
+    pub fn figures(&self) -> Part {
+        let mut part = Part::default();
+        let l = &self.hand_loop;
+        figures(
+            l.stats(),
+            l.overruns(),
+            l.fault(),
+            &self.object,
+            &self.host,
+            &mut part,
+        );
+        part
+    }
 }
 
 /// Builds the fused loop of `scene` on the simulated stack (`None`: the scene names no
@@ -131,13 +138,7 @@ pub fn build(scene: &Scene, cx: &RunContext<'_>) -> Result<Option<Built>, RunErr
         _ => paper_experiments::force_eval::SIM_FILE,
     };
     let force = ForceDnn::load(&models.join(force_file))?;
-    let locators = scene
-        .file
-        .estimators
-        .contact
-        .as_ref()
-        .map(|c| c.get_ref().locators.get_ref().clone())
-        .unwrap_or_default();
+    let locators = scene.locators();
     let mlp = if locators.contains(&Locator::Mlp) {
         let (file, _) = x
             .contact
@@ -299,22 +300,16 @@ pub fn figures(
         st.torque_raw.map_or(f64::NAN, f64::from),
         "",
     ));
-    let (label, value, t_s) = match fault {
-        Some(r) => (
-            format!(
-                "fused loop: fault of {} in cycle {} at t = {:.2} s ({}); hand {:?}",
-                r.device,
-                r.cycle,
-                r.t_us as f64 * 1e-6,
-                r.reason,
-                r.mode
-            ),
-            1.0,
-            r.t_us as f64 * 1e-6,
-        ),
-        None => ("fused loop: faults (none)".to_owned(), 0.0, f64::NAN),
+    let Some(r) = fault else {
+        f.push(measured("loop_fault", "fused loop: faults (none)", 0.0, ""));
+        return;
     };
-    f.push(measured("loop_fault", &label, value, ""));
+    let t_s = r.t_us as f64 * 1e-6;
+    let label = format!(
+        "fused loop: fault of {} in cycle {} at t = {t_s:.2} s ({}); hand {:?}",
+        r.device, r.cycle, r.reason, r.mode
+    );
+    f.push(measured("loop_fault", &label, 1.0, ""));
     f.push(measured(
         "loop_fault_t_s",
         "fused loop: fault time",
