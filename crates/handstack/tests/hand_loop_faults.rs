@@ -1,5 +1,5 @@
-//! The fused full-hand loop's faults: a fingertip bus error and the arm's lost connection each
-//! end the loop in its safe state in the cycle they are seen, and the figures name the device
+//! The fused full-hand loop's faults: a fingertip bus error, a pad bus error, a silent servo and
+//! the arm's lost connection each end the loop in its safe state in the cycle they are seen, and the figures name the device
 //! and the time. The loop runs on the full-hand scene's simulated stack; its UR simulators sit
 //! on 127.0.0.210 and up.
 
@@ -7,6 +7,7 @@ mod common;
 
 use common::scene_path;
 use hand_control::grasp_loop::Mode;
+use hand_traits::{ImuFrame, TactileSource};
 use handstack::progress::Quiet;
 use handstack::runs::RunContext;
 use handstack::runs::hand_loop::scene::{self, Built};
@@ -23,9 +24,52 @@ fn built() -> Built {
         .expect("the full hand names a grasp and taps")
 }
 
+/// The pad, failing from its `fail_at`-th read on (0-based) as a bus that stopped answering.
+struct FailingPad {
+    pad: hand_sim::imu_pad::ImuPad,
+    reads: u64,
+    fail_at: u64,
+}
+
+impl TactileSource for FailingPad {
+    type Frame = ImuFrame;
+    type Error = String;
+    fn read_frame(&mut self) -> Result<ImuFrame, String> {
+        self.reads += 1;
+        if self.reads > self.fail_at {
+            return Err("injected: the pad's bus stopped answering".into());
+        }
+        self.pad.read_frame().map_err(|e| e.to_string())
+    }
+}
+
+#[test]
+fn a_pad_bus_error_ends_the_loop_in_the_hold_within_its_cycle() {
+    handstack::stack::arm::sim_addresses_from(210);
+    let cx = RunContext::new(&Quiet);
+    let s = Scene::load(&scene_path("full-hand")).expect("the committed scene loads");
+    // 150 frames at 30 Hz: the 151st read is due 5 s after the first tick.
+    let mut b = scene::build_with(&s, &cx, |pad| FailingPad {
+        pad,
+        reads: 0,
+        fail_at: 150,
+    })
+    .expect("the simulated stack opens")
+    .expect("the full hand names a grasp and taps");
+    b.hand_loop.run_until(b.until_us);
+    let t_us = ended_in_safe_state(&b, "sensors.imu_pad");
+    assert!((4_990_000..=5_010_000).contains(&t_us), "{t_us}");
+    // The failed read is not counted: 150 frames were read.
+    assert_eq!(b.hand_loop.stats().pad_reads, 150);
+}
+
 /// The loop ended in `device`'s fault: the fault's cycle was the last one run, and the hand
 /// is in its safe state.
-fn ended_in_safe_state(b: &Built, device: &str) -> u64 {
+fn ended_in_safe_state<Pad>(b: &Built<Pad>, device: &str) -> u64
+where
+    Pad: TactileSource<Frame = ImuFrame>,
+    Pad::Error: core::fmt::Debug,
+{
     let l = &b.hand_loop;
     let f = l.fault().expect("a fault ended the loop");
     assert_eq!(f.device, device, "{f:?}");

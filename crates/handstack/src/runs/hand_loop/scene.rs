@@ -11,6 +11,7 @@ use crate::scene::parts::{ForceModel, Locator};
 use hand_control::grasp_loop::TorqueBand;
 use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
 use hand_sim::imu_pad::ImuPad;
+use hand_traits::{ImuFrame, TactileSource};
 use paper_experiments::cnn_eval::{MODEL_DIR as CNN_DIR, model_file};
 use paper_experiments::grasp_rig::{self, LIFT_AT_S};
 use paper_experiments::tap_run::{self, ROUNDS};
@@ -45,19 +46,19 @@ fn dev(device: &'static str) -> impl Fn(String) -> RunError {
     move |reason| RunError::Device { device, reason }
 }
 
-/// The loop over the simulated stack.
-pub type SimHandLoop = HandLoop<
+/// The loop over the simulated stack (its pad hand-sim's, or that wrapped by a test).
+pub type SimHandLoop<Pad = ImuPad> = HandLoop<
     grasp_rig::Source,
     fuzzy_mamdani::GraspController,
     hand_control::ServoHand,
     grasp_rig::Clock,
-    ImuPad,
+    Pad,
 >;
 
 /// The loop of a scene, built, with what the run keeps beside it.
-pub struct Built {
+pub struct Built<Pad = ImuPad> {
     /// The loop.
-    pub hand_loop: SimHandLoop,
+    pub hand_loop: SimHandLoop<Pad>,
     /// The grasp world (the fingertip, servo bus and physics on one clock).
     pub world: grasp_rig::Shared,
     /// The first grasp object's name.
@@ -85,7 +86,11 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Part, RunError> {
     Ok(b.figures())
 }
 
-impl Built {
+impl<Pad> Built<Pad>
+where
+    Pad: TactileSource<Frame = ImuFrame>,
+    Pad::Error: core::fmt::Debug,
+{
     /// The loop's figures so far.
     pub fn figures(&self) -> Part {
         let mut part = Part::default();
@@ -105,6 +110,19 @@ impl Built {
 /// Builds the fused loop of `scene` on the simulated stack (`None`: the scene names no
 /// grasp or no tap).
 pub fn build(scene: &Scene, cx: &RunContext<'_>) -> Result<Option<Built>, RunError> {
+    build_with(scene, cx, |pad| pad)
+}
+
+/// [`build`] with the pad handed through `wrap` first (a test injects the pad's faults there).
+pub fn build_with<Pad>(
+    scene: &Scene,
+    cx: &RunContext<'_>,
+    wrap: impl FnOnce(ImuPad) -> Pad,
+) -> Result<Option<Built<Pad>>, RunError>
+where
+    Pad: TactileSource<Frame = ImuFrame>,
+    Pad::Error: core::fmt::Debug,
+{
     let x = scene.file.experiment.get_ref();
     let (Some(g), Some(tap)) = (&x.grasp, &x.tap) else {
         return Ok(None);
@@ -161,7 +179,7 @@ pub fn build(scene: &Scene, cx: &RunContext<'_>) -> Result<Option<Built>, RunErr
         WindowPlacement::Trigger => TapToMoveConfig::default(),
     };
     let pad = PadPart {
-        pad: ImuPad::new(&pad_config, scene.seed())?,
+        pad: wrap(ImuPad::new(&pad_config, scene.seed())?),
         rate_hz: PAD_HZ,
         trigger: TapTrigger::new(trigger),
         cnn: ContactCnn::load(&cx.root.join(CNN_DIR).join(model_file(Variant::Paper)))?,
