@@ -13,12 +13,13 @@ use crate::fingertip::{Press, PressSchedule, PressedFingertip, rect};
 use crate::grasp::{GraspCycle, TARE_FRAMES};
 use crate::softness::{Read, SoftnessCycle};
 use crate::tap::{CnnWindow, TapCycle};
-use crate::weight::{Tare, WeightCycle};
+use crate::weight::{TARE_FRAMES as WEIGHT_TARE_FRAMES, WeightCycle};
 use hand_control::grasp_loop::ContactEstimate as GraspEstimate;
 use hand_traits::{Contact, FingerFrame, GripperCommand, ImuFrame, Pose, PressureFrame, Softness};
 use paper_experiments::data::underactuated::N_VARIABLES;
 use tactile_nets::contact_cnn::Prediction as CnnPrediction;
 use tactile_nets::contact_mlp::Prediction as MlpPrediction;
+use tactile_nets::force_dnn::LiveTare;
 
 /// What the devices gave this cycle.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -75,7 +76,7 @@ pub struct Commands {
 /// The full-hand cycle.
 pub struct FullHandCycle {
     tip: PressedFingertip,
-    tare: Tare,
+    tare: LiveTare,
     contact: ContactCycle,
     weight: WeightCycle,
     grasp: GraspCycle,
@@ -100,7 +101,7 @@ impl FullHandCycle {
         };
         Ok(FullHandCycle {
             tip: PressedFingertip::new(1024, 15, schedule)?,
-            tare: Tare::default(),
+            tare: LiveTare::new(WEIGHT_TARE_FRAMES as u32),
             contact: ContactCycle::new()?,
             weight: WeightCycle::new()?,
             grasp: GraspCycle::new()?,
@@ -122,7 +123,7 @@ impl FullHandCycle {
     pub fn estimate(&mut self, f: &Frames) -> Result<Estimates, CycleError> {
         Ok(Estimates {
             contact: self.contact.estimate(&f.tip),
-            rise_hpa: self.tare.rise_hpa(&f.tip),
+            rise_hpa: self.tare.rise_hpa(&f.tip).unwrap_or([0.0; 3]),
             grasp: self.grasp.estimate(&f.tip)?,
             window: self.tap.estimate(f.imu)?,
             sample: SoftnessCycle::estimate(&f.hand.1),

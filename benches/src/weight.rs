@@ -8,36 +8,12 @@ use crate::CycleError;
 use crate::fingertip::{Press, PressSchedule, PressedFingertip, whole_pad};
 use hand_traits::PressureFrame;
 use paper_experiments::force_eval::{MODEL_DIR, SIM_FILE};
-use tactile_nets::force_dnn::ForceDnn;
+use tactile_nets::force_dnn::{ForceDnn, LiveTare};
 
 /// Resting frames averaged into the tare.
 pub const TARE_FRAMES: u64 = 20;
 /// The loads applied in turn, gf.
 pub const LOADS_GF: [f64; 4] = [50.0, 100.0, 150.0, 200.0];
-
-/// A per-sensor tare: the mean of the first [`TARE_FRAMES`] frames.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Tare {
-    sum_pa: [f64; 3],
-    n: u64,
-}
-
-impl Tare {
-    /// Adds `frame` while taring; afterwards, its rises over the tare, hPa (zero until tared).
-    pub fn rise_hpa(&mut self, frame: &PressureFrame<3>) -> [f32; 3] {
-        if self.n < TARE_FRAMES {
-            for (s, p) in self.sum_pa.iter_mut().zip(frame.pressure_pa) {
-                *s += f64::from(p);
-            }
-            self.n += 1;
-            return [0.0; 3];
-        }
-        let n = self.n as f64;
-        core::array::from_fn(|k| {
-            ((f64::from(frame.pressure_pa[k]) - self.sum_pa[k] / n) / 100.0) as f32
-        })
-    }
-}
 
 /// One cycle's result.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -53,7 +29,7 @@ pub struct WeightOut {
 /// The weight-estimation cycle.
 pub struct WeightCycle {
     tip: PressedFingertip,
-    tare: Tare,
+    tare: LiveTare,
     dnn: ForceDnn,
 }
 
@@ -75,7 +51,7 @@ impl WeightCycle {
         let dnn = ForceDnn::load(&crate::workspace_root().join(MODEL_DIR).join(SIM_FILE))?;
         Ok(WeightCycle {
             tip: PressedFingertip::new(4096, 11, schedule)?,
-            tare: Tare::default(),
+            tare: LiveTare::new(TARE_FRAMES as u32),
             dnn,
         })
     }
@@ -87,7 +63,8 @@ impl WeightCycle {
 
     /// Estimate: the rises over the tare, hPa.
     pub fn estimate(&mut self, frame: &PressureFrame<3>) -> [f32; 3] {
-        self.tare.rise_hpa(frame)
+        // Zero while taring.
+        self.tare.rise_hpa(frame).unwrap_or([0.0; 3])
     }
 
     /// Policy: the force DNN's weight for the rises, gf.

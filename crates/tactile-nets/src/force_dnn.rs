@@ -51,6 +51,52 @@ pub struct WeightSample {
     pub weight_gf: f32,
 }
 
+/// A live tare for the DNN's input: the mean of the first `frames` frames per sensor, then each
+/// frame's rises over it in hPa.
+///
+/// ```
+/// use hand_traits::PressureFrame;
+/// use tactile_nets::force_dnn::LiveTare;
+///
+/// let mut tare = LiveTare::new(2);
+/// let frame = |p: f32| PressureFrame { t_us: 0, pressure_pa: [p, p + 10.0, p - 10.0] };
+/// assert_eq!(tare.rise_hpa(&frame(100_000.0)), None); // taring
+/// assert_eq!(tare.rise_hpa(&frame(100_100.0)), None);
+/// assert_eq!(tare.rise_hpa(&frame(100_250.0)), Some([2.0, 2.0, 2.0]));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LiveTare {
+    frames: u32,
+    sum_pa: [f64; 3],
+    n: u32,
+}
+
+impl LiveTare {
+    /// A tare over the first `frames` frames (at least one).
+    pub fn new(frames: u32) -> LiveTare {
+        LiveTare {
+            frames: frames.max(1),
+            sum_pa: [0.0; 3],
+            n: 0,
+        }
+    }
+
+    /// Adds `frame` to the tare while taring (`None`); afterwards its rises, hPa.
+    pub fn rise_hpa(&mut self, frame: &hand_traits::PressureFrame<3>) -> Option<[f32; 3]> {
+        if self.n < self.frames {
+            for (s, p) in self.sum_pa.iter_mut().zip(frame.pressure_pa) {
+                *s += f64::from(p);
+            }
+            self.n += 1;
+            return None;
+        }
+        let n = f64::from(self.n);
+        Some(core::array::from_fn(|k| {
+            ((f64::from(frame.pressure_pa[k]) - self.sum_pa[k] / n) / 100.0) as f32
+        }))
+    }
+}
+
 /// Tares `(weight_gf, pressures_hpa)` rows against the row whose weight is 0 (Table 1's form).
 ///
 /// Errors: [`NetError::Data`] when no row has weight 0 or a value is not finite.

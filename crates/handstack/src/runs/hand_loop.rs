@@ -42,7 +42,7 @@ use hand_traits::{
 };
 use tactile_nets::contact_cnn::ContactCnn;
 use tactile_nets::contact_mlp::{ContactMlp, TapReading, features};
-use tactile_nets::force_dnn::ForceDnn;
+use tactile_nets::force_dnn::{ForceDnn, LiveTare};
 use ur_bridge::tap_to_move::TapTrigger;
 use ur_bridge::{MoveHandle, RegionToGrid, UrArm};
 
@@ -91,9 +91,7 @@ pub struct Estimators {
     pub mlp: Option<ContactMlp>,
     detector: ArrivalDetector,
     aot: AotLocator,
-    tare_sum_pa: [f64; 3],
-    tare_n: u32,
-    tare_frames: u32,
+    tare: LiveTare,
 }
 
 impl Estimators {
@@ -104,25 +102,14 @@ impl Estimators {
             mlp,
             detector: ArrivalDetector::new(DetectorConfig::DEFAULT),
             aot: AotLocator::default(),
-            tare_sum_pa: [0.0; 3],
-            tare_n: 0,
-            tare_frames: tare_frames.max(1),
+            tare: LiveTare::new(tare_frames),
         }
     }
 
     /// One frame: the force (once tared) and a contact location (once a contact arrived).
     fn update(&mut self, frame: &PressureFrame<3>, out: &mut Stats) -> Result<(), String> {
         let p = frame.pressure_pa;
-        if self.tare_n < self.tare_frames {
-            for (s, p) in self.tare_sum_pa.iter_mut().zip(p) {
-                *s += f64::from(p);
-            }
-            self.tare_n += 1;
-        } else {
-            let n = f64::from(self.tare_n);
-            let rise: [f32; 3] = core::array::from_fn(|k| {
-                ((f64::from(p[k]) - self.tare_sum_pa[k] / n) / 100.0) as f32
-            });
+        if let Some(rise) = self.tare.rise_hpa(frame) {
             out.force_gf = Some(self.force.estimate_gf(&rise).map_err(|e| e.to_string())?);
         }
         // A contact is new when none had arrived before this frame (a finished press rearms
@@ -238,13 +225,96 @@ pub struct LoopFaultReport {
     pub mode: Mode,
 }
 
+/// Whole microseconds the histogram resolves: two 10 ms periods; longer cycles share the last
+/// bin (their exact value still reaches the max).
+const COMPUTE_BINS_US: usize = 20_000;
+
+/// Each cycle's compute time as a histogram of whole microseconds, sized once, so recording a
+/// cycle allocates nothing however long the loop runs: exact mean and max, percentiles to the
+/// microsecond.
+///
+/// ```
+/// use handstack::runs::hand_loop::ComputeTimes;
+///
+/// let mut t = ComputeTimes::default();
+/// for us in [120.4, 130.0, 125.9, 9_000.0] {
+///     t.record(us);
+/// }
+/// assert_eq!(t.max_us(), 9_000.0);
+/// assert_eq!(t.percentile_us(50), 125.0);
+/// assert_eq!(t.percentile_us(99), 9_000.0);
+/// ```
+#[derive(Debug, Clone)]
+pub struct ComputeTimes {
+    counts: Vec<u32>,
+    n: u64,
+    sum_us: f64,
+    max_us: f64,
+}
+
+impl Default for ComputeTimes {
+    fn default() -> Self {
+        Self {
+            counts: vec![0; COMPUTE_BINS_US + 1],
+            n: 0,
+            sum_us: 0.0,
+            max_us: 0.0,
+        }
+    }
+}
+
+impl ComputeTimes {
+    /// Adds one cycle of `us` microseconds.
+    pub fn record(&mut self, us: f64) {
+        let bin = (us.max(0.0) as usize).min(COMPUTE_BINS_US);
+        self.counts[bin] += 1;
+        self.n += 1;
+        self.sum_us += us;
+        self.max_us = self.max_us.max(us);
+    }
+
+    /// Cycles recorded.
+    pub fn len(&self) -> u64 {
+        self.n
+    }
+
+    /// Whether none was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
+
+    /// Mean, µs (0 when empty).
+    pub fn mean_us(&self) -> f64 {
+        self.sum_us / self.n.max(1) as f64
+    }
+
+    /// Longest, µs (0 when empty).
+    pub fn max_us(&self) -> f64 {
+        self.max_us
+    }
+
+    /// The `pct`-th percentile, µs: the ⌈n·pct/100⌉-th shortest cycle, to the whole
+    /// microsecond (the max when it falls past the histogram; 0 when empty).
+    pub fn percentile_us(&self, pct: u64) -> f64 {
+        let k = (self.n * pct).div_ceil(100).max(1);
+        let mut seen = 0;
+        for (us, &c) in self.counts.iter().enumerate().take(COMPUTE_BINS_US) {
+            seen += u64::from(c);
+            if seen >= k {
+                return us as f64;
+            }
+        }
+        self.max_us
+    }
+}
+
 /// What the loop counted and measured.
 #[derive(Debug, Clone, Default)]
 pub struct Stats {
     /// Cycles run.
     pub cycles: u64,
-    /// Wall µs of each cycle's work (waiting excluded).
-    pub compute_us: Vec<f64>,
+    /// Wall time of each cycle's work (waiting excluded).
+    pub compute: ComputeTimes,
     /// Largest |cycle start − tick|, µs (loop clock).
     pub jitter_max_us: u64,
     /// Pad frames read.
@@ -410,7 +480,7 @@ where
         }
         let waited = self.grasp.clock_mut().waited - waited;
         let compute = wall.elapsed().saturating_sub(waited);
-        self.stats.compute_us.push(compute.as_secs_f64() * 1e6);
+        self.stats.compute.record(compute.as_secs_f64() * 1e6);
         self.fault.is_none()
     }
 

@@ -227,15 +227,8 @@ pub fn figures(
     host: &str,
     part: &mut Part,
 ) {
-    let mut us = st.compute_us.clone();
-    us.sort_by(f64::total_cmp);
-    let n = us.len();
-    let mean = us.iter().sum::<f64>() / n.max(1) as f64;
-    let p99 = us
-        .get((n * 99).div_ceil(100).saturating_sub(1))
-        .copied()
-        .unwrap_or(0.0);
-    let max = us.last().copied().unwrap_or(0.0);
+    let t = &st.compute;
+    let (mean, p99, max) = (t.mean_us(), t.percentile_us(99), t.max_us());
     let f = &mut part.figures;
     f.push(measured(
         "loop_cycles",
