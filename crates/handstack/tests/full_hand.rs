@@ -43,9 +43,6 @@ fn full_hand_composes_every_part_in_one_outcome() {
     assert_eq!(value(&o, "tap_count"), 9.0);
     assert_eq!(value(&o, "triggers_in_tap"), 9.0);
     assert_eq!(o.figure("tcp_error_max_m").and_then(|f| f.met), Some(true));
-    for f in o.figures.iter().filter(|f| f.name.starts_with("loop_")) {
-        eprintln!("{} = {} {} ({})", f.name, f.value, f.unit, f.label);
-    }
     // The fused loop: 100 Hz for the lift at 3 s and the 10 s hold (then on while the arm
     // finishes), the pad read on its own 30 Hz ticks, no tick missed in simulated time.
     let cycles = value(&o, "loop_cycles");
