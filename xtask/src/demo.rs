@@ -1,7 +1,7 @@
 //! `cargo xtask demo [ARGS]`: end-to-end demonstrations.
 //!
 //! - no argument: every scene in `fixtures/scenes/` on the simulated default, through
-//!   `handstack run … --report target/demo/report.html`; prints where the report is.
+//!   `paper-scenes run … --report target/demo/report.html`; prints where the report is.
 //! - `--screenshot`: the same, then a full-page screenshot of the report in headless Chromium,
 //!   `docs/demo-report.png` (the picture in `docs/demo.md`).
 //! - `tap-to-move`: seed 002 §IV-B on the simulated UR3 through the real ur_rtde (ur-bridge's
@@ -50,9 +50,9 @@ fn scenes(root: &Path, screenshot: bool) -> Result<()> {
     let python = crate::venv::ensure(root)?;
     let report = root.join(REPORT);
     step(
-        "demo: handstack run fixtures/scenes/*.toml",
+        "demo: paper-scenes run fixtures/scenes/*.toml",
         cargo(root)
-            .args(["run", "--profile", "test", "-p", "handstack", "--"])
+            .args(["run", "--profile", "test", "-p", "paper-scenes", "--"])
             .arg("run")
             .args(scene_files(root)?)
             .arg("--report")
@@ -64,7 +64,7 @@ fn scenes(root: &Path, screenshot: bool) -> Result<()> {
         step(
             "demo: screenshot",
             cargo(root)
-                .args(["run", "--quiet", "--profile", "test", "-p", "handstack"])
+                .args(["run", "--quiet", "--profile", "test", "-p", "paper-scenes"])
                 .args(["--example", "report_screenshot", "--"])
                 .arg(&report)
                 .arg(root.join(SCREENSHOT))

@@ -38,7 +38,9 @@ fn the_workspace_graph_is_the_documented_one() {
     for name in ["hand-sim", "paper-experiments", "paper-fixtures"] {
         assert_eq!(rules[name].kind, Kind::Reproduction, "{name}");
     }
-    assert_eq!(rules["handstack"].kind, Kind::Composition);
+    // The installable stack is a product; the papers' scenes are the composition root above it.
+    assert_eq!(rules["handstack"].kind, Kind::Product);
+    assert_eq!(rules["paper-scenes"].kind, Kind::Composition);
 }
 
 fn package(name: &str, unpublished: bool, deps: &[(&str, &'static str, bool)]) -> Package {
@@ -76,7 +78,15 @@ fn lawful() -> Vec<Package> {
         package("paper-fixtures", true, &[]),
         package("paper-experiments", true, &[("hand-sim", "normal", false)]),
         package("handstack-benches", true, &[("hand-sim", "normal", false)]),
-        package("handstack", true, &[("paper-experiments", "normal", false)]),
+        package("handstack", false, &[("hand-control", "normal", false)]),
+        package(
+            "paper-scenes",
+            true,
+            &[
+                ("handstack", "normal", false),
+                ("paper-experiments", "normal", false),
+            ],
+        ),
         package(
             "xtask",
             true,
@@ -131,9 +141,43 @@ fn a_product_crate_on_the_simulator_fails_under_any_feature_or_kind() {
 
 #[test]
 fn nothing_may_depend_on_the_composition_root() {
-    let bad = after(|p| add(p, "paper-experiments", "handstack", "normal", false));
+    let bad = after(|p| add(p, "paper-experiments", "paper-scenes", "normal", false));
     assert!(
         bad.iter().any(|b| b.contains("composition root")),
+        "{bad:?}"
+    );
+}
+
+#[test]
+fn the_installable_stack_stays_free_of_the_reproduction_and_under_no_product_crate() {
+    for (from, to, kind) in [
+        ("handstack", "hand-sim", "normal"),
+        ("handstack", "paper-fixtures", "dev"),
+        ("handstack", "paper-experiments", "build"),
+    ] {
+        let bad = after(|p| add(p, from, to, kind, false));
+        assert!(
+            bad.iter()
+                .any(|b| b.contains(&format!("`{from}` → `{to}`")) && b.contains("reproduction")),
+            "{from} → {to}: {bad:?}"
+        );
+    }
+    // A product crate below the stack cannot reach up to it (its row does not name it).
+    let bad = after(|p| add(p, "hand-control", "handstack", "normal", true));
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`hand-control` → `handstack`") && b.contains("rules table")),
+        "{bad:?}"
+    );
+    // And the stack is published.
+    let bad = after(|p| {
+        if let Some(h) = p.iter_mut().find(|p| p.name == "handstack") {
+            h.unpublished = true;
+        }
+    });
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`handstack` is a product crate but publish = false")),
         "{bad:?}"
     );
 }

@@ -44,6 +44,17 @@ impl Osr {
         self as usize
     }
 
+    /// The ratio `ratio` (256 … 4096), or `None` when the MS5611 has no such ratio.
+    ///
+    /// ```
+    /// use baro_drivers::Osr;
+    /// assert_eq!(Osr::from_ratio(1024), Some(Osr::Osr1024));
+    /// assert_eq!(Osr::from_ratio(300), None);
+    /// ```
+    pub fn from_ratio(ratio: u16) -> Option<Osr> {
+        Osr::ALL.into_iter().find(|o| o.ratio() == ratio)
+    }
+
     /// The ratio as a number (256 … 4096).
     pub const fn ratio(self) -> u16 {
         256 << (self as u16)

@@ -146,7 +146,7 @@ fn non_finite_depths_and_bad_settings_are_typed_errors() {
     assert!(matches!(ImuPad::new(&cfg, 0), Err(SimError::Config { .. })));
     // ULN conversions (94.5 ms) do not fit a 33 ms frame.
     let uln = ImuPadConfig {
-        baro_mode: hand_sim::imu_pad::config::BaroModeName::UltraLowNoise,
+        baro_mode: imu_icm20789::BaroMode::UltraLowNoise,
         ..ImuPadConfig::default()
     };
     assert!(matches!(

@@ -26,16 +26,4 @@ pub enum RunError {
         /// What happened.
         reason: String,
     },
-    /// The simulated physics refused a configuration or a driver failed.
-    #[error("simulation: {0}")]
-    Sim(#[from] hand_sim::SimError),
-    /// A model failed to load or evaluate.
-    #[error("model: {0}")]
-    Net(#[from] tactile_nets::NetError),
-    /// A committed dataset could not be read.
-    #[error("dataset: {0}")]
-    Data(#[from] paper_experiments::data::DatasetError),
-    /// A paper fixture failed to load.
-    #[error("paper fixture: {0}")]
-    Fixture(#[from] paper_fixtures::FixtureError),
 }

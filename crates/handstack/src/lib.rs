@@ -1,23 +1,34 @@
-//! The handstack composition root.
+//! handstack: a tactile hand stack from a scene file, on real devices.
 //!
-//! A scene file (TOML, `fixtures/scenes/`) names the parts of a tactile hand stack — sensors,
-//! estimators, controller, hand, arm — and whether each is simulated or real hardware;
-//! `handstack run SCENE` builds exactly those parts and runs the scene's experiment. Every run
-//! ends in an [`Outcome`]: the figures the scene measured (beside the paper's, where the paper
-//! publishes one) and the data its report draws.
+//! A scene file (TOML) names the parts of a stack — a barometric fingertip (3 × MS5611 on
+//! Linux I2C buses), an ICM-20789 pad, a fuzzy grasp controller, a Dynamixel Protocol 2.0 hand
+//! on a serial port, a Universal Robots arm at a host — and what to run on them;
+//! `handstack run SCENE` opens exactly those devices (failing, before anything moves, on the
+//! first that cannot be opened, naming it and its path) and runs the scene's experiments. Every
+//! run ends in an [`Outcome`]: the figures it measured and the data of its plots.
+//!
+//! ```text
+//! cargo install handstack
+//! handstack check my-hand.toml
+//! handstack run my-hand.toml           # progress on stderr, a summary table on stdout
+//! handstack run my-hand.toml --json    # the Outcome, for scripts
+//! ```
 //!
 //! - [`scene`]: the scene schema, parsed with spans and validated (errors name file, line,
-//!   column, key and what is allowed);
-//! - [`runs`]: one runner per experiment, joined into the scene's [`Outcome`];
+//!   column, key and what is allowed); its `[experiment]` table is generic, so a program with
+//!   experiments of its own (the papers' reproduction) reads the same parts;
+//! - [`stack`]: the real devices a scene names, their buses opened through a
+//!   [`Platform`](stack::platform::Platform) (Linux by default, or a substitute);
+//! - [`runs`]: the grasp hold and the fingertip readout, joined into the scene's [`Outcome`];
 //! - [`progress`]: where a run reports its stages.
 //!
-//! The papers' training (`papers train MODEL`) and speed / accuracy trade (`papers trade`) are
-//! the reproduction's: `paper_experiments::{train, trade}`.
+//! Nothing here reads a repository path or holds a simulator: the papers' simulated scenes,
+//! their report and the speed / accuracy trade are the reproduction's (`paper-scenes`,
+//! `papers`).
 
 pub mod error;
 pub mod outcome;
 pub mod progress;
-pub mod report;
 pub mod runs;
 pub mod scene;
 pub mod stack;
@@ -26,7 +37,12 @@ pub mod summary;
 pub use error::RunError;
 pub use outcome::{Figure, Line, Outcome, Plot};
 
-/// Loads the scene file at `path` and runs it.
+/// Loads the scene file at `path` and runs it on its real devices.
 pub fn run_file(path: &std::path::Path, cx: &runs::RunContext<'_>) -> Result<Outcome, RunError> {
     runs::run(&scene::Scene::load(path)?, cx)
 }
+
+/// The README's examples, compiled with the crate's doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

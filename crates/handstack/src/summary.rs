@@ -77,3 +77,52 @@ pub fn table(outcome: &Outcome) -> String {
     }
     out
 }
+
+/// What a command line made of a list of scene files: the outcomes, and each failure as
+/// (scene file, error).
+#[derive(Debug, Default)]
+pub struct Runs {
+    /// The scenes that ran, in order.
+    pub outcomes: Vec<Outcome>,
+    /// The scenes that failed: file and error text.
+    pub failures: Vec<(String, String)>,
+}
+
+/// Runs each of `scenes` with `run`, showing progress on `bars`: a summary table per outcome on
+/// stdout (unless `json`), each error on stderr; with `json`, the outcomes as JSON on stdout at
+/// the end. The `handstack` binary and the papers' `paper-scenes` both run their scenes so.
+pub fn run_each<E: core::fmt::Display>(
+    scenes: &[std::path::PathBuf],
+    json: bool,
+    bars: &crate::progress::Bars,
+    run: impl Fn(&std::path::Path) -> Result<Outcome, E>,
+) -> Runs {
+    let mut runs = Runs::default();
+    for path in scenes {
+        bars.prefix(path.display().to_string());
+        match run(path) {
+            Ok(o) => {
+                if !json {
+                    bars.suspend(|| println!("{}", table(&o)));
+                }
+                runs.outcomes.push(o);
+            }
+            Err(e) => {
+                bars.suspend(|| eprintln!("error: {}: {e}", path.display()));
+                runs.failures
+                    .push((path.display().to_string(), e.to_string()));
+            }
+        }
+    }
+    bars.finish();
+    if json {
+        match serde_json::to_string_pretty(&runs.outcomes) {
+            Ok(s) => println!("{s}"),
+            Err(e) => {
+                eprintln!("error: cannot write JSON: {e}");
+                runs.failures.push(("(all)".into(), e.to_string()));
+            }
+        }
+    }
+    runs
+}

@@ -339,11 +339,7 @@ pub fn run_hold_for(
     }
 }
 
-/// Tolerance of the settling time, counts: 2 % of the 0…1023 scale (the MS5611 noise through
-/// the filtered rate moves the torque by several counts from cycle to cycle).
-pub const SETTLE_TOL_RAW: f32 = 20.0;
-/// Window at the end of the hold the settled torque is averaged over, µs.
-pub const SETTLE_WINDOW_US: u64 = 10_000_000;
+pub use hand_control::grasp_loop::{SETTLE_TOL_RAW, SETTLE_WINDOW_US};
 
 /// What one closed-loop hold gave.
 #[derive(Debug, Clone)]

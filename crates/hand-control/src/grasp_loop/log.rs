@@ -80,6 +80,13 @@ pub struct Settling {
     pub settling_time_us: u64,
 }
 
+/// Tolerance of the settling time, counts: 2 % of the 0…1023 scale (the MS5611 noise through
+/// the filtered rate moves the torque by several counts from cycle to cycle). The value the
+/// grasp reports (`handstack`, docs/grasping) pass to [`settling`].
+pub const SETTLE_TOL_RAW: f32 = 20.0;
+/// Window at the end of a hold the settled torque is averaged over, µs (the grasp reports').
+pub const SETTLE_WINDOW_US: u64 = 10_000_000;
+
 /// The settling of `samples`' sent torque: `settled_raw` is the mean over the last `window_us`,
 /// settling time the first command time after which every sent torque is within `tol_raw` of
 /// it. `None` if nothing was sent.

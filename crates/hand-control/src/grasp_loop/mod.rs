@@ -75,5 +75,5 @@ pub use clock::{FixedRate, LoopClock, StdClock};
 pub use config::{ConfigError, LoopConfig, Recovery, TorqueBand};
 pub use estimate::{ContactEstimate, EstimateError, PressureEstimator};
 pub use fault::{FaultEvent, FaultKind, LoopFault, RebootableActuator};
-pub use log::{Mode, Sample, Settling, settling};
+pub use log::{Mode, SETTLE_TOL_RAW, SETTLE_WINDOW_US, Sample, Settling, settling};
 pub use runner::{FaultOf, GraspLoop};

@@ -106,9 +106,7 @@ impl TapConfig {
 
 /// The OSR of a ratio, or a config error listing the allowed ones.
 pub fn osr_from_ratio(ratio: u16) -> Result<Osr, SimError> {
-    Osr::ALL
-        .into_iter()
-        .find(|o| o.ratio() == ratio)
+    Osr::from_ratio(ratio)
         .ok_or_else(|| SimError::config("osr", "one of 256, 512, 1024, 2048, 4096"))
 }
 

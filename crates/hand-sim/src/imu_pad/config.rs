@@ -95,32 +95,6 @@ impl TapTiming {
     }
 }
 
-/// The barometer mode, by name (the paper used `LowNoise`, §III-C).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
-pub enum BaroModeName {
-    /// LP: 3.2 Pa rms.
-    LowPower,
-    /// N: 1.6 Pa rms.
-    Normal,
-    /// LN: 0.8 Pa rms, as in the paper.
-    #[default]
-    LowNoise,
-    /// ULN: 0.4 Pa rms (83 ms conversions: slower than 30 Hz allows with the IMU read).
-    UltraLowNoise,
-}
-
-impl BaroModeName {
-    /// The driver's mode.
-    pub fn mode(self) -> BaroMode {
-        match self {
-            BaroModeName::LowPower => BaroMode::LowPower,
-            BaroModeName::Normal => BaroMode::Normal,
-            BaroModeName::LowNoise => BaroMode::LowNoise,
-            BaroModeName::UltraLowNoise => BaroMode::UltraLowNoise,
-        }
-    }
-}
-
 /// Pad mechanics: the Yeoh law, the fit points and how force falls off towards the edges.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -323,7 +297,7 @@ pub struct ImuPadConfig {
     /// Frames per second (§III-C: 30 Hz).
     pub sample_rate_hz: f64,
     /// Barometer mode (§III-C: Low Noise).
-    pub baro_mode: BaroModeName,
+    pub baro_mode: BaroMode,
     /// Ambient pressure, Pa.
     pub ambient_pa: f64,
     /// Die temperature, °C.
@@ -352,7 +326,7 @@ impl Default for ImuPadConfig {
             }],
             timing: TapTiming::default(),
             sample_rate_hz: 30.0,
-            baro_mode: BaroModeName::LowNoise,
+            baro_mode: BaroMode::LowNoise,
             ambient_pa: 101_325.0,
             temperature_c: 25.0,
             mechanics: Mechanics::default(),
@@ -379,7 +353,7 @@ impl ImuPadConfig {
             return Err(SimError::config("sample_rate_hz", "0.1…1000"));
         }
         let period_us = 1e6 / self.sample_rate_hz;
-        let conversion_us = f64::from(self.baro_mode.mode().conversion_time_max_us());
+        let conversion_us = f64::from(self.baro_mode.conversion_time_max_us());
         if conversion_us + 2_000.0 > period_us {
             return Err(SimError::config(
                 "baro_mode",

@@ -84,7 +84,7 @@ impl ImuPad {
             driver,
             delay,
             truth,
-            mode: config.baro_mode.mode(),
+            mode: config.baro_mode,
             period_ns,
             next_sample: now.div_ceil(period_ns),
             max_samples_per_step: config.max_samples_per_step,

@@ -4,7 +4,7 @@ use crate::Figure;
 
 /// A target a figure is checked against.
 #[derive(Debug, Clone, Copy)]
-pub(crate) enum Target {
+pub enum Target {
     /// value ≤ bound.
     AtMost(f64),
     /// value ≥ bound.
@@ -41,7 +41,7 @@ impl Target {
 }
 
 /// A figure without paper value or target.
-pub(crate) fn measured(name: &str, label: &str, value: f64, unit: &str) -> Figure {
+pub fn measured(name: &str, label: &str, value: f64, unit: &str) -> Figure {
     Figure {
         name: name.to_owned(),
         label: label.to_owned(),
@@ -55,14 +55,14 @@ pub(crate) fn measured(name: &str, label: &str, value: f64, unit: &str) -> Figur
 }
 
 /// Adds the paper's value and its source.
-pub(crate) fn paper(mut f: Figure, value: f64, source: &str) -> Figure {
+pub fn paper(mut f: Figure, value: f64, source: &str) -> Figure {
     f.paper = Some(value);
     f.source = Some(source.to_owned());
     f
 }
 
 /// Adds a target and whether the value meets it.
-pub(crate) fn target(mut f: Figure, t: Target) -> Figure {
+pub fn target(mut f: Figure, t: Target) -> Figure {
     f.target = Some(t.text(&f.unit));
     f.met = Some(t.met(f.value));
     f

@@ -1,14 +1,8 @@
-//! Seed 000 §7, Table 5: the six objects grasped by the fuzzy loop. hand-control's grasp loop
-//! (tactile source → contact estimate → the paper's Mamdani controller → torque limit) closes on
-//! each object, the arm lifts at 3 s, the hold lasts `hold_s`.
-//!
-//! Simulated (no `serial_port`): the Table 5 world (`paper_experiments::grasp_rig`): the
-//! Dynamixel driver speaking Protocol 2.0 to the servo-bus simulator, whose MX-28 drives
-//! hand-sim's grasp physics, and the fingertip's three MS5611 chip models read by the real
-//! driver, in simulated time — the code path of docs/grasping. With `[hand] serial_port`: the
-//! real `ServoHand` on that port and the real MS5611s on the fingertip's `i2c_buses` (required:
-//! a hardware grasp never reads a simulated fingertip), opened through the run's platform and
-//! on its clock (Linux: the wall clock), `hold_s` per object.
+//! The grasp hold (seed 000 §6–7): hand-control's grasp loop (fingertip → contact estimate →
+//! the paper's Mamdani controller → torque limit) closes the hand and keeps the grip for
+//! `hold_s`, its torque limit inside the scene's band. [`run`] opens the scene's real devices;
+//! [`hold`], [`summarise`] and [`plots`] take opened ones, so the papers' Table 5 grasp runs the
+//! same loop on its simulated rig.
 
 use super::figure::{Target, measured, paper, target};
 use super::{Part, RunContext};
@@ -16,120 +10,101 @@ use crate::error::RunError;
 use crate::scene::Scene;
 use crate::scene::experiment::Grasp;
 use crate::{Line, Plot};
-use hand_control::grasp_loop::{GraspLoop, LoopConfig, Sample, TorqueBand};
-use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
-use paper_experiments::grasp_rig::{self, SETTLE_TOL_RAW, SETTLE_WINDOW_US};
+use hand_control::grasp_loop::{
+    GraspLoop, LoopClock, LoopConfig, RebootableActuator, SETTLE_TOL_RAW, SETTLE_WINDOW_US, Sample,
+    TorqueBand,
+};
+use hand_traits::{PressureFrame, TactileSource};
 
 /// Seconds of each trace the plots show: closing, squeeze, lift at 3 s, start of the hold.
 const TRACE_S: f64 = 10.0;
 /// Grid of the control-surface plot, points per input.
 const SURFACE_STEPS: usize = 21;
-const SOURCE: &str = "seed 000 Table 5 (fixtures/paper/seed000_table5_grasp_torque.csv)";
 
-/// Runs the grasp experiment of `scene`.
+/// Runs `[experiment.grasp]` of `scene` on its real fingertip and hand: the sensors open first,
+/// so a bus that cannot be opened fails before any servo command.
 pub fn run(scene: &Scene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part, RunError> {
-    let table5 = paper_fixtures::seed000::table5_grasp_torque()?;
-    let hand = scene.file.hand.as_ref().map(|h| h.get_ref().clone());
-    let port = hand
+    let [lo, hi] = *exp.torque_band.get_ref();
+    let band = band(lo, hi, "grasp")?;
+    let defaults = LoopConfig::new();
+    let config = LoopConfig {
+        band,
+        goal_rad: exp
+            .goal_rad
+            .as_ref()
+            .map_or(defaults.goal_rad, |g| *g.get_ref()),
+        ..defaults
+    };
+    let tip = crate::stack::fingertip::open(scene, &*cx.platform)?;
+    let (hand, port) = scene
+        .file
+        .hand
         .as_ref()
-        .and_then(|h| h.serial_port.as_ref().map(|p| p.get_ref().clone()));
-    let objects = exp.objects.get_ref();
-    let hold_s = *exp.hold_s.get_ref();
-    let mut part = Part::default();
-    let (mut torque_lines, mut pressure_lines) = (Vec::new(), Vec::new());
-    cx.progress
-        .stage("grasp: Table 5 objects", objects.len() as u64);
-    for name in objects {
-        let row = table5
-            .iter()
-            .find(|r| &r.object == name)
-            .ok_or_else(|| RunError::Device {
-                device: "grasp",
-                reason: format!("{name} is not in Table 5"),
-            })?;
-        let (lo, hi) = (row.torque_min as u16, row.torque_max as u16);
-        let band = TorqueBand::new(lo, hi).map_err(|e| RunError::Device {
-            device: "grasp",
-            reason: format!("{name}: {e}"),
+        .and_then(|h| Some((h.get_ref(), h.get_ref().serial_port.as_ref()?.get_ref())))
+        .ok_or(RunError::Device {
+            device: "hand",
+            reason: "the grasp needs a hand on a serial_port".into(),
         })?;
-        let log =
-            match (&hand, &port) {
-                (Some(h), Some(port)) => real_hold(scene, cx, h, port, band, hold_s)?,
-                _ => {
-                    let kind = ObjectKind::from_name(name).ok_or_else(|| RunError::Device {
-                        device: "grasp",
-                        reason: format!("no simulated object {name}"),
-                    })?;
-                    let object = ObjectParams::calibrated(kind, lo, hi, &RigParams::default())?;
-                    let (o, l, _) = grasp_rig::hold_for(name, object, band, exp.seed, hold_s)
-                        .map_err(|e| RunError::Device {
-                            device: "grasp",
-                            reason: format!("{name}: {e}"),
-                        })?;
-                    let held = !(o.slipped || o.damaged || o.dropped) && o.faults == 0;
-                    for (what, n) in [("sent", o.packets.sent), ("received", o.packets.received)] {
-                        part.figures.push(measured(
-                            &format!("{name}_packets_{what}"),
-                            &format!("{name}: Protocol 2.0 packets {what} by the driver"),
-                            n as f64,
-                            "",
-                        ));
-                    }
-                    part.figures.push(measured(
-                        &format!("{name}_peak_force_n"),
-                        &format!("{name}: peak pad force (sim truth)"),
-                        o.peak_force_n,
-                        "N",
-                    ));
-                    part.figures.push(target(
-                        measured(
-                            &format!("{name}_held"),
-                            &format!(
-                                "{name}: held {hold_s} s, no slip / crush / drop / fault (1 = yes)"
-                            ),
-                            f64::from(u8::from(held)),
-                            "",
-                        ),
-                        Target::Between(1.0, 1.0),
-                    ));
-                    l.log().to_vec()
-                }
-            };
-        summarise(name, (lo, hi), &log, &mut part);
-        let t = |s: &Sample<3>| s.t_us as f64 * 1e-6;
-        let early = || log.iter().filter(|s| t(s) <= TRACE_S);
-        torque_lines.push(Line {
-            label: name.clone(),
-            points: early()
-                .filter_map(|s| Some((t(s), f64::from(s.torque_raw?))))
-                .collect(),
-        });
-        pressure_lines.push(Line {
-            label: name.clone(),
-            points: early()
-                .filter_map(|s| Some((t(s), f64::from(s.estimate?.pressure_pa))))
-                .collect(),
-        });
-        cx.progress.advance(1);
-    }
-    part.plots.push(Plot::Lines {
-        title: "Grasp: torque limit sent (lift at 3 s)".into(),
-        x_label: "time (s)".into(),
-        y_label: "torque limit (0…1023)".into(),
-        lines: torque_lines,
-    });
-    part.plots.push(Plot::Lines {
-        title: "Grasp: mean pad pressure rise".into(),
-        x_label: "time (s)".into(),
-        y_label: "pressure rise (Pa)".into(),
-        lines: pressure_lines,
-    });
-    part.plots.push(surface()?);
+    let servo = crate::stack::hand::open(hand, port)?;
+    let hold_s = *exp.hold_s.get_ref();
+    cx.progress.stage("grasp: hold", 1);
+    let log = hold(tip, servo, cx.platform.clock(), config, hold_s)?;
+    cx.progress.advance(1);
+    let mut part = Part::default();
+    summarise("grasp", band, None, &log, &mut part);
+    part.plots.extend(plots(vec![traces("grasp", &log)])?);
     Ok(part)
 }
 
-/// Settled torque (target: inside the Table 5 band), its window and the settling time.
-fn summarise(name: &str, band: (u16, u16), log: &[Sample<3>], part: &mut Part) {
+/// The torque band `lo…hi` as hand-control's, its error naming `what`.
+pub fn band(lo: u16, hi: u16, what: &str) -> Result<TorqueBand, RunError> {
+    TorqueBand::new(lo, hi).map_err(|e| RunError::Device {
+        device: "grasp",
+        reason: format!("{what}: {e}"),
+    })
+}
+
+/// One hold: the paper's controller in `config.band` drives `hand` from `tip`'s frames on
+/// `clock` until `hold_s` (after the loop's start); returns the loop's log. A fault that sends
+/// the loop to its safe state ends the hold with that fault.
+pub fn hold<S, A>(
+    tip: S,
+    hand: A,
+    clock: Box<dyn LoopClock + Send>,
+    config: LoopConfig,
+    hold_s: f64,
+) -> Result<Vec<Sample<3>>, RunError>
+where
+    S: TactileSource<Frame = PressureFrame<3>>,
+    S::Error: core::fmt::Debug,
+    A: RebootableActuator,
+    A::Error: core::fmt::Debug,
+{
+    let band = config.band;
+    let policy = fuzzy_mamdani::grasp_controller().with_torque_band(band.min_raw(), band.max_raw());
+    let mut l = GraspLoop::new(tip, policy, hand, clock, config).map_err(|e| RunError::Device {
+        device: "grasp loop",
+        reason: e.to_string(),
+    })?;
+    l.run_until((hold_s * 1e6) as u64);
+    if let Some(e) = l.events().first() {
+        return Err(RunError::Device {
+            device: "hand",
+            reason: format!("loop went to its safe state: {:?}", e.fault),
+        });
+    }
+    Ok(l.log().to_vec())
+}
+
+/// The settled torque of one hold (target: inside `band`; `paper`: the published value and its
+/// source), its window and the settling time, as figures named `{name}_…`.
+pub fn summarise(
+    name: &str,
+    band: TorqueBand,
+    paper_value: Option<(f64, &str)>,
+    log: &[Sample<3>],
+    part: &mut Part,
+) {
     let window_us = SETTLE_WINDOW_US.min(log.last().map_or(0, |s| s.t_us) / 2);
     let Some(st) = hand_control::grasp_loop::settling(log, window_us, SETTLE_TOL_RAW) else {
         part.figures.push(measured(
@@ -140,8 +115,8 @@ fn summarise(name: &str, band: (u16, u16), log: &[Sample<3>], part: &mut Part) {
         ));
         return;
     };
-    let (lo, hi) = (f64::from(band.0), f64::from(band.1));
-    let f = measured(
+    let (lo, hi) = (f64::from(band.min_raw()), f64::from(band.max_raw()));
+    let mut f = measured(
         &format!("{name}_settled_torque"),
         &format!(
             "{name}: settled torque limit (last {:.0} s)",
@@ -150,7 +125,9 @@ fn summarise(name: &str, band: (u16, u16), log: &[Sample<3>], part: &mut Part) {
         f64::from(st.settled_raw),
         "",
     );
-    let f = paper(f, hi, &format!("{SOURCE}: {lo}…{hi}, paper column = max"));
+    if let Some((value, source)) = paper_value {
+        f = paper(f, value, source);
+    }
     part.figures.push(target(f, Target::Between(lo, hi)));
     part.figures.push(measured(
         &format!("{name}_settling_time_s"),
@@ -172,37 +149,46 @@ fn summarise(name: &str, band: (u16, u16), log: &[Sample<3>], part: &mut Part) {
     ));
 }
 
-/// One hold on the real hand: the loop on the platform's clock for `hold_s`.
-fn real_hold(
-    scene: &Scene,
-    cx: &RunContext<'_>,
-    hand: &crate::scene::parts::Hand,
-    port: &str,
-    band: TorqueBand,
-    hold_s: f64,
-) -> Result<Vec<Sample<3>>, RunError> {
-    // The sensors first: a bus that cannot be opened fails before any servo command.
-    let tip = crate::stack::fingertip::open_hardware(scene, &*cx.platform)?;
-    let servo = crate::stack::hand::open(hand, port)?;
-    let config = LoopConfig {
-        band,
-        ..grasp_rig::config(band)
-    };
-    let policy = fuzzy_mamdani::grasp_controller().with_torque_band(band.min_raw(), band.max_raw());
-    let clock = cx.platform.clock();
-    let mut l =
-        GraspLoop::new(tip, policy, servo, clock, config).map_err(|e| RunError::Device {
-            device: "grasp loop",
-            reason: e.to_string(),
-        })?;
-    l.run_until((hold_s * 1e6) as u64);
-    if let Some(e) = l.events().first() {
-        return Err(RunError::Device {
-            device: "hand",
-            reason: format!("loop went to its safe state: {:?}", e.fault),
-        });
-    }
-    Ok(l.log().to_vec())
+/// One hold's first seconds as plot lines labelled `label`: (torque limit sent, mean pressure
+/// rise).
+pub fn traces(label: &str, log: &[Sample<3>]) -> (Line, Line) {
+    let t = |s: &Sample<3>| s.t_us as f64 * 1e-6;
+    let early = || log.iter().filter(|s| t(s) <= TRACE_S);
+    (
+        Line {
+            label: label.to_owned(),
+            points: early()
+                .filter_map(|s| Some((t(s), f64::from(s.torque_raw?))))
+                .collect(),
+        },
+        Line {
+            label: label.to_owned(),
+            points: early()
+                .filter_map(|s| Some((t(s), f64::from(s.estimate?.pressure_pa))))
+                .collect(),
+        },
+    )
+}
+
+/// The plots of a grasp experiment: the holds' torque and pressure traces and the
+/// controller's surface.
+pub fn plots(traces: Vec<(Line, Line)>) -> Result<Vec<Plot>, RunError> {
+    let (torque, pressure) = traces.into_iter().unzip();
+    Ok(vec![
+        Plot::Lines {
+            title: "Grasp: torque limit sent (lift at 3 s)".into(),
+            x_label: "time (s)".into(),
+            y_label: "torque limit (0…1023)".into(),
+            lines: torque,
+        },
+        Plot::Lines {
+            title: "Grasp: mean pad pressure rise".into(),
+            x_label: "time (s)".into(),
+            y_label: "pressure rise (Pa)".into(),
+            lines: pressure,
+        },
+        surface()?,
+    ])
 }
 
 /// The paper's controller surface: torque limit over (pressure error, its rate), normalised.

@@ -1,29 +1,21 @@
-//! The experiment runners: each runs one `[experiment.*]` of a scene on the stack the scene
-//! names and returns its figures and plot data; [`run`] joins them into the scene's
-//! [`Outcome`].
+//! The experiments of a `handstack` scene, each on the real devices the scene names: a grasp
+//! hold ([`grasp`]) and a fingertip readout ([`readout`]); [`run`] joins their figures into
+//! the scene's [`Outcome`]. The functions under them take opened devices, so a program with
+//! its own devices (the papers' simulated ones) runs the same code.
 
-pub mod contact;
-mod figure;
+pub mod figure;
 pub mod grasp;
-pub mod hand_loop;
 pub mod readout;
-pub mod softness;
-pub mod tap;
-pub mod weight;
 
 use crate::error::RunError;
 use crate::progress::Progress;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneOf};
 use crate::stack::platform::{LinuxPlatform, Platform};
 use crate::{Figure, Outcome, Plot};
-use std::path::PathBuf;
 use std::time::Instant;
 
 /// What every runner needs besides its scene.
 pub struct RunContext<'a> {
-    /// The workspace root: committed models under `fixtures/models/`, datasets under
-    /// `fixtures/datasets/`.
-    pub root: PathBuf,
     /// Where progress goes.
     pub progress: &'a dyn Progress,
     /// Where hardware buses, delays and the clock come from (Linux by default).
@@ -31,12 +23,9 @@ pub struct RunContext<'a> {
 }
 
 impl<'a> RunContext<'a> {
-    /// The workspace this crate was built in (the parent of `paper_fixtures::fixtures_dir()`,
-    /// so `$HANDSTACK_FIXTURES` moves both), reporting to `progress`.
+    /// Hardware through Linux's device files, reporting to `progress`.
     pub fn new(progress: &'a dyn Progress) -> Self {
-        let fixtures = paper_fixtures::fixtures_dir();
         Self {
-            root: fixtures.parent().map_or(fixtures.clone(), PathBuf::from),
             progress,
             platform: Box::new(LinuxPlatform::new()),
         }
@@ -61,45 +50,42 @@ pub struct Part {
     pub plots: Vec<Plot>,
 }
 
-/// Runs every experiment `scene` names, in order, and joins their figures and plots.
+impl Part {
+    /// The parts joined into the outcome of `scene` (its name and title), begun at `start`.
+    pub fn join<X>(scene: &SceneOf<X>, parts: Vec<Part>, start: Instant) -> Outcome {
+        let (mut figures, mut plots) = (Vec::new(), Vec::new());
+        for p in parts {
+            figures.extend(p.figures);
+            plots.extend(p.plots);
+        }
+        Outcome {
+            scene: scene.name.clone(),
+            title: scene.file.title.clone(),
+            figures,
+            plots,
+            wall_s: start.elapsed().as_secs_f64(),
+        }
+    }
+}
+
+/// Opens every device `scene` names (failing before anything moves), then runs its
+/// experiments in order and joins their figures and plots.
 pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
     let start = Instant::now();
     let x = scene.file.experiment.get_ref();
     cx.progress.stage("opening real devices", 0);
     crate::stack::check_real_devices(scene, &*cx.platform)?;
     let mut parts = Vec::new();
-    if let Some(w) = &x.weight {
-        parts.push(weight::run(scene, w.get_ref(), cx)?);
-    }
-    if let Some(c) = &x.contact {
-        parts.push(contact::run(scene, c.get_ref(), cx)?);
-    }
     if let Some(g) = &x.grasp {
         parts.push(grasp::run(scene, g.get_ref(), cx)?);
     }
-    if let Some(s) = &x.softness {
-        parts.push(softness::run(s.get_ref(), cx)?);
-    }
-    if let Some(t) = &x.tap {
-        parts.push(tap::run(scene, t.get_ref(), cx)?);
-    }
     if let Some(r) = &x.readout {
-        parts.push(readout::run(scene, r.get_ref(), cx)?);
+        let mut tip = crate::stack::fingertip::open(scene, &*cx.platform)?;
+        parts.push(readout::run(
+            &mut tip,
+            *r.get_ref().frames.get_ref(),
+            cx.progress,
+        )?);
     }
-    // The whole hand named: its parts again, fused into one 100 Hz control loop.
-    if hand_loop::scene::applies(scene) {
-        parts.push(hand_loop::scene::run(scene, cx)?);
-    }
-    let (mut figures, mut plots) = (Vec::new(), Vec::new());
-    for p in parts {
-        figures.extend(p.figures);
-        plots.extend(p.plots);
-    }
-    Ok(Outcome {
-        scene: scene.name.clone(),
-        title: scene.file.title.clone(),
-        figures,
-        plots,
-        wall_s: start.elapsed().as_secs_f64(),
-    })
+    Ok(Part::join(scene, parts, start))
 }

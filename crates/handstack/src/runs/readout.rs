@@ -1,23 +1,23 @@
 //! Hardware bring-up: read the fingertip at rest and report the frame period and each
-//! sensor's noise (standard deviation, Pa) at the scene's OSR — on real chips (`i2c_buses`) or
-//! on hand-sim's chip models (whose noise per OSR follows the MS5611 datasheet's table).
+//! sensor's noise (standard deviation, Pa) at its OSR.
 
+use super::Part;
 use super::figure::measured;
-use super::{Part, RunContext};
-use crate::error::RunError;
-use crate::scene::Scene;
-use crate::scene::experiment::Readout;
+use crate::progress::Progress;
 use crate::{Line, Plot};
+use hand_traits::{PressureFrame, TactileSource};
 
-/// Runs the readout experiment of `scene`.
-pub fn run(scene: &Scene, exp: &Readout, cx: &RunContext<'_>) -> Result<Part, RunError> {
-    let n = *exp.frames.get_ref();
-    let mut source = crate::stack::fingertip::open(scene, &*cx.platform)?;
-    cx.progress.stage("readout: fingertip frames", n as u64);
+/// Reads `n` frames from `source` (any fingertip of three sensors) and reports its rate and
+/// noise; a read error ends the readout with that error.
+pub fn run<S>(source: &mut S, n: usize, progress: &dyn Progress) -> Result<Part, S::Error>
+where
+    S: TactileSource<Frame = PressureFrame<3>> + ?Sized,
+{
+    progress.stage("readout: fingertip frames", n as u64);
     let mut frames = Vec::with_capacity(n);
     for _ in 0..n {
         frames.push(source.read_frame()?);
-        cx.progress.advance(1);
+        progress.advance(1);
     }
     let mut part = Part::default();
     let span_us = frames.last().map_or(0, |f| f.t_us) - frames.first().map_or(0, |f| f.t_us);

@@ -1,22 +1,33 @@
 //! Scene files: TOML that names the parts of a hand stack and the experiment to run on it.
 //!
+//! A scene's parts (`[sensors.*]`, `[estimators.*]`, `[controller]`, `[hand]`, `[arm]`) are one
+//! schema, checked here; what it runs (`[experiment.*]`) is a table the caller chooses: the
+//! `handstack` binary's [`Experiments`](experiment::Experiments) (a grasp hold and a sensor
+//! readout on real devices), or a reproduction's own table through [`ExperimentTable`].
+//!
 //! ```
-//! let scene = handstack::scene::Scene::parse(
-//!     "weight.toml",
+//! use handstack::scene::Scene;
+//!
+//! let scene = Scene::parse(
+//!     "my-hand.toml",
 //!     r#"
-//!     title = "Table 1"
-//!     [sim]
-//!     seed = 7
+//!     title = "Bench hand"
 //!     [sensors.fingertip]
-//!     osr = 4096
-//!     [estimators.force]
-//!     model = "sim"
-//!     [experiment.weight]
+//!     osr = 1024
+//!     i2c_buses = ["/dev/i2c-1", "/dev/i2c-3", "/dev/i2c-4"]
+//!     [controller]
+//!     preset = "grasp"
+//!     [hand]
+//!     model = "mx28"
+//!     serial_port = "/dev/ttyUSB0"
+//!     [experiment.grasp]
+//!     torque_band = [250, 320]
+//!     hold_s = 30
 //!     "#,
 //! )?;
-//! assert_eq!(scene.name, "weight");
+//! assert_eq!(scene.name, "my-hand");
 //! // An OSR the MS5611 does not have names the key, the line and what is allowed.
-//! let err = handstack::scene::Scene::parse("bad.toml", "title = \"x\"\n[sensors.fingertip]\nosr = 300\n[experiment.weight]\n")
+//! let err = Scene::parse("bad.toml", "title = \"x\"\n[sensors.fingertip]\nosr = 300\n[experiment.readout]\nframes = 10\n")
 //!     .unwrap_err();
 //! assert!(err.to_string().starts_with("bad.toml:3:7: `sensors.fingertip.osr`"), "{err}");
 //! # Ok::<(), handstack::scene::SceneError>(())
@@ -28,21 +39,36 @@ pub mod parts;
 mod validate;
 
 pub use error::{Location, SceneError};
+pub use validate::Checker;
 
 use serde::Deserialize;
+use serde::de::DeserializeOwned;
 use std::path::Path;
 use toml::Spanned;
+
+/// What a scene's `[experiment]` table holds: the experiments one program can run.
+pub trait ExperimentTable: DeserializeOwned + Clone + core::fmt::Debug {
+    /// What may appear under `[experiment]`, for the error of a scene that names none
+    /// (`"[experiment.grasp], [experiment.readout]"`).
+    const ALLOWED: &'static str;
+    /// The names of the experiments present, in run order.
+    fn names(&self) -> Vec<&'static str>;
+    /// Checks the experiments against the parts they run on (the parts themselves are checked
+    /// already); errors through [`Checker::err`] keep the offending key's span.
+    fn check(scene: &SceneFile<Self>, cx: &Checker<'_>) -> Result<(), SceneError>;
+}
 
 /// A scene file as written.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SceneFile {
+#[serde(bound = "X: DeserializeOwned")]
+pub struct SceneFile<X = experiment::Experiments> {
     /// One line saying what the scene reproduces.
     pub title: String,
-    /// The simulated physics (hand-sim's scene config: `seed` and one table per model). The
-    /// sensor knobs (OSR, pressure mode) belong to `[sensors.*]` and are copied in.
+    /// A simulated environment, as the program that simulates it reads it (the `handstack`
+    /// binary opens real devices only and refuses it).
     #[serde(default)]
-    pub sim: Option<Spanned<hand_sim::scene::SceneConfig>>,
+    pub sim: Option<Spanned<toml::Table>>,
     /// The sensors.
     #[serde(default)]
     pub sensors: parts::Sensors,
@@ -56,48 +82,47 @@ pub struct SceneFile {
     /// The arm.
     pub arm: Option<Spanned<parts::Arm>>,
     /// What to run.
-    pub experiment: Spanned<experiment::Experiments>,
+    pub experiment: Spanned<X>,
 }
 
-/// A parsed and validated scene.
+/// A parsed and validated `handstack` scene.
+pub type Scene = SceneOf<experiment::Experiments>;
+
+/// A parsed and validated scene whose `[experiment]` table is `X`.
 #[derive(Debug, Clone)]
-pub struct Scene {
+pub struct SceneOf<X> {
     /// The file stem (`weight-estimation`).
     pub name: String,
     /// The file's contents as written.
-    pub file: SceneFile,
-    /// The simulated physics with the sensor knobs applied.
-    pub sim: hand_sim::scene::SceneConfig,
+    pub file: SceneFile<X>,
 }
 
-impl Scene {
+impl<X: ExperimentTable> SceneOf<X> {
     /// Reads and validates the scene file at `path`.
-    pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-            path: path.to_owned(),
-            source,
-        })?;
-        Scene::parse(&path.display().to_string(), &text)
+    pub fn load(path: &Path) -> Result<SceneOf<X>, SceneError> {
+        let text = read(path)?;
+        SceneOf::parse(&path.display().to_string(), &text)
     }
 
     /// Parses and validates scene text; `file` names it in errors (its stem names the scene).
-    pub fn parse(file: &str, text: &str) -> Result<Scene, SceneError> {
-        let parsed: SceneFile =
+    pub fn parse(file: &str, text: &str) -> Result<SceneOf<X>, SceneError> {
+        let parsed: SceneFile<X> =
             toml::from_str(text).map_err(|e| SceneError::syntax(file, text, &e))?;
-        let sim = validate::check(&parsed, file, text)?;
+        let cx = Checker::new(file, text);
+        validate::check_parts(&parsed, &cx)?;
+        if parsed.experiment.get_ref().names().is_empty() {
+            return Err(cx.err(
+                parsed.experiment.span(),
+                "experiment",
+                "names no experiment",
+                format!("one or more of {}", X::ALLOWED),
+            ));
+        }
+        X::check(&parsed, &cx)?;
         let name = Path::new(file)
             .file_stem()
             .map_or_else(|| file.to_owned(), |s| s.to_string_lossy().into_owned());
-        Ok(Scene {
-            name,
-            file: parsed,
-            sim,
-        })
-    }
-
-    /// The scene's root seed (`[sim] seed`, 0 without a `[sim]` table).
-    pub fn seed(&self) -> u64 {
-        self.sim.seed
+        Ok(SceneOf { name, file: parsed })
     }
 
     /// The contact locators `[estimators.contact]` names (none without that table).
@@ -109,4 +134,12 @@ impl Scene {
             .map(|c| c.get_ref().locators.get_ref().clone())
             .unwrap_or_default()
     }
+}
+
+/// The text of the scene file at `path`.
+pub fn read(path: &Path) -> Result<String, SceneError> {
+    std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+        path: path.to_owned(),
+        source,
+    })
 }

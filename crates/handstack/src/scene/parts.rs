@@ -1,7 +1,9 @@
-//! The parts a scene file names: sensors, estimators, controller, hand and arm. Each device is
-//! simulated unless the scene names its hardware (`i2c_bus`, `serial_port`, `host`).
+//! The parts a scene file names: sensors, estimators, controller, hand and arm. A device is
+//! real when the scene names its hardware (`i2c_buses`, `i2c_bus`, `serial_port`, `host`);
+//! a program that simulates devices (the papers' `paper-scenes`) simulates the others, and the
+//! `handstack` binary refuses them.
 
-use hand_sim::imu_pad::config::BaroModeName;
+use imu_icm20789::BaroMode;
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -25,7 +27,7 @@ pub struct Fingertip {
     pub osr: Spanned<u16>,
     /// Real chips: one Linux I2C bus per sensor (the MS5611 has two addresses, so three
     /// sensors need three buses), e.g. `["/dev/i2c-1", "/dev/i2c-3", "/dev/i2c-4"]`.
-    /// Absent: the chip models of `baro-drivers` under hand-sim's pad.
+    /// Absent: a simulated fingertip (in a program that simulates one).
     pub i2c_buses: Option<Spanned<Vec<String>>>,
     /// The MS5611's I2C address on each bus: 0x76 (CSB high) or 0x77 (CSB low, default).
     pub address: Option<Spanned<u8>>,
@@ -35,11 +37,16 @@ pub struct Fingertip {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ImuPad {
-    /// Barometer mode: `LowPower`, `Normal`, `LowNoise` (the paper's) or `UltraLowNoise`.
-    #[serde(default)]
-    pub pressure_mode: BaroModeName,
+    /// Barometer mode: `LowPower`, `Normal`, `LowNoise` (the paper's, the default) or
+    /// `UltraLowNoise`.
+    #[serde(default = "low_noise")]
+    pub pressure_mode: BaroMode,
     /// Real chip: the Linux I2C bus (accel / gyro at 0x68, barometer at 0x63).
     pub i2c_bus: Option<Spanned<String>>,
+}
+
+fn low_noise() -> BaroMode {
+    BaroMode::LowNoise
 }
 
 /// The underactuated hand's FSRs and potentiometers (simulated only: seed 001 does not name
@@ -147,7 +154,7 @@ pub struct Hand {
     /// Servo IDs on the bus (default `[1, 2]`).
     #[serde(default = "default_ids")]
     pub ids: Vec<u8>,
-    /// Real bus: the serial port of the RS-485 adapter. Absent: hand-control's pty simulator.
+    /// Real bus: the serial port of the RS-485 adapter. Absent: a simulated hand.
     pub serial_port: Option<Spanned<String>>,
     /// Baud rate (default 1 000 000, the paper's).
     pub baud: Option<Spanned<u32>>,
@@ -166,6 +173,6 @@ fn default_ids() -> Vec<u8> {
 pub struct Arm {
     /// `ur3` (seed 002's arm).
     pub model: Spanned<String>,
-    /// The controller's host name or address. Absent: ur-bridge's simulator on 127.0.0.1.
+    /// The controller's host name or address. Absent: a simulated arm.
     pub host: Option<Spanned<String>>,
 }

@@ -1,10 +1,9 @@
-//! The fingertip a scene names: hand-sim's pad with three MS5611 chip models behind the real
-//! driver, or three real MS5611 on the I2C buses the scene names, one per sensor, opened
-//! through the run's [`Platform`] (Linux device files by default).
+//! The fingertip a scene names: three MS5611 on the I2C buses the scene names, one per sensor,
+//! opened through the run's [`Platform`] (Linux device files by default).
 
 use super::platform::{I2cBus, Platform};
 use crate::error::RunError;
-use crate::scene::Scene;
+use crate::scene::SceneOf;
 use baro_drivers::{Address, I2cInterface, Measurement, Ms5611, Osr, Ready, Scheduler};
 use embedded_hal::delay::DelayNs;
 use hand_control::grasp_loop::LoopClock;
@@ -75,24 +74,10 @@ impl TactileSource for RealFingertip {
     }
 }
 
-/// The scene's fingertip as a boxed source: real when it names `i2c_buses`, else hand-sim's.
-pub fn open(
-    scene: &Scene,
-    platform: &dyn Platform,
-) -> Result<Box<dyn TactileSource<Frame = PressureFrame<3>, Error = RunError>>, RunError> {
-    let tip = scene_fingertip(scene)?;
-    if tip.i2c_buses.is_some() {
-        return Ok(Box::new(open_hardware(scene, platform)?));
-    }
-    let config = scene.sim.fingertip.clone().unwrap_or_default();
-    let sim = hand_sim::fingertip::Fingertip::new(&config, scene.seed())?;
-    Ok(Box::new(SimSource(sim)))
-}
-
 /// The scene's real fingertip, never a simulated one: a scene that drives real servos must read
 /// real sensors, so naming no `i2c_buses` is an error here, as is a bus that cannot be opened
 /// (both before anything moves).
-pub fn open_hardware(scene: &Scene, platform: &dyn Platform) -> Result<RealFingertip, RunError> {
+pub fn open<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Result<RealFingertip, RunError> {
     let tip = scene_fingertip(scene)?;
     let Some(buses) = &tip.i2c_buses else {
         return Err(RunError::Device {
@@ -102,7 +87,10 @@ pub fn open_hardware(scene: &Scene, platform: &dyn Platform) -> Result<RealFinge
                 .into(),
         });
     };
-    let osr = hand_sim::fingertip::model::osr_from_ratio(*tip.osr.get_ref())?;
+    let osr = Osr::from_ratio(*tip.osr.get_ref()).ok_or_else(|| RunError::Device {
+        device: "sensors.fingertip",
+        reason: format!("OSR {} is not the MS5611's", tip.osr.get_ref()),
+    })?;
     let address = match tip.address.as_ref().map(|a| *a.get_ref()) {
         Some(0x76) => Address::CsbHigh,
         _ => Address::CsbLow,
@@ -110,7 +98,7 @@ pub fn open_hardware(scene: &Scene, platform: &dyn Platform) -> Result<RealFinge
     RealFingertip::open(platform, buses.get_ref(), address, osr)
 }
 
-fn scene_fingertip(scene: &Scene) -> Result<&crate::scene::parts::Fingertip, RunError> {
+fn scene_fingertip<X>(scene: &SceneOf<X>) -> Result<&crate::scene::parts::Fingertip, RunError> {
     scene
         .file
         .sensors
@@ -121,15 +109,4 @@ fn scene_fingertip(scene: &Scene) -> Result<&crate::scene::parts::Fingertip, Run
             device: "sensors.fingertip",
             reason: "the scene names no fingertip".into(),
         })
-}
-
-/// hand-sim's fingertip with its errors as run errors.
-struct SimSource(hand_sim::fingertip::Fingertip);
-
-impl TactileSource for SimSource {
-    type Frame = PressureFrame<3>;
-    type Error = RunError;
-    fn read_frame(&mut self) -> Result<PressureFrame<3>, RunError> {
-        Ok(self.0.read_frame()?)
-    }
 }

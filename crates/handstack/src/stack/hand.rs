@@ -1,5 +1,5 @@
 //! The hand a scene names on a real bus: `ServoHand` (dynamixel2 over serial2) on the scene's
-//! `serial_port`. (The simulated default is hand-control's Table 5 rig, `paper_experiments::grasp_rig`.)
+//! `serial_port`.
 
 use crate::error::RunError;
 use crate::scene::parts::Hand;

@@ -1,6 +1,5 @@
-//! Composition: the devices a scene names, opened — simulated ones speaking their real
-//! interfaces, real ones by the port, bus or host the scene gives, their buses opened through
-//! the run's [`Platform`].
+//! Composition: the real devices a scene names, opened by the port, bus or host it gives,
+//! their buses through the run's [`Platform`].
 
 pub mod arm;
 pub mod fingertip;
@@ -9,13 +8,14 @@ pub mod pad;
 pub mod platform;
 
 use crate::error::RunError;
-use crate::scene::Scene;
+use crate::scene::SceneOf;
 use platform::Platform;
 
 /// Opens every real device `scene` names (fingertip buses, pad bus, hand port, arm host) and
 /// closes them again: a wrong path or an absent device is a typed [`RunError::Open`] before
-/// any experiment starts. Simulated devices are built by the experiments that use them.
-pub fn check_real_devices(scene: &Scene, platform: &dyn Platform) -> Result<(), RunError> {
+/// any experiment starts. The sensors are opened first, so a hand is never commanded when its
+/// fingertip cannot be read.
+pub fn check_real_devices<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Result<(), RunError> {
     let s = &scene.file.sensors;
     if s.fingertip
         .as_ref()
@@ -32,11 +32,6 @@ pub fn check_real_devices(scene: &Scene, platform: &dyn Platform) -> Result<(), 
     }
     if let Some(h) = &scene.file.hand {
         if let Some(port) = &h.get_ref().serial_port {
-            // Real servos grasp by real sensors only: a grasp on hardware without the
-            // fingertip's buses is refused here, before the servos hear anything.
-            if scene.file.experiment.get_ref().grasp.is_some() {
-                drop(fingertip::open_hardware(scene, platform)?);
-            }
             drop(hand::open(h.get_ref(), port.get_ref())?);
         }
     }
@@ -46,7 +41,7 @@ pub fn check_real_devices(scene: &Scene, platform: &dyn Platform) -> Result<(), 
         .as_ref()
         .and_then(|a| a.get_ref().host.as_ref())
     {
-        drop(arm::open(Some(host.get_ref()))?);
+        drop(arm::open(host.get_ref())?);
     }
     Ok(())
 }

@@ -19,6 +19,7 @@
 
 /// Pressure measurement mode: speed and current against noise.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 pub enum BaroMode {
     /// LP: 1.8 ms worst-case conversion, 3.2 Pa rms noise.
     LowPower,

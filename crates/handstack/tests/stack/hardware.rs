@@ -1,0 +1,257 @@
+//! Naming real hardware really opens it: a grasp scene (its `serial_port` the pty of a running
+//! bus simulator) reads its pressure frames from the fingertip buses it names (here a
+//! substitute platform's: MS5611 chip models, nothing else behind them) and fails before any
+//! servo command when they are missing or cannot be opened; a scene whose `host` is a started
+//! UR controller simulator connects to it; a missing I2C bus, serial port or host is a typed
+//! "cannot open …" error naming the path.
+
+use baro_drivers::sim::{Conditions, Ms5611Sim};
+use embedded_hal::delay::DelayNs;
+use hand_control::grasp_loop::LoopClock;
+use handstack::progress::Quiet;
+use handstack::runs::{RunContext, run};
+use handstack::scene::{Scene, SceneError};
+use handstack::stack::platform::{I2cBus, Platform};
+use handstack::{Plot, RunError};
+use std::net::Ipv4Addr;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+fn run_text(text: &str) -> Result<handstack::Outcome, RunError> {
+    let scene = Scene::parse("hw.toml", text)?;
+    run(&scene, &RunContext::new(&Quiet))
+}
+
+/// The hardware grasp scene for the servos on the pty at `path`, with `sensors` (the
+/// fingertip's buses) and a hold of `hold_s`.
+fn grasp_scene(path: &str, sensors: &str, hold_s: f64) -> String {
+    format!(
+        "title = \"pty hand\"\n[sensors.fingertip]\nosr = 1024\n{sensors}[controller]\n\
+         preset = \"grasp\"\n[hand]\nmodel = \"mx28\"\nids = [1, 2]\nserial_port = \"{path}\"\n\
+         reply_timeout_ms = 250\n[experiment.grasp]\ntorque_band = [250, 320]\nhold_s = {hold_s}\n"
+    )
+}
+
+/// A substitute platform: its I2C buses `sub-0` … `sub-2` each hold an MS5611 chip model (no
+/// noise) at 1000 mbar that is pressed by `k + 1` mbar from `PRESS_NS` on, all on one simulated
+/// clock that is also the platform's delay and loop clock. It counts the conversions its chips
+/// run, so a test sees the frames came from here.
+struct Substitute {
+    clock: hand_traits::sim::SimClock,
+    conversions: Arc<AtomicUsize>,
+}
+
+/// When the substitute pad is pressed, ns (after the loop's 10 tare cycles).
+const PRESS_NS: u64 = 300_000_000;
+
+impl Platform for Substitute {
+    fn open_i2c(&self, path: &str) -> Result<I2cBus, String> {
+        let k = ["sub-0", "sub-1", "sub-2"]
+            .iter()
+            .position(|p| *p == path)
+            .ok_or_else(|| format!("no substitute bus {path}"))?;
+        let conversions = Arc::clone(&self.conversions);
+        let env = move |t_ns: u64| {
+            conversions.fetch_add(1, Ordering::Relaxed);
+            let press = if t_ns >= PRESS_NS {
+                k as f64 + 1.0
+            } else {
+                0.0
+            };
+            Conditions {
+                pressure_mbar: 1000.0 + press,
+                temperature_celsius: 25.0,
+            }
+        };
+        Ok(I2cBus::new(
+            Ms5611Sim::new(env, self.clock.clone()).with_noise(false),
+        ))
+    }
+
+    fn delay(&self) -> Box<dyn DelayNs + Send> {
+        Box::new(self.clock.delay())
+    }
+
+    fn clock(&self) -> Box<dyn LoopClock + Send> {
+        Box::new(self.clock.clone())
+    }
+}
+
+#[test]
+fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_servos() {
+    use hand_control::sim::{SimBus, SimConfig};
+    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
+    drop(port);
+    let path = bus.client_path().display().to_string();
+    let text = grasp_scene(
+        &path,
+        "i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n",
+        1.0,
+    );
+    let scene = Scene::parse("hw.toml", &text).expect("valid scene");
+    let conversions = Arc::new(AtomicUsize::new(0));
+    let cx = RunContext::new(&Quiet).with_platform(Substitute {
+        clock: hand_traits::sim::SimClock::new(),
+        conversions: Arc::clone(&conversions),
+    });
+    let o = run(&scene, &cx).unwrap_or_else(|e| panic!("{e}"));
+    // The loop's pressure is the substitute's press: a mean rise of (1 + 2 + 3) / 3 mbar =
+    // 200 Pa once pressed (the compensation rounds to 1 Pa), nothing before.
+    let Some(Plot::Lines { lines, .. }) = o
+        .plots
+        .iter()
+        .find(|p| matches!(p, Plot::Lines { title, .. } if title.contains("pressure rise")))
+    else {
+        panic!("no pressure plot")
+    };
+    let points = &lines[0].points;
+    // Every frame the loop read is three conversions or more on the substitute buses.
+    let n = conversions.load(Ordering::Relaxed);
+    assert!(
+        n >= 3 * points.len(),
+        "{n} conversions for {} frames",
+        points.len()
+    );
+    let (before, after): (Vec<_>, Vec<_>) = points.iter().partition(|(t, _)| *t < 0.29);
+    assert!(before.len() >= 15 && after.len() >= 60, "{points:?}");
+    assert!(before.iter().all(|(_, p)| p.abs() <= 1.0), "{before:?}");
+    let pressed = &after[after.len() / 2..];
+    assert!(
+        pressed.iter().all(|(_, p)| (p - 200.0).abs() <= 1.0),
+        "{pressed:?}"
+    );
+    // And the controller acted on it over Protocol 2.0: both servos hold torque and a Goal
+    // PWM the loop wrote (no longer the power-on value).
+    let table = &hand_control::control_table::MX_28;
+    for id in [1, 2] {
+        let (on, pwm) = bus
+            .with_servo(id, |s| {
+                (s.torque_enabled(), s.get(table.goal_effort.address))
+            })
+            .expect("servo");
+        assert!(on, "servo {id} torque");
+        assert_ne!(pwm, table.effort_limit.default, "servo {id} Goal PWM");
+    }
+}
+
+/// The servos of `bus` have had no command: torque off, Goal PWM at its power-on value.
+fn untouched(bus: &hand_control::sim::SimBus, ids: &[u8]) {
+    let table = &hand_control::control_table::MX_28;
+    for &id in ids {
+        let (on, pwm) = bus
+            .with_servo(id, |s| {
+                (s.torque_enabled(), s.get(table.goal_effort.address))
+            })
+            .expect("servo");
+        assert!(!on, "servo {id} torque");
+        assert_eq!(pwm, table.effort_limit.default, "servo {id} Goal PWM");
+    }
+}
+
+#[test]
+fn a_hardware_grasp_never_reads_a_simulated_fingertip_and_fails_before_any_servo_command() {
+    use hand_control::sim::{SimBus, SimConfig};
+    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
+    drop(port); // the scene opens the pty by its path, as it would /dev/ttyUSB0
+    let path = bus.client_path().display().to_string();
+    let scene = |sensors: &str| grasp_scene(&path, sensors, 0.3);
+    // Real servos, no sensor buses named: refused as a scene error (this binary has no
+    // simulated fingertip to fall back on), and nothing reached the servos.
+    let e = run_text(&scene("")).expect_err("a hardware hand needs its fingertip's buses");
+    assert!(
+        matches!(
+            e,
+            RunError::Scene(SceneError::Invalid { ref key, .. }) if key == "sensors.fingertip"
+        ) && e.to_string().contains("i2c_buses"),
+        "{e}"
+    );
+    untouched(&bus, &[1, 2]);
+    // Buses that cannot be opened: the error names the device and the path, before any servo
+    // command.
+    let e = run_text(&scene(
+        "i2c_buses = [\"/dev/i2c-99\", \"/dev/i2c-98\", \"/dev/i2c-97\"]\n",
+    ))
+    .expect_err("no such bus");
+    assert!(
+        matches!(e, RunError::Open { device: "sensors.fingertip", ref path, .. } if path == "/dev/i2c-99"),
+        "{e:?}"
+    );
+    untouched(&bus, &[1, 2]);
+}
+
+#[test]
+fn a_missing_i2c_bus_is_a_cannot_open_error() {
+    let text = "title = \"real tip\"\n[sensors.fingertip]\nosr = 4096\n\
+                i2c_buses = [\"/dev/i2c-99\", \"/dev/i2c-98\", \"/dev/i2c-97\"]\n\
+                [experiment.readout]\nframes = 10\n";
+    match run_text(text) {
+        Err(e @ RunError::Open { .. }) => {
+            let msg = e.to_string();
+            assert!(
+                msg.starts_with("cannot open sensors.fingertip at /dev/i2c-99"),
+                "{msg}"
+            );
+        }
+        other => panic!("expected an open error, got {other:?}"),
+    }
+    let pad = handstack::stack::pad::open(
+        &handstack::stack::platform::LinuxPlatform::new(),
+        "/dev/i2c-99",
+    )
+    .map(drop)
+    .expect_err("no such bus");
+    assert!(
+        matches!(pad, RunError::Open { device: "sensors.imu_pad", ref path, .. } if path == "/dev/i2c-99"),
+        "{pad}"
+    );
+}
+
+#[test]
+fn a_missing_serial_port_is_a_cannot_open_error() {
+    let text = grasp_scene(
+        "/dev/ttyUSB-handstack-none",
+        "i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n",
+        1.0,
+    );
+    let scene = Scene::parse("hw.toml", &text).expect("valid scene");
+    let hand = scene.file.hand.as_ref().expect("hand").get_ref();
+    let e =
+        handstack::stack::hand::open(hand, "/dev/ttyUSB-handstack-none").expect_err("no such port");
+    assert!(matches!(e, RunError::Open { device: "hand", .. }), "{e:?}");
+    assert!(
+        e.to_string()
+            .starts_with("cannot open hand at /dev/ttyUSB-handstack-none"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_scene_naming_a_started_ur_simulator_connects_to_it() {
+    use ur_bridge::sim::{SimConfig, UrSim};
+    let address = Ipv4Addr::new(127, 0, 0, 90);
+    let _sim = UrSim::start(SimConfig {
+        address,
+        ..SimConfig::default()
+    })
+    .expect("simulator");
+    let text = format!(
+        "title = \"real arm\"\n[sensors.fingertip]\nosr = 256\n\
+         i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n[arm]\nmodel = \"ur3\"\n\
+         host = \"{address}\"\n[experiment.readout]\nframes = 5\n"
+    );
+    let substitute = || Substitute {
+        clock: hand_traits::sim::SimClock::new(),
+        conversions: Arc::new(AtomicUsize::new(0)),
+    };
+    let run_on = |text: &str| {
+        let scene = Scene::parse("hw.toml", text)?;
+        run(&scene, &RunContext::new(&Quiet).with_platform(substitute()))
+    };
+    let o = run_on(&text).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(o.figure("frames").map(|f| f.value), Some(5.0));
+    // A host nobody listens on is an open error naming it, before the readout.
+    let dead = text.replace("127.0.0.90", "127.0.0.91");
+    assert!(
+        matches!(run_on(&dead), Err(RunError::Open { device: "arm", ref path, .. }) if path == "127.0.0.91")
+    );
+}

@@ -1,0 +1,6 @@
+//! The `handstack` crate as a user gets it: scene files of their own, real devices (here
+//! substitutes behind the real transports), the installed binary with no repository around it.
+
+mod cli;
+mod hardware;
+mod scenes;

@@ -1,0 +1,93 @@
+//! What a `handstack` scene may name: every device with its hardware, no simulated
+//! environment, a torque band the servos accept; each refusal names the file, line, key and
+//! what is allowed. The parts' own checks (ranges, estimators with their sensors) are shared
+//! with the papers' scenes and tested there on the papers' files.
+
+use handstack::scene::{Scene, SceneError};
+
+const HAND: &str = r#"title = "bench hand"
+[sensors.fingertip]
+osr = 1024
+i2c_buses = ["/dev/i2c-1", "/dev/i2c-3", "/dev/i2c-4"]
+[controller]
+preset = "grasp"
+[hand]
+model = "mx28"
+serial_port = "/dev/ttyUSB0"
+[experiment.grasp]
+torque_band = [250, 320]
+hold_s = 30
+"#;
+
+fn err(text: &str) -> SceneError {
+    match Scene::parse("bad.toml", text) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e,
+    }
+}
+
+fn says(e: &SceneError, line: usize, key: &str, parts: &[&str]) {
+    let msg = e.to_string();
+    assert!(msg.starts_with(&format!("bad.toml:{line}:")), "{msg}");
+    assert_eq!(e.key(), Some(key), "{msg}");
+    for p in parts {
+        assert!(msg.contains(p), "{msg:?} lacks {p:?}");
+    }
+}
+
+#[test]
+fn a_users_hand_scene_parses() {
+    let s = Scene::parse("dir/bench-hand.toml", HAND).expect("valid");
+    assert_eq!(s.name, "bench-hand");
+    let g = s.file.experiment.get_ref().grasp.as_ref().expect("grasp");
+    assert_eq!(*g.get_ref().torque_band.get_ref(), [250, 320]);
+}
+
+#[test]
+fn a_device_without_its_hardware_is_refused() {
+    let e = err(&HAND.replace(
+        "i2c_buses = [\"/dev/i2c-1\", \"/dev/i2c-3\", \"/dev/i2c-4\"]\n",
+        "",
+    ));
+    says(
+        &e,
+        2,
+        "sensors.fingertip",
+        &["names no hardware (`i2c_buses`)", "real devices only"],
+    );
+    let e = err(&HAND.replace("serial_port = \"/dev/ttyUSB0\"\n", ""));
+    says(&e, 7, "hand", &["names no hardware (`serial_port`)"]);
+    let e = err(&format!("{HAND}[arm]\nmodel = \"ur3\"\n"));
+    says(&e, 13, "arm", &["names no hardware (`host`)"]);
+    let e = err(&format!("{HAND}[sim]\nseed = 1\n"));
+    says(&e, 13, "sim", &["simulates an environment", "paper-scenes"]);
+}
+
+#[test]
+fn a_torque_band_the_servos_cannot_take_is_refused() {
+    for band in ["[320, 250]", "[0, 2000]"] {
+        let e = err(&HAND.replace("[250, 320]", band));
+        says(&e, 11, "experiment.grasp.torque_band", &[band, "≤ 1023"]);
+    }
+    let e = err(&HAND.replace("hold_s = 30", "hold_s = 0"));
+    says(&e, 12, "experiment.grasp.hold_s", &["is 0", "0.1…600 s"]);
+    let e = err(&HAND.replace(
+        "[experiment.grasp]\ntorque_band = [250, 320]\nhold_s = 30\n",
+        "[experiment]\n",
+    ));
+    says(
+        &e,
+        10,
+        "experiment",
+        &[
+            "names no experiment",
+            "[experiment.grasp], [experiment.readout]",
+        ],
+    );
+    // The papers' experiments are not this binary's.
+    let e = err(&HAND.replace(
+        "[experiment.grasp]",
+        "[experiment.weight]\n[experiment.grasp]",
+    ));
+    assert!(e.to_string().contains("unknown field `weight`"), "{e}");
+}

@@ -1,0 +1,52 @@
+//! The arm a paper scene names: ur-bridge's UR controller simulator on loopback by default, or
+//! the controller at `host`; either way the real ur_rtde client (`handstack::stack::arm`).
+
+use handstack::RunError;
+use std::net::Ipv4Addr;
+use std::sync::atomic::{AtomicU8, Ordering};
+use ur_bridge::UrArm;
+use ur_bridge::sim::{SimConfig, UrSim};
+
+/// Loopback addresses handed to the simulators this process starts (127.0.0.60 on), so scenes
+/// run side by side in one process do not share ports; ur-bridge's own tests use lower ones.
+static NEXT_OCTET: AtomicU8 = AtomicU8::new(60);
+
+/// Hands out simulator addresses from 127.0.0.`octet` on (never lower than the default 60, nor
+/// below an address already handed out): a test binary that must stay off another's loopback
+/// range moves this process's range before it opens a scene.
+pub fn sim_addresses_from(octet: u8) {
+    NEXT_OCTET.fetch_max(octet, Ordering::Relaxed);
+}
+
+/// A connected arm, and the simulator behind it when the scene named none.
+pub struct ArmStack {
+    /// The ur_rtde client.
+    pub arm: UrArm,
+    /// Where it is connected.
+    pub host: String,
+    /// The simulator, when the scene named no host (dropped after the arm).
+    pub sim: Option<UrSim>,
+}
+
+/// Connects to `host`, or starts a simulator on a fresh loopback address and connects to it.
+pub fn open(host: Option<&str>) -> Result<ArmStack, RunError> {
+    let (host, sim) = match host {
+        Some(h) => (h.to_owned(), None),
+        None => {
+            let octet = NEXT_OCTET.fetch_add(1, Ordering::Relaxed);
+            let address = Ipv4Addr::new(127, 0, 0, octet);
+            let sim = UrSim::start(SimConfig {
+                address,
+                ..SimConfig::default()
+            })
+            .map_err(|e| RunError::Open {
+                device: "arm (simulator)",
+                path: address.to_string(),
+                reason: e.to_string(),
+            })?;
+            (address.to_string(), Some(sim))
+        }
+    };
+    let arm = handstack::stack::arm::open(&host)?;
+    Ok(ArmStack { arm, host, sim })
+}

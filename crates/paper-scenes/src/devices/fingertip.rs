@@ -1,0 +1,45 @@
+//! The fingertip a paper scene names: three real MS5611 on its `i2c_buses`
+//! (`handstack::stack::fingertip`), or hand-sim's pad with three MS5611 chip models behind the
+//! real driver.
+
+use crate::scene::PaperScene;
+use hand_traits::{PressureFrame, TactileSource};
+use handstack::RunError;
+use handstack::stack::platform::Platform;
+
+/// A fingertip of either kind, its errors as run errors.
+pub type Source = Box<dyn TactileSource<Frame = PressureFrame<3>, Error = RunError>>;
+
+/// The scene's fingertip: real when it names `i2c_buses` (opened through `platform`), else
+/// hand-sim's, seeded by the scene.
+pub fn open(scene: &PaperScene, platform: &dyn Platform) -> Result<Source, crate::Error> {
+    let real = scene
+        .file
+        .sensors
+        .fingertip
+        .as_ref()
+        .is_some_and(|t| t.get_ref().i2c_buses.is_some());
+    if real {
+        return Ok(Box::new(handstack::stack::fingertip::open(
+            &scene.scene,
+            platform,
+        )?));
+    }
+    let config = scene.sim.fingertip.clone().unwrap_or_default();
+    let sim = hand_sim::fingertip::Fingertip::new(&config, scene.seed())?;
+    Ok(Box::new(SimSource(sim)))
+}
+
+/// hand-sim's fingertip with its errors as run errors.
+struct SimSource(hand_sim::fingertip::Fingertip);
+
+impl TactileSource for SimSource {
+    type Frame = PressureFrame<3>;
+    type Error = RunError;
+    fn read_frame(&mut self) -> Result<PressureFrame<3>, RunError> {
+        self.0.read_frame().map_err(|e| RunError::Device {
+            device: "sensors.fingertip",
+            reason: e.to_string(),
+        })
+    }
+}

@@ -1,0 +1,39 @@
+//! Errors of a paper scene: the stack's ([`handstack::RunError`]: the scene file, a device that
+//! cannot be opened or fails) or the reproduction's own (physics, models, datasets, fixtures).
+
+use handstack::RunError;
+use handstack::scene::SceneError;
+
+/// Why a paper scene could not run to its end.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The stack failed: the scene file, or a device.
+    #[error(transparent)]
+    Run(#[from] RunError),
+    /// The simulated physics refused a configuration or a driver failed.
+    #[error("simulation: {0}")]
+    Sim(#[from] hand_sim::SimError),
+    /// A model failed to load or evaluate.
+    #[error("model: {0}")]
+    Net(#[from] tactile_nets::NetError),
+    /// A committed dataset could not be read.
+    #[error("dataset: {0}")]
+    Data(#[from] paper_experiments::data::DatasetError),
+    /// A paper fixture failed to load.
+    #[error("paper fixture: {0}")]
+    Fixture(#[from] paper_fixtures::FixtureError),
+}
+
+impl From<SceneError> for Error {
+    fn from(e: SceneError) -> Error {
+        Error::Run(RunError::Scene(e))
+    }
+}
+
+/// A device failure as a paper-scene error.
+pub(crate) fn device(device: &'static str, reason: impl Into<String>) -> Error {
+    Error::Run(RunError::Device {
+        device,
+        reason: reason.into(),
+    })
+}

@@ -1,0 +1,72 @@
+//! `paper-scenes`: run the papers' scene files (`paper-scenes run SCENE... [--json] [--report
+//! PATH]`) on the handstack stack, simulated devices behind the real interfaces. Training the
+//! committed models and the speed / accuracy trade are `papers train MODEL` and `papers trade`.
+
+use clap::{Parser, Subcommand};
+use handstack::progress::Bars;
+use paper_scenes::runs::RunContext;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// The papers' scenes on the handstack stack.
+#[derive(Parser)]
+#[command(name = "paper-scenes", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Build the stack each scene file names and run its experiments.
+    Run {
+        /// Scene files (fixtures/scenes/*.toml).
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+        /// Print the outcomes as JSON on stdout (no progress, no table).
+        #[arg(long)]
+        json: bool,
+        /// Also write the HTML report of the outcomes here.
+        #[arg(long, value_name = "PATH")]
+        report: Option<PathBuf>,
+    },
+}
+
+fn main() -> ExitCode {
+    match Cli::parse().command {
+        Command::Run {
+            scenes,
+            json,
+            report,
+        } => run(&scenes, json, report.as_deref()),
+    }
+}
+
+fn run(scenes: &[PathBuf], json: bool, report: Option<&Path>) -> ExitCode {
+    let bars = Bars::new(!json);
+    let cx = RunContext::new(&bars);
+    let runs = handstack::summary::run_each(scenes, json, &bars, |path| {
+        paper_scenes::run_file(path, &cx)
+    });
+    let mut failed = !runs.failures.is_empty();
+    if let Some(out) = report {
+        let failures: Vec<_> = runs
+            .failures
+            .into_iter()
+            .map(|(scene, error)| paper_scenes::report::Failed { scene, error })
+            .collect();
+        let points = cx.root.join(paper_scenes::report::TRADE_POINTS);
+        match paper_scenes::report::write_html(&runs.outcomes, &failures, Some(&points), out) {
+            Ok(()) => eprintln!("report: {}", out.display()),
+            Err(e) => {
+                eprintln!("error: report: {e}");
+                failed = true;
+            }
+        }
+    }
+    if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}

@@ -1,0 +1,79 @@
+//! Seed 001 §3.3–4: soft / moderate / hard from the underactuated hand's four FSRs and four
+//! distal potentiometers. The committed 8 → 4 → 4 → 3 models run on the simulated hand's
+//! grasps (`fixtures/datasets/underactuated/`, hand-sim) of the 24 regular and 30 irregular
+//! test objects; the one that runs is the optimiser's selected seed (lowest training MSE, chosen
+//! on training data only), through `paper_experiments::softness_eval` as docs/learning.md.
+
+use super::figure::{Target, measured, paper, target};
+use super::{Part, RunContext};
+use crate::scene::experiments::Softness;
+use hand_traits::Softness as Class;
+use handstack::Plot;
+use handstack::RunError;
+use paper_experiments::data::underactuated;
+use paper_experiments::softness_eval::{self, Confusion};
+
+/// Runs the softness experiment.
+pub fn run(exp: &Softness, cx: &RunContext<'_>) -> Result<Part, crate::Error> {
+    cx.progress.stage("softness: committed models", 0);
+    let grasps = underactuated::load(&cx.root)?;
+    let runs = softness_eval::load_committed(&cx.root, &grasps)?;
+    let name = exp.optimiser.name();
+    let run = softness_eval::selected(&runs, name).ok_or_else(|| RunError::Device {
+        device: "softness classifier",
+        reason: format!("no committed {name} model"),
+    })?;
+    let published = paper_fixtures::seed001::softness_accuracy()?;
+    let mut part = Part::default();
+    part.figures.push(measured(
+        "softness_seed",
+        &format!("{name}: selected seed (lowest training MSE)"),
+        run.seed as f64,
+        "",
+    ));
+    for (set, c) in [
+        ("regular", &run.evaluation.regular),
+        ("irregular", &run.evaluation.irregular),
+    ] {
+        let f = measured(
+            &format!("{set}_accuracy_pct"),
+            &format!("{name}: {set} test objects ({} grasps)", c.total()),
+            100.0 * c.accuracy(),
+            "%",
+        );
+        let f = match published.iter().find(|r| r.test_set == set) {
+            Some(p) => target(
+                paper(
+                    f,
+                    p.accuracy_pct,
+                    "seed 001 §4 (fixtures/paper/seed001_softness_accuracy.csv)",
+                ),
+                Target::AtLeast(p.accuracy_pct),
+            ),
+            None => f,
+        };
+        part.figures.push(f);
+        part.plots.push(confusion(
+            &format!("Softness, {set} objects ({name}, seed {})", run.seed),
+            c,
+        ));
+    }
+    part.figures.push(measured(
+        "train_accuracy_pct",
+        &format!("{name}: training grasps"),
+        100.0 * run.evaluation.train.accuracy(),
+        "%",
+    ));
+    Ok(part)
+}
+
+fn confusion(title: &str, c: &Confusion) -> Plot {
+    Plot::Confusion {
+        title: title.to_owned(),
+        labels: Class::ALL
+            .iter()
+            .map(|s| softness_eval::class_name(*s).to_owned())
+            .collect(),
+        counts: c.counts.iter().map(|r| r.to_vec()).collect(),
+    }
+}

@@ -1,0 +1,52 @@
+//! Shared by the scene tests: run a committed scene file, read committed metrics.
+#![allow(dead_code, unreachable_pub)]
+
+use handstack::Outcome;
+use handstack::progress::Quiet;
+use paper_scenes::runs::RunContext;
+use std::path::PathBuf;
+use tactile_nets::metrics::MetricsFile;
+
+/// The workspace root.
+pub fn root() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+}
+
+/// `fixtures/scenes/NAME.toml`.
+pub fn scene_path(name: &str) -> PathBuf {
+    root().join("fixtures/scenes").join(format!("{name}.toml"))
+}
+
+/// Runs the committed scene `name` as `handstack run` does.
+pub fn run_scene(name: &str) -> Outcome {
+    let cx = RunContext::new(&Quiet);
+    match paper_scenes::run_file(&scene_path(name), &cx) {
+        Ok(o) => o,
+        Err(e) => panic!("scene {name}: {e}"),
+    }
+}
+
+/// The committed metrics file of model `dir` (`fixtures/models/DIR/metrics.json`).
+pub fn metrics(dir: &str) -> MetricsFile {
+    let path = root()
+        .join("fixtures/models")
+        .join(dir)
+        .join("metrics.json");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    MetricsFile::from_json(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The committed value `key` of row `row` of `file`.
+pub fn committed(file: &MetricsFile, row: &str, key: &str) -> f64 {
+    file.row(row)
+        .and_then(|r| r.values.get(key))
+        .copied()
+        .unwrap_or_else(|| panic!("{}: no {row}/{key}", file.model))
+}
+
+/// The measured value of figure `name`.
+pub fn value(o: &Outcome, name: &str) -> f64 {
+    o.figure(name)
+        .unwrap_or_else(|| panic!("{}: no figure {name}", o.scene))
+        .value
+}
