@@ -122,15 +122,9 @@ where
         taps,
         ..ImuPadConfig::default()
     };
-    run_on(
-        &mut arm,
-        &pad,
-        PAD_SEED,
-        experiment_config,
-        locator,
-        to_input,
-    )
-    .map_err(|e| format!("{e}; sim log {:?}", sim.log()))
+    let pad = ImuPad::new(&pad, PAD_SEED).map_err(|e| e.to_string())?;
+    run_on(&mut arm, pad, experiment_config, locator, to_input)
+        .map_err(|e| format!("{e}; sim log {:?}", sim.log()))
 }
 
 /// Connects to the UR controller at `host` with the experiment's move timeout.
@@ -140,12 +134,10 @@ pub fn connect(host: &str) -> Result<UrArm, String> {
     UrArm::connect(config).map_err(|e| e.to_string())
 }
 
-/// Runs one cycle per tap of `pad_config` on a pad seeded `pad_seed` with `locator`, moving
-/// `arm`.
+/// Runs one cycle per tap of `pad` with `locator`, moving `arm`.
 pub fn run_on<L, B>(
     arm: &mut UrArm,
-    pad_config: &ImuPadConfig,
-    pad_seed: u64,
+    mut pad: ImuPad,
     experiment_config: TapToMoveConfig,
     locator: &mut L,
     to_input: impl FnMut(&[ImuFrame]) -> B,
@@ -155,11 +147,10 @@ where
     B: Borrow<L::Input>,
 {
     let mut to_input = to_input;
-    let mut pad = ImuPad::new(pad_config, pad_seed).map_err(|e| e.to_string())?;
     let grid = RegionToGrid::ur3_default().map_err(|e| e.to_string())?;
     let mut experiment = TapToMove::new(&grid, experiment_config);
 
-    let timing = pad_config.timing;
+    let timing = pad.timing();
     let mut rows = Vec::with_capacity(pad.taps().len());
     for k in 0..pad.taps().len() {
         let report = experiment

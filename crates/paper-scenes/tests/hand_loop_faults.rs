@@ -91,11 +91,14 @@ where
 #[test]
 fn a_fingertip_bus_error_ends_the_loop_in_the_hold_within_its_cycle() {
     let mut b = built();
-    b.world.borrow_mut().injections.push(Injection {
-        from_s: 5.0,
-        until_s: 5.5,
-        kind: Injected::TactileBus,
-    });
+    b.environment
+        .as_ref()
+        .expect("a simulated grasp")
+        .inject(Injection {
+            from_s: 5.0,
+            until_s: 5.5,
+            kind: Injected::TactileBus,
+        });
     b.hand_loop.run_until(b.until_us);
     let t_us = ended_in_safe_state(&b, "sensors.fingertip");
     // The first cycle whose read falls in the window (its tick, or the next one).
@@ -142,11 +145,14 @@ fn losing_the_arm_mid_move_ends_the_loop_in_the_hold_within_its_cycle() {
 #[test]
 fn a_dropped_servo_status_ends_the_loop_in_the_hold_within_its_cycle() {
     let mut b = built();
-    b.world.borrow_mut().injections.push(Injection {
-        from_s: 6.0,
-        until_s: 6.5,
-        kind: Injected::Silent,
-    });
+    b.environment
+        .as_ref()
+        .expect("a simulated grasp")
+        .inject(Injection {
+            from_s: 6.0,
+            until_s: 6.5,
+            kind: Injected::Silent,
+        });
     b.hand_loop.run_until(b.until_us);
     let t_us = ended_in_safe_state(&b, "hand");
     assert!((6_000_000..=6_020_000).contains(&t_us), "{t_us}");

@@ -4,7 +4,7 @@
 use std::collections::VecDeque;
 
 use crate::SimError;
-use crate::imu_pad::config::ImuPadConfig;
+use crate::imu_pad::config::{ImuPadConfig, TapTiming};
 use crate::imu_pad::tap::{PadTruth, RealisedTap};
 use crate::scene::Model;
 use crate::seed;
@@ -40,6 +40,7 @@ pub struct ImuPad {
     frames: VecDeque<ImuFrame>,
     dropped: u64,
     steps: u64,
+    timing: TapTiming,
 }
 
 fn driver_error(e: impl core::fmt::Debug) -> SimError {
@@ -92,7 +93,13 @@ impl ImuPad {
             frames: VecDeque::new(),
             dropped: 0,
             steps: 0,
+            timing: config.timing,
         })
+    }
+
+    /// The taps' timing (lead, press, hold, release), as configured.
+    pub fn timing(&self) -> TapTiming {
+        self.timing
     }
 
     /// The realised taps (nominal and actual depth, position, force, counts, IMU amplitudes).

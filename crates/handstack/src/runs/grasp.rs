@@ -48,7 +48,7 @@ pub fn run(scene: &Scene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part, RunE
     let servo = crate::stack::hand::open(hand, port)?;
     let hold_s = *exp.hold_s.get_ref();
     cx.progress.stage("grasp: hold", 1);
-    let log = hold(tip, servo, cx.platform.clock(), config, hold_s)?;
+    let log = hold(tip, servo, cx.platform.clock(), config, hold_s)?.log;
     cx.progress.advance(1);
     let mut part = Part::default();
     summarise("grasp", band, None, &log, &mut part);
@@ -64,21 +64,32 @@ pub fn band(lo: u16, hi: u16, what: &str) -> Result<TorqueBand, RunError> {
     })
 }
 
+/// What a hold leaves: the loop's log and the hand (for its own counters, such as the packets
+/// a Protocol 2.0 hand sent).
+#[derive(Debug)]
+pub struct Held<A> {
+    /// Every cycle of the hold.
+    pub log: Vec<Sample<3>>,
+    /// The hand, handed back.
+    pub hand: A,
+}
+
 /// One hold: the paper's controller in `config.band` drives `hand` from `tip`'s frames on
-/// `clock` until `hold_s` (after the loop's start); returns the loop's log. A fault that sends
-/// the loop to its safe state ends the hold with that fault.
-pub fn hold<S, A>(
+/// `clock` until `until_s` (from the loop's start). A fault that sends the loop to its safe
+/// state ends the hold with that fault.
+pub fn hold<S, A, C>(
     tip: S,
     hand: A,
-    clock: Box<dyn LoopClock + Send>,
+    clock: C,
     config: LoopConfig,
-    hold_s: f64,
-) -> Result<Vec<Sample<3>>, RunError>
+    until_s: f64,
+) -> Result<Held<A>, RunError>
 where
     S: TactileSource<Frame = PressureFrame<3>>,
     S::Error: core::fmt::Debug,
     A: RebootableActuator,
     A::Error: core::fmt::Debug,
+    C: LoopClock,
 {
     let band = config.band;
     let policy = fuzzy_mamdani::grasp_controller().with_torque_band(band.min_raw(), band.max_raw());
@@ -86,14 +97,15 @@ where
         device: "grasp loop",
         reason: e.to_string(),
     })?;
-    l.run_until((hold_s * 1e6) as u64);
+    l.run_until((until_s * 1e6) as u64);
     if let Some(e) = l.events().first() {
         return Err(RunError::Device {
             device: "hand",
             reason: format!("loop went to its safe state: {:?}", e.fault),
         });
     }
-    Ok(l.log().to_vec())
+    let (_, _, hand, _, log) = l.into_parts();
+    Ok(Held { log, hand })
 }
 
 /// The settled torque of one hold (target: inside `band`; `paper`: the published value and its

@@ -8,11 +8,28 @@ use handstack::RunError;
 use handstack::stack::platform::Platform;
 
 /// A fingertip of either kind, its errors as run errors.
-pub type Source = Box<dyn TactileSource<Frame = PressureFrame<3>, Error = RunError>>;
+pub struct Fingertip(Box<dyn TactileSource<Frame = PressureFrame<3>, Error = RunError>>);
+
+impl Fingertip {
+    /// `source` as a fingertip.
+    pub fn new(
+        source: impl TactileSource<Frame = PressureFrame<3>, Error = RunError> + 'static,
+    ) -> Fingertip {
+        Fingertip(Box::new(source))
+    }
+}
+
+impl TactileSource for Fingertip {
+    type Frame = PressureFrame<3>;
+    type Error = RunError;
+    fn read_frame(&mut self) -> Result<PressureFrame<3>, RunError> {
+        self.0.read_frame()
+    }
+}
 
 /// The scene's fingertip: real when it names `i2c_buses` (opened through `platform`), else
 /// hand-sim's, seeded by the scene.
-pub fn open(scene: &PaperScene, platform: &dyn Platform) -> Result<Source, crate::Error> {
+pub fn open(scene: &PaperScene, platform: &dyn Platform) -> Result<Fingertip, crate::Error> {
     let real = scene
         .file
         .sensors
@@ -20,14 +37,14 @@ pub fn open(scene: &PaperScene, platform: &dyn Platform) -> Result<Source, crate
         .as_ref()
         .is_some_and(|t| t.get_ref().i2c_buses.is_some());
     if real {
-        return Ok(Box::new(handstack::stack::fingertip::open(
+        return Ok(Fingertip::new(handstack::stack::fingertip::open(
             &scene.scene,
             platform,
         )?));
     }
     let config = scene.sim.fingertip.clone().unwrap_or_default();
     let sim = hand_sim::fingertip::Fingertip::new(&config, scene.seed())?;
-    Ok(Box::new(SimSource(sim)))
+    Ok(Fingertip::new(SimSource(sim)))
 }
 
 /// hand-sim's fingertip with its errors as run errors.
@@ -42,4 +59,18 @@ impl TactileSource for SimSource {
             reason: e.to_string(),
         })
     }
+}
+
+/// The simulated fingertip of `scene` with its environment in reach: a protocol that places
+/// loads on the pad itself (the weight series) drives it through hand-sim's `set_contact` and
+/// reads it through the real driver. `stream` picks the seeded run (`weight_run_seed`).
+pub fn pressable(
+    scene: &PaperScene,
+    stream: impl FnOnce(u64) -> u64,
+) -> Result<hand_sim::fingertip::Fingertip, crate::Error> {
+    let config = scene.sim.fingertip.clone().unwrap_or_default();
+    Ok(hand_sim::fingertip::Fingertip::new(
+        &config,
+        stream(scene.seed()),
+    )?)
 }

@@ -2,35 +2,28 @@
 //! (tactile source → contact estimate → the paper's Mamdani controller → torque limit) closes on
 //! each object, the arm lifts at 3 s, the hold lasts `hold_s`.
 //!
-//! Simulated (no `serial_port`): the Table 5 world (`paper_experiments::grasp_rig`): the
-//! Dynamixel driver speaking Protocol 2.0 to the servo-bus simulator, whose MX-28 drives
-//! hand-sim's grasp physics, and the fingertip's three MS5611 chip models read by the real
-//! driver, in simulated time — the code path of docs/grasping. With `[hand] serial_port`: the
-//! real `ServoHand` on that port and the real MS5611s on the fingertip's `i2c_buses` (required:
-//! a hardware grasp never reads a simulated fingertip), opened through the run's platform and
-//! on its clock (Linux: the wall clock), `hold_s` per object.
+//! The runner asks `devices::grasp` for each object's stack (fingertip, hand, clock, loop
+//! configuration) and runs handstack's hold on it: the same loop whether the stack is the
+//! Table 5 world (docs/grasping's code path) or the scene's real devices. Where the stack has a
+//! world to observe, the object's fate (peak force, slipped / crushed / dropped) is reported
+//! beside the loop's own figures.
 
 use super::RunContext;
 use super::figure::{Target, measured, target};
 use crate::Error;
+use crate::devices::grasp;
 use crate::error::device;
 use crate::scene::PaperScene;
 use crate::scene::experiments::Grasp;
-use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
 use handstack::runs::Part;
 use handstack::runs::grasp::{band, hold, plots, summarise, traces};
-use paper_experiments::grasp_rig;
+use paper_experiments::grasp_rig::LIFT_AT_S;
 
 const SOURCE: &str = "seed 000 Table 5 (fixtures/paper/seed000_table5_grasp_torque.csv)";
 
-/// Runs the grasp experiment of `scene`.
+/// Runs the grasp experiment of `scene`: per object, close, lift at 3 s, hold `hold_s`.
 pub fn run(scene: &PaperScene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part, Error> {
     let table5 = paper_fixtures::seed000::table5_grasp_torque()?;
-    let hardware = scene
-        .file
-        .hand
-        .as_ref()
-        .is_some_and(|h| h.get_ref().serial_port.is_some());
     let objects = exp.objects.get_ref();
     let hold_s = *exp.hold_s.get_ref();
     let mut part = Part::default();
@@ -44,72 +37,52 @@ pub fn run(scene: &PaperScene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part,
             .ok_or_else(|| device("grasp", format!("{name} is not in Table 5")))?;
         let (lo, hi) = (row.torque_min as u16, row.torque_max as u16);
         let band = band(lo, hi, name)?;
-        let log = if hardware {
-            real_hold(scene, cx, band, hold_s)?
-        } else {
-            let kind = ObjectKind::from_name(name)
-                .ok_or_else(|| device("grasp", format!("no simulated object {name}")))?;
-            let object = ObjectParams::calibrated(kind, lo, hi, &RigParams::default())?;
-            let (o, l, _) = grasp_rig::hold_for(name, object, band, exp.seed, hold_s)
-                .map_err(|e| device("grasp", format!("{name}: {e}")))?;
-            let held = !(o.slipped || o.damaged || o.dropped) && o.faults == 0;
-            for (what, n) in [("sent", o.packets.sent), ("received", o.packets.received)] {
-                part.figures.push(measured(
-                    &format!("{name}_packets_{what}"),
-                    &format!("{name}: Protocol 2.0 packets {what} by the driver"),
-                    n as f64,
-                    "",
-                ));
-            }
+        let stack = grasp::open(scene, cx, name, band, exp.seed)?;
+        let held = hold(
+            stack.tip,
+            stack.hand,
+            stack.clock,
+            stack.config,
+            LIFT_AT_S + hold_s,
+        )?;
+        let packets = held.hand.packet_counts();
+        for (what, n) in [("sent", packets.sent), ("received", packets.received)] {
+            part.figures.push(measured(
+                &format!("{name}_packets_{what}"),
+                &format!("{name}: Protocol 2.0 packets {what} by the driver"),
+                n as f64,
+                "",
+            ));
+        }
+        if let Some(env) = &stack.environment {
+            let fate = env.fate()?;
             part.figures.push(measured(
                 &format!("{name}_peak_force_n"),
                 &format!("{name}: peak pad force (sim truth)"),
-                o.peak_force_n,
+                fate.peak_force_n,
                 "N",
             ));
             part.figures.push(target(
                 measured(
                     &format!("{name}_held"),
                     &format!("{name}: held {hold_s} s, no slip / crush / drop / fault (1 = yes)"),
-                    f64::from(u8::from(held)),
+                    f64::from(u8::from(!fate.lost)),
                     "",
                 ),
                 Target::Between(1.0, 1.0),
             ));
-            l.log().to_vec()
-        };
+        }
         let source = format!("{SOURCE}: {lo}…{hi}, paper column = max");
-        summarise(name, band, Some((f64::from(hi), &source)), &log, &mut part);
-        lines.push(traces(name, &log));
+        summarise(
+            name,
+            band,
+            Some((f64::from(hi), &source)),
+            &held.log,
+            &mut part,
+        );
+        lines.push(traces(name, &held.log));
         cx.progress.advance(1);
     }
     part.plots.extend(plots(lines)?);
     Ok(part)
-}
-
-/// One hold on the real hand and fingertip the scene names, on the platform's clock, with the
-/// rig's loop configuration in `band`.
-fn real_hold(
-    scene: &PaperScene,
-    cx: &RunContext<'_>,
-    band: hand_control::grasp_loop::TorqueBand,
-    hold_s: f64,
-) -> Result<Vec<hand_control::grasp_loop::Sample<3>>, Error> {
-    // The sensors first: a bus that cannot be opened fails before any servo command.
-    let tip = handstack::stack::fingertip::open(&scene.scene, &*cx.platform)?;
-    let hand = scene.file.hand.as_ref().map(|h| h.get_ref());
-    let port = hand
-        .and_then(|h| h.serial_port.as_ref())
-        .map(|p| p.get_ref());
-    let (Some(hand), Some(port)) = (hand, port) else {
-        return Err(device("hand", "no serial_port"));
-    };
-    let servo = handstack::stack::hand::open(hand, port)?;
-    Ok(hold(
-        tip,
-        servo,
-        cx.platform.clock(),
-        grasp_rig::config(band),
-        hold_s,
-    )?)
 }

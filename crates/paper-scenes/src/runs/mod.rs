@@ -85,7 +85,7 @@ pub fn run(scene: &PaperScene, cx: &RunContext<'_>) -> Result<Outcome, Error> {
     if let Some(r) = &x.readout {
         let mut tip = crate::devices::fingertip::open(scene, &*cx.platform)?;
         parts.push(handstack::runs::readout::run(
-            &mut *tip,
+            &mut tip,
             *r.get_ref().frames.get_ref(),
             cx.progress,
         )?);

@@ -27,28 +27,21 @@ pub fn run(scene: &PaperScene, exp: &Tap, cx: &RunContext<'_>) -> Result<Part, c
         .and_then(|a| a.get_ref().host.as_ref().map(|h| h.get_ref().clone()));
     let mut arm = crate::devices::arm::open(host.as_deref())?;
     let rounds = (*exp.rounds.get_ref()).min(ROUNDS.len());
-    let mut pad = scene.sim.imu_pad.clone().unwrap_or_default();
-    pad.taps = tap_run::schedule(&ROUNDS[..rounds]);
+    let pad = crate::devices::pad::open(scene, tap_run::schedule(&ROUNDS[..rounds]))?;
     let config = match exp.window {
         WindowPlacement::Aligned => tap_run::training_aligned(),
         WindowPlacement::Trigger => TapToMoveConfig::default(),
     };
     cx.progress
-        .stage("tap: pad → CNN → UR3", pad.taps.len() as u64);
+        .stage("tap: pad → CNN → UR3", pad.taps().len() as u64);
     // All taps in one run_on: the pad's taps follow each other on one simulated clock, as in
     // docs/arm-tap-to-move.md (progress moves once, at the end).
-    let rows = tap_run::run_on(
-        &mut arm.arm,
-        &pad,
-        scene.seed(),
-        config,
-        &mut cnn,
-        tap_run::cnn_window,
-    )
-    .map_err(|reason| RunError::Device {
-        device: "tap-to-UR3 loop",
-        reason,
-    })?;
+    let rows = tap_run::run_on(&mut arm.arm, pad, config, &mut cnn, tap_run::cnn_window).map_err(
+        |reason| RunError::Device {
+            device: "tap-to-UR3 loop",
+            reason,
+        },
+    )?;
     cx.progress.advance(rows.len() as u64);
     Ok(part(&rows, &arm.host))
 }

@@ -11,7 +11,6 @@ use super::figure::{Target, measured, paper, target};
 use super::{Part, RunContext};
 use crate::scene::PaperScene;
 use crate::scene::experiments::Weight;
-use hand_sim::fingertip::Fingertip;
 use hand_sim::fingertip::dataset::{weight_run, weight_run_seed};
 use handstack::scene::parts::ForceModel;
 use handstack::{Line, Plot};
@@ -117,8 +116,8 @@ fn series(
     part: &mut Part,
 ) -> Result<(), crate::Error> {
     let steps = *exp.steps.get_ref();
-    let config = scene.sim.fingertip.clone().unwrap_or_default();
-    let mut tip = Fingertip::new(&config, weight_run_seed(scene.seed(), exp.run))?;
+    let mut tip =
+        crate::devices::fingertip::pressable(scene, |seed| weight_run_seed(seed, exp.run))?;
     cx.progress
         .stage("weight: fingertip series", u64::from(steps) + 1);
     let readings = weight_run(&mut tip, steps, |s| {
@@ -136,7 +135,7 @@ fn series(
     };
     let per_frame = estimate(&frames.frame_samples(exp.run)?)?;
     let per_step = estimate(&frames.step_samples(exp.run)?)?;
-    let osr = config.osr;
+    let osr = tip.osr().ratio();
     for (what, pairs) in [("frames", &per_frame), ("steps", &per_step)] {
         let e = force_eval::error_values(pairs);
         let desc = if what == "frames" {

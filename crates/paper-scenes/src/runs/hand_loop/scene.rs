@@ -1,13 +1,15 @@
-//! The full-hand scene's loop on the simulated stack: the Table 5 grasp world, the tap
-//! runner's pad, the arm the stack opens; composed, run, and reported as figures.
+//! The full-hand scene's loop on the stack `devices` opens: the grasp stack of the first
+//! object (the Table 5 world), the pad with the tap protocol's schedule, the arm; composed,
+//! run, and reported as figures.
 
 use super::{ArmPart, Estimators, HandLoop, PadPart, Stats, TapTrigger};
+use crate::devices::fingertip::Fingertip;
+use crate::devices::grasp::Environment;
 use crate::runs::figure::{Target, measured, target};
 use crate::runs::{Part, RunContext};
 use crate::scene::PaperScene;
 use crate::scene::experiments::WindowPlacement;
-use hand_control::grasp_loop::TorqueBand;
-use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
+use hand_control::grasp_loop::{LoopClock, TorqueBand};
 use hand_sim::imu_pad::ImuPad;
 use hand_traits::{ImuFrame, TactileSource};
 use handstack::RunError;
@@ -46,12 +48,12 @@ fn dev(device: &'static str) -> impl Fn(String) -> RunError {
     move |reason| RunError::Device { device, reason }
 }
 
-/// The loop over the simulated stack (its pad hand-sim's, or that wrapped by a test).
+/// The loop over the opened stack (its pad hand-sim's, or that wrapped by a test).
 pub type SimHandLoop<Pad = ImuPad> = HandLoop<
-    grasp_rig::Source,
+    Fingertip,
     fuzzy_mamdani::GraspController,
     hand_control::ServoHand,
-    grasp_rig::Clock,
+    Box<dyn LoopClock>,
     Pad,
 >;
 
@@ -59,8 +61,9 @@ pub type SimHandLoop<Pad = ImuPad> = HandLoop<
 pub struct Built<Pad = ImuPad> {
     /// The loop.
     pub hand_loop: SimHandLoop<Pad>,
-    /// The grasp world (the fingertip, servo bus and physics on one clock).
-    pub world: grasp_rig::Shared,
+    /// The grasp's world, where the stack is simulated (the fingertip, servo bus and physics
+    /// on one clock).
+    pub environment: Option<Environment>,
     /// The first grasp object's name.
     pub object: String,
     /// Loop time the hold ends, µs (lift at 3 s + `hold_s`).
@@ -80,8 +83,8 @@ pub fn run(scene: &PaperScene, cx: &RunContext<'_>) -> Result<Part, crate::Error
     };
     b.hand_loop.run_until(b.until_us);
     b.hand_loop.finish_moves(FINISH_MOVES_US);
-    if let Some(e) = b.world.borrow_mut().world_error.take() {
-        return Err(dev("hand")(e.to_string()).into());
+    if let Some(env) = &b.environment {
+        env.fate()?;
     }
     Ok(b.figures())
 }
@@ -138,11 +141,8 @@ where
         .ok_or_else(|| dev("hand loop")(format!("{name} is not in Table 5")))?;
     let (lo, hi) = (row.torque_min as u16, row.torque_max as u16);
     let band = TorqueBand::new(lo, hi).map_err(|e| dev("hand loop")(e.to_string()))?;
-    let kind = ObjectKind::from_name(&name)
-        .ok_or_else(|| dev("hand loop")(format!("no simulated object {name}")))?;
-    let object = ObjectParams::calibrated(kind, lo, hi, &RigParams::default())?;
-    let (world, hand) = grasp_rig::world(object, g.seed).map_err(|e| dev("hand")(e.to_string()))?;
-    let config = grasp_rig::config(band);
+    let grasp = crate::devices::grasp::open(scene, cx, &name, band, g.seed)?;
+    let config = grasp.config;
     // The estimators.
     let models = cx.root.join(paper_experiments::force_eval::MODEL_DIR);
     let force_file = match scene
@@ -172,14 +172,13 @@ where
     let estimators = Estimators::new(force, mlp, config.tare_cycles);
     // The pad, its trigger and the CNN, as the tap scene builds them.
     let rounds = (*tap.rounds.get_ref()).clamp(1, ROUNDS.len());
-    let mut pad_config = scene.sim.imu_pad.clone().unwrap_or_default();
-    pad_config.taps = tap_run::schedule(&ROUNDS[..rounds]);
+    let taps = tap_run::schedule(&ROUNDS[..rounds]);
     let trigger = match tap.window {
         WindowPlacement::Aligned => tap_run::training_aligned(),
         WindowPlacement::Trigger => TapToMoveConfig::default(),
     };
     let pad = PadPart {
-        pad: wrap(ImuPad::new(&pad_config, scene.seed())?),
+        pad: wrap(crate::devices::pad::open(scene, taps)?),
         rate_hz: PAD_HZ,
         trigger: TapTrigger::new(trigger),
         cnn: ContactCnn::load(&cx.root.join(CNN_DIR).join(model_file(Variant::Paper)))?,
@@ -197,10 +196,10 @@ where
     let policy = fuzzy_mamdani::grasp_controller()
         .with_torque_band(config.band.min_raw(), config.band.max_raw());
     let hand_loop = HandLoop::new(
-        grasp_rig::Source(world.clone()),
+        grasp.tip,
         policy,
-        hand,
-        grasp_rig::Clock(world.clone()),
+        grasp.hand,
+        grasp.clock,
         config,
         estimators,
         pad,
@@ -210,7 +209,7 @@ where
     let hold_s = *g.hold_s.get_ref();
     Ok(Some(Built {
         hand_loop,
-        world,
+        environment: grasp.environment,
         object: name,
         until_us: ((LIFT_AT_S + hold_s) * 1e6) as u64,
         host: arm.host,
