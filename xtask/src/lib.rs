@@ -1,12 +1,15 @@
 //! Developer workflows for the handstack workspace, run as `cargo xtask <command>`.
 //!
 //! xtask stays thin (rust-analyzer's rule): it parses arguments, sets up `.venv` and Chromium,
-//! runs `cargo` and the workspace's binaries — `handstack` (scenes) and the reproduction's
-//! `papers` (training, plots, docs sections, simulated datasets, the trade) — and compares the
+//! runs `cargo` and the workspace's binaries — the reproduction's `paper-scenes` (the papers'
+//! scenes and report) and `papers` (training, plots, docs sections, simulated datasets, the
+//! trade) — and compares the
 //! generated fixtures. It links neither the simulator nor the learned models nor plotters, so
 //! a first `cargo xtask` compiles in seconds.
 //!
-//! - `test`: sets up `.venv` and Chromium, then fmt check, clippy `-D warnings`, every test, docs, and
+//! - `test`: sets up `.venv` and Chromium, then fmt check, clippy `-D warnings`, the `no_std`
+//!   crates built for two thumb targets (rustup adds them), `cargo package` of every product
+//!   crate with verification, every test, docs, and
 //!   `fixtures --check` (once more with numpy's widest SIMD kernels off): the one command CI runs.
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones
 //!   (byte for byte, or by value where a third-party library's float code wrote the numbers).
@@ -32,8 +35,10 @@ pub mod bench;
 pub mod bench_doc;
 pub mod chromium;
 pub mod demo;
+pub mod embedded;
 pub mod fixtures;
 pub mod fuzzy_peers;
+pub mod package;
 pub mod run;
 pub mod test;
 pub mod trade;

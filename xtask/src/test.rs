@@ -1,11 +1,13 @@
 //! `cargo xtask test`: everything CI checks, in the order that fails fastest.
 
 use crate::run::{cargo, step};
-use crate::{chromium, fixtures, venv};
+use crate::{chromium, embedded, fixtures, package, venv};
 use anyhow::Result;
 use std::path::Path;
 
-/// Sets up `.venv` and Chromium (the report render test), then runs fmt check, clippy `-D warnings`, every test with every feature,
+/// Sets up `.venv` and Chromium (the report render test), then runs fmt check, clippy `-D warnings`,
+/// the `no_std` builds for the thumb targets ([`embedded::build`]), `cargo package` of every
+/// product crate ([`package::run`]), every test with every feature,
 /// the docs with warnings denied, and `fixtures --check` (again with numpy's widest SIMD kernels off).
 pub fn run(root: &Path) -> Result<()> {
     let python = venv::ensure(root)?;
@@ -23,6 +25,8 @@ pub fn run(root: &Path) -> Result<()> {
             "warnings",
         ]),
     )?;
+    embedded::build(root)?;
+    package::run(root)?;
     step(
         "test",
         cargo(root)

@@ -267,3 +267,22 @@ fn a_product_crate_naming_a_repository_path_fails() {
     assert_eq!(bad.len(), 1, "{bad:?}");
     assert!(bad[0].to_string().contains("mod.rs:2"), "{}", bad[0]);
 }
+
+#[test]
+fn the_packaged_crates_are_the_tables_product_crates() {
+    let crates = xtask::package::product_crates(&xtask::workspace_root()).expect("the table");
+    assert_eq!(
+        crates,
+        [
+            "aot-locate",
+            "baro-drivers",
+            "fuzzy-mamdani",
+            "hand-control",
+            "hand-traits",
+            "handstack",
+            "imu-icm20789",
+            "tactile-nets",
+            "ur-bridge",
+        ]
+    );
+}

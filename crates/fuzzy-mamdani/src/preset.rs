@@ -61,7 +61,7 @@ pub const TORQUE_RAW_MAX: f64 = 1023.0;
 /// ```
 pub fn grasp_engine<T: Real>() -> Engine<T> {
     let centre = |i: usize| T::of(-1.0 + 0.25 * i as f64);
-    let edge_sigma = T::of(0.125 / (2.0 * core::f64::consts::LN_2).sqrt());
+    let edge_sigma = T::of(0.125 / num_traits::Float::sqrt(2.0 * core::f64::consts::LN_2));
     let input_terms = || {
         (0..9).map(move |i| {
             let mf = match i {
@@ -79,7 +79,7 @@ pub fn grasp_engine<T: Real>() -> Engine<T> {
         })
     };
     let step = TORQUE_RAW_MAX / 8.0;
-    let out_sigma = T::of(step / 2.0 / (2.0 * core::f64::consts::LN_2).sqrt());
+    let out_sigma = T::of(step / 2.0 / num_traits::Float::sqrt(2.0 * core::f64::consts::LN_2));
     let output_terms = (0..9).map(|k| {
         (
             TERM_NAMES[k],

@@ -1,0 +1,67 @@
+//! The microcontroller builds: the crates that claim `no_std` built for the paper's MCU class
+//! (Cortex-M3 without an FPU, Cortex-M4F), with and without their async drivers. rustup adds a
+//! missing target and says so.
+
+use crate::run::{cargo, step};
+use anyhow::{Context, Result, bail};
+use std::path::Path;
+use std::process::Command;
+
+/// Cortex-M3 (seed 000's fingertip MCUs), and Cortex-M4F.
+pub const TARGETS: [&str; 2] = ["thumbv7m-none-eabi", "thumbv7em-none-eabihf"];
+
+/// The crates that say `#![no_std]`, and the features a firmware may turn on.
+pub const NO_STD: [(&str, &[&str]); 5] = [
+    ("hand-traits", &[]),
+    ("baro-drivers", &["async"]),
+    ("imu-icm20789", &["async"]),
+    ("aot-locate", &[]),
+    ("fuzzy-mamdani", &[]),
+];
+
+/// Adds the rustup targets in [`TARGETS`] that are missing.
+pub fn ensure_targets() -> Result<()> {
+    let out = Command::new("rustup")
+        .args(["target", "list", "--installed"])
+        .output()
+        .context("rustup is needed for the thumb targets of the no_std builds")?;
+    if !out.status.success() {
+        bail!(
+            "rustup target list failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let installed = String::from_utf8_lossy(&out.stdout);
+    for t in TARGETS {
+        if !installed.lines().any(|l| l.trim() == t) {
+            println!("xtask: installing the rustup target {t} (no_std builds)");
+            step(
+                &format!("rustup target add {t}"),
+                Command::new("rustup").args(["target", "add", t]),
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// Builds every [`NO_STD`] crate for every [`TARGETS`] target: without default features, then
+/// with its firmware features.
+pub fn build(root: &Path) -> Result<()> {
+    ensure_targets()?;
+    for t in TARGETS {
+        let mut bare = cargo(root);
+        bare.args(["build", "--target", t, "--no-default-features"]);
+        let mut featured = cargo(root);
+        featured.args(["build", "--target", t, "--no-default-features"]);
+        let mut features = Vec::new();
+        for (name, extra) in NO_STD {
+            bare.args(["-p", name]);
+            featured.args(["-p", name]);
+            features.extend(extra.iter().map(|f| format!("{name}/{f}")));
+        }
+        featured.args(["--features", &features.join(",")]);
+        step(&format!("no_std build, {t}"), &mut bare)?;
+        step(&format!("no_std build with async, {t}"), &mut featured)?;
+    }
+    Ok(())
+}
