@@ -10,7 +10,8 @@
 //!   third-party crates its row lists; a tool's third-party ones are those its row lists (xtask
 //!   stays thin);
 //! - every edge between workspace crates is one the table allows;
-//! - reproduction and tool crates are `publish = false`; product crates are publishable;
+//! - reproduction and tool crates are `publish = false`; product crates are publishable, and
+//!   docs.rs documents all their features (as the doc step of `cargo xtask test` does);
 //! - a product crate's `src/` names no repository path (`"fixtures/…"`, `"docs/…"` literals).
 
 use anyhow::{Context, Result, bail};
@@ -88,6 +89,9 @@ pub struct Package {
     pub dir: PathBuf,
     /// Its declared dependencies.
     pub deps: Vec<Edge>,
+    /// `[package.metadata.docs.rs] all-features = true`: docs.rs documents what our doc step
+    /// documents.
+    pub docs_rs_all_features: bool,
 }
 
 /// One broken rule.
@@ -188,6 +192,9 @@ pub fn workspace_packages(root: &Path) -> Result<Vec<Package>> {
                 unpublished: p["publish"].as_array().is_some_and(Vec::is_empty),
                 dir: manifest.parent().context("manifest dir")?.to_path_buf(),
                 deps,
+                docs_rs_all_features: p["metadata"]["docs"]["rs"]["all-features"]
+                    .as_bool()
+                    .unwrap_or(false),
             })
         })
         .collect()
@@ -219,6 +226,10 @@ pub fn check(rules: &BTreeMap<String, Rule>, packages: &[Package]) -> Vec<Violat
             )),
             Kind::Product | Kind::Driver if !published => say(format!(
                 "`{}` is a product crate but publish = false",
+                p.name
+            )),
+            Kind::Product | Kind::Driver if !p.docs_rs_all_features => say(format!(
+                "`{}` is a product crate without `[package.metadata.docs.rs] all-features = true`",
                 p.name
             )),
             _ => {}

@@ -47,6 +47,7 @@ fn package(name: &str, unpublished: bool, deps: &[(&str, &'static str, bool)]) -
     Package {
         name: name.into(),
         unpublished,
+        docs_rs_all_features: !unpublished,
         dir: PathBuf::from("/nonexistent").join(name),
         deps: deps
             .iter()

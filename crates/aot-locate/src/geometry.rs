@@ -91,6 +91,7 @@ impl AreaGrid {
 
 /// Why a [`Geometry`] could not be built.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum GeometryError {
     /// A sensor position, area centre or grid dimension is NaN or infinite.
     NonFinite,

@@ -374,6 +374,7 @@ impl Candidates {
 
 /// Why a label did not decode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum LabelError {
     /// The label is NaN or infinite.
     NonFinite,

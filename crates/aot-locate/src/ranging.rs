@@ -50,6 +50,7 @@ pub struct Ranging {
 
 /// Why a [`Ranging`] model was refused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum RangingError {
     /// `b` (µs per mm) is not finite and positive: distances would not order times.
     Slope,

@@ -19,6 +19,7 @@ pub struct ArrivalEvent {
 
 /// Why eq. 3 gave no scores.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum AotError {
     /// No sensor sensed the contact: every `t_k` is missing.
     NoArrival,

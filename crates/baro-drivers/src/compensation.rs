@@ -58,6 +58,7 @@ impl Intermediates {
 
 /// Why a pair of codes has no meaningful compensation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum CompensationError {
     /// The corrected sensitivity SENS − SENS2 is zero or negative: pressure would fall as D1
     /// rises. Only PROM / D2 combinations far outside the chip's range produce this.

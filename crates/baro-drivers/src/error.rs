@@ -7,6 +7,7 @@ use crate::prom::PromError;
 
 /// Everything a driver call can fail with; `E` is the bus (I2C or SPI) error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Error<E> {
     /// The bus transfer failed (NACK, arbitration, …).
     Comm(E),

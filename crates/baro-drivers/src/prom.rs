@@ -4,6 +4,7 @@ use crate::compensation::Calibration;
 
 /// Why a PROM image was refused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PromError {
     /// The CRC-4 stored in the low nibble of word 7 does not match the words read.
     Crc {

@@ -28,6 +28,7 @@ proptest! {
                 prop_assert_eq!(i64::from(m.temperature_centi_celsius), i.temperature());
             }
             Err(CompensationError::NonPositiveSensitivity) => prop_assert!(i.sens - i.sens2 <= 0),
+            Err(e) => prop_assert!(false, "unexpected {e:?}"),
         }
     }
 

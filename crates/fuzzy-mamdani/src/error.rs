@@ -6,6 +6,7 @@ use crate::MfError;
 
 /// Why an engine could not be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum BuildError {
     /// A variable's range is empty, reversed or not finite.
     #[error("variable `{variable}`: range must be finite with min < max")]
@@ -78,6 +79,7 @@ pub enum BuildError {
 
 /// Why one evaluation gave no output.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
 pub enum EvalError {
     /// The number of inputs given differs from the engine's.
     #[error("expected {expected} inputs, got {got}")]

@@ -6,6 +6,7 @@ use crate::BuildError;
 
 /// Why a `.fis` / `.fll` file could not be read or written.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum FileError {
     /// The text is malformed at this line.
     #[error("line {line}: {message}")]

@@ -128,6 +128,7 @@ pub enum Mf<T> {
 
 /// Why a membership function's parameters are unusable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
 pub enum MfError {
     /// A parameter is NaN or infinite.
     #[error("a parameter is not finite")]

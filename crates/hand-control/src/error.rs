@@ -6,6 +6,7 @@ use crate::control_table::hardware_error;
 
 /// The instruction error a status packet reports in its error byte (Protocol 2.0, bits 0–6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum InstructionError {
     /// 0x01: the instruction failed.
     ResultFail,
@@ -85,6 +86,7 @@ pub fn faults_from_hardware_error(bits: u8) -> Faults {
 
 /// What can go wrong talking to Dynamixel servos.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// No status packet arrived before the deadline.
     #[error("servo {id:?}: no answer (timeout)")]

@@ -32,6 +32,7 @@ pub struct Packet {
 
 /// A framing problem the parser found and skipped.
 #[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum FrameError {
     /// A complete frame whose CRC did not match: the servo answers with a CRC error.
     Crc {

@@ -4,6 +4,7 @@ use crate::scene::SceneError;
 
 /// Why a scene could not run to its end.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum RunError {
     /// The scene file is bad.
     #[error(transparent)]

@@ -2,6 +2,7 @@
 
 /// Why a raw barometer sample has no pressure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum ConversionError {
     /// The OTP constants at this temperature put two look-up points on top of each other or
     /// all three on one line, so no curve `P = A + B / (C + p)` passes through them (a zero
@@ -15,6 +16,7 @@ pub enum ConversionError {
 
 /// All errors of the ICM-20789 driver; `E` is the I2C bus error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Error<E> {
     /// The bus reported an error (a NACK, e.g. reading the barometer before its conversion ended).
     I2c(E),

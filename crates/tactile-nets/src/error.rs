@@ -4,6 +4,7 @@ use thiserror::Error;
 
 /// Why a model could not be built, trained, saved, loaded or run.
 #[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum NetError {
     /// An input vector had the wrong number of values.
     #[error("input has {got} values, the model reads {expected}")]

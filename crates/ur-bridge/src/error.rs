@@ -6,6 +6,7 @@ use crate::kinematics::KinematicsError;
 
 /// A typed bridge error: Python exceptions from ur_rtde, controller states, and our own checks.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum UrError {
     /// The embedded Python could not load ur_rtde (no venv, wrong interpreter, missing module).
     #[error("python environment: {0}")]

@@ -13,6 +13,7 @@ pub const REGIONS: usize = 9;
 
 /// Why a grid cannot be used, or a region has no pose.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum GridError {
     /// A grid pose (or a point on the straight line to it from home) fails the arm's kinematics.
     #[error("grid position {region}: {source}")]

@@ -12,6 +12,7 @@ use nalgebra::{Isometry3, Matrix6, Rotation3, Translation3, UnitQuaternion, Vect
 
 /// Why a pose or a joint configuration is not usable.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum KinematicsError {
     /// A coordinate or angle is NaN or infinite.
     #[error("non-finite value in {0}")]

@@ -60,6 +60,7 @@ pub struct CycleReport {
 
 /// Why a cycle ended early. The arm was told to stop first.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum ExperimentError<S: core::fmt::Debug, L: core::fmt::Debug, A: core::fmt::Debug> {
     /// The tactile source failed.
     #[error("tactile source: {0:?}")]

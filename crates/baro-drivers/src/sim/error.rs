@@ -4,6 +4,7 @@ use core::fmt;
 
 /// A bus-level failure seen by the driver talking to the model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum SimError {
     /// No device acknowledged the I2C address.
     NoAcknowledgeAddress(u8),

@@ -207,6 +207,7 @@ pub(crate) fn check_goal(goal_rad: f32, limits: (f32, f32)) -> Result<f32, Confi
 
 /// A configuration or command the loop refuses before anything is sent.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ConfigError {
     /// A value that must be positive and finite is not.
     #[error("{name} must be positive and finite, got {value}")]

@@ -21,6 +21,7 @@ pub struct ContactEstimate {
 
 /// Why a frame could not be used.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum EstimateError {
     /// A pressure is NaN or infinite.
     #[error("sensor {sensor} read a non-finite pressure")]

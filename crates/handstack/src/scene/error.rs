@@ -40,6 +40,7 @@ impl fmt::Display for Location {
 
 /// A scene file that cannot be read, parsed or built.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SceneError {
     /// The file cannot be read.
     #[error("cannot read scene {path}: {source}")]
