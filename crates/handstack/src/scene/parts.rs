@@ -19,6 +19,15 @@ pub struct Sensors {
     pub underactuated: Option<Spanned<Underactuated>>,
 }
 
+impl Sensors {
+    /// Whether the fingertip is read from real chips (it names `i2c_buses`).
+    pub fn real_fingertip(&self) -> bool {
+        self.fingertip
+            .as_ref()
+            .is_some_and(|t| t.get_ref().i2c_buses.is_some())
+    }
+}
+
 /// The barometric fingertip's three MS5611.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]

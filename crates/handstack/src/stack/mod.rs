@@ -17,10 +17,7 @@ use platform::Platform;
 /// fingertip cannot be read.
 pub fn check_real_devices<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Result<(), RunError> {
     let s = &scene.file.sensors;
-    if s.fingertip
-        .as_ref()
-        .is_some_and(|t| t.get_ref().i2c_buses.is_some())
-    {
+    if s.real_fingertip() {
         drop(fingertip::open(scene, platform)?);
     }
     if let Some(bus) = s

@@ -30,21 +30,13 @@ impl TactileSource for Fingertip {
 /// The scene's fingertip: real when it names `i2c_buses` (opened through `platform`), else
 /// hand-sim's, seeded by the scene.
 pub fn open(scene: &PaperScene, platform: &dyn Platform) -> Result<Fingertip, crate::Error> {
-    let real = scene
-        .file
-        .sensors
-        .fingertip
-        .as_ref()
-        .is_some_and(|t| t.get_ref().i2c_buses.is_some());
-    if real {
+    if scene.file.sensors.real_fingertip() {
         return Ok(Fingertip::new(handstack::stack::fingertip::open(
             &scene.scene,
             platform,
         )?));
     }
-    let config = scene.sim.fingertip.clone().unwrap_or_default();
-    let sim = hand_sim::fingertip::Fingertip::new(&config, scene.seed())?;
-    Ok(Fingertip::new(SimSource(sim)))
+    Ok(Fingertip::new(SimSource(pressable(scene, |seed| seed)?)))
 }
 
 /// hand-sim's fingertip with its errors as run errors.

@@ -130,10 +130,7 @@ impl ExperimentTable for Experiments {
             let Some(h) = &scene.hand else {
                 return Ok(());
             };
-            let real_tip = s
-                .fingertip
-                .as_ref()
-                .is_some_and(|t| t.get_ref().i2c_buses.is_some());
+            let real_tip = s.real_fingertip();
             // Real servos grasp by real sensors only: a simulated fingertip is never pressed by a
             // real grasp, so the loop would raise the torque towards the top of the band.
             if h.get_ref().serial_port.is_some() && !real_tip {
@@ -182,11 +179,7 @@ impl ExperimentTable for Experiments {
             ("weight", x.weight.is_some()),
             ("contact", x.contact.is_some()),
         ] {
-            let real = s
-                .fingertip
-                .as_ref()
-                .is_some_and(|t| t.get_ref().i2c_buses.is_some());
-            if needs_sim && real {
+            if needs_sim && s.real_fingertip() {
                 return Err(cx.err(
                     scene.experiment.span(),
                     &format!("experiment.{name}"),
