@@ -2,7 +2,7 @@
 //!
 //! Two binaries, both under the optimised `test` profile (dfdx at `opt-level = 0`, the xtask's
 //! own profile, is several times slower): `papers train MODEL` trains and writes the weights
-//! and metrics below `fixtures/models/`; then `papers docs MODEL` draws the plots and rewrites
+//! and metrics below `crates/tactile-nets/models/`; then `papers docs MODEL` draws the plots and rewrites
 //! the model's section of the docs from those files (`--docs-only`: that step alone).
 //!
 //! - `contact-mlp`: `docs/contact-location/contact-mlp-osr.svg`, and prints the markdown table

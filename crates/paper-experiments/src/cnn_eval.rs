@@ -1,5 +1,5 @@
 //! Seed 002 §IV-A's protocol for the contact CNN, its committed weights and metrics
-//! (`fixtures/models/contact_cnn/`).
+//! (`crates/tactile-nets/models/contact_cnn/`).
 //!
 //! # Augmentation ([`augment`])
 //! "The size of the dataset of each contact depth is augmented adding Gaussian noise (30 dB
@@ -33,7 +33,7 @@ use tactile_nets::metrics::{MetricsFile, MetricsRow};
 use tactile_nets::train::TrainConfig;
 
 /// Where the committed weights and metrics live, below the workspace root.
-pub const MODEL_DIR: &str = "fixtures/models/contact_cnn";
+pub const MODEL_DIR: &str = "crates/tactile-nets/models/contact_cnn";
 /// The committed metrics file inside [`MODEL_DIR`].
 pub const METRICS_FILE: &str = "metrics.json";
 /// Root seed of the protocol (augmentation, splits, initial weights).

@@ -1,5 +1,5 @@
 //! Held-out evaluation of the contact-area MLP, the training recipe, and its committed
-//! weights and metrics (`fixtures/models/contact_mlp/`).
+//! weights and metrics (`crates/tactile-nets/models/contact_mlp/`).
 //!
 //! # Split
 //! Per MS5611 OSR: trained on repeat 0 of every tap (every Figure 7 shape, position and force),
@@ -27,7 +27,7 @@ use tactile_nets::metrics::{MetricsFile, MetricsRow};
 use tactile_nets::train::{TrainConfig, TrainLog};
 
 /// Where the committed weights and metrics live, below the workspace root.
-pub const MODEL_DIR: &str = "fixtures/models/contact_mlp";
+pub const MODEL_DIR: &str = "crates/tactile-nets/models/contact_mlp";
 /// The committed metrics file inside [`MODEL_DIR`].
 pub const METRICS_FILE: &str = "metrics.json";
 /// Training seed of the committed models.

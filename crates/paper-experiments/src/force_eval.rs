@@ -1,5 +1,5 @@
 //! Evaluation of the force / weight DNN, its training recipes, and its committed weights and
-//! metrics (`fixtures/models/force_dnn/`).
+//! metrics (`crates/tactile-nets/models/force_dnn/`).
 //!
 //! # Models
 //! - `table1`: trained on seed 000 Table 1's 13 rows as printed (tared on the 0 gf row);
@@ -22,7 +22,7 @@ use tactile_nets::metrics::{MetricsFile, MetricsRow};
 use tactile_nets::train::{TrainConfig, TrainLog};
 
 /// Where the committed weights, metrics and curves live, below the workspace root.
-pub const MODEL_DIR: &str = "fixtures/models/force_dnn";
+pub const MODEL_DIR: &str = "crates/tactile-nets/models/force_dnn";
 /// The committed metrics file inside [`MODEL_DIR`].
 pub const METRICS_FILE: &str = "metrics.json";
 /// The committed training curves inside [`MODEL_DIR`] (`model,epoch,loss`).

@@ -1,5 +1,5 @@
 //! The paper's protocol for the softness classifier (seed 001 §3.3–4) on the simulated hand's
-//! dataset, its confusion matrices, and the committed models (`fixtures/models/softness/`).
+//! dataset, its confusion matrices, and the committed models (`crates/tactile-nets/models/softness/`).
 //!
 //! # Protocol
 //! - Train on the `train` set's labelled grasps: the 27 model objects × 5 poses and the 18
@@ -22,7 +22,7 @@ use tactile_nets::softness_features::Features;
 use tactile_nets::softness_train::{Optimiser, SoftnessTrainConfig, TrainReport, train};
 
 /// Where the committed weights and metrics live, below the workspace root.
-pub const MODEL_DIR: &str = "fixtures/models/softness";
+pub const MODEL_DIR: &str = "crates/tactile-nets/models/softness";
 /// The committed metrics file inside [`MODEL_DIR`].
 pub const METRICS_FILE: &str = "metrics.json";
 /// Training curves, stop reasons and wall times of the committed run (not drift-checked:
@@ -358,7 +358,7 @@ impl SoftnessClassifier for Pooled {
     type Error = NetError;
 
     fn classify(&mut self, series: &[f32]) -> Result<Softness, NetError> {
-        if series.is_empty() || series.len() % N_VARIABLES != 0 {
+        if series.is_empty() || !series.len().is_multiple_of(N_VARIABLES) {
             return Err(NetError::Shape {
                 expected: series.len().div_ceil(N_VARIABLES).max(1) * N_VARIABLES,
                 got: series.len(),

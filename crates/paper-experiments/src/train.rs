@@ -139,17 +139,17 @@ pub fn run(root: &Path, model: Model, options: &TrainOptions) -> Result<Vec<Path
 }
 
 /// The workspace root for the committed data: `start` or its nearest ancestor holding
-/// `fixtures/models` (so the commands work from any directory of a checkout).
+/// `crates/tactile-nets/models` (so the commands work from any directory of a checkout).
 ///
 /// ```
 /// let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
 /// let root = paper_experiments::train::find_root(here).unwrap();
-/// assert!(root.join("fixtures/models").is_dir());
+/// assert!(root.join("crates/tactile-nets/models").is_dir());
 /// ```
 pub fn find_root(start: &Path) -> Option<PathBuf> {
     start
         .ancestors()
-        .find(|d| d.join("fixtures/models").is_dir())
+        .find(|d| d.join("crates/tactile-nets/models").is_dir())
         .map(Path::to_path_buf)
 }
 

@@ -2,15 +2,18 @@
 //!
 //! The networks end in a linear layer and are trained on logits (dfdx's
 //! `*_with_logits` losses); these turn logits into probabilities at inference time.
+//! Transcendentals go through `num_traits::Float`: std's on a host, libm's without `std`.
+
+use num_traits::Float;
 
 /// The logistic function `1 / (1 + e^-x)`, in `0.0..=1.0` for every non-NaN `x`.
 ///
 /// Never forms `e^x` for positive `x`, so it cannot overflow; NaN stays NaN.
 pub fn sigmoid(x: f32) -> f32 {
     if x >= 0.0 {
-        1.0 / (1.0 + (-x).exp())
+        1.0 / (1.0 + Float::exp(-x))
     } else {
-        let e = x.exp();
+        let e = Float::exp(x);
         e / (1.0 + e)
     }
 }
@@ -18,7 +21,7 @@ pub fn sigmoid(x: f32) -> f32 {
 /// `ln(sigmoid(x))`, finite for every finite `x` (`-x` for very negative `x`).
 pub fn log_sigmoid(x: f32) -> f32 {
     // ln σ(x) = -softplus(-x) = min(x, 0) - ln(1 + e^-|x|)
-    x.min(0.0) - (-x.abs()).exp().ln_1p()
+    x.min(0.0) - Float::ln_1p(Float::exp(-x.abs()))
 }
 
 /// Softmax of `logits` into `out` (same length), max-subtracted so it cannot overflow.
@@ -41,7 +44,7 @@ pub fn softmax_into(logits: &[f32], out: &mut [f32]) -> bool {
     let mut sum = 0.0f32;
     for (o, &v) in out.iter_mut().zip(logits) {
         // v - max ≤ 0 and the max term is exactly 1, so sum ∈ [1, n].
-        *o = (v - max).exp();
+        *o = Float::exp(v - max);
         sum += *o;
     }
     for o in out.iter_mut() {
@@ -51,12 +54,13 @@ pub fn softmax_into(logits: &[f32], out: &mut [f32]) -> bool {
 }
 
 /// Softmax of `logits` as a new vector; `None` when empty or holding a NaN.
+#[cfg(feature = "std")]
 pub fn softmax(logits: &[f32]) -> Option<Vec<f32>> {
     let mut out = vec![0.0; logits.len()];
     softmax_into(logits, &mut out).then_some(out)
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
 

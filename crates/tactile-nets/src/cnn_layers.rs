@@ -31,7 +31,7 @@ pub const POOLED: usize = CONV_COLS / 2;
 pub const POSITIONS: usize = POOL_SLOTS * POOLED;
 
 // The pool consumes the whole conv map: 2 rows, an even number of columns.
-const _: () = assert!(CONV_ROWS == 2 && CONV_COLS % 2 == 0);
+const _: () = assert!(CONV_ROWS == 2 && CONV_COLS.is_multiple_of(2));
 
 /// Index into a channel-major window of patch element `k` (row-major 3 × 3) of patch row `p`
 /// (see the module docs for the row order).

@@ -393,9 +393,9 @@ impl ContactCnn {
         self.to_file()?.save(path)
     }
 
-    /// Reads a model written by [`ContactCnn::save`].
+    /// Reads a model written by [`ContactCnn::save`]; an error names the file.
     pub fn load(path: &Path) -> Result<ContactCnn, NetError> {
-        Self::from_file(&TensorFile::load(path)?)
+        TensorFile::load_with(path, Self::from_file)
     }
 }
 

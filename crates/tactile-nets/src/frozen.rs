@@ -1,5 +1,7 @@
 //! The fast inference form of a trained dfdx dense stack: plain fixed-size `f32` arrays, no
-//! tensors, no device, no allocation per call.
+//! tensors, no device, no allocation per call — and, without the `std` feature, the whole of
+//! inference on a microcontroller: [`StaticDense`] reads its weights from `'static` arrays
+//! (flash), so a frozen stack of them needs neither a heap nor RAM for its weights.
 //!
 //! dfdx pays ~10 µs of bookkeeping per forward call (tensor allocation, shape checks, device
 //! dispatch) whatever the model's size; a 3 → 16 → 16 → 1 network needs well under a
@@ -10,6 +12,7 @@
 //! compiler, and a call only touches the stack and the weights.
 //!
 //! ```
+//! # #[cfg(feature = "std")] {
 //! use dfdx::prelude::*;
 //! use tactile_nets::frozen::{Freeze, Layer};
 //!
@@ -19,11 +22,15 @@
 //! let x = [0.5f32, -1.0, 2.0];
 //! let (slow, quick) = (net.forward(dev.tensor(x)).array(), fast.forward(x));
 //! assert!(slow.iter().zip(quick).all(|(a, b)| (a - b).abs() < 1e-6));
-//! # Ok::<(), tactile_nets::NetError>(())
+//! # }
+//! # Ok::<(), Box<dyn core::error::Error>>(())
 //! ```
 
 use crate::activations::sigmoid;
-use crate::error::{NetError, check_input};
+#[cfg(feature = "std")]
+use crate::error::NetError;
+use crate::error::{RunError, check_input};
+#[cfg(feature = "std")]
 use dfdx::prelude::{Cpu, Dropout, ReLU, Sigmoid, Tanh};
 
 /// One inference step on a value of type `X` (an `[f32; N]` array for every layer here).
@@ -35,6 +42,7 @@ pub trait Layer<X> {
 }
 
 /// A trained dfdx module that has a frozen inference form.
+#[cfg(feature = "std")]
 pub trait Freeze {
     /// The frozen form.
     type Frozen;
@@ -49,12 +57,14 @@ pub trait Freeze {
 ///
 /// The weights are boxed (a 576 → 320 layer is 720 KiB, too big for a thread's stack); the
 /// box is made once, at freezing.
+#[cfg(feature = "std")]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Dense<const I: usize, const O: usize> {
     weight: Box<[[f32; I]; O]>,
     bias: Box<[f32; O]>,
 }
 
+#[cfg(feature = "std")]
 impl<const I: usize, const O: usize> Dense<I, O> {
     /// A layer from row-major `weight` (`O × I` values) and `bias` (`O` values).
     ///
@@ -86,17 +96,52 @@ impl<const I: usize, const O: usize> Dense<I, O> {
     }
 }
 
+#[cfg(feature = "std")]
 impl<const I: usize, const O: usize> Layer<[f32; I]> for Dense<I, O> {
     type Output = [f32; O];
 
     #[inline]
     fn forward(&self, x: [f32; I]) -> [f32; O] {
-        let mut y = [0.0f32; O];
-        for ((y, row), b) in y.iter_mut().zip(self.weight.iter()).zip(self.bias.iter()) {
-            *y = dot(row, &x) + b;
-        }
-        y
+        dense(&self.weight, &self.bias, &x)
     }
+}
+
+/// A dense layer `y = W x + b` over `'static` weights (flash on a microcontroller): the
+/// inference form of the models built into the crate ([`crate::pretrained`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticDense<const I: usize, const O: usize> {
+    weight: &'static [[f32; I]; O],
+    bias: &'static [f32; O],
+}
+
+impl<const I: usize, const O: usize> StaticDense<I, O> {
+    /// A layer over row-major `weight` (`O` rows of `I`) and `bias`.
+    pub const fn new(weight: &'static [[f32; I]; O], bias: &'static [f32; O]) -> Self {
+        Self { weight, bias }
+    }
+}
+
+impl<const I: usize, const O: usize> Layer<[f32; I]> for StaticDense<I, O> {
+    type Output = [f32; O];
+
+    #[inline]
+    fn forward(&self, x: [f32; I]) -> [f32; O] {
+        dense(self.weight, self.bias, &x)
+    }
+}
+
+/// `W x + b`: the one kernel of both dense forms.
+#[inline]
+fn dense<const I: usize, const O: usize>(
+    weight: &[[f32; I]; O],
+    bias: &[f32; O],
+    x: &[f32; I],
+) -> [f32; O] {
+    let mut y = [0.0f32; O];
+    for ((y, row), b) in y.iter_mut().zip(weight.iter()).zip(bias.iter()) {
+        *y = dot(row, x) + b;
+    }
+    y
 }
 
 /// Lanes of independent partial sums in [`dot`].
@@ -122,6 +167,7 @@ fn dot(w: &[f32], x: &[f32]) -> f32 {
     acc.iter().sum::<f32>() + tail
 }
 
+#[cfg(feature = "std")]
 impl<const I: usize, const O: usize> Freeze for dfdx::nn::modules::Linear<I, O, f32, Cpu> {
     type Frozen = Dense<I, O>;
 
@@ -132,7 +178,7 @@ impl<const I: usize, const O: usize> Freeze for dfdx::nn::modules::Linear<I, O, 
 
 /// Declares a frozen element-wise activation and its dfdx counterpart(s).
 macro_rules! activation {
-    ($(#[$doc:meta])* $name:ident, |$v:ident| $f:expr, $($dfdx:ty),+) => {
+    ($(#[$doc:meta])* $name:ident, |$v:ident| $f:expr, $($dfdx:ident),+) => {
         $(#[$doc])*
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
         pub struct $name;
@@ -149,7 +195,8 @@ macro_rules! activation {
             }
         }
 
-        $(impl Freeze for $dfdx {
+        $(#[cfg(feature = "std")]
+        impl Freeze for $dfdx {
             type Frozen = $name;
 
             fn freeze(&self) -> Result<$name, NetError> {
@@ -169,7 +216,7 @@ activation!(
 );
 activation!(
     /// `tanh(x)` (dfdx [`Tanh`]).
-    HyperbolicTangent, |v| v.tanh(), Tanh
+    HyperbolicTangent, |v| num_traits::Float::tanh(*v), Tanh
 );
 activation!(
     /// The identity: dfdx [`Dropout`] at inference.
@@ -180,6 +227,7 @@ activation!(
 /// after the first is named with the one before it, whose output it reads.
 macro_rules! tuple {
     ($first:ident . $fi:tt $(, $t:ident . $i:tt : $prev:ident)* ; $last:ident) => {
+        #[cfg(feature = "std")]
         impl<$first: Freeze $(, $t: Freeze)*> Freeze for ($first, $($t,)*) {
             type Frozen = ($first::Frozen, $($t::Frozen,)*);
 
@@ -214,12 +262,12 @@ tuple!(A.0, B.1: A, C.2: B, D.3: C, E.4: D, F.5: E; F);
 
 /// `input` as an array of `N` values, checked like every model input: [`NetError::Shape`]
 /// unless it has `N` values, [`NetError::NonFinite`] for a NaN or infinite value.
-pub fn input<const N: usize>(input: &[f32]) -> Result<[f32; N], NetError> {
+pub fn input<const N: usize>(input: &[f32]) -> Result<[f32; N], RunError> {
     check_input(input, N)?;
     Ok(core::array::from_fn(|i| input[i]))
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
     use dfdx::prelude::*;
@@ -293,15 +341,21 @@ mod tests {
         assert_eq!(input::<2>(&[1.0, 2.0])?, [1.0, 2.0]);
         assert!(matches!(
             input::<2>(&[1.0]),
-            Err(NetError::Shape {
+            Err(RunError::Shape {
                 expected: 2,
                 got: 1
             })
         ));
         assert!(matches!(
             input::<2>(&[1.0, f32::NAN]),
-            Err(NetError::NonFinite { index: 1 })
+            Err(RunError::NonFinite { index: 1 })
         ));
+        static W: [[f32; 2]; 2] = [[1.0, 2.0], [3.0, 4.0]];
+        static B: [f32; 2] = [0.5, -0.5];
+        assert_eq!(
+            StaticDense::new(&W, &B).forward([1.0, 1.0]),
+            d.forward([1.0, 1.0])
+        );
         Ok(())
     }
 }

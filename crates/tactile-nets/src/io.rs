@@ -171,6 +171,13 @@ impl TensorFile {
                 .chunks_exact(4)
                 .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
                 .collect();
+            // No model stores a NaN or infinity: one is a damaged file, not a weight.
+            if let Some(index) = data.iter().position(|v| !v.is_finite()) {
+                return Err(NetError::NonFiniteWeight {
+                    tensor: name.to_owned(),
+                    index,
+                });
+            }
             file.insert(name, view.shape(), &data)?;
         }
         let (_, header) = SafeTensors::read_metadata(bytes)?;
@@ -189,6 +196,31 @@ impl TensorFile {
     /// Reads the file at `path`.
     pub fn load(path: &Path) -> Result<Self, NetError> {
         Self::from_bytes(&std::fs::read(path)?)
+    }
+
+    /// A model read from `path` by `parse`; any error (unreadable, truncated, a missing or
+    /// misshapen tensor, a NaN) names the file ([`NetError::InFile`]).
+    pub fn load_with<T>(
+        path: &Path,
+        parse: impl FnOnce(&TensorFile) -> Result<T, NetError>,
+    ) -> Result<T, NetError> {
+        let name = path.display().to_string();
+        match std::fs::read(path) {
+            Ok(bytes) => Self::parse_with(&name, &bytes, parse),
+            Err(e) => Err(NetError::from(e).in_file(name)),
+        }
+    }
+
+    /// A model parsed by `parse` from the safetensors `bytes` of the file `name`; any error
+    /// names it ([`NetError::InFile`]).
+    pub fn parse_with<T>(
+        name: &str,
+        bytes: &[u8],
+        parse: impl FnOnce(&TensorFile) -> Result<T, NetError>,
+    ) -> Result<T, NetError> {
+        Self::from_bytes(bytes)
+            .and_then(|f| parse(&f))
+            .map_err(|e| e.in_file(name))
     }
 }
 

@@ -4,6 +4,12 @@
 //! and metrics out: the crate reads no dataset and prints nothing of its own (training shows
 //! an indicatif progress bar only when [`train::TrainConfig::progress`] asks for one).
 //!
+//! The trained models are built in ([`pretrained`]). Without the default `std` feature the
+//! crate is `no_std` and allocation-free: the built-in force DNN and contact MLPs run from
+//! `'static` arrays ([`force_dnn::StaticForceDnn`], [`contact_mlp::StaticContactMlp`]) on a
+//! fingertip's Cortex-M3 / M4F; everything marked `std` below needs the feature.
+//!
+//! - [`pretrained`]: the trained models, built in (`'static` arrays without `std`);
 //! - [`io`]: weights as safetensors for any dfdx module, plus extra named tensors;
 //! - [`train`]: a seeded minibatch Adam loop;
 //! - [`metrics`]: a metrics file and its drift check;
@@ -23,6 +29,7 @@
 //! - [`softness_features`]: our variant's finger-order-invariant inputs.
 //!
 //! ```
+//! # #[cfg(feature = "std")] {
 //! use tactile_nets::contact_mlp::{ContactExample, ContactMlp, Head, TapReading, features};
 //! use tactile_nets::train::TrainConfig;
 //! use hand_traits::ContactLocator;
@@ -42,23 +49,39 @@
 //! let contact = mlp.locate(&features(&taps[1].reading))?;
 //! assert_eq!((contact.region, contact.regions), (5, 24));
 //! assert!(mlp.locate(&[0.0; 3]).is_err()); // wrong shape: a typed error, not a panic
-//! # Ok::<(), tactile_nets::NetError>(())
+//! # }
+//! # Ok::<(), Box<dyn core::error::Error>>(())
 //! ```
 
+#![cfg_attr(not(feature = "std"), no_std)]
+
 pub mod activations;
-pub mod cnn_frozen;
-pub mod cnn_layers;
-pub mod contact_cnn;
 pub mod contact_mlp;
 pub mod error;
 pub mod force_dnn;
 pub mod frozen;
-pub mod io;
-pub mod metrics;
 pub mod norm;
+pub mod pretrained;
+
+#[cfg(feature = "std")]
+pub mod cnn_frozen;
+#[cfg(feature = "std")]
+pub mod cnn_layers;
+#[cfg(feature = "std")]
+pub mod contact_cnn;
+#[cfg(feature = "std")]
+pub mod io;
+#[cfg(feature = "std")]
+pub mod metrics;
+#[cfg(feature = "std")]
 pub mod softness;
+#[cfg(feature = "std")]
 pub mod softness_features;
+#[cfg(feature = "std")]
 pub mod softness_train;
+#[cfg(feature = "std")]
 pub mod train;
 
+#[cfg(feature = "std")]
 pub use error::NetError;
+pub use error::RunError;

@@ -1,7 +1,8 @@
 //! Input standardisation shared by the models: each input minus its training mean, over its
 //! training spread (population standard deviation; 1 for an input that never varies).
 
-/// Per-input `(mean, scale)` of `rows`; `mean` 0 and `scale` 1 when `rows` is empty.
+/// Per-input `(mean, scale)` of `rows` (training only: feature `std`); `mean` 0 and `scale` 1 when `rows` is empty.
+#[cfg(feature = "std")]
 pub fn mean_and_scale<const N: usize>(rows: &[[f32; N]]) -> ([f32; N], [f32; N]) {
     let mut mean = [0.0f32; N];
     let mut scale = [1.0f32; N];
@@ -31,7 +32,7 @@ pub fn standardise<const N: usize>(x: &[f32; N], mean: &[f32; N], scale: &[f32; 
     core::array::from_fn(|j| (x[j] - mean[j]) / scale[j])
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
 

@@ -255,7 +255,7 @@ impl SoftnessNet {
     /// Errors: [`NetError::Shape`] when the series is empty or not whole samples (`expected`
     /// is then the next whole length), [`NetError::NonFinite`] at the first bad reading.
     pub fn scores(&self, series: &[f32]) -> Result<[f32; CLASSES], NetError> {
-        if series.is_empty() || series.len() % N_VARIABLES != 0 {
+        if series.is_empty() || !series.len().is_multiple_of(N_VARIABLES) {
             return Err(NetError::Shape {
                 expected: series.len().div_ceil(N_VARIABLES).max(1) * N_VARIABLES,
                 got: series.len(),
@@ -366,7 +366,7 @@ impl SoftnessNet {
 
     /// Reads a classifier written by [`SoftnessNet::save`].
     pub fn load(path: &Path) -> Result<SoftnessNet, NetError> {
-        Self::from_file(&TensorFile::load(path)?)
+        TensorFile::load_with(path, Self::from_file)
     }
 }
 

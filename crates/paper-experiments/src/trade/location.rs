@@ -56,7 +56,7 @@ pub fn tasks() -> Vec<Task> {
             better: Better::Higher,
             unit: "% correct (24 areas)",
             note: "Cost as above. Accuracy: the committed validation-chosen MLP of each OSR \
-                   (`fixtures/models/contact_mlp/osr*-chosen.safetensors`) re-evaluated by \
+                   (`crates/tactile-nets/models/contact_mlp/osr*-chosen.safetensors`) re-evaluated by \
                    `contact_eval::load_committed` on that OSR's held-out taps (single-cell \
                    taps, 24-area accuracy as in docs/contact-location.md). Force error per OSR \
                    is not here: the weight series the force DNN is evaluated on was recorded at \
@@ -90,7 +90,7 @@ pub fn tasks() -> Vec<Task> {
             cost_label: "CPU per classification, µs",
             better: Better::Higher,
             unit: "% correct (9 regions)",
-            note: "The committed variants (`fixtures/models/contact_cnn/`, filters and hidden \
+            note: "The committed variants (`crates/tactile-nets/models/contact_cnn/`, filters and hidden \
                    width in the setting; the paper net trained 1 epoch, ours 6, \
                    `Variant::epochs`), each trained on trial 0 of the all-depth case with \
                    the leak-free tap grouping; accuracy re-evaluated by \

@@ -23,7 +23,7 @@ pub(crate) use handstack::runs::figure;
 /// platform real devices open through) and the workspace whose committed models and datasets
 /// the papers' protocols read.
 pub struct RunContext<'a> {
-    /// The workspace root: committed models under `fixtures/models/`, datasets under
+    /// The workspace root: committed models under `crates/tactile-nets/models/`, datasets under
     /// `fixtures/datasets/`.
     pub root: PathBuf,
     /// Progress and platform.

@@ -233,7 +233,7 @@ pub enum MlpChoice {
 }
 
 impl MlpChoice {
-    /// Its file inside `fixtures/models/contact_mlp/` and its metrics row label at `osr`.
+    /// Its file inside `crates/tactile-nets/models/contact_mlp/` and its metrics row label at `osr`.
     pub fn file_and_label(self, osr: u16) -> (String, String) {
         use paper_experiments::contact_eval as ce;
         use tactile_nets::contact_mlp::Head;

@@ -26,10 +26,10 @@ pub fn run_scene(name: &str) -> Outcome {
     }
 }
 
-/// The committed metrics file of model `dir` (`fixtures/models/DIR/metrics.json`).
+/// The committed metrics file of model `dir` (`crates/tactile-nets/models/DIR/metrics.json`).
 pub fn metrics(dir: &str) -> MetricsFile {
     let path = root()
-        .join("fixtures/models")
+        .join("crates/tactile-nets/models")
         .join(dir)
         .join("metrics.json");
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

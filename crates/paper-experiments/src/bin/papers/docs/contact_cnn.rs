@@ -1,5 +1,5 @@
 //! `papers docs contact-cnn`: from the contact CNN's committed metrics
-//! (`fixtures/models/contact_cnn/metrics.json`, written by `papers train contact-cnn`, i.e.
+//! (`crates/tactile-nets/models/contact_cnn/metrics.json`, written by `papers train contact-cnn`, i.e.
 //! seed 002 §IV-A's protocol in `paper_experiments::jobs::contact_cnn`), draws
 //! `docs/learning/contact-cnn-table1.svg` and `docs/learning/contact-cnn-confusion.svg` and
 //! rewrites the section "## 3. Contact CNN …" of `docs/learning.md` (only that section), quoting

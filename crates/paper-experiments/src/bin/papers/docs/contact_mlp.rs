@@ -1,5 +1,5 @@
 //! `papers docs contact-mlp`: from the contact-area MLP's committed `metrics.json`
-//! (`fixtures/models/contact_mlp/`, written by `papers train contact-mlp`), draws
+//! (`crates/tactile-nets/models/contact_mlp/`, written by `papers train contact-mlp`), draws
 //! `docs/contact-location/contact-mlp-osr.svg` and prints the markdown table of
 //! `docs/contact-location.md`.
 

@@ -1,5 +1,5 @@
 //! `papers docs softness`: from the softness classifier's committed files (seed 001, LM and
-//! Adam, one model per seed: `fixtures/models/softness/`, written by `papers train softness`,
+//! Adam, one model per seed: `crates/tactile-nets/models/softness/`, written by `papers train softness`,
 //! i.e. `paper_experiments::jobs::softness`), draws the confusion matrices and training curves
 //! into `docs/learning/` and rewrites section 2 of `docs/learning.md` (only that section) from
 //! `metrics.json` and `training.json`.

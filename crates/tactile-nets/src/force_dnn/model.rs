@@ -1,101 +1,14 @@
-//! The force / weight DNN of seed 000 §2.2: three tared fingertip pressures → the weight on
-//! the pad, in gram-force.
-//!
-//! # Network
-//! The paper: "sigmoid is used as the activation function for the input and output layers,
-//! and a rectified linear unit (ReLU) and sigmoid are used for the hidden layer", Adam, MSE
-//! (eq. 1). Here: 3 inputs → [`HIDDEN`] sigmoid → [`HIDDEN`] ReLU → [`HIDDEN`] sigmoid → 1
-//! sigmoid output. The inputs are the pressure rises above the sensors' unloaded reading
-//! ([`tared_table`]), standardised with the training set's mean and spread; the
-//! target weight is mapped linearly onto [`OUTPUT_SPAN`] of the sigmoid (the rated range's
-//! lightest weight at 0.1, heaviest at 0.9, a choice made before training, not fitted), so
-//! estimates saturate 12.5 % of the range beyond it instead of running away.
-//!
-//! # Inference
-//! Runs through the [`crate::frozen`] copy of the network (plain arrays, no allocation);
-//! [`ForceDnn::estimate_gf_dfdx`] keeps the dfdx forward for comparison.
-//!
-//! ```
-//! use hand_traits::ForceEstimator;
-//! use tactile_nets::force_dnn::{ForceDnn, tared_table};
-//! use tactile_nets::train::TrainConfig;
-//!
-//! // Three rows of seed 000 Table 1: weight (gf) and the three pressures (hPa).
-//! let rows = [(0.0, [1191.25, 1199.02, 1018.04]), (100.0, [1191.96, 1199.55, 1018.67]),
-//!             (200.0, [1192.47, 1200.06, 1019.18])];
-//! let samples = tared_table(&rows)?; // rises above the 0 gf row
-//! let config = TrainConfig { epochs: 1000, batch_size: 3, learning_rate: 1e-2, l2: 0.0,
-//!                            seed: 1, progress: false, label: String::new() };
-//! let (mut dnn, _) = ForceDnn::train(&samples, [0.0, 200.0], &[config])?;
-//! let f = dnn.estimate_force(&samples[1].rise_hpa)?;
-//! assert!((f.gram_force() - 100.0).abs() < 10.0, "{}", f.gram_force());
-//! assert!(dnn.estimate_force(&[0.1, 0.2]).is_err()); // wrong shape: a typed error
-//! # Ok::<(), tactile_nets::NetError>(())
-//! ```
+//! The trainable force DNN (feature `std`): dfdx network, training, weights files.
 
-use crate::error::{NetError, check_output};
-use crate::frozen::{self, Freeze, Layer};
+use super::{HIDDEN, N_INPUTS, OUTPUT_SPAN, WIDTHS, WeightSample, decoded, standardised};
+use crate::error::NetError;
+use crate::frozen::{Freeze, Layer};
 use crate::io::TensorFile;
 use crate::norm::{mean_and_scale, standardise};
 use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
 use dfdx::prelude::*;
 use hand_traits::{ForceEstimate, ForceEstimator};
 use std::path::Path;
-
-/// One training or test sample: tared pressure rises and the true weight.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct WeightSample {
-    /// Pressure rise of sensors 1–3 above the unloaded reading, hPa.
-    pub rise_hpa: [f32; 3],
-    /// The weight on the pad, gf.
-    pub weight_gf: f32,
-}
-
-/// A live tare for the DNN's input: the mean of the first `frames` frames per sensor, then each
-/// frame's rises over it in hPa.
-///
-/// ```
-/// use hand_traits::PressureFrame;
-/// use tactile_nets::force_dnn::LiveTare;
-///
-/// let mut tare = LiveTare::new(2);
-/// let frame = |p: f32| PressureFrame { t_us: 0, pressure_pa: [p, p + 10.0, p - 10.0] };
-/// assert_eq!(tare.rise_hpa(&frame(100_000.0)), None); // taring
-/// assert_eq!(tare.rise_hpa(&frame(100_100.0)), None);
-/// assert_eq!(tare.rise_hpa(&frame(100_250.0)), Some([2.0, 2.0, 2.0]));
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LiveTare {
-    frames: u32,
-    sum_pa: [f64; 3],
-    n: u32,
-}
-
-impl LiveTare {
-    /// A tare over the first `frames` frames (at least one).
-    pub fn new(frames: u32) -> LiveTare {
-        LiveTare {
-            frames: frames.max(1),
-            sum_pa: [0.0; 3],
-            n: 0,
-        }
-    }
-
-    /// Adds `frame` to the tare while taring (`None`); afterwards its rises, hPa.
-    pub fn rise_hpa(&mut self, frame: &hand_traits::PressureFrame<3>) -> Option<[f32; 3]> {
-        if self.n < self.frames {
-            for (s, p) in self.sum_pa.iter_mut().zip(frame.pressure_pa) {
-                *s += f64::from(p);
-            }
-            self.n += 1;
-            return None;
-        }
-        let n = f64::from(self.n);
-        Some(core::array::from_fn(|k| {
-            ((f64::from(frame.pressure_pa[k]) - self.sum_pa[k] / n) / 100.0) as f32
-        }))
-    }
-}
 
 /// Tares `(weight_gf, pressures_hpa)` rows against the row whose weight is 0 (Table 1's form).
 ///
@@ -134,17 +47,6 @@ fn finite(s: &WeightSample, line: usize) -> Result<WeightSample, NetError> {
         })
     }
 }
-
-/// Inputs: the rises of sensors 1–3, hPa.
-pub const N_INPUTS: usize = 3;
-/// Width of each of the three hidden layers.
-pub const HIDDEN: usize = 16;
-/// The sigmoid output values the lightest and heaviest training weights map to.
-pub const OUTPUT_SPAN: [f32; 2] = [0.1, 0.9];
-
-/// Hidden widths a force DNN can be built with: the committed models use [`HIDDEN`]; the
-/// others are the model-size knob of the trade report (`papers trade`).
-pub const WIDTHS: [usize; 4] = [4, 8, HIDDEN, 32];
 
 type Arch<const H: usize> = (
     (Linear<N_INPUTS, H>, Sigmoid),
@@ -306,36 +208,24 @@ impl ForceDnn {
         self.range_gf
     }
 
-    fn standardised(&self, rise_hpa: &[f32]) -> Result<[f32; N_INPUTS], NetError> {
-        let z = standardise(&frozen::input(rise_hpa)?, &self.mean, &self.scale);
-        // A finite input can still overflow the standardisation: report it as the overflow it is.
-        check_output(&z)?;
-        Ok(z)
-    }
-
-    fn decoded(&self, unit: f32) -> Result<f32, NetError> {
-        let [lo, hi] = self.range_gf;
-        let [a, b] = OUTPUT_SPAN;
-        let gf = lo + (unit - a) / (b - a) * (hi - lo);
-        check_output(&[gf])?;
-        Ok(gf)
-    }
-
     /// The weight, gf, for the three tared rises `rise_hpa` (hPa), through the frozen network.
     ///
     /// Errors: [`NetError::Shape`] unless `rise_hpa` has 3 values, [`NetError::NonFinite`] for
     /// a NaN or infinite value, [`NetError::NonFiniteOutput`] when a finite input overflows.
     pub fn estimate_gf(&self, rise_hpa: &[f32]) -> Result<f32, NetError> {
-        let z = self.standardised(rise_hpa)?;
-        self.decoded(with_width!(Fast, &self.fast, f => f.forward(z)[0]))
+        let z = standardised(rise_hpa, &self.mean, &self.scale)?;
+        Ok(decoded(
+            with_width!(Fast, &self.fast, f => f.forward(z)[0]),
+            self.range_gf,
+        )?)
     }
 
     /// [`ForceDnn::estimate_gf`] through dfdx's forward (the reference the frozen copy is
     /// checked against; ~10 µs slower per call).
     pub fn estimate_gf_dfdx(&self, rise_hpa: &[f32]) -> Result<f32, NetError> {
-        let z = self.standardised(rise_hpa)?;
+        let z = standardised(rise_hpa, &self.mean, &self.scale)?;
         let out = with_width!(Body, &self.net, n => n.try_forward(self.dev.tensor(z))?.array()[0]);
-        self.decoded(out)
+        Ok(decoded(out, self.range_gf)?)
     }
 
     /// Weights, input standardisation and output range as a [`TensorFile`].
@@ -403,9 +293,9 @@ impl ForceDnn {
         self.to_file()?.save(path)
     }
 
-    /// Reads a model written by [`ForceDnn::save`].
+    /// Reads a model written by [`ForceDnn::save`]; an error names the file.
     pub fn load(path: &Path) -> Result<ForceDnn, NetError> {
-        Self::from_file(&TensorFile::load(path)?)
+        TensorFile::load_with(path, Self::from_file)
     }
 }
 

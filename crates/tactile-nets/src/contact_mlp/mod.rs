@@ -1,0 +1,349 @@
+//! The contact-area MLP of seed 000 §4: three pressures (and arrival times) → where on the
+//! 4 × 6 pad the fingertip was touched.
+//!
+//! # Inputs
+//! [`N_FEATURES`] raw values per tap, in the order of [`FEATURE_NAMES`], all taken relative to
+//! the sensors' own resting baseline (the paper's "1010.xx hPa" initial value):
+//! - `rise1..3_hpa`: held pressure minus baseline, hPa (what Table 2 feeds, baseline removed);
+//! - `share1..3`: each positive rise over the sum of positive rises (force-free pattern; 1/3
+//!   each when nothing rose by 0.01 hPa);
+//! - `arrival1..3_ms`: Arrival-of-Time style, each sensor's arrival after the first one to
+//!   arrive, ms; [`NO_ARRIVAL_MS`] for a sensor that never rose.
+//!
+//! The network standardises them with the training set's mean and spread (stored with the
+//! weights), then runs hidden layers of 64 and 32 ReLU units, each followed by 30 % dropout
+//! (active only in training), trained by Adam with L2 0.001 — the paper's recipe. Inference
+//! runs through the network's [`crate::frozen`] copy (no dfdx call per sample).
+//!
+//! # Heads
+//! - [`Head::AverageArea`] (the paper's): one linear output regressing the eq. 4 average-area
+//!   label; decoded to the catalogue contact whose label is nearest (ties: the smaller contact,
+//!   then the lower mask — eq. 4 labels are not unique across Figure 7's shapes).
+//! - [`Head::CellSet`]: 24 sigmoid outputs, one per cell (multi-label cross-entropy on the
+//!   tap's cell mask); decoded to the catalogue contact of highest likelihood under independent
+//!   cells.
+//!
+//! The catalogue is the set of distinct contacts (cell masks) in the training split, stored
+//! with the weights. Both heads report as region the cell nearest the decoded contact's
+//! centroid (ties: the lower row, then column), so `regions` = 24.
+
+use crate::activations::log_sigmoid;
+use crate::error::{RunError, check_output};
+use crate::frozen::{self, Identity, Layer, Relu, StaticDense};
+use crate::norm::standardise;
+use aot_locate::{CELLS, COLS, CellSet, ROWS};
+use hand_traits::{Contact, ContactLocator};
+use num_traits::Float;
+
+#[cfg(feature = "std")]
+mod model;
+#[cfg(feature = "std")]
+pub use model::ContactMlp;
+
+/// What the three sensors read for one tap, the MLP's raw material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TapReading {
+    /// Mean resting pressure before contact, Pa.
+    pub baseline_pa: [f32; 3],
+    /// Held pressure during contact, Pa.
+    pub held_pa: [f32; 3],
+    /// Arrival time of each sensor after onset, ms; `None` when it never rose in the window.
+    pub arrival_ms: [Option<f32>; 3],
+}
+
+impl TapReading {
+    /// The reading of a live contact: each sensor's baseline and arrival from `detector`
+    /// (arrivals counted from `onset_us`, the contact's onset on the detector's clock) and the
+    /// pressures `held_pa` read now. A sensor with no baseline yet reads its own pressure.
+    pub fn from_detector(
+        detector: &aot_locate::ArrivalDetector,
+        held_pa: [f32; 3],
+        onset_us: i64,
+    ) -> TapReading {
+        let ch = detector.channels();
+        TapReading {
+            baseline_pa: core::array::from_fn(|k| ch[k].baseline_pa().unwrap_or(held_pa[k])),
+            held_pa,
+            arrival_ms: core::array::from_fn(|k| {
+                ch[k].arrival_us().map(|t| (t - onset_us) as f32 / 1000.0)
+            }),
+        }
+    }
+}
+
+/// One training example: a reading and the cells that were touched.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactExample {
+    /// What the sensors read.
+    pub reading: TapReading,
+    /// The touched cells (bit `i` = cell `i` of the 4 × 6 pad, [`aot_locate::CellSet`]'s bits);
+    /// the [`Head::AverageArea`] target is its eq. 4 label.
+    pub mask: u32,
+}
+
+/// Eq. 4's label of a mask (0 for an empty or out-of-pad mask, as Table 2's no-contact row).
+fn average_area(mask: u32) -> f32 {
+    CellSet::from_bits(mask).map_or(0.0, |c| c.average_area().value())
+}
+
+/// Raw input values per tap.
+pub const N_FEATURES: usize = 9;
+/// Names of the raw inputs, in order.
+pub const FEATURE_NAMES: [&str; N_FEATURES] = [
+    "rise1_hpa",
+    "rise2_hpa",
+    "rise3_hpa",
+    "share1",
+    "share2",
+    "share3",
+    "arrival1_ms",
+    "arrival2_ms",
+    "arrival3_ms",
+];
+/// Arrival feature of a sensor that never rose (past the 90 ms series window).
+pub const NO_ARRIVAL_MS: f32 = 120.0;
+/// Hidden layer widths (seed 000 §4).
+pub const HIDDEN: [usize; 2] = [64, 32];
+/// Dropout rate after each hidden layer (seed 000 §4).
+pub const DROPOUT: f32 = 0.3;
+/// L2 regularisation (seed 000 §4).
+pub const L2: f64 = 0.001;
+/// Label distance at which the regression head's confidence reaches 0 (half a column step).
+pub const REGRESSION_CONFIDENCE_SPAN: f32 = 0.05;
+
+/// What the network's last layer predicts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Head {
+    /// One output: the eq. 4 average-area value (the paper's label), mean squared error.
+    AverageArea,
+    /// 24 outputs: one logit per cell of the 4 × 6 pad, sigmoid cross-entropy.
+    CellSet,
+}
+
+impl Head {
+    /// Both heads.
+    pub const ALL: [Head; 2] = [Head::AverageArea, Head::CellSet];
+
+    /// File and metrics name: `average_area` or `cell_set`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Head::AverageArea => "average_area",
+            Head::CellSet => "cell_set",
+        }
+    }
+
+    /// The head named `name` ([`Head::name`]).
+    pub fn from_name(name: &str) -> Option<Head> {
+        Head::ALL.into_iter().find(|h| h.name() == name)
+    }
+
+    /// Network outputs.
+    pub fn outputs(self) -> usize {
+        match self {
+            Head::AverageArea => 1,
+            Head::CellSet => CELLS,
+        }
+    }
+}
+
+/// One localisation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Prediction {
+    /// The decoded contact: a cell mask from the catalogue.
+    pub contact: u32,
+    /// The cell nearest the contact's centroid, `0..24`.
+    pub region: u16,
+    /// `0.0..=1.0`: for [`Head::CellSet`] the contact's share of the likelihood over the
+    /// catalogue; for [`Head::AverageArea`] `1 − distance to its label / 0.05`, floored at 0.
+    pub confidence: f32,
+}
+
+/// The raw input features of one reading ([`FEATURE_NAMES`]).
+pub fn features(reading: &TapReading) -> [f32; N_FEATURES] {
+    let mut f = [0.0f32; N_FEATURES];
+    let rise: [f32; 3] =
+        core::array::from_fn(|k| (reading.held_pa[k] - reading.baseline_pa[k]) / 100.0);
+    let positive: f32 = rise.iter().map(|r| r.max(0.0)).sum();
+    let first = reading
+        .arrival_ms
+        .iter()
+        .flatten()
+        .copied()
+        .fold(f32::INFINITY, f32::min);
+    for k in 0..3 {
+        f[k] = rise[k];
+        f[3 + k] = if positive > 0.01 {
+            rise[k].max(0.0) / positive
+        } else {
+            1.0 / 3.0
+        };
+        f[6 + k] = match reading.arrival_ms[k] {
+            Some(t) => t - first,
+            None => NO_ARRIVAL_MS,
+        };
+    }
+    f
+}
+
+/// Cell nearest a mask's centroid (ties: the lower row, then column).
+fn region_of(mask: u32) -> u16 {
+    // CellSet's centroid is 1-based.
+    let [r, c] = CellSet::from_bits(mask)
+        .and_then(CellSet::centroid)
+        .map_or([0.0, 0.0], |[r, c]| [r - 1.0, c - 1.0]);
+    let snap = |x: f32, n: usize| ((x - 0.5).ceil().max(0.0) as usize).min(n - 1);
+    let (rows, cols) = (usize::from(ROWS), usize::from(COLS));
+    (snap(r, rows) * cols + snap(c, cols)) as u16
+}
+
+/// The catalogue contact whose eq. 4 label is nearest `y` and its confidence; the first of
+/// equals (smaller contacts come first).
+fn decode_label(y: f32, catalogue: impl IntoIterator<Item = u32>) -> Option<(u32, f32)> {
+    let mut best: Option<(u32, f32)> = None;
+    for m in catalogue {
+        let d = (average_area(m) - y).abs();
+        if best.is_none_or(|(_, bd)| d < bd) {
+            best = Some((m, d));
+        }
+    }
+    best.map(|(m, d)| (m, (1.0 - d / REGRESSION_CONFIDENCE_SPAN).max(0.0)))
+}
+
+/// The catalogue entry of highest likelihood under the cell `logits` and its posterior share,
+/// in one streaming log-sum-exp pass (no buffer: this runs in control cycles); `None` for an
+/// empty catalogue or a NaN likelihood. Ties keep the first entry.
+fn decode_cells(logits: &[f32], catalogue: impl IntoIterator<Item = u32>) -> Option<(u32, f32)> {
+    let mut best = (0u32, f32::NEG_INFINITY);
+    let mut any = false;
+    // Σ_j exp(ll_j − best.1): the posterior of `best` is its inverse.
+    let mut sum = 0.0f32;
+    for m in catalogue {
+        let ll: f32 = logits
+            .iter()
+            .enumerate()
+            .map(|(i, &z)| {
+                if m & (1 << i) != 0 {
+                    log_sigmoid(z)
+                } else {
+                    log_sigmoid(-z)
+                }
+            })
+            .sum();
+        if ll.is_nan() {
+            return None;
+        }
+        if !any {
+            best.0 = m;
+            any = true;
+        }
+        if ll > best.1 {
+            sum = sum * Float::exp(best.1 - ll) + 1.0;
+            best = (m, ll);
+        } else if ll == best.1 {
+            // Equal (also both −∞): an equal share, as softmax gives it.
+            sum += 1.0;
+        } else {
+            sum += Float::exp(ll - best.1);
+        }
+    }
+    (any && sum > 0.0).then_some((best.0, 1.0 / sum))
+}
+
+/// The prediction for the network outputs `out` (one label value, or [`CELLS`] cell logits)
+/// over `catalogue`.
+fn decode(out: &[f32], catalogue: impl IntoIterator<Item = u32>) -> Result<Prediction, RunError> {
+    let (contact, confidence) = if out.len() == 1 {
+        decode_label(out[0], catalogue)
+    } else {
+        decode_cells(out, catalogue)
+    }
+    .ok_or(RunError::EmptyCatalogue)?;
+    Ok(Prediction {
+        contact,
+        region: region_of(contact),
+        confidence,
+    })
+}
+
+/// Raw features checked and standardised with the training `mean` and `scale`.
+fn standardised(
+    input: &[f32],
+    mean: &[f32; N_FEATURES],
+    scale: &[f32; N_FEATURES],
+) -> Result<[f32; N_FEATURES], RunError> {
+    let z = standardise(&frozen::input(input)?, mean, scale);
+    // A finite input can still overflow the standardisation: report it as the overflow it is.
+    check_output(&z)?;
+    Ok(z)
+}
+
+/// The frozen [`Head::CellSet`] network over `'static` weights.
+pub type StaticNet = (
+    (StaticDense<N_FEATURES, 64>, Relu, Identity),
+    (StaticDense<64, 32>, Relu, Identity),
+    StaticDense<32, CELLS>,
+);
+
+/// A [`Head::CellSet`] contact MLP whose weights and catalogue are `'static` (the models built
+/// into the crate, [`crate::pretrained`]): no allocation, no `std`, weights in flash on a
+/// microcontroller. It predicts as [`ContactMlp`] does (feature `std`) with the same weights.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticContactMlp {
+    net: StaticNet,
+    mean: &'static [f32; N_FEATURES],
+    scale: &'static [f32; N_FEATURES],
+    // As stored in the weights file: masks below 2^24 as f32, exact.
+    catalogue: &'static [f32],
+}
+
+impl StaticContactMlp {
+    /// A model from its network, input standardisation and catalogue (cell masks as `f32`, as
+    /// the weights file stores them).
+    pub const fn new(
+        net: StaticNet,
+        mean: &'static [f32; N_FEATURES],
+        scale: &'static [f32; N_FEATURES],
+        catalogue: &'static [f32],
+    ) -> Self {
+        Self {
+            net,
+            mean,
+            scale,
+            catalogue,
+        }
+    }
+
+    /// The contacts the decoder chooses from (cell masks).
+    pub fn catalogue(&self) -> impl Iterator<Item = u32> + '_ {
+        self.catalogue.iter().map(|&m| m as u32)
+    }
+
+    /// Locates the contact for the raw features `input` ([`features`]).
+    ///
+    /// Errors: [`RunError::Shape`] unless `input` has [`N_FEATURES`] values,
+    /// [`RunError::NonFinite`] for a NaN or infinite value, [`RunError::NonFiniteOutput`] when
+    /// an input far outside the training range overflows the network,
+    /// [`RunError::EmptyCatalogue`] for a model without contacts.
+    pub fn predict(&self, input: &[f32]) -> Result<Prediction, RunError> {
+        let logits = self
+            .net
+            .forward(standardised(input, self.mean, self.scale)?);
+        check_output(&logits)?;
+        decode(&logits, self.catalogue())
+    }
+}
+
+/// Input: the [`N_FEATURES`] raw features of [`features`]; regions: the 24 cells, row-major.
+impl ContactLocator for StaticContactMlp {
+    type Input = [f32];
+    type Error = RunError;
+
+    fn locate(&mut self, input: &[f32]) -> Result<Contact, RunError> {
+        let p = self.predict(input)?;
+        Ok(Contact {
+            region: p.region,
+            regions: CELLS as u16,
+            confidence: p.confidence,
+        })
+    }
+}

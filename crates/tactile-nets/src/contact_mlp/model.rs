@@ -1,0 +1,254 @@
+//! The trainable contact MLP (feature `std`): dfdx network, training, weights files.
+
+use super::{
+    ContactExample, DROPOUT, FEATURE_NAMES, HIDDEN, Head, N_FEATURES, Prediction, average_area,
+    decode, features, standardised,
+};
+use crate::activations::sigmoid;
+use crate::error::{NetError, check_output};
+use crate::frozen::{Freeze, Layer};
+use crate::io::TensorFile;
+use crate::norm::{mean_and_scale, standardise};
+use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
+use aot_locate::CELLS;
+use dfdx::prelude::*;
+use hand_traits::{Contact, ContactLocator};
+use std::path::Path;
+
+type Arch<const O: usize> = (
+    (Linear<N_FEATURES, 64>, ReLU, Dropout),
+    (Linear<64, 32>, ReLU, Dropout),
+    Linear<32, O>,
+);
+type Net<const O: usize> = <Arch<O> as BuildOnDevice<Cpu, f32>>::Built;
+/// The allocation-free inference copy of a [`Net`].
+type Fast<const O: usize> = <Net<O> as Freeze>::Frozen;
+
+/// The trained network (saved) and its frozen copy (run).
+enum Body {
+    Area(Net<1>, Fast<1>),
+    Cells(Net<CELLS>, Fast<CELLS>),
+}
+
+/// A trained contact-area MLP.
+pub struct ContactMlp {
+    head: Head,
+    body: Body,
+    mean: [f32; N_FEATURES],
+    scale: [f32; N_FEATURES],
+    catalogue: Vec<u32>,
+}
+
+/// The training-split contacts: distinct masks, smaller contacts first, then by mask.
+fn catalogue_of(examples: &[ContactExample]) -> Vec<u32> {
+    let mut masks: Vec<u32> = examples.iter().map(|e| e.mask).collect();
+    masks.sort_by_key(|&m| (m.count_ones(), m));
+    masks.dedup();
+    masks
+}
+
+fn build<const O: usize>(dev: &Cpu) -> Net<O> {
+    let mut net = dev.build_module::<Arch<O>, f32>();
+    net.0.2.p = DROPOUT;
+    net.1.2.p = DROPOUT;
+    net
+}
+
+impl ContactMlp {
+    /// Trains a model with `head` on `examples` (the training split) using `config`'s epochs,
+    /// batch size, learning rate and seeds (its `l2` is the paper's 0.001 unless changed).
+    pub fn train(
+        examples: &[ContactExample],
+        head: Head,
+        config: &TrainConfig,
+    ) -> Result<(ContactMlp, TrainLog), NetError> {
+        if examples.is_empty() {
+            return Err(NetError::Training("no training taps".into()));
+        }
+        let rows: Vec<[f32; N_FEATURES]> = examples.iter().map(|e| features(&e.reading)).collect();
+        let (mean, scale) = mean_and_scale(&rows);
+        let mut samples = Samples::default();
+        for (row, ex) in rows.iter().zip(examples) {
+            let z = standardise(row, &mean, &scale);
+            match head {
+                Head::AverageArea => samples.push(&z, &[average_area(ex.mask)]),
+                Head::CellSet => {
+                    let bits: [f32; CELLS] =
+                        core::array::from_fn(|i| f32::from(u8::from(ex.mask & (1 << i) != 0)));
+                    samples.push(&z, &bits);
+                }
+            }
+        }
+        let dev = Cpu::seed_from_u64(config.seed);
+        let (body, log) = match head {
+            Head::AverageArea => {
+                let mut net = build::<1>(&dev);
+                let log = fit::<_, N_FEATURES, 1>(&dev, &mut net, &samples, Loss::Mse, config)?;
+                {
+                    let fast = net.freeze()?;
+                    (Body::Area(net, fast), log)
+                }
+            }
+            Head::CellSet => {
+                let mut net = build::<CELLS>(&dev);
+                let loss = Loss::SigmoidCrossEntropy;
+                let log = fit::<_, N_FEATURES, CELLS>(&dev, &mut net, &samples, loss, config)?;
+                {
+                    let fast = net.freeze()?;
+                    (Body::Cells(net, fast), log)
+                }
+            }
+        };
+        let model = ContactMlp {
+            head,
+            body,
+            mean,
+            scale,
+            catalogue: catalogue_of(examples),
+        };
+        Ok((model, log))
+    }
+
+    /// The head this model was trained with.
+    pub fn head(&self) -> Head {
+        self.head
+    }
+
+    /// The contacts the decoder chooses from (cell masks).
+    pub fn catalogue(&self) -> &[u32] {
+        &self.catalogue
+    }
+
+    /// The network's raw outputs for raw features (the label value, or 24 cell logits).
+    ///
+    /// Errors: [`NetError::Shape`] unless `input` has [`N_FEATURES`] values,
+    /// [`NetError::NonFinite`] for a NaN or infinite value, [`NetError::NonFiniteOutput`] when
+    /// an input far outside the training range overflows the network.
+    pub fn outputs(&self, input: &[f32]) -> Result<Vec<f32>, NetError> {
+        let (out, n) = self.raw_outputs(input)?;
+        Ok(out[..n].to_vec())
+    }
+
+    /// [`ContactMlp::outputs`] in a fixed buffer (the first `n` slots hold the head's outputs):
+    /// localisation runs inside control cycles, where it must not allocate.
+    fn raw_outputs(&self, input: &[f32]) -> Result<([f32; CELLS], usize), NetError> {
+        let z = standardised(input, &self.mean, &self.scale)?;
+        let mut out = [0.0f32; CELLS];
+        let n = match &self.body {
+            Body::Area(_, fast) => {
+                out[..1].copy_from_slice(&fast.forward(z));
+                1
+            }
+            Body::Cells(_, fast) => {
+                out = fast.forward(z);
+                CELLS
+            }
+        };
+        check_output(&out[..n])?;
+        Ok((out, n))
+    }
+
+    /// Locates the contact for raw features (see [`ContactMlp::outputs`] for the errors).
+    pub fn predict(&self, input: &[f32]) -> Result<Prediction, NetError> {
+        let (out, n) = self.raw_outputs(input)?;
+        Ok(decode(&out[..n], self.catalogue.iter().copied())?)
+    }
+
+    /// Per-cell contact probabilities (the [`Head::CellSet`] outputs through a sigmoid);
+    /// `None` for the regression head.
+    pub fn cell_probabilities(&self, input: &[f32]) -> Result<Option<[f32; CELLS]>, NetError> {
+        if self.head != Head::CellSet {
+            return Ok(None);
+        }
+        let out = self.outputs(input)?;
+        Ok(Some(core::array::from_fn(|i| sigmoid(out[i]))))
+    }
+
+    /// Weights, input normalisation and catalogue as a [`TensorFile`].
+    pub fn to_file(&self) -> Result<TensorFile, NetError> {
+        let mut f = TensorFile::new();
+        match &self.body {
+            Body::Area(net, _) => f.add_module("net.", net)?,
+            Body::Cells(net, _) => f.add_module("net.", net)?,
+        }
+        f.insert("input.mean", &[N_FEATURES], &self.mean)?;
+        f.insert("input.scale", &[N_FEATURES], &self.scale)?;
+        // Masks are below 2^24, so f32 holds them exactly.
+        let masks: Vec<f32> = self.catalogue.iter().map(|&m| m as f32).collect();
+        f.insert("catalogue.masks", &[masks.len()], &masks)?;
+        let meta = serde_json::json!({
+            "model": "contact_mlp",
+            "head": self.head.name(),
+            "features": FEATURE_NAMES,
+            "hidden": HIDDEN,
+            "dropout": DROPOUT,
+        });
+        f.set_metadata(meta.to_string());
+        Ok(f)
+    }
+
+    /// A model from [`ContactMlp::to_file`]'s output.
+    pub fn from_file(file: &TensorFile) -> Result<ContactMlp, NetError> {
+        let meta = file.metadata_json()?;
+        let head = meta
+            .get("head")
+            .and_then(|h| h.as_str())
+            .and_then(Head::from_name)
+            .ok_or_else(|| NetError::SafeTensors("metadata names no contact-MLP head".into()))?;
+        let dev = Cpu::seed_from_u64(0);
+        let body = match head {
+            Head::AverageArea => {
+                let mut net = build::<1>(&dev);
+                file.load_module("net.", &mut net)?;
+                let fast = net.freeze()?;
+                Body::Area(net, fast)
+            }
+            Head::CellSet => {
+                let mut net = build::<CELLS>(&dev);
+                file.load_module("net.", &mut net)?;
+                let fast = net.freeze()?;
+                Body::Cells(net, fast)
+            }
+        };
+        let vec9 = |name: &str| -> Result<[f32; N_FEATURES], NetError> {
+            let v = file.get(name, &[N_FEATURES])?;
+            Ok(core::array::from_fn(|j| v[j]))
+        };
+        let masks = file
+            .tensor("catalogue.masks")
+            .ok_or_else(|| NetError::MissingTensor("catalogue.masks".into()))?;
+        let catalogue = masks.data.iter().map(|&m| m as u32).collect();
+        Ok(ContactMlp {
+            head,
+            body,
+            mean: vec9("input.mean")?,
+            scale: vec9("input.scale")?,
+            catalogue,
+        })
+    }
+
+    /// Writes the model as a `.safetensors` file.
+    pub fn save(&self, path: &Path) -> Result<(), NetError> {
+        self.to_file()?.save(path)
+    }
+
+    /// Reads a model written by [`ContactMlp::save`]; an error names the file.
+    pub fn load(path: &Path) -> Result<ContactMlp, NetError> {
+        TensorFile::load_with(path, Self::from_file)
+    }
+}
+
+/// Input: the [`N_FEATURES`] raw features of [`features`]; regions: the 24 cells, row-major.
+impl ContactLocator for ContactMlp {
+    type Input = [f32];
+    type Error = NetError;
+
+    fn locate(&mut self, input: &[f32]) -> Result<Contact, NetError> {
+        let p = self.predict(input)?;
+        Ok(Contact {
+            region: p.region,
+            regions: CELLS as u16,
+            confidence: p.confidence,
+        })
+    }
+}
