@@ -1,12 +1,14 @@
-//! From pad pressures to what the fuzzy policy sees: the mean contact pressure over a tared
-//! zero, its low-pass-filtered rate, and whether the pad is touched.
+//! From pad pressures to what a grasp policy sees: the mean contact pressure over a tared
+//! zero, its low-pass-filtered rate, and whether the pad is touched. Here, not in
+//! `hand-control`, so that a fingertip's firmware (`no_std`) and the host's grasp loop estimate
+//! alike.
 //!
 //! Seed 000 §5: "the difference between the average of the contact pressure values […] and its
 //! differential value are entered into the fuzzy controller". A raw difference of two MS5611
 //! readings 10 ms apart carries their noise ×√2 / 10 ms (≈ 500 Pa/s at OSR 1024's 3.6 Pa RMS,
 //! 5 % of the controller's rate scale), so the rate goes through a first-order low-pass.
 
-use hand_traits::{GraspObservation, PressureFrame};
+use crate::{GraspObservation, PressureFrame};
 
 /// One cycle's estimate.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -20,17 +22,15 @@ pub struct ContactEstimate {
 }
 
 /// Why a frame could not be used.
-#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub enum EstimateError {
     /// A pressure is NaN or infinite.
-    #[error("sensor {sensor} read a non-finite pressure")]
     NonFinite {
         /// Index of the sensor in the frame.
         sensor: usize,
     },
     /// The frame's time stamp is not after the previous one.
-    #[error("frame at {t_us} µs does not follow the previous one at {previous_us} µs")]
     TimeNotIncreasing {
         /// This frame's stamp.
         t_us: u64,
@@ -38,15 +38,30 @@ pub enum EstimateError {
         previous_us: u64,
     },
     /// An estimate was asked for before the zero was tared.
-    #[error("the pad has not been tared")]
     NotTared,
 }
+
+impl core::fmt::Display for EstimateError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            EstimateError::NonFinite { sensor } => {
+                write!(f, "sensor {sensor} read a non-finite pressure")
+            }
+            EstimateError::TimeNotIncreasing { t_us, previous_us } => write!(
+                f,
+                "frame at {t_us} µs does not follow the previous one at {previous_us} µs"
+            ),
+            EstimateError::NotTared => f.write_str("the pad has not been tared"),
+        }
+    }
+}
+
+impl core::error::Error for EstimateError {}
 
 /// Tare, mean rise and filtered rate for an `N`-sensor pad.
 ///
 /// ```
-/// use hand_control::grasp_loop::PressureEstimator;
-/// use hand_traits::PressureFrame;
+/// use hand_traits::{PressureEstimator, PressureFrame};
 ///
 /// let mut est = PressureEstimator::<3>::new(50.0, 10.0);
 /// est.tare(&PressureFrame { t_us: 0, pressure_pa: [101_000.0, 101_010.0, 100_990.0] })?;
@@ -57,7 +72,7 @@ pub enum EstimateError {
 /// let e = est.update(&PressureFrame { t_us: 20_000, pressure_pa: [101_400.0, 101_410.0, 101_390.0] })?;
 /// // 100 Pa in 10 ms is 10 kPa/s raw; the 10 Hz low-pass passes 39 % of it in one step.
 /// assert!((e.rate_pa_per_s - 3_858.0).abs() < 10.0, "{e:?}");
-/// # Ok::<(), hand_control::grasp_loop::EstimateError>(())
+/// # Ok::<(), hand_traits::EstimateError>(())
 /// ```
 #[derive(Debug, Clone)]
 pub struct PressureEstimator<const N: usize> {
@@ -109,6 +124,12 @@ impl<const N: usize> PressureEstimator<N> {
     /// Whether the zero is fixed.
     pub fn is_tared(&self) -> bool {
         self.zero_pa.is_some()
+    }
+
+    /// Each sensor's tared zero, Pa (`None` before [`finish_tare`](Self::finish_tare)): what a
+    /// per-sensor estimator (a force DNN on the three rises) reads its rises against.
+    pub fn zero_pa(&self) -> Option<[f64; N]> {
+        self.zero_pa
     }
 
     /// The estimate for `frame`; a bad frame changes nothing.

@@ -2,33 +2,9 @@
 //!
 //! Each trait is one step of the loop *tactile frames → force / contact / softness estimates →
 //! grasp policy → gripper*, with an arm alongside. A scene composes whichever implementations it
-//! names; a user replaces any one of them by implementing a trait of two or three methods.
+//! names. The README follows (its example runs as this crate's doctest).
 //!
-//! The value types carry their unit in every field name (`force_n`, `pressure_pa`,
-//! `position_rad`) so that a value never travels without its unit.
-//!
-//! ```
-//! use hand_traits::{Effort, GraspObservation, GraspPolicy};
-//!
-//! /// A proportional policy: more effort the further the pressure is below target.
-//! struct Proportional { gain_per_pa: f32 }
-//!
-//! impl GraspPolicy for Proportional {
-//!     type Error = core::convert::Infallible;
-//!     fn effort(&mut self, obs: &GraspObservation) -> Result<Effort, Self::Error> {
-//!         Ok(Effort::saturating(obs.pressure_error_pa * self.gain_per_pa))
-//!     }
-//! }
-//!
-//! let mut policy = Proportional { gain_per_pa: 1e-3 };
-//! let effort = policy.effort(&GraspObservation { pressure_error_pa: 400.0, pressure_rate_pa_per_s: 0.0 })?;
-//! assert_eq!(effort.to_torque_limit_raw(), 409); // 0.4 of the MX-28's 0…1023 scale
-//! # Ok::<(), core::convert::Infallible>(())
-//! ```
-//!
-//! Feature `sim` adds `sim::SimClock`, the simulated time every simulated device of the
-//! stack shares (std-free: `alloc` and 64-bit atomics); firmware leaves it off, and the crate
-//! then has no dependency at all.
+#![doc = include_str!("../README.md")]
 #![no_std]
 #![forbid(unsafe_code)]
 
@@ -37,6 +13,7 @@ extern crate alloc;
 
 mod arm;
 mod contact;
+mod estimate;
 mod force;
 mod frames;
 mod gripper;
@@ -48,6 +25,7 @@ mod source;
 
 pub use arm::{Arm, LinearMotion, Pose};
 pub use contact::{Contact, ContactLocator};
+pub use estimate::{ContactEstimate, EstimateError, PressureEstimator};
 pub use force::{ForceEstimate, ForceEstimator, GRAM_FORCE_N};
 pub use frames::{FingerFrame, ImuFrame, PressureFrame};
 pub use gripper::{Faults, GripperActuator, GripperCommand, GripperState, SafeAction};

@@ -65,7 +65,10 @@
 
 pub mod clock;
 pub mod config;
-pub mod estimate;
+/// The contact estimate, `hand-traits`' (a fingertip's firmware estimates alike).
+pub mod estimate {
+    pub use hand_traits::{ContactEstimate, EstimateError, PressureEstimator};
+}
 pub mod fault;
 pub mod log;
 pub mod runner;
