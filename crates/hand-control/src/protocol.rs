@@ -11,6 +11,9 @@
 pub use dynamixel2::checksum::calculate_checksum;
 pub use dynamixel2::instructions::{instruction_id, packet_id};
 
+/// The highest servo ID (0xFD and 0xFF are reserved, 0xFE is broadcast).
+pub const MAX_ID: u8 = 252;
+
 /// The four bytes that open every packet.
 pub const HEADER: [u8; 4] = [0xFF, 0xFF, 0xFD, 0x00];
 /// The longest body (LEN field) the parser accepts; longer LEN values are taken as garbage.

@@ -22,4 +22,6 @@ pub mod tap_to_move;
 pub use bridge::{JointMotion, MoveHandle, MoveProgress, UrArm, UrConfig};
 pub use error::UrError;
 pub use grid::{GridError, REGIONS, RegionToGrid};
+/// The `hand-traits` types of this crate's API, so that a user needs no other crate.
+pub use hand_traits::{Arm, LinearMotion, Pose};
 pub use python::{PYTHON_ENV, VENV_ENV, Venv};

@@ -13,6 +13,10 @@ use ur_bridge::sim::{SimConfig, UrSim};
 use ur_bridge::status::robot_mode;
 use ur_bridge::{JointMotion, RegionToGrid, UrArm, UrConfig, UrError};
 
+// The `ur-sim` binary and the README's CI job (in this test binary: one link, not two).
+#[path = "sim_bridge/ur_sim_binary.rs"]
+mod ur_sim_binary;
+
 /// 0.1 mm: the bound on the final TCP position.
 const TCP_TOLERANCE_M: f64 = 1e-4;
 

@@ -182,6 +182,28 @@ impl ControlTable {
             .find(|t| t.model_number == model_number)
     }
 
+    /// The table a person names: its name without the firmware suffix, in any case, with or
+    /// without the dashes (`mx28`, `MX-28`, `xm430-w350`, `rh_p12_rn`), among [`MODELS`].
+    ///
+    /// ```
+    /// use hand_control::control_table::{ControlTable, RH_P12_RN};
+    /// assert_eq!(ControlTable::by_name("mx28").map(|t| t.name), Some("MX-28(2.0)"));
+    /// assert_eq!(ControlTable::by_name("rh_p12_rn").map(|t| t.name), Some(RH_P12_RN.name));
+    /// assert!(ControlTable::by_name("ax12").is_none());
+    /// ```
+    pub fn by_name(name: &str) -> Option<&'static ControlTable> {
+        // "MX-28(2.0)" → "mx28": the firmware suffix is not part of what people call it.
+        fn key(name: &str) -> String {
+            let base = name.split('(').next().unwrap_or(name);
+            base.chars()
+                .filter(char::is_ascii_alphanumeric)
+                .map(|c| c.to_ascii_lowercase())
+                .collect()
+        }
+        let wanted = key(name);
+        MODELS.iter().copied().find(|t| key(t.name) == wanted)
+    }
+
     /// The register at exactly `address`.
     pub fn register_at(&self, address: u16) -> Option<&'static Register> {
         self.registers.iter().find(|r| r.address == address)

@@ -21,6 +21,10 @@
 //! it returns once the simulator has stepped. A test therefore steps a closed loop
 //! deterministically: `hand.command(..)`, `sim.advance(dt)`, `hand.state()`, repeat.
 //!
+//! With [`Pace::WallClock`] simulated time also keeps up with the wall clock, for a client that
+//! waits in real time instead (another process, a loop on `StdClock`): the `dxl-sim` binary runs
+//! its bus so.
+//!
 //! ```
 //! use hand_control::ServoHand;
 //! use hand_control::sim::{SimBus, SimConfig};
@@ -50,11 +54,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use dynamixel2::serial2::SerialPort;
 
 use crate::InstructionError;
+use crate::control_table::{ControlTable, MX_28};
 use crate::protocol::{FrameError, Packet, Parser, encode, instruction_id as ins, packet_id};
 
 /// The instruction of the simulator-only clock packet (undefined in Protocol 2.0).
@@ -65,6 +70,21 @@ pub const CLOCK_ID: u8 = 0xFD;
 const STATUS: u8 = 0x55;
 /// Longest an `advance` waits for the simulator thread (a bound, not a delay).
 const ACK_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// The servo models the simulator runs; the other tables of [`crate::control_table::MODELS`]
+/// serve the driver only.
+pub const SIMULATED_MODELS: [&ControlTable; 1] = [&MX_28];
+
+/// What moves the simulator's clock besides the bytes on the bus.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Pace {
+    /// Nothing else: only [`SimBus::advance`]. Deterministic, as fast as the CPU (tests).
+    #[default]
+    Bus,
+    /// The wall clock too: simulated time never falls behind the time since the bus started,
+    /// so a client that waits in real time sees the servos move in real time.
+    WallClock,
+}
 
 /// The reply allowance to give a [`crate::ServoHand`] on the simulated bus.
 ///
@@ -87,6 +107,8 @@ pub struct SimConfig {
     pub step: Duration,
     /// Initial output angle of every servo, rad.
     pub initial_position_rad: f64,
+    /// Whether simulated time also follows the wall clock.
+    pub pace: Pace,
 }
 
 impl SimConfig {
@@ -99,6 +121,7 @@ impl SimConfig {
             params: ServoParams::default(),
             step: Duration::from_micros(250),
             initial_position_rad: std::f64::consts::PI,
+            pace: Pace::Bus,
         }
     }
 }
@@ -145,6 +168,13 @@ impl World {
             for s in &mut self.servos {
                 s.step(step, t);
             }
+        }
+    }
+
+    /// Moves simulated time up to `t` where it is behind (the wall-clock pace).
+    fn catch_up(&mut self, t: Duration) {
+        if let Some(dt) = t.checked_sub(self.now) {
+            self.advance(dt);
         }
     }
 
@@ -400,9 +430,10 @@ impl SimBus {
         device.set_read_timeout(Duration::from_millis(20))?;
         let thread = {
             let (world, stop) = (Arc::clone(&world), Arc::clone(&stop));
+            let pace = config.pace;
             std::thread::Builder::new()
                 .name("dxl-sim".into())
-                .spawn(move || serve(&device, &world, &stop, &tx))?
+                .spawn(move || serve(&device, &world, &stop, &tx, pace))?
         };
         Ok((
             Self {
@@ -512,11 +543,26 @@ impl Drop for SimBus {
 }
 
 /// The simulator thread: read, parse, execute, answer, until `stop`.
-fn serve(device: &SerialPort, world: &Mutex<World>, stop: &AtomicBool, acks: &Sender<u32>) {
+fn serve(
+    device: &SerialPort,
+    world: &Mutex<World>,
+    stop: &AtomicBool,
+    acks: &Sender<u32>,
+    pace: Pace,
+) {
     let mut parser = Parser::default();
     let mut buf = [0u8; 4096];
+    let started = Instant::now();
     while !stop.load(Ordering::Relaxed) {
-        let n = match device.read(&mut buf) {
+        let read = device.read(&mut buf);
+        if pace == Pace::WallClock {
+            // Before the packets are handled, so their answers show the present physics.
+            world
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner)
+                .catch_up(started.elapsed());
+        }
+        let n = match read {
             Ok(n) => n,
             Err(e)
                 if matches!(

@@ -18,8 +18,11 @@ mod controller;
 mod dashboard;
 mod motion;
 mod rtde;
+mod time_scale;
 mod variables;
 mod wire;
+
+pub use time_scale::{TimeScale, TimeScaleError};
 
 use std::collections::HashMap;
 use std::io::Read;
@@ -56,6 +59,8 @@ pub struct SimConfig {
     pub controller_version: (u32, u32, u32, u32),
     /// Highest RTDE output frequency served (CB3: 125 Hz).
     pub max_frequency_hz: f64,
+    /// Simulated time per wall-clock time (real time by default).
+    pub time_scale: TimeScale,
 }
 
 impl Default for SimConfig {
@@ -73,6 +78,7 @@ impl Default for SimConfig {
             control_period: Duration::from_millis(8),
             controller_version: (3, 15, 8, 106_339),
             max_frequency_hz: 125.0,
+            time_scale: TimeScale::REAL_TIME,
         }
     }
 }
@@ -127,6 +133,9 @@ impl Shared {
             .retain(|_, owner| *owner != id);
     }
 }
+
+/// What each bound port serves, in the order of [`UrSim::addresses`].
+pub const SERVICES: [&str; 3] = ["dashboard", "script", "rtde"];
 
 /// A running simulated controller; dropping it is [`UrSim::kill`].
 pub struct UrSim {
@@ -183,6 +192,11 @@ impl UrSim {
     /// The bound addresses: dashboard, script, RTDE.
     pub fn addresses(&self) -> &[SocketAddr] {
         &self.addrs
+    }
+
+    /// Each bound address with what it serves ([`SERVICES`]).
+    pub fn services(&self) -> impl Iterator<Item = (&'static str, SocketAddr)> + '_ {
+        SERVICES.into_iter().zip(self.addrs.iter().copied())
     }
 
     /// The present joint angles.
@@ -259,16 +273,18 @@ fn accept_loop(shared: &Arc<Shared>, listener: &TcpListener, handler: Handler) {
     }
 }
 
-/// Steps the controller every control period, paced against the start time.
+/// Steps the controller every control period (of simulated time: the time scale shortens the
+/// wall-clock wait), paced against the start time.
 fn control_loop(shared: &Shared) {
     let period = shared.config.control_period;
     let dt = period.as_secs_f64();
+    let wall_period = shared.config.time_scale.wall(period);
     let start = Instant::now();
     let mut n: u32 = 0;
     while !shared.stopped() {
         shared.lock().tick(dt);
         n = n.wrapping_add(1);
-        if let Some(wait) = (start + period * n).checked_duration_since(Instant::now()) {
+        if let Some(wait) = (start + wall_period * n).checked_duration_since(Instant::now()) {
             std::thread::sleep(wait);
         }
     }
@@ -302,4 +318,36 @@ fn program_end(text: &str) -> Option<usize> {
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn time_scale_runs_controller_time_faster_than_the_wall() {
+        // Before the start: the control loop's clock starts inside it.
+        let start = Instant::now();
+        let sim = UrSim::start(SimConfig {
+            // Off sim_bridge's 127.0.0.11–20.
+            address: Ipv4Addr::new(127, 0, 0, 21),
+            time_scale: TimeScale::new(10.0).expect("positive"),
+            ..SimConfig::default()
+        })
+        .expect("bind");
+        // Polls the controller clock (no client needed), bounded.
+        while sim.shared.lock().time_s < 1.0 {
+            assert!(start.elapsed() < Duration::from_secs(10), "clock stalled");
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        // Controller time first: the wall time read after it bounds it from above.
+        let sim_s = sim.shared.lock().time_s;
+        let wall = start.elapsed().as_secs_f64();
+        // 1 s of controller time in a tenth of that; never ahead of 10 × wall (+ one cycle).
+        assert!(
+            wall < 1.0,
+            "1 s of controller time took {wall} s of wall time"
+        );
+        assert!(sim_s <= 10.0 * wall + 0.008 + 1e-9, "{sim_s} s in {wall} s");
+    }
 }

@@ -207,7 +207,7 @@ fn text(out: &Mutex<TcpStream>, message: &str) -> std::io::Result<()> {
     send(out, wire::TEXT_MESSAGE, &p)
 }
 
-/// Sends the output recipe every `1/freq` s while `flag` holds.
+/// Sends the output recipe every `1/freq` s of simulated time while `flag` holds.
 fn stream_outputs(
     shared: &Shared,
     out: &Mutex<TcpStream>,
@@ -215,7 +215,11 @@ fn stream_outputs(
     freq: f64,
     flag: &AtomicBool,
 ) {
-    let period = Duration::from_secs_f64(1.0 / freq);
+    // As many packages per control cycle at any time scale.
+    let period = shared
+        .config
+        .time_scale
+        .wall(Duration::from_secs_f64(1.0 / freq));
     let start = Instant::now();
     let mut n: u32 = 0;
     let mut payload = Vec::with_capacity(1 + vars.iter().map(|(_, t)| t.size()).sum::<usize>());
