@@ -11,12 +11,13 @@ use std::process::Command;
 pub const TARGETS: [&str; 2] = ["thumbv7m-none-eabi", "thumbv7em-none-eabihf"];
 
 /// The crates that say `#![no_std]`, and the features a firmware may turn on.
-pub const NO_STD: [(&str, &[&str]); 5] = [
+pub const NO_STD: [(&str, &[&str]); 6] = [
     ("hand-traits", &[]),
     ("baro-drivers", &["async"]),
     ("imu-icm20789", &["async"]),
     ("aot-locate", &[]),
     ("fuzzy-mamdani", &[]),
+    ("tactile-nets", &[]),
 ];
 
 /// Adds the rustup targets in [`TARGETS`] that are missing.
