@@ -92,6 +92,8 @@ pub struct Package {
     /// `[package.metadata.docs.rs] all-features = true`: docs.rs documents what our doc step
     /// documents.
     pub docs_rs_all_features: bool,
+    /// Its declared `rust-version`, if any.
+    pub rust_version: Option<String>,
 }
 
 /// One broken rule.
@@ -195,6 +197,7 @@ pub fn workspace_packages(root: &Path) -> Result<Vec<Package>> {
                 docs_rs_all_features: p["metadata"]["docs"]["rs"]["all-features"]
                     .as_bool()
                     .unwrap_or(false),
+                rust_version: p["rust_version"].as_str().map(str::to_owned),
             })
         })
         .collect()

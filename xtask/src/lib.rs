@@ -8,8 +8,10 @@
 //! a first `cargo xtask` compiles in seconds.
 //!
 //! - `test`: sets up `.venv` and Chromium, then fmt check, clippy `-D warnings`, the `no_std`
-//!   crates built for two thumb targets (rustup adds them), `cargo package` of every product
-//!   crate with verification, every test, docs, and
+//!   crates built for two thumb targets (rustup adds them), the fingertip firmware linked for
+//!   both and its pipeline run on the host, the MSRV check of every product crate on its
+//!   declared toolchain, `cargo package` of every product crate with verification and the
+//!   consumer test of every README against the packages, every test, docs, and
 //!   `fixtures --check` (once more with numpy's widest SIMD kernels off): the one command CI runs.
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones
 //!   (byte for byte, or by value where a third-party library's float code wrote the numbers).
@@ -25,6 +27,9 @@
 //!   metrics, figures and section 2 of `docs/learning.md`.
 //!
 //!   Each trains with `papers train MODEL`, then draws with `papers docs MODEL` ([`train`]).
+//! - `firmware [--write]`: the fingertip firmware (`firmware/fingertip`) linked for both thumb
+//!   targets and run on the host; `--write` regenerates `docs/embedded.md`'s figures.
+//! - `package`: `cargo package` of every product crate, then the consumer test.
 //! - `trade`: the speed / accuracy trade report (`papers trade`) into `docs/trade.md`.
 //! - `demo [--screenshot]`: runs every scene in `fixtures/scenes/` on the simulated default
 //!   and writes `target/demo/report.html` (`--screenshot`: also `docs/demo-report.png`).
@@ -34,10 +39,13 @@ pub mod architecture;
 pub mod bench;
 pub mod bench_doc;
 pub mod chromium;
+pub mod consumer;
 pub mod demo;
 pub mod embedded;
+pub mod firmware;
 pub mod fixtures;
 pub mod fuzzy_peers;
+pub mod msrv;
 pub mod package;
 pub mod run;
 pub mod test;

@@ -1,7 +1,9 @@
 //! `cargo xtask`: the handstack workspace's developer commands (see the `xtask` library docs).
 
 use std::process::ExitCode;
-use xtask::{bench, demo, fixtures, test, trade, train, workspace_root};
+use xtask::{
+    bench, consumer, demo, firmware, fixtures, package, test, trade, train, venv, workspace_root,
+};
 
 const USAGE: &str = "usage: cargo xtask <command>
 
@@ -23,6 +25,10 @@ commands:
   train contact-cnn [--docs-only]
                             run the contact CNN's Table I protocol, write weights, metrics, plots,
                             docs (--docs-only: redraw plots and docs from the committed metrics)
+  package                   cargo package every product crate (verified), then run every README's
+                            examples against the packages from a scratch crate (the consumer test)
+  firmware [--write]        link the fingertip firmware for both thumb targets, run it on the host;
+                            --write: regenerate docs/embedded.md (sizes, callgrind counts)
   trade                     measure every speed / accuracy knob, write docs/trade.md (+ docs/trade/)
   demo [--screenshot]       run every scene (fixtures/scenes/) into target/demo/report.html
                             (--screenshot: and its full-page picture, docs/demo-report.png)
@@ -45,6 +51,11 @@ fn main() -> ExitCode {
         Some("train") => train::run(&root, &args[1..]),
         Some("demo") => demo::run(&root, &args[1..]),
         Some("trade") if args.len() == 1 => trade::run(&root),
+        Some("firmware") if args.len() == 1 => firmware::check(&root),
+        Some("firmware") if args.len() == 2 && args[1] == "--write" => firmware::write(&root),
+        Some("package") if args.len() == 1 => package::run(&root)
+            .and_then(|()| venv::ensure(&root))
+            .and_then(|python| consumer::run(&root, &python)),
         Some("help" | "-h" | "--help") => {
             println!("{USAGE}");
             Ok(())

@@ -1,13 +1,16 @@
 //! `cargo xtask test`: everything CI checks, in the order that fails fastest.
 
 use crate::run::{cargo, step};
-use crate::{chromium, embedded, fixtures, package, venv};
+use crate::{chromium, consumer, embedded, firmware, fixtures, msrv, package, venv};
 use anyhow::Result;
 use std::path::Path;
 
 /// Sets up `.venv` and Chromium (the report render test), then runs fmt check, clippy `-D warnings`,
-/// the `no_std` builds for the thumb targets ([`embedded::build`]), `cargo package` of every
-/// product crate ([`package::run`]), every test with every feature,
+/// the `no_std` builds for the thumb targets ([`embedded::build`]), the fingertip firmware
+/// linked for both and run on the host ([`firmware::check`]), the MSRV check ([`msrv::check`]),
+/// `cargo package` of every
+/// product crate ([`package::run`]) and every README against the packages ([`consumer::run`]),
+/// every test with every feature,
 /// the docs with warnings denied, and `fixtures --check` (again with numpy's widest SIMD kernels off).
 pub fn run(root: &Path) -> Result<()> {
     let python = venv::ensure(root)?;
@@ -26,7 +29,10 @@ pub fn run(root: &Path) -> Result<()> {
         ]),
     )?;
     embedded::build(root)?;
+    firmware::check(root)?;
+    msrv::check(root)?;
     package::run(root)?;
+    consumer::run(root, &python)?;
     step(
         "test",
         cargo(root)

@@ -48,6 +48,7 @@ fn package(name: &str, unpublished: bool, deps: &[(&str, &'static str, bool)]) -
         name: name.into(),
         unpublished,
         docs_rs_all_features: !unpublished,
+        rust_version: Some("1.85".into()),
         dir: PathBuf::from("/nonexistent").join(name),
         deps: deps
             .iter()

@@ -1,0 +1,146 @@
+//! The consumer test: a scratch crate outside the workspace (`target/consumer/`) that depends
+//! only on the `.crate` files `cargo package` wrote, unpacked afresh, and runs every product
+//! crate's README as its own doctests — what a user who added the crates from crates.io would
+//! run. Third-party versions come from the workspace's `Cargo.lock`, copied in.
+
+use crate::package::product_crates;
+use crate::run::{cargo, step};
+use anyhow::{Context, Result, bail};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The features each README's examples use beyond the defaults (the chip models and simulators
+/// stand in for hardware), and the crates a README's example uses besides its own.
+const README_NEEDS: [(&str, &[&str]); 4] = [
+    ("baro-drivers", &["sim"]),
+    ("imu-icm20789", &["sim"]),
+    ("hand-control", &["sim"]),
+    ("ur-bridge", &["sim"]),
+];
+
+/// Crates the README examples use that are not ours: a driver user has embedded-hal.
+const EXTRA_DEPENDENCIES: [(&str, &str); 1] = [("embedded-hal", "1.0.0")];
+
+/// One packaged crate: its name, version and the directory its `.crate` was unpacked to.
+struct Packaged {
+    name: String,
+    version: String,
+    dir: PathBuf,
+}
+
+/// Builds the consumer crate over the packages in `target/package/` and runs its doctests
+/// (every README example) with `python` as the venv the arm's examples load ur_rtde from.
+pub fn run(root: &Path, python: &Path) -> Result<()> {
+    let consumer = root.join("target/consumer");
+    if consumer.exists() {
+        std::fs::remove_dir_all(&consumer).context("clear target/consumer")?;
+    }
+    let unpacked = consumer.join("crates");
+    std::fs::create_dir_all(consumer.join("src")).context("create target/consumer")?;
+    std::fs::create_dir_all(&unpacked).context("create target/consumer/crates")?;
+    let mut packages = Vec::new();
+    for name in product_crates(root)? {
+        packages.push(unpack(root, &name, &unpacked)?);
+    }
+    std::fs::write(consumer.join("Cargo.toml"), manifest(&packages)?)?;
+    std::fs::write(consumer.join("src/lib.rs"), readmes(&packages)?)?;
+    std::fs::copy(root.join("Cargo.lock"), consumer.join("Cargo.lock"))
+        .context("copy Cargo.lock")?;
+    let mut cmd = cargo(root);
+    cmd.args(["test", "--doc", "--manifest-path"])
+        .arg(consumer.join("Cargo.toml"))
+        // Shares compiled third-party crates with the workspace build.
+        .env("CARGO_TARGET_DIR", root.join("target"))
+        .env("HANDSTACK_PYTHON", python);
+    step(
+        "consumer test: every README against the packaged crates",
+        &mut cmd,
+    )
+}
+
+/// Unpacks `target/package/NAME-VERSION.crate` (the newest of NAME's) into `into`.
+fn unpack(root: &Path, name: &str, into: &Path) -> Result<Packaged> {
+    let dir = root.join("target/package");
+    let prefix = format!("{name}-");
+    let mut found = None;
+    for entry in std::fs::read_dir(&dir).context("target/package: run `cargo package` first")? {
+        let file = entry?.file_name().to_string_lossy().into_owned();
+        let version = file
+            .strip_prefix(&prefix)
+            .and_then(|v| v.strip_suffix(".crate"))
+            .filter(|v| v.starts_with(|c: char| c.is_ascii_digit()));
+        if let Some(v) = version {
+            found = Some(v.to_owned());
+        }
+    }
+    let Some(version) = found else {
+        bail!("no {name}-*.crate in {}", dir.display());
+    };
+    // `-m`: the files get the time of unpacking, not the package's fixed 2006 stamp, which
+    // would leave a previous consumer build's fingerprints looking fresh.
+    let status = Command::new("tar")
+        .arg("-xzmf")
+        .arg(dir.join(format!("{name}-{version}.crate")))
+        .arg("-C")
+        .arg(into)
+        .status()
+        .context("tar is needed to unpack the .crate files")?;
+    if !status.success() {
+        bail!("could not unpack {name}-{version}.crate ({status})");
+    }
+    Ok(Packaged {
+        dir: into.join(format!("{name}-{version}")),
+        name: name.to_owned(),
+        version,
+    })
+}
+
+/// The consumer's manifest: each package at its exact version, patched to the unpacked files.
+fn manifest(packages: &[Packaged]) -> Result<String> {
+    let mut deps = String::new();
+    let mut patch = String::new();
+    for p in packages {
+        let features = README_NEEDS
+            .iter()
+            .find(|(n, _)| *n == p.name)
+            .map_or(&[][..], |(_, f)| *f);
+        writeln!(
+            deps,
+            "{} = {{ version = \"={}\", features = {features:?} }}",
+            p.name, p.version
+        )?;
+        writeln!(patch, "{} = {{ path = {:?} }}", p.name, path_str(&p.dir)?)?;
+    }
+    for (name, version) in EXTRA_DEPENDENCIES {
+        writeln!(deps, "{name} = \"{version}\"")?;
+    }
+    Ok(format!(
+        "[package]\nname = \"handstack-consumer\"\nversion = \"0.0.0\"\nedition = \"2024\"\n\
+         publish = false\n\n[dependencies]\n{deps}\n[patch.crates-io]\n{patch}\n[workspace]\n"
+    ))
+}
+
+/// The consumer's library: one empty module per package, documented by its README, so that
+/// `cargo test --doc` runs every README example against the packages.
+fn readmes(packages: &[Packaged]) -> Result<String> {
+    let mut lib = String::from("//! Every handstack README, run as doctests.\n\n");
+    for p in packages {
+        let readme = p.dir.join("README.md");
+        if !readme.is_file() {
+            bail!("{}: the package holds no README.md", p.name);
+        }
+        writeln!(
+            lib,
+            "#[doc = include_str!({:?})]\npub mod {} {{}}\n",
+            path_str(&readme)?,
+            p.name.replace('-', "_")
+        )?;
+    }
+    Ok(lib)
+}
+
+fn path_str(path: &Path) -> Result<&str> {
+    path.to_str()
+        .with_context(|| format!("{}: not UTF-8", path.display()))
+}
