@@ -47,13 +47,27 @@ pub struct Size {
     pub ram: u64,
 }
 
-/// `cargo` in the firmware's directory (whose `.cargo/config.toml` adds cortex-m-rt's linker
-/// script), building into `target/firmware` beside the workspace's builds.
-fn cargo_firmware(root: &Path) -> Command {
+/// `cargo` in `root/dir`, a firmware workspace (whose `.cargo/config.toml` adds cortex-m-rt's
+/// linker script), building into `root/target_dir` beside the workspace's builds.
+fn cargo_in(root: &Path, dir: &str, target_dir: &str) -> Command {
     let mut cmd = cargo(root);
-    cmd.current_dir(root.join("firmware/fingertip"))
-        .env("CARGO_TARGET_DIR", root.join("target/firmware"));
+    cmd.current_dir(root.join(dir))
+        .env("CARGO_TARGET_DIR", root.join(target_dir));
     cmd
+}
+
+/// `cargo` for `firmware/fingertip`.
+fn cargo_firmware(root: &Path) -> Command {
+    cargo_in(root, "firmware/fingertip", "target/firmware")
+}
+
+/// `cargo` for `firmware/instruction-counts`, the QEMU counter.
+fn cargo_counts(root: &Path) -> Command {
+    cargo_in(
+        root,
+        "firmware/instruction-counts",
+        "target/firmware-counts",
+    )
 }
 
 /// Links the release firmware for `target`; the ELF's path.
@@ -140,6 +154,23 @@ pub fn check(root: &Path) -> Result<()> {
     step(
         "firmware: fmt",
         cargo_firmware(root).args(["fmt", "--", "--check"]),
+    )?;
+    // The QEMU counter (run by `--write` only) is kept building: its format and lints.
+    step(
+        "firmware/instruction-counts: fmt",
+        cargo_counts(root).args(["fmt", "--", "--check"]),
+    )?;
+    step(
+        "firmware/instruction-counts: clippy, thumbv7m-none-eabi",
+        cargo_counts(root)
+            .args([
+                "clippy",
+                "--release",
+                "--locked",
+                "--target",
+                "thumbv7m-none-eabi",
+            ])
+            .args(["--", "-D", "warnings"]),
     )?;
     for target in TARGETS {
         step(
@@ -237,40 +268,90 @@ fn spaced(n: u64) -> String {
     out
 }
 
-/// The stages whose inclusive instruction counts the table gives: callgrind's function name
-/// pattern, what it is, and which of the harness's call counts it runs per.
-const STAGES: [(&str, &str, &str); 5] = [
+/// The stages of the instruction-count table: callgrind's function name pattern, what the stage
+/// is, which of the harness's call counts it runs per, and its line in the QEMU program's output
+/// (`firmware/instruction-counts`).
+const STAGES: [(&str, &str, &str, &str); 5] = [
     (
         "Fingertip<DI>::estimate",
         "the whole compute half of a cycle",
         "estimate",
+        "",
     ),
     (
         "StaticForceDnn::estimate_gf",
         "force DNN (3 → 16 → 16 → 16 → 1)",
         "tared",
+        "force-dnn",
     ),
     (
         "GraspController as hand_traits::policy::GraspPolicy>::effort",
         "fuzzy grasp preset (81 rules)",
         "tared",
+        "fuzzy-grasp",
     ),
     (
         "AotLocator as hand_traits::contact::ContactLocator>::locate",
         "Arrival-of-Time, 3 × 3",
         "located",
+        "aot",
     ),
     (
         "StaticContactMlp::predict",
         "contact MLP (9 → 64 → 32 → 24) and its catalogue decode",
         "located",
+        "contact-mlp",
     ),
 ];
+
+/// The QEMU machines that count Cortex-M instructions, per thumb target.
+const QEMU_MACHINES: [(&str, &str); 2] = [
+    ("thumbv7m-none-eabi", "Cortex-M3 (lm3s6965evb, soft-float)"),
+    ("thumbv7em-none-eabihf", "Cortex-M4F (mps2-an386)"),
+];
+
+/// Runs `firmware/instruction-counts` under QEMU for `target`: its `stage NAME: X
+/// instructions per call` lines, by stage name.
+fn qemu_counts(root: &Path, target: &str) -> Result<Vec<(String, u64)>> {
+    let mut cmd = cargo_counts(root);
+    cmd.args([
+        "run",
+        "--quiet",
+        "--release",
+        "--locked",
+        "--target",
+        target,
+    ]);
+    println!("==> Cortex-M instruction counts under QEMU, {target}");
+    let out = cmd.output().context("run firmware/instruction-counts")?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    print!("{text}");
+    if !out.status.success() {
+        bail!(
+            "firmware/instruction-counts failed on {target} ({}): {}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    text.lines()
+        .filter_map(|l| l.strip_prefix("stage "))
+        .map(|l| {
+            let (name, rest) = l.split_once(": ").context("a stage line without `: `")?;
+            let n = rest
+                .split_whitespace()
+                .next()
+                .context("a stage line without a count")?
+                .parse()
+                .with_context(|| format!("{l:?}: not a count"))?;
+            Ok((name.to_owned(), n))
+        })
+        .collect()
+}
 
 /// Runs the harness under callgrind, collecting inside `estimate` only (the chip models and
 /// the physics stay out), and gives each stage's instructions per call as a table.
 fn instruction_counts(root: &Path, run: &str) -> Result<String> {
-    ensure_valgrind()?;
+    ensure_apt("valgrind", "valgrind", "the host instruction counts")?;
     let calls = |key: &str| -> Result<u64> {
         let line = run
             .lines()
@@ -298,41 +379,82 @@ fn instruction_counts(root: &Path, run: &str) -> Result<String> {
         .output()
         .context("callgrind_annotate")?;
     let text = String::from_utf8_lossy(&annotated.stdout);
-    let mut table = String::from(
-        "Instructions per call on the host (x86-64, release, callgrind; the MCU's counts differ, \
-         see above):\n\n| stage | calls | instructions per call |\n|---|---:|---:|\n",
+    ensure_apt(
+        "qemu-system-arm",
+        "qemu-system-arm",
+        "the Cortex-M instruction counts",
+    )?;
+    let mut cortex = Vec::new();
+    for (target, _) in QEMU_MACHINES {
+        ensure_targets()?;
+        cortex.push(qemu_counts(root, target)?);
+    }
+    let on = |counts: &[(String, u64)], key: &str| -> String {
+        counts
+            .iter()
+            .find(|(name, _)| name == key)
+            .map_or("—".into(), |(_, n)| spaced(*n))
+    };
+    let mut table = format!(
+        "Instructions per call: on the host (x86-64, release, callgrind, collected inside \
+         `estimate` over the host run), and on the Cortex-M cores under QEMU \
+         (`firmware/instruction-counts`, `-icount`, the firmware's release profile; one fixed \
+         input per stage). A 1000-instruction check loop measures {} / {} there (the call and \
+         loop around it). Instructions are not cycles: on the M3 every `f32` operation is a \
+         soft-float call.\n\n| stage | calls in the host run | x86-64 | {} | {} |\n\
+         |---|---:|---:|---:|---:|\n",
+        on(&cortex[0], "check-spin-1000"),
+        on(&cortex[1], "check-spin-1000"),
+        QEMU_MACHINES[0].1,
+        QEMU_MACHINES[1].1,
     );
-    for (pattern, what, per) in STAGES {
+    for (pattern, what, per, qemu) in STAGES {
         let n = calls(per)?;
         // The optimiser may inline a stage into `estimate` (never `estimate` itself).
-        let Some(line) = text.lines().find(|l| l.contains(pattern)) else {
-            writeln!(table, "| {what} | {n} | inlined into the cycle |")?;
-            continue;
+        let host = match text.lines().find(|l| l.contains(pattern)) {
+            None => "inlined into the cycle".to_owned(),
+            Some(line) => {
+                let ir: u64 = line
+                    .split_whitespace()
+                    .next()
+                    .context("an empty callgrind line")?
+                    .replace(',', "")
+                    .parse()
+                    .with_context(|| format!("no instruction count in {line:?}"))?;
+                spaced(ir / n.max(1))
+            }
         };
-        let ir: u64 = line
-            .split_whitespace()
-            .next()
-            .context("an empty callgrind line")?
-            .replace(',', "")
-            .parse()
-            .with_context(|| format!("no instruction count in {line:?}"))?;
-        writeln!(table, "| {what} | {n} | {} |", spaced(ir / n.max(1)))?;
+        writeln!(
+            table,
+            "| {what} | {n} | {host} | {} | {} |",
+            on(&cortex[0], qemu),
+            on(&cortex[1], qemu)
+        )?;
     }
+    writeln!(
+        table,
+        "| building the fuzzy preset (start-up, once) | 1 | — | {} | {} |",
+        on(&cortex[0], "fuzzy-construction"),
+        on(&cortex[1], "fuzzy-construction")
+    )?;
     Ok(table)
 }
 
-/// Installs valgrind with `apt-get` when it is missing (as root), or says what to install.
-fn ensure_valgrind() -> Result<()> {
-    if Command::new("valgrind").arg("--version").output().is_ok() {
+/// Installs Debian's `package` with `apt-get` when `binary` is missing (as root), or says what
+/// to install.
+fn ensure_apt(binary: &str, package: &str, why: &str) -> Result<()> {
+    if Command::new(binary).arg("--version").output().is_ok() {
         return Ok(());
     }
-    println!("xtask: installing valgrind (apt-get) for the firmware's instruction counts");
+    println!("xtask: installing {package} (apt-get) for {why}");
     step("apt-get update", Command::new("apt-get").arg("update"))
         .and_then(|()| {
             step(
-                "apt-get install valgrind",
-                Command::new("apt-get").args(["install", "-y", "valgrind"]),
+                &format!("apt-get install {package}"),
+                Command::new("apt-get").args(["install", "-y", package]),
             )
         })
-        .context("valgrind is needed: install it (Debian: apt-get install valgrind)")
+        .with_context(|| {
+            format!("{binary} is needed: install it (Debian: apt-get install {package})")
+        })
 }

@@ -13,6 +13,9 @@ mod trilateration;
 
 pub use arrival::{ArrivalDetector, ChannelDetector, DetectorConfig};
 pub use geometry::{AREAS, AreaGrid, Geometry, GeometryError, SENSORS};
+/// The `hand-traits` types of this crate's API (its locator is a [`ContactLocator`]), so that
+/// a user needs no other crate.
+pub use hand_traits::{Contact, ContactLocator};
 pub use label::{
     AverageArea, CELLS, COLS, Candidates, Cell, CellSet, DECODE_TOLERANCE, FIGURE7_SHAPES,
     LabelError, MAX_CANDIDATES, ROWS, Shape, decode, decode_among, figure7_placements,

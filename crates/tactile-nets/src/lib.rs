@@ -85,3 +85,8 @@ pub mod train;
 #[cfg(feature = "std")]
 pub use error::NetError;
 pub use error::RunError;
+/// The `hand-traits` traits and values the models implement and return, so that a user needs
+/// no other crate.
+pub use hand_traits::{
+    Contact, ContactLocator, ForceEstimate, ForceEstimator, Softness, SoftnessClassifier,
+};
