@@ -34,6 +34,11 @@ mod board {
     #[global_allocator]
     static HEAP: Heap = Heap::empty();
 
+    /// I2C clock to the TCA9548A and the MS5611s (both allow 400 kHz), kHz.
+    const I2C_KHZ: u32 = 400;
+    /// UART to the host: a 28-byte frame takes 0.6 ms, inside the 6 ms cycle.
+    const BAUD: u32 = 460_800;
+
     /// A monotonic µs clock from the DWT cycle counter (wraps every ~60 s at 72 MHz; the sum
     /// of wrapping differences does not, if it is read at least that often — every cycle).
     struct Micros {
@@ -128,13 +133,13 @@ mod board {
         let i2c = I2c::new(
             dp.I2C1,
             (gpiob.pb6, gpiob.pb7),
-            Mode::fast(400.kHz(), DutyCycle::Ratio2to1),
+            Mode::fast(I2C_KHZ.kHz(), DutyCycle::Ratio2to1),
             &mut rcc,
         );
         let tx_pin = gpioa.pa9.into_alternate_push_pull(&mut gpioa.crh);
         let mut tx = dp.USART1.tx(
             tx_pin,
-            serial::Config::default().baudrate(460_800.bps()),
+            serial::Config::default().baudrate(BAUD.bps()),
             &mut rcc,
         );
         let mut delay = dp.TIM2.delay_us(&mut rcc);
@@ -159,10 +164,10 @@ mod board {
         let i2c = I2c::new(
             dp.I2C1,
             (gpiob.pb6, gpiob.pb7),
-            Mode::fast(400.kHz(), stm32f4xx_hal::i2c::DutyCycle::Ratio2to1),
+            Mode::fast(I2C_KHZ.kHz(), stm32f4xx_hal::i2c::DutyCycle::Ratio2to1),
             &mut rcc,
         );
-        let Ok(mut tx) = dp.USART1.tx(gpioa.pa9, 460_800.bps(), &mut rcc) else {
+        let Ok(mut tx) = dp.USART1.tx(gpioa.pa9, BAUD.bps(), &mut rcc) else {
             halt();
         };
         let mut delay = dp.TIM2.delay_us(&mut rcc);
