@@ -2,8 +2,8 @@
 //! (Cortex-M3 without an FPU, Cortex-M4F), with and without their async drivers. rustup adds a
 //! missing target and says so.
 
-use crate::run::{cargo, step};
-use anyhow::{Context, Result, bail};
+use crate::run::{cargo, rustup_lines, step};
+use anyhow::Result;
 use std::path::Path;
 use std::process::Command;
 
@@ -22,19 +22,12 @@ pub const NO_STD: [(&str, &[&str]); 6] = [
 
 /// Adds the rustup targets in [`TARGETS`] that are missing.
 pub fn ensure_targets() -> Result<()> {
-    let out = Command::new("rustup")
-        .args(["target", "list", "--installed"])
-        .output()
-        .context("rustup is needed for the thumb targets of the no_std builds")?;
-    if !out.status.success() {
-        bail!(
-            "rustup target list failed: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    }
-    let installed = String::from_utf8_lossy(&out.stdout);
+    let installed = rustup_lines(
+        &["target", "list", "--installed"],
+        "the thumb targets of the no_std builds",
+    )?;
     for t in TARGETS {
-        if !installed.lines().any(|l| l.trim() == t) {
+        if !installed.iter().any(|l| l == t) {
             println!("xtask: installing the rustup target {t} (no_std builds)");
             step(
                 &format!("rustup target add {t}"),

@@ -8,7 +8,7 @@
 
 use crate::architecture::workspace_packages;
 use crate::package::product_crates;
-use crate::run::step;
+use crate::run::{rustup_lines, step};
 use anyhow::{Context, Result, bail};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -52,22 +52,15 @@ pub fn toolchain(rust_version: &str) -> Result<String> {
 
 /// Installs the rustup toolchain `name` (minimal profile) if it is missing.
 pub fn ensure_toolchain(name: &str) -> Result<()> {
-    let out = Command::new("rustup")
-        .args(["toolchain", "list", "--quiet"])
-        .output()
-        .context("rustup is needed for the MSRV check's toolchains")?;
-    if !out.status.success() {
-        bail!(
-            "rustup toolchain list failed: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    }
-    let installed = String::from_utf8_lossy(&out.stdout);
+    let installed = rustup_lines(
+        &["toolchain", "list", "--quiet"],
+        "the MSRV check's toolchains",
+    )?;
     let prefix = format!("{name}-");
-    if !installed.lines().any(|l| {
-        let l = l.trim();
-        l == name || l.starts_with(&prefix)
-    }) {
+    if !installed
+        .iter()
+        .any(|l| l == name || l.starts_with(&prefix))
+    {
         println!("xtask: installing the Rust {name} toolchain (MSRV check)");
         step(
             &format!("rustup toolchain install {name}"),

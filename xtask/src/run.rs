@@ -28,6 +28,25 @@ pub fn step(name: &str, cmd: &mut Command) -> Result<()> {
     Ok(())
 }
 
+/// The lines `rustup ARGS` prints (what is installed), trimmed; `why` says what needs rustup.
+pub fn rustup_lines(args: &[&str], why: &str) -> Result<Vec<String>> {
+    let out = Command::new("rustup")
+        .args(args)
+        .output()
+        .with_context(|| format!("rustup is needed for {why}"))?;
+    if !out.status.success() {
+        bail!(
+            "rustup {} failed: {}",
+            args.join(" "),
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    Ok(String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| l.trim().to_owned())
+        .collect())
+}
+
 /// A workspace binary that a workflow runs through `cargo run`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Binary {
