@@ -17,7 +17,9 @@ commands:
   bench [FILTER] [--write] [-- ARGS]
                             run the criterion benches (names containing FILTER), print a summary;
                             --write: also write docs/benchmarks.md (`bench cycles --write`)
-  train contact-mlp         train the contact-area MLP, write its weights, metrics and plot
+  train contact-mlp [--docs-only]
+                            train the contact-area MLP, write its weights, metrics, plot and the
+                            generated sections of docs/contact-location.md (--docs-only: those alone)
   train force-dnn           train the force / weight DNN, write its weights, metrics, curve, docs
   train softness [--docs-only]
                             train the softness classifier (LM, Adam, our variant), write weights,

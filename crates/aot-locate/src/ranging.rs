@@ -131,8 +131,10 @@ impl Ranging {
     ///
     /// Defined at the edges:
     /// - a sensor that never arrived (`None`) gives no range and drops out; with two ranges
-    ///   the search settles on the circles' crossing nearer the pad centre, with one on the
-    ///   point of its circle nearest the pad centre (the start of the search);
+    ///   the circles cross twice, mirror images across the line through the two sensors, and
+    ///   the point is the crossing farther from the silent sensor (it felt nothing, so the
+    ///   contact is far from it; the search starts on that side of the line); with one range,
+    ///   the point of its circle nearest the pad centre (the start of the search);
     /// - no sensor arrived: [`AotError::NoArrival`]; a NaN or infinite pressure:
     ///   [`AotError::NonFinitePressure`], as [`crate::eq3`];
     /// - zero and equal times are ordinary values (a time before `a` is a negative range,
@@ -174,7 +176,7 @@ impl Ranging {
         };
         let (mut p, iterations) = match linear {
             Some(p) => (p, ITERATIONS_FROM_LINEAR),
-            None => (fix.centre, ITERATIONS_FROM_CENTRE),
+            None => (start(fix.centre, sensors, &range), ITERATIONS_FROM_CENTRE),
         };
         for _ in 0..iterations {
             // Per sensor: the unit vector from it to p and the range residual; sums in the
@@ -214,7 +216,7 @@ impl Ranging {
             }
             p = [0, 1].map(|j| (p[j] - step[j]).clamp(-BOUND_MM, BOUND_MM));
         }
-        Ok(p)
+        Ok(away_from_silent(p, sensors, &range))
     }
 
     /// Scores for the nine areas: `−|p − centre_n|²`, mm², with `p` from
@@ -331,6 +333,63 @@ impl RangingFit {
     }
 }
 
+/// With exactly one silent sensor: (silent, arrived, arrived), in canonical order.
+fn one_silent(range: &[Option<f64>; SENSORS]) -> Option<(usize, usize, usize)> {
+    match range {
+        [None, Some(_), Some(_)] => Some((0, 1, 2)),
+        [Some(_), None, Some(_)] => Some((1, 0, 2)),
+        [Some(_), Some(_), None] => Some((2, 0, 1)),
+        _ => None,
+    }
+}
+
+/// Where the search starts without a linear fix: the pad centre, except with exactly one
+/// silent sensor, where it starts on the far side of the two arrived sensors' line from the
+/// silent one (their midpoint, moved half their distance along the normal), so the search
+/// finds the crossing on that side even when the centre lies on the line.
+fn start(
+    centre: [f64; 2],
+    sensors: &[[f64; 2]; SENSORS],
+    range: &[Option<f64>; SENSORS],
+) -> [f64; 2] {
+    let Some((s, a, b)) = one_silent(range) else {
+        return centre;
+    };
+    let mid = [0, 1].map(|j| (sensors[a][j] + sensors[b][j]) / 2.0);
+    let normal = [sensors[a][1] - sensors[b][1], sensors[b][0] - sensors[a][0]];
+    let away = (mid[0] - sensors[s][0]) * normal[0] + (mid[1] - sensors[s][1]) * normal[1];
+    let sign = if away < 0.0 { -0.5 } else { 0.5 };
+    [0, 1].map(|j| mid[j] + sign * normal[j])
+}
+
+/// With exactly one silent sensor, `p` or its mirror image across the line through the two
+/// arrived sensors, whichever is farther from the silent one (`p` on a tie): both match the
+/// two ranges equally, and a sensor that felt nothing is the far one. Otherwise `p`.
+fn away_from_silent(
+    p: [f64; 2],
+    sensors: &[[f64; 2]; SENSORS],
+    range: &[Option<f64>; SENSORS],
+) -> [f64; 2] {
+    let Some((s, a, b)) = one_silent(range) else {
+        return p;
+    };
+    let (o, d) = (
+        sensors[a],
+        [sensors[b][0] - sensors[a][0], sensors[b][1] - sensors[a][1]],
+    );
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    if len2 <= f64::MIN_POSITIVE {
+        return p;
+    }
+    let t = ((p[0] - o[0]) * d[0] + (p[1] - o[1]) * d[1]) / len2;
+    let mirror = [0, 1].map(|j| (2.0 * (o[j] + t * d[j]) - p[j]).clamp(-BOUND_MM, BOUND_MM));
+    let dist2 = |q: [f64; 2]| {
+        let (x, y) = (q[0] - sensors[s][0], q[1] - sensors[s][1]);
+        x * x + y * y
+    };
+    if dist2(mirror) > dist2(p) { mirror } else { p }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -385,6 +444,31 @@ mod tests {
         let blind = Ranging::new(2000.0, 2500.0, 0.0, 50.0).unwrap();
         let q = blind.position_mm(&hand_pad(), &e).unwrap();
         assert!((q[0] - 1.5).hypot(q[1] - 1.5) > 1.0, "{q:?}");
+    }
+
+    #[test]
+    fn with_one_silent_sensor_the_crossing_away_from_it_is_taken() {
+        // Sensors (3, 0), (0, −3), (−3, 0). A press at (1, 2): sensor 2 (bottom) stays silent;
+        // sensors 1 and 3 give ranges √5 and √17, whose circles also cross at (1, −2), the
+        // mirror image across y = 0 and the crossing nearer the pad centre's start. Silent
+        // sensor 2 is 5 mm from (1, 2) and 1.4 mm from (1, −2): the far one is the answer.
+        let m = Ranging::new(0.0, 1000.0, 0.0, 30.0).unwrap();
+        let mut e = at([1.0, 2.0], &m, [5000.0; 3]);
+        e.arrival_us[1] = None;
+        let p = m.position_mm(&hand_pad(), &e).unwrap();
+        assert!(
+            (p[0] - 1.0).abs() < 1e-2 && (p[1] - 2.0).abs() < 1e-2,
+            "{p:?}"
+        );
+        // The same press seen with its mirror's silence (sensor 2 silent at (1, −2) would be
+        // odd, but defined): a press at (1, −2) with sensor 2 silent stays the farther point.
+        let mut below = at([1.0, -2.0], &m, [5000.0; 3]);
+        below.arrival_us[1] = None;
+        let q = m.position_mm(&hand_pad(), &below).unwrap();
+        assert!(
+            (q[0] - 1.0).abs() < 1e-2 && (q[1] - 2.0).abs() < 1e-2,
+            "{q:?}"
+        );
     }
 
     #[test]

@@ -284,11 +284,32 @@ pub fn render<R: Schema>(preamble: &str, rows: impl IntoIterator<Item = R>) -> S
     }
 }
 
-/// Reads the dataset file at `path` as rows of `R` (see [`parse`]).
+/// Reads the dataset file at `path` as rows of `R` (see [`parse`]); a path ending in `.gz` is
+/// a [`gzip`]ped file, decompressed first.
 pub fn read<R: Schema>(path: &Path) -> Result<Vec<Row<R>>, DatasetError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| DatasetError::new(path, None, None, ErrorKind::Io(e)))?;
+    let io = |e| DatasetError::new(path, None, None, ErrorKind::Io(e));
+    let text = if path.extension().is_some_and(|x| x == "gz") {
+        let bytes = std::fs::read(path).map_err(io)?;
+        let mut text = String::new();
+        std::io::Read::read_to_string(&mut flate2::read::GzDecoder::new(&bytes[..]), &mut text)
+            .map_err(io)?;
+        text
+    } else {
+        std::fs::read_to_string(path).map_err(io)?
+    };
     parse(path, &text)
+}
+
+/// `text` gzip-compressed for a committed `.gz` dataset file: best compression, a header with
+/// no name and no time, so the bytes depend on the text alone (and the pure-Rust deflate).
+pub fn gzip(text: &str) -> Vec<u8> {
+    use std::io::Write;
+    let mut gz = flate2::GzBuilder::new().write(Vec::new(), flate2::Compression::best());
+    // Writing into a Vec cannot fail.
+    match gz.write_all(text.as_bytes()).and_then(|()| gz.finish()) {
+        Ok(bytes) => bytes,
+        Err(e) => panic!("gzip into memory failed: {e}"),
+    }
 }
 
 /// Parses dataset text as rows of `R`; `file` names it in errors. `#` lines are skipped
@@ -601,5 +622,22 @@ mod tests {
             e.to_string()
                 .starts_with("/nonexistent/taps.csv: cannot read")
         );
+    }
+
+    #[test]
+    fn a_gzipped_file_reads_as_its_text_and_a_corrupt_one_is_an_io_error() {
+        let dir = std::env::temp_dir().join(format!("records-gz-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("taps.csv.gz");
+        let bytes = gzip(TEXT);
+        assert_eq!(bytes, gzip(TEXT), "the same text, the same bytes");
+        std::fs::write(&path, &bytes).unwrap();
+        let from_gz = read::<Tap>(&path).unwrap();
+        assert_eq!(from_gz, parse::<Tap>(Path::new("taps.csv"), TEXT).unwrap());
+        std::fs::write(&path, &bytes[..bytes.len() / 2]).unwrap();
+        let e = read::<Tap>(&path).unwrap_err();
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert!(matches!(e.kind, ErrorKind::Io(_)), "{e}");
+        assert!(e.to_string().contains("taps.csv.gz: cannot read"), "{e}");
     }
 }

@@ -16,6 +16,7 @@ fn tap(row: u8, col: u8, force_kgf: f64) -> TapConfig {
         rows: 1,
         cols: 1,
         force_kgf,
+        offset_mm: [0.0, 0.0],
     }
 }
 
@@ -83,6 +84,31 @@ fn the_nearest_sensor_rises_first() {
         })
         .collect();
     assert!(delays[2] < delays[1] && delays[1] < delays[0], "{delays:?}");
+}
+
+#[test]
+fn a_shifted_press_is_the_press_at_its_position() {
+    // Cell 1.1 moved half a cell right and cell 1.2 moved half a cell left press the same
+    // spot (x = -6 mm, exact in f64): the same rises and the same arrival delays.
+    let law = LawParams::CALIBRATED;
+    let at = |col, dx| {
+        ContactPatch::from_kgf(CellSet::EMPTY.with(Cell::new(1, col).unwrap()), 7.0)
+            .shifted([dx, 0.0])
+    };
+    let (a, b) = (at(1, 1.5), at(2, -1.5));
+    assert_eq!(law.steady_rise_hpa(&a), law.steady_rise_hpa(&b));
+    for k in 0..3 {
+        assert_eq!(law.arrival_delay_ms(&a, k), law.arrival_delay_ms(&b, k));
+    }
+    // And the shift moves the reading: sensor 3 at (−4.5, 1.5) mm feels the press on 1.1
+    // (−7.5, 4.5) more once it moves right, towards it.
+    assert!(law.steady_rise_hpa(&a)[2] > law.steady_rise_hpa(&at(1, 0.0))[2]);
+    let mut far = tap(1, 1, 5.0);
+    far.offset_mm = [1.6, 0.0];
+    match Fingertip::new(&config(256, vec![far]), 1) {
+        Err(err) => assert!(err.to_string().contains("offset_mm"), "{err}"),
+        Ok(_) => panic!("a shift beyond half a cell was accepted"),
+    }
 }
 
 #[test]

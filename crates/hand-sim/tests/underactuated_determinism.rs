@@ -8,6 +8,7 @@ use hand_sim::underactuated::dataset::{self, Set};
 /// renders it as the committed files would be.
 fn subset_bytes(seed: u64) -> String {
     let grasps: Vec<_> = dataset::specs(seed)
+        .unwrap()
         .iter()
         .step_by(3)
         .map(|s| dataset::run(s).unwrap())

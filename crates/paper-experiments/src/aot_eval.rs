@@ -225,21 +225,51 @@ pub fn distances_mm(mask: u32) -> Option<[f32; 3]> {
 /// Runs every rule on the held-out taps of `data` (repeat 1), after fitting the ranging
 /// model on the training taps (repeat 0) only.
 pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> Report {
-    let mut rep = Report::default();
-    let events: Vec<(&Tap, ArrivalEvent)> = data
-        .iter()
-        .map(|(tap, series)| (tap, tap_event(tap, series, config)))
+    let events = events(data, config);
+    let (train, test): (Vec<_>, Vec<_>) = events
+        .into_iter()
+        .partition(|(t, _)| t.repeat == TRAIN_REPEAT);
+    score(&train, &test, geometry, config)
+}
+
+/// Runs every rule on every tap of `held_out` (the jittered set: strict labels, no border),
+/// after fitting the ranging model on the training taps (repeat 0) of `lattice` only.
+pub fn evaluate_held_out(
+    lattice: &Dataset,
+    held_out: &Dataset,
+    geometry: &Geometry,
+    config: DetectorConfig,
+) -> Report {
+    let train: Vec<_> = events(lattice, config)
+        .into_iter()
+        .filter(|(t, _)| t.repeat == TRAIN_REPEAT)
         .collect();
+    score(&train, &events(held_out, config), geometry, config)
+}
+
+/// Each tap with its arrival event.
+fn events(data: &Dataset, config: DetectorConfig) -> Vec<(&Tap, ArrivalEvent)> {
+    data.iter()
+        .map(|(tap, series)| (tap, tap_event(tap, series, config)))
+        .collect()
+}
+
+/// Fits the ranging model per OSR on `train` (with the detector's threshold), then scores
+/// every rule on `test`.
+fn score(
+    train: &[(&Tap, ArrivalEvent)],
+    test: &[(&Tap, ArrivalEvent)],
+    geometry: &Geometry,
+    config: DetectorConfig,
+) -> Report {
+    let mut rep = Report::default();
     let mut fits = BTreeMap::new();
-    for (tap, _) in &events {
+    for (tap, _) in train {
         if fits.contains_key(&tap.osr) {
             continue;
         }
         let mut fit = RangingFit::new(config.threshold_pa);
-        for (t, e) in events
-            .iter()
-            .filter(|(t, _)| t.osr == tap.osr && t.repeat == TRAIN_REPEAT)
-        {
+        for (t, e) in train.iter().filter(|(t, _)| t.osr == tap.osr) {
             if let Some(d) = distances_mm(t.mask) {
                 fit.push(e, d);
             }
@@ -249,14 +279,13 @@ pub fn evaluate(data: &Dataset, geometry: &Geometry, config: DetectorConfig) -> 
         }
     }
     rep.fits = fits.clone();
-    for (tap, event) in events.iter().filter(|(t, _)| t.repeat != TRAIN_REPEAT) {
-        let (tap, event) = (*tap, *event);
+    for &(tap, event) in test {
         let missing = event.arrival_us.iter().any(Option::is_none);
         rep.missing_sensor.entry(tap.osr).or_default().add(missing);
         if event.arrival_us.iter().all(Option::is_none) {
             *rep.no_arrival.entry(tap.osr).or_default() += 1;
         }
-        let centroid = centroid_mm(tap.mask);
+        let centroid = tap.centroid_mm();
         let holding = centroid.map(areas_holding).unwrap_or_default();
         if let (Some(c), 2) = (centroid, holding.len()) {
             let p = fits

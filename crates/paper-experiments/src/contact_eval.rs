@@ -50,6 +50,10 @@ pub struct Evaluation {
     pub cell_error_sum: u64,
     /// Sum over taps of the centroid distance, cells.
     pub centroid_error_sum: f64,
+    /// Taps whose region is the cell holding the tap's (possibly shifted) centroid: the strict
+    /// 24-area label of every tap. Meaningful off the lattice only, where no centroid lies on
+    /// a cell border (on the lattice, even-sized contacts are centred on one).
+    pub centroid_cell_hits: usize,
     /// Per cell (row-major, 24): held-out single-cell taps on it and how many were located on
     /// it (the per-area map of seed 000 Figure 11).
     pub per_cell: [(u32, u32); 24],
@@ -75,6 +79,11 @@ impl Evaluation {
     /// Mean centroid distance, cells.
     pub fn mean_centroid_error(&self) -> f64 {
         ratio(self.centroid_error_sum, self.taps)
+    }
+    /// Fraction of taps located on the cell under their centroid (see
+    /// [`Evaluation::centroid_cell_hits`]).
+    pub fn centroid_cell_accuracy(&self) -> f64 {
+        ratio(self.centroid_cell_hits as f64, self.taps)
     }
 
     /// The metrics as a row's values (counts included).
@@ -104,11 +113,24 @@ pub fn evaluate(model: &ContactMlp, records: &[&TapRecord]) -> Result<Evaluation
             let cell = &mut e.per_cell[truth.trailing_zeros() as usize % 24];
             *cell = (cell.0 + 1, cell.1 + u32::from(hit));
         }
+        let under = r.tap.centroid_mm().and_then(cell_at);
+        e.centroid_cell_hits += usize::from(under == Some(usize::from(p.region)));
         e.exact_hits += usize::from(p.contact == truth);
         e.cell_error_sum += u64::from((p.contact ^ truth).count_ones());
         e.centroid_error_sum += f64::from(centroid_distance(p.contact, truth).unwrap_or(0.0));
     }
     Ok(e)
+}
+
+/// The cell (0–23, row-major) of the simulated pad whose rectangle holds `p_mm` (a point on a
+/// border goes to the cell towards +x / −y); `None` off the pad.
+pub fn cell_at(p_mm: [f32; 2]) -> Option<usize> {
+    let pad = aot_locate::AreaGrid::SIMULATED_PAD;
+    let (rows, cols) = (f32::from(aot_locate::ROWS), f32::from(aot_locate::COLS));
+    let col = ((p_mm[0] + pad.width_mm / 2.0) / (pad.width_mm / cols)).floor();
+    let row = ((pad.height_mm / 2.0 - p_mm[1]) / (pad.height_mm / rows)).floor();
+    ((0.0..cols).contains(&col) && (0.0..rows).contains(&row))
+        .then(|| row as usize * cols as usize + col as usize)
 }
 
 /// Distance between two contacts' centroids, cells; `None` if either is empty.

@@ -158,11 +158,12 @@ pub fn softness(root: &Path, only: Option<usize>, dry_run: bool) -> Result<Vec<P
             let e = &run.evaluation;
             let stop = run.report.as_ref().map_or("", |r| r.stop.name());
             bar.suspend(|| println!(
-                "{:<4} seed {seed}: train {:>5.1} %  regular {:>5.1} %  irregular {:>5.1} %  mse {:.4}  {:>6.2} s  ({stop}, {} evaluations)",
+                "{:<4} seed {seed}: train {:>5.1} %  regular {:>5.1} %  irregular {:>5.1} % / 1000: {:>5.1} %  mse {:.4}  {:>6.2} s  ({stop}, {} evaluations)",
                 run.optimiser,
                 100.0 * e.train.accuracy(),
                 100.0 * e.regular.accuracy(),
                 100.0 * e.irregular.accuracy(),
+                100.0 * e.irregular_1000.accuracy(),
                 e.train_mse,
                 run.seconds,
                 run.report.as_ref().map_or(0, |r| r.curve.len()),
@@ -198,11 +199,12 @@ pub fn softness(root: &Path, only: Option<usize>, dry_run: bool) -> Result<Vec<P
         let run = softness_eval::train_ours(&grasps, chosen, seed)?;
         let e = &run.evaluation;
         println!(
-            "ours {} seed {seed}: train {:>5.1} %  regular {:>5.1} %  irregular {:>5.1} %  mse {:.4}  {:>6.2} s",
+            "ours {} seed {seed}: train {:>5.1} %  regular {:>5.1} %  irregular {:>5.1} % / 1000: {:>5.1} %  mse {:.4}  {:>6.2} s",
             chosen.name(),
             100.0 * e.train.accuracy(),
             100.0 * e.regular.accuracy(),
             100.0 * e.irregular.accuracy(),
+            100.0 * e.irregular_1000.accuracy(),
             e.train_mse,
             run.seconds,
         );

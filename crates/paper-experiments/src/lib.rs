@@ -9,6 +9,8 @@
 //! - [`force_eval`], [`contact_eval`], [`cnn_eval`], [`softness_eval`]: each model's recipes,
 //!   held-out protocols and committed models (seed 000 §2.2 and §4, seed 002 §IV-A, seed 001);
 //! - [`aot_eval`]: Arrival-of-Time on the fingertip taps (seed 000 §3);
+//! - [`contact_location`]: every contact locator on both held-out tap sets against seed 000's
+//!   targets, under issue 21's labels (the docs, their drift test and the scene share it);
 //! - [`jobs`]: the training jobs, and [`train`], the command over them (`papers train MODEL`,
 //!   which `cargo xtask train MODEL` runs);
 //! - [`trade`]: the speed / accuracy trade (`papers trade`, run by `cargo xtask trade`), with
@@ -30,6 +32,7 @@ pub mod aot_eval;
 pub mod axis;
 pub mod cnn_eval;
 pub mod contact_eval;
+pub mod contact_location;
 pub mod force_eval;
 pub mod grasp_rig;
 pub mod jobs;

@@ -222,7 +222,49 @@ fn committed_models_match_their_metrics_and_beat_the_papers_regular_figure() -> 
     let lm = selected(&runs, "lm").expect("an LM model");
     assert_eq!(lm.evaluation.regular.total(), regular.objects);
     assert!(100.0 * lm.evaluation.regular.accuracy() > regular.accuracy_pct);
+    // Issue 21: the 30 and the 1000 irregular objects, each scored under both classes.
+    let e = &lm.evaluation;
+    assert_eq!(
+        [
+            e.irregular.total(),
+            e.irregular_overall.total(),
+            e.irregular_1000.total(),
+            e.irregular_1000_overall.total()
+        ],
+        [30, 30, 1000, 1000]
+    );
     Ok(())
+}
+
+/// Issue 21's labels on the committed dataset: every household object's `label` is the class
+/// band of the median of its committed local moduli, and the Bayes ceiling of the hidden class
+/// computed from the committed grasps is the one `ceiling.csv` states (two paths, one figure).
+#[test]
+fn committed_labels_are_what_the_fingers_measure_and_the_ceiling_matches() {
+    let grasps = grasps();
+    let mut household = 0;
+    for g in grasps.iter().filter(|g| g.kind == "household") {
+        household += 1;
+        let measured = hand_sim::underactuated::dataset::sensor_class(g.local_moduli_pa)
+            .expect("committed moduli are finite and positive");
+        assert_eq!(g.label, Some(measured), "grasp {}", g.id);
+        assert!(g.overall.is_some(), "grasp {}", g.id);
+    }
+    assert_eq!(household, 18 + 30 + 1000);
+    let csv = std::fs::read_to_string(root().join(underactuated::DATASET_DIR).join("ceiling.csv"))
+        .expect("ceiling.csv");
+    for set in [
+        GraspSet::Train,
+        GraspSet::TestIrregular,
+        GraspSet::TestIrregular1000,
+    ] {
+        let c = softness_eval::bayes_ceiling(&grasps, set).expect("finite moduli");
+        let row = format!("{},{},{},", set.name(), c.total(), c.correct());
+        assert!(
+            csv.lines().any(|l| l.starts_with(&row)),
+            "{row} not in ceiling.csv:\n{csv}"
+        );
+    }
 }
 
 proptest! {

@@ -7,6 +7,7 @@ use paper_experiments::tap_run as run;
 use hand_sim::imu_pad::TapSpec;
 use hand_traits::{Contact, ContactLocator};
 use run::Window;
+use ur_bridge::sim::TimeScale;
 use ur_bridge::tap_to_move::TapToMoveConfig;
 
 /// Answers the scheduled regions in order: a stand-in for the CNN that measures no recognition.
@@ -49,10 +50,11 @@ impl ContactLocator for Scheduled {
 
 #[test]
 fn every_region_moves_the_arm_to_its_grid_pose() {
-    let taps = run::schedule(&run::ROUNDS[..1]);
+    let taps = run::schedule(run::PAD_SEED, 1);
     let mut locator = Scheduled::new(&taps).unwrap();
     let rows = run::run(
         21,
+        TimeScale::new(run::TIME_SCALE).unwrap(),
         taps,
         TapToMoveConfig::default(),
         &mut locator,
@@ -74,6 +76,11 @@ fn every_region_moves_the_arm_to_its_grid_pose() {
     }
     println!(
         "{}",
-        run::markdown(&rows, "stand-in (scheduled regions)", "trigger-centred")
+        run::markdown(
+            &rows,
+            "stand-in (scheduled regions)",
+            "trigger-centred",
+            TimeScale::new(run::TIME_SCALE).unwrap()
+        )
     );
 }

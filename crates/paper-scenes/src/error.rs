@@ -24,6 +24,16 @@ pub enum Error {
     Fixture(#[from] paper_fixtures::FixtureError),
 }
 
+/// A training or evaluation job's error is its dataset's or its model's.
+impl From<paper_experiments::jobs::JobError> for Error {
+    fn from(e: paper_experiments::jobs::JobError) -> Error {
+        match e {
+            paper_experiments::jobs::JobError::Data(e) => Error::Data(e),
+            paper_experiments::jobs::JobError::Net(e) => Error::Net(e),
+        }
+    }
+}
+
 impl From<SceneError> for Error {
     fn from(e: SceneError) -> Error {
         Error::Run(RunError::Scene(e))

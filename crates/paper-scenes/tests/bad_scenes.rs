@@ -168,3 +168,52 @@ fn an_unreadable_file_is_a_read_error() {
     assert!(matches!(e, SceneError::Read { .. }));
     assert!(e.to_string().contains("/nonexistent/scene.toml"), "{e}");
 }
+
+const TAP: &str = r#"title = "tap"
+[sim]
+seed = 10
+[sim.arm]
+time_scale = 10
+[sensors.imu_pad]
+pressure_mode = "LowNoise"
+[estimators.contact]
+locators = ["cnn"]
+[arm]
+model = "ur3"
+[experiment.tap]
+taps_per_region = 10
+"#;
+
+#[test]
+fn sim_arm_sets_the_simulated_controllers_time_scale() {
+    let s = Scene::parse("tap.toml", TAP).expect("valid");
+    assert_eq!(s.arm_sim.time_scale.factor(), 10.0);
+    assert_eq!(s.sim.seed, 10, "hand-sim still reads the rest of [sim]");
+    // Without [sim.arm] the simulated controller runs in real time.
+    let s =
+        Scene::parse("tap.toml", &TAP.replace("[sim.arm]\ntime_scale = 10\n", "")).expect("valid");
+    assert_eq!(s.arm_sim.time_scale.factor(), 1.0);
+}
+
+#[test]
+fn bad_sim_arm_and_tap_counts_name_the_key() {
+    let e = err(&TAP.replace("time_scale = 10", "time_scale = 0"));
+    names(&e, 5, &["`sim.arm.time_scale`", "finite and positive"]);
+    let e = err(&TAP.replace("time_scale = 10", "time_scale = 10\nspeed = 2"));
+    names(&e, 6, &["speed"]);
+    // A host is a real controller: nothing to simulate.
+    let e = err(&TAP.replace(
+        "model = \"ur3\"",
+        "model = \"ur3\"\nhost = \"192.168.1.10\"",
+    ));
+    names(
+        &e,
+        4,
+        &["`sim.arm` simulates an arm the scene reaches at a host"],
+    );
+    let e = err(&TAP.replace("taps_per_region = 10", "taps_per_region = 0"));
+    names(&e, 13, &["`experiment.tap.taps_per_region` is 0", "1…100"]);
+    // Unknown keys of [sim] itself are still refused by hand-sim's table.
+    let e = err(&TAP.replace("seed = 10", "seed = 10\nsede = 3"));
+    names(&e, 4, &["sede"]);
+}

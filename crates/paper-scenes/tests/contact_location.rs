@@ -1,7 +1,9 @@
 //! `fixtures/scenes/contact-location.toml` run as written: the MLP reproduces its committed
-//! metrics row at the scene's OSR, and eq. 3 / ranging reproduce the hits the AoT table of
-//! docs/contact-location.md states for that OSR (the table `cargo run -p paper-experiments --example
-//! aot_eval -- --write` writes and aot-locate's drift test checks).
+//! metrics row at the scene's OSR, eq. 3 / ranging reproduce the hits the AoT table of
+//! docs/contact-location.md states for that OSR (the table `cargo run -p paper-experiments
+//! --example aot_eval -- --write` writes and its drift test checks), and every estimator's
+//! jittered-set figure is the one the doc's jittered table states (`cargo xtask train
+//! contact-mlp --docs-only`; `contact_location_drift` checks it).
 
 mod common;
 
@@ -26,10 +28,31 @@ fn doc_row(osr: u16) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The doc's jittered-set row for `osr`: every `(hits/n)` as a percentage, in column order
+/// (eq. 3 rise, eq. 3 absolute, ranging, MLP chosen single-cell, MLP chosen every tap, …).
+fn jittered_row(osr: u16) -> Vec<f64> {
+    let doc = std::fs::read_to_string(root().join("docs/contact-location.md")).expect("doc");
+    let section = &doc[doc
+        .find("## Off the lattice: the jittered held-out set")
+        .expect("jittered section")..];
+    let line = section
+        .lines()
+        .find(|l| l.starts_with(&format!("| {osr} |")))
+        .expect("a row for the OSR");
+    line.split('(')
+        .skip(1)
+        .filter_map(|c| {
+            let (h, n) = c.split(')').next()?.split_once('/')?;
+            Some(100.0 * h.parse::<f64>().ok()? / n.parse::<f64>().ok()?)
+        })
+        .collect()
+}
+
 #[test]
 fn contact_scene_reproduces_the_committed_contact_figures() {
     let o = run_scene("contact-location");
-    let osr = 512;
+    // The scene file's OSR, chosen from the trade (its comment says why).
+    let osr = 256;
     let row = doc_row(osr);
     assert_eq!(
         (value(&o, "aot_eq3_hits"), value(&o, "aot_eq3_taps")),
@@ -39,11 +62,35 @@ fn contact_scene_reproduces_the_committed_contact_figures() {
         (value(&o, "aot_ranging_hits"), value(&o, "aot_ranging_taps")),
         row[2]
     );
-    // Ranging on taps centred inside one area: the issue's 90 % met (docs: 100 % at OSR 512).
-    let inside = o
-        .figure("aot_ranging_interior_accuracy_pct")
-        .expect("figure");
-    assert_eq!(inside.met, Some(true), "{inside:?}");
+    // Issue 21's labels: ranging meets 90 % on the lattice (a border tap in either area) and
+    // on the jittered set (strict), as the doc states; the strict and interior-only lattice
+    // figures carry no target.
+    for fig in [
+        "aot_ranging_accuracy_pct",
+        "aot_ranging_jittered_accuracy_pct",
+    ] {
+        let f = o.figure(fig).expect("figure");
+        assert_eq!(f.met, Some(true), "{f:?}");
+    }
+    for fig in [
+        "aot_ranging_strict_accuracy_pct",
+        "aot_ranging_interior_accuracy_pct",
+    ] {
+        assert_eq!(o.figure(fig).expect("figure").met, None);
+    }
+    let jittered = jittered_row(osr);
+    for (fig, column) in [
+        ("aot_eq3_jittered_accuracy_pct", 0),
+        ("aot_ranging_jittered_accuracy_pct", 2),
+        ("mlp_jittered_area_accuracy_pct", 3),
+        ("mlp_jittered_centroid_cell_pct", 4),
+    ] {
+        let (ours, doc) = (value(&o, fig), jittered[column]);
+        assert!(
+            (ours - doc).abs() < 1e-9,
+            "{fig}: {ours} vs the doc's {doc}"
+        );
+    }
     // The MLP: the committed model of this OSR on the held-out taps, as its metrics row says.
     let m = metrics("contact_mlp");
     let label = format!("osr{osr}/chosen");

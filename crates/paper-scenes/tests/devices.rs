@@ -28,7 +28,7 @@ fn a_scene_naming_a_started_ur_simulator_moves_it() {
     .expect("simulator");
     let text = format!(
         "title = \"real arm\"\n[sim]\nseed = 10\n[sensors.imu_pad]\n[estimators.contact]\nlocators = [\"cnn\"]\n\
-         [arm]\nmodel = \"ur3\"\nhost = \"{address}\"\n[experiment.tap]\nrounds = 1\n"
+         [arm]\nmodel = \"ur3\"\nhost = \"{address}\"\n[experiment.tap]\ntaps_per_region = 1\n"
     );
     let o = run_text(&text).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(common::value(&o, "tap_count"), 9.0);

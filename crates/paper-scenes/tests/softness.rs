@@ -1,6 +1,7 @@
 //! `fixtures/scenes/softness.toml` run as written: the selected LM model's accuracies and
-//! confusion counts are its committed metrics row (issue 8), and the paper's figures stand
-//! beside them from the seed 001 fixture.
+//! confusion counts are its committed metrics row (issues 8 and 21: the 24 regular, the 30
+//! irregular and the 1000 fresh irregular objects), the paper's figures stand beside them from
+//! the seed 001 fixture, and the hidden-class figures carry no target.
 
 mod common;
 
@@ -15,7 +16,11 @@ fn softness_scene_reproduces_the_committed_softness_metrics() {
     assert_eq!(value(&o, "softness_seed"), seed);
     let row = format!("lm/seed{seed}");
     let published = paper_fixtures::seed001::softness_accuracy().expect("fixture");
-    for set in ["regular", "irregular"] {
+    for (set, paper_row) in [
+        ("regular", "regular"),
+        ("irregular", "irregular"),
+        ("irregular_1000", "irregular"),
+    ] {
         let fig = o.figure(&format!("{set}_accuracy_pct")).expect("figure");
         let theirs = 100.0 * committed(&m, &row, &format!("{set}_accuracy"));
         assert!(
@@ -25,10 +30,23 @@ fn softness_scene_reproduces_the_committed_softness_metrics() {
         );
         let paper = published
             .iter()
-            .find(|r| r.test_set == set)
+            .find(|r| r.test_set == paper_row)
             .expect("paper row");
         assert_eq!(fig.paper, Some(paper.accuracy_pct));
         assert_eq!(fig.met, Some(fig.value >= paper.accuracy_pct));
+    }
+    for set in ["irregular", "irregular_1000"] {
+        let fig = o
+            .figure(&format!("{set}_overall_accuracy_pct"))
+            .expect("hidden-class figure");
+        let theirs = 100.0 * committed(&m, &row, &format!("{set}_overall_accuracy"));
+        assert!((fig.value - theirs).abs() < 1e-9, "{set}: {}", fig.value);
+        assert_eq!((fig.paper, fig.met), (None, None), "no target");
+        let ceiling = o
+            .figure(&format!("{set}_overall_bayes_ceiling_pct"))
+            .expect("Bayes ceiling");
+        assert!(ceiling.value > 80.0 && ceiling.value <= 100.0);
+        assert_eq!(ceiling.met, None);
     }
     // Confusion matrices: the committed counts, cell by cell (soft, moderate, hard).
     let names = ["soft", "moderate", "hard"];
@@ -40,11 +58,10 @@ fn softness_scene_reproduces_the_committed_softness_metrics() {
             counts,
         } = p
         {
-            let set = if title.contains("irregular") {
-                "irregular"
-            } else {
-                "regular"
-            };
+            let set = title
+                .strip_prefix("Softness, ")
+                .and_then(|t| t.split(' ').next())
+                .expect("a softness confusion title");
             assert_eq!(labels, &names);
             for (t, row_counts) in counts.iter().enumerate() {
                 for (q, c) in row_counts.iter().enumerate() {
@@ -55,5 +72,5 @@ fn softness_scene_reproduces_the_committed_softness_metrics() {
             seen += 1;
         }
     }
-    assert_eq!(seen, 2);
+    assert_eq!(seen, 3);
 }

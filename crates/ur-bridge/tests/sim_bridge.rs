@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use hand_traits::{LinearMotion, Pose};
 use ur_bridge::kinematics::{self, UrModel};
-use ur_bridge::sim::{SimConfig, UrSim};
+use ur_bridge::sim::{SimConfig, TimeScale, UrSim};
 use ur_bridge::status::robot_mode;
 use ur_bridge::{JointMotion, RegionToGrid, UrArm, UrConfig, UrError};
 
@@ -256,4 +256,71 @@ fn powers_up_over_the_dashboard() {
     let status = arm.status().unwrap();
     assert_eq!(status.robot_mode, robot_mode::RUNNING);
     assert!(status.is_program_running());
+}
+
+/// One moveL home → region 0 at UR's default 0.25 m/s, 1.2 m/s²: (controller time, wall time).
+/// The arm polls every 1 ms, so the client sees the end within a tenth of a cycle at either
+/// scale (the default 8 ms poll would add up to `scale` × 8 ms of controller time).
+fn timed_grid_move(octet: u8, scale: f64) -> (f64, f64) {
+    let grid = RegionToGrid::ur3_default().unwrap();
+    let (sim, mut arm) = start(
+        octet,
+        |c| c.time_scale = TimeScale::new(scale).unwrap(),
+        |c| c.poll_period = Duration::from_millis(1),
+    );
+    let target = *grid.pose(0).unwrap();
+    let t0 = arm.controller_time_s().unwrap();
+    let wall = Instant::now();
+    arm.move_linear(&target, &LinearMotion::default())
+        .unwrap_or_else(|e| panic!("moveL at scale {scale}: {e} {:?}", sim.log()));
+    let wall_s = wall.elapsed().as_secs_f64();
+    let controller_s = arm.controller_time_s().unwrap() - t0;
+    let d = arm.tool_pose().unwrap().distance_m(&target);
+    assert!(d < TCP_TOLERANCE_M, "scale {scale}: {d} m off");
+    let status = arm.status().unwrap();
+    assert_eq!(status.robot_mode, robot_mode::RUNNING, "scale {scale}");
+    assert!(status.is_program_running(), "scale {scale}: {status:?}");
+    // No safety event, no script error: the speed checks ran in controller time.
+    assert!(
+        sim.log()
+            .iter()
+            .all(|l| !l.contains("protective stop") && !l.contains("runtime error")),
+        "{:?}",
+        sim.log()
+    );
+    (controller_s, wall_s)
+}
+
+#[test]
+fn time_scale_shortens_the_wall_time_of_a_move_not_its_controller_time() {
+    const SCALE: f64 = 10.0;
+    let grid = RegionToGrid::ur3_default().unwrap();
+    // The trapezoid: 0.141 m at 0.25 m/s with 1.2 m/s² ramps.
+    let length = grid.home().distance_m(grid.pose(0).unwrap());
+    let profile_s = length / 0.25 + 0.25 / 1.2;
+    // Real time, then ten times faster: one after the other, so neither loads the other.
+    let (real_ctrl, real_wall) = timed_grid_move(19, 1.0);
+    let (fast_ctrl, fast_wall) = timed_grid_move(22, SCALE);
+    let ctx = format!(
+        "profile {profile_s:.3} s; real time: {real_ctrl:.3} s controller, {real_wall:.3} s wall; \
+         × {SCALE}: {fast_ctrl:.3} s controller, {fast_wall:.3} s wall"
+    );
+    // Controller time (RTDE `timestamp`, which ur_rtde reports as the controller's clock): the
+    // profile, plus at most 6 cycles (48 ms) of command handshake, the two receive packages
+    // `UrArm::wait` waits for and the staleness of the first read; the same at both scales
+    // within those cycles.
+    for ctrl in [real_ctrl, fast_ctrl] {
+        assert!(
+            ctrl > profile_s - 0.008 && ctrl < profile_s + 0.048,
+            "{ctx}"
+        );
+    }
+    assert!((fast_ctrl - real_ctrl).abs() < 0.048, "{ctx}");
+    // Wall time: real time runs the profile on the wall clock; × 10 takes a tenth of it, plus
+    // at most 50 ms of client-side latency (ur_rtde's handshake polls, the GIL, a loaded
+    // machine), well under the real-time move.
+    assert!(real_wall > profile_s - 0.008, "{ctx}");
+    assert!(fast_wall < fast_ctrl / SCALE + 0.05, "{ctx}");
+    assert!(fast_wall < real_wall / 5.0, "{ctx}");
+    println!("{ctx}");
 }

@@ -6,12 +6,15 @@
 //!   driver readings around contact onset (for arrival times) and the held pressures (for the
 //!   contact-area MLP). Two files: `taps.csv` (one row per tap) and `series.csv` (one row per
 //!   frame).
+//! - [`jittered_taps`]: a held-out set of the same contacts shifted off the lattice by seeded
+//!   offsets within ± half a cell (issue 21), in the same two schemas.
 //! - [`weights`]: seed 000 Table 1's experiment — 0 → 200 gf in 10 gf steps on the whole pad,
 //!   one step every 2 s, read at OSR 4096 — three seeded runs, one row per frame.
 //!
 //! Each file's row is one [`Schema`] record: [`TapRow`] (`taps.csv`), [`SeriesRow`]
 //! (`series.csv`) and [`WeightRow`] (`weights.csv`), which paper-experiments reads back.
 
+use super::contact::ContactPatch;
 use super::geometry::{Cell, CellSet};
 use super::model::{Fingertip, FingertipConfig, TapConfig};
 use crate::SimError;
@@ -55,8 +58,12 @@ pub struct TapRow {
     pub aot_region: u8,
     /// Contact force, kgf.
     pub force_kgf: u32,
-    /// Repeat index (0 or 1).
+    /// Repeat index (0 or 1; the draw, 0…2, in the jittered set).
     pub repeat: u32,
+    /// Shift of the contact off its cells along x (right), mm (0 on the lattice).
+    pub dx_mm: Fixed<f64, 3>,
+    /// Shift along y (up), mm.
+    pub dy_mm: Fixed<f64, 3>,
     /// Mean held pressure of sensor 1 over 250–350 ms into the hold, Pa.
     pub held1_pa: Fixed<f64, 1>,
     /// The same for sensor 2, Pa.
@@ -87,92 +94,216 @@ impl Schema for SeriesRow {}
 /// The `#` lines of `taps.csv`.
 pub const TAPS_PREAMBLE: &str = "# hand-sim fingertip taps (seed 000 Figure 7 shapes x positions x 5/7/9 kgf x repeats x OSR).\n\
      # mask: 24-bit cell set (bit i = cell i, row-major, cell 0 = area 1.1); average_area: eq. 4 label;\n\
-     # aot_region: 3 x 3 region (0-8, row-major) of the patch centroid; held*_pa: mean reading over\n\
-     # 250-350 ms into the 400 ms hold; onset at t_us = 0 in series.csv.\n";
+     # aot_region: 3 x 3 region (0-8, row-major) of the patch centroid; dx_mm, dy_mm: shift off the cells\n\
+     # (0 on this lattice); held*_pa: mean reading over 250-350 ms into the 400 ms hold; onset at t_us = 0\n\
+     # in series.csv.\n";
 
 /// The `#` lines of `series.csv`.
 pub const SERIES_PREAMBLE: &str = "# hand-sim fingertip tap series: every frame from 30 ms before to 90 ms after contact onset,\n\
      # pressures in Pa exactly as the MS5611 driver decoded them; t_us relative to onset.\n";
 
-/// The tap dataset: (`taps.csv`, `series.csv`).
+/// The tap dataset on the cell lattice: (`taps.csv`, `series.csv`). Every contact is
+/// centred on its cells, so some patch centroids lie exactly on an area border.
 pub fn taps(seed: u64) -> Result<(String, String), SimError> {
-    let mut taps = Vec::new();
-    let mut series = Vec::new();
-    let mut id = 0u32;
+    let mut presses = Vec::new();
     for osr in TAP_OSRS {
         for shape in FIGURE7_SHAPES {
             for cells in shape.placements() {
                 for force_kgf in TAP_FORCES_KGF {
                     for repeat in 0..TAP_REPEATS {
-                        let corner = cells
-                            .iter()
-                            .next()
-                            .ok_or_else(|| SimError::config("shape", "empty"))?;
-                        let tap = TapConfig {
-                            at_s: ONSET_NS as f64 * 1e-9,
-                            hold_s: HOLD_NS as f64 * 1e-9,
-                            row: corner.row(),
-                            col: corner.col(),
-                            rows: shape.rows,
-                            cols: shape.cols,
-                            force_kgf: f64::from(force_kgf),
-                        };
-                        let config = FingertipConfig {
+                        presses.push(Press {
                             osr,
-                            taps: vec![tap],
-                            ..FingertipConfig::default()
-                        };
-                        let tap_seed = crate::seed::derive(seed, &format!("fingertip/tap/{id}"));
-                        let mut tip = Fingertip::new(&config, tap_seed)?;
-                        tip.step_to(ONSET_NS + HOLD_NS)?;
-                        let mut held = [0.0f64; 3];
-                        let mut n = 0.0;
-                        for f in tip.frames() {
-                            let t_ns = f.t_us * 1000;
-                            if t_ns + WINDOW_NS.0 >= ONSET_NS && t_ns <= ONSET_NS + WINDOW_NS.1 {
-                                let [a, b, c] = f.pressure_pa;
-                                series.push(SeriesRow {
-                                    tap: id,
-                                    t_us: f.t_us as i64 - (ONSET_NS / 1000) as i64,
-                                    p1_pa: Shortest(a),
-                                    p2_pa: Shortest(b),
-                                    p3_pa: Shortest(c),
-                                });
-                            }
-                            if (ONSET_NS + HELD_FROM_NS..=ONSET_NS + HOLD_NS - 50_000_000)
-                                .contains(&t_ns)
-                            {
-                                for (h, p) in held.iter_mut().zip(f.pressure_pa) {
-                                    *h += f64::from(p);
-                                }
-                                n += 1.0;
-                            }
-                        }
-                        let region = cells
-                            .aot_area()
-                            .ok_or_else(|| SimError::config("shape", "empty"))?;
-                        taps.push(TapRow {
-                            tap: id,
-                            osr,
-                            shape: shape.name.to_owned(),
-                            size: small(cells.len() as usize, "shape size")?,
-                            mask: cells.bits(),
-                            average_area: Fixed(cells.average_area().value()),
-                            aot_region: small(region, "aot region")?,
+                            shape,
+                            cells,
                             force_kgf,
                             repeat,
-                            held1_pa: Fixed(held[0] / n),
-                            held2_pa: Fixed(held[1] / n),
-                            held3_pa: Fixed(held[2] / n),
+                            offset_um: [0, 0],
                         });
-                        id += 1;
                     }
                 }
             }
         }
     }
+    render_taps(seed, "fingertip/tap", TAPS_PREAMBLE, &presses)
+}
+
+/// Draws of each contact and force in the jittered set.
+pub const JITTER_DRAWS: u32 = 3;
+
+/// The held-out tap set off the lattice: (`jittered_taps.csv`, `jittered_series.csv`).
+///
+/// Every Figure 7 contact at every position and 5 / 7 / 9 kgf, [`JITTER_DRAWS`] times, each
+/// shifted by a seeded offset drawn uniformly in whole micrometres within ± half a cell
+/// (± 1499 µm) along each axis — the same offsets at every OSR, so the OSRs are compared on
+/// the same contacts. A draw that would put the patch centroid on a cell or area border (or
+/// back on a lattice point) is drawn again, so every tap has exactly one 3 × 3 area and one
+/// 4 × 6 cell under its centroid: the strict labels apply without ties. 612 taps per OSR.
+pub fn jittered_taps(seed: u64) -> Result<(String, String), SimError> {
+    use rand::Rng;
+    let mut offsets = Vec::new();
+    for shape in FIGURE7_SHAPES {
+        for (position, cells) in shape.placements().enumerate() {
+            for force_kgf in TAP_FORCES_KGF {
+                for draw in 0..JITTER_DRAWS {
+                    let name = format!(
+                        "fingertip/jitter/{}/{position}/{force_kgf}/{draw}",
+                        shape.name
+                    );
+                    let mut rng = crate::seed::stream(seed, &name);
+                    let centre = centroid_um(cells);
+                    let offset = loop {
+                        let d = [
+                            rng.random_range(-1499..=1499),
+                            rng.random_range(-1499..=1499),
+                        ];
+                        if !on_a_border([centre[0] + d[0], centre[1] + d[1]]) {
+                            break d;
+                        }
+                    };
+                    offsets.push((shape, cells, force_kgf, draw, offset));
+                }
+            }
+        }
+    }
+    let presses: Vec<Press> = TAP_OSRS
+        .into_iter()
+        .flat_map(|osr| {
+            offsets
+                .iter()
+                .map(move |&(shape, cells, force_kgf, repeat, offset_um)| Press {
+                    osr,
+                    shape,
+                    cells,
+                    force_kgf,
+                    repeat,
+                    offset_um,
+                })
+        })
+        .collect();
+    render_taps(seed, "fingertip/jittered", JITTERED_PREAMBLE, &presses)
+}
+
+/// The `#` lines of `jittered_taps.csv`.
+pub const JITTERED_PREAMBLE: &str = "# hand-sim fingertip taps off the cell lattice (seed 000 Figure 7 shapes x positions x 5/7/9 kgf\n\
+     # x 3 seeded draws x OSR), each contact shifted by (dx_mm, dy_mm) within +-half a cell, never onto a\n\
+     # border: repeat = draw. mask: the cells under the unshifted contact; aot_region: 3 x 3 region of the\n\
+     # shifted centroid; average_area: eq. 4 label of the unshifted cells; held*_pa as in taps.csv.\n";
+
+/// A patch centroid (the cells' mean centre plus the shift) in whole micrometres.
+fn centroid_um(cells: CellSet) -> [i64; 2] {
+    super::geometry::centroid_mm(cells).map(|v| (v * 1000.0).round() as i64)
+}
+
+/// Whether a centroid at `p_um` lies on a line of the cell lattice (every multiple of half
+/// the pitch: cell borders and centres) or on a 3 × 3 area border.
+fn on_a_border([x, y]: [i64; 2]) -> bool {
+    let half_pitch = (super::geometry::PITCH_MM * 500.0).round() as i64;
+    let (w, h) = (
+        (super::geometry::WIDTH_MM * 1000.0).round() as i64,
+        (super::geometry::HEIGHT_MM * 1000.0).round() as i64,
+    );
+    x % half_pitch == 0
+        || y % half_pitch == 0
+        || (x + w / 2) % (w / 3) == 0
+        || (h / 2 - y) % (h / 3) == 0
+}
+
+/// One press of a tap set.
+struct Press {
+    osr: u16,
+    shape: Shape,
+    cells: CellSet,
+    force_kgf: u32,
+    repeat: u32,
+    offset_um: [i64; 2],
+}
+
+/// Simulates every press (tap `id` = its index, seeded by stream `stream/id`) into
+/// (taps file, series file).
+fn render_taps(
+    seed: u64,
+    stream: &str,
+    preamble: &str,
+    presses: &[Press],
+) -> Result<(String, String), SimError> {
+    let mut taps = Vec::new();
+    let mut series = Vec::new();
+    for (id, press) in presses.iter().enumerate() {
+        let id = u32::try_from(id).map_err(|_| SimError::config("taps", "too many"))?;
+        let corner = press
+            .cells
+            .iter()
+            .next()
+            .ok_or_else(|| SimError::config("shape", "empty"))?;
+        // Whole micrometres as f64 mm: the value the CSV's three decimals read back as.
+        let offset_mm = press.offset_um.map(|o| o as f64 / 1000.0);
+        let tap = TapConfig {
+            at_s: ONSET_NS as f64 * 1e-9,
+            hold_s: HOLD_NS as f64 * 1e-9,
+            row: corner.row(),
+            col: corner.col(),
+            rows: press.shape.rows,
+            cols: press.shape.cols,
+            force_kgf: f64::from(press.force_kgf),
+            offset_mm,
+        };
+        let config = FingertipConfig {
+            osr: press.osr,
+            taps: vec![tap],
+            ..FingertipConfig::default()
+        };
+        let tap_seed = crate::seed::derive(seed, &format!("{stream}/{id}"));
+        let mut tip = Fingertip::new(&config, tap_seed)?;
+        tip.step_to(ONSET_NS + HOLD_NS)?;
+        let mut held = [0.0f64; 3];
+        let mut n = 0.0;
+        for f in tip.frames() {
+            let t_ns = f.t_us * 1000;
+            if t_ns + WINDOW_NS.0 >= ONSET_NS && t_ns <= ONSET_NS + WINDOW_NS.1 {
+                let [a, b, c] = f.pressure_pa;
+                series.push(SeriesRow {
+                    tap: id,
+                    t_us: f.t_us as i64 - (ONSET_NS / 1000) as i64,
+                    p1_pa: Shortest(a),
+                    p2_pa: Shortest(b),
+                    p3_pa: Shortest(c),
+                });
+            }
+            if (ONSET_NS + HELD_FROM_NS..=ONSET_NS + HOLD_NS - 50_000_000).contains(&t_ns) {
+                for (h, p) in held.iter_mut().zip(f.pressure_pa) {
+                    *h += f64::from(p);
+                }
+                n += 1.0;
+            }
+        }
+        let region = if press.offset_um == [0, 0] {
+            press.cells.aot_area()
+        } else {
+            let [x, y] = ContactPatch::from_kgf(press.cells, 0.0)
+                .shifted(offset_mm)
+                .centroid_mm();
+            Some(super::geometry::PAD.area_at([x as f32, y as f32]))
+        }
+        .ok_or_else(|| SimError::config("shape", "empty"))?;
+        taps.push(TapRow {
+            tap: id,
+            osr: press.osr,
+            shape: press.shape.name.to_owned(),
+            size: small(press.cells.len() as usize, "shape size")?,
+            mask: press.cells.bits(),
+            average_area: Fixed(press.cells.average_area().value()),
+            aot_region: small(region, "aot region")?,
+            force_kgf: press.force_kgf,
+            repeat: press.repeat,
+            dx_mm: Fixed(offset_mm[0]),
+            dy_mm: Fixed(offset_mm[1]),
+            held1_pa: Fixed(held[0] / n),
+            held2_pa: Fixed(held[1] / n),
+            held3_pa: Fixed(held[2] / n),
+        });
+    }
     Ok((
-        records::render(TAPS_PREAMBLE, taps),
+        records::render(preamble, taps),
         records::render(SERIES_PREAMBLE, series),
     ))
 }

@@ -20,10 +20,11 @@
 //!
 //! Timing (not given by the paper, an assumption sized so Arrival-of-Time is measurable at the
 //! MS5611's conversion rates): sensor `k` starts rising `τ0 + d_k / v` after contact, where `d_k`
-//! is its distance to the patch centroid, and approaches its steady rise with time constant `T`.
+//! is its distance to the patch centroid (cell centres and centroid both moved by the patch's
+//! `offset_mm`), and approaches its steady rise with time constant `T`.
 
 use super::contact::ContactPatch;
-use super::geometry::{Cell, SENSORS, centroid_mm};
+use super::geometry::{Cell, SENSORS};
 
 /// Every parameter of the law.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,7 +75,8 @@ impl LawParams {
                 .cells
                 .iter()
                 .map(|c| {
-                    let ([x, y], [sx, sy]) = (Cell::from(c).centre_mm(), self.sensors_mm[k]);
+                    let ([cx, cy], [sx, sy]) = (Cell::from(c).centre_mm(), self.sensors_mm[k]);
+                    let (x, y) = (cx + patch.offset_mm[0], cy + patch.offset_mm[1]);
                     let e = (x - sx).powi(2) / (2.0 * self.sigma_x_mm.powi(2))
                         + (y - sy).powi(2) / (2.0 * self.sigma_y_mm.powi(2));
                     per_cell * (-e).exp()
@@ -88,7 +90,7 @@ impl LawParams {
 
     /// When sensor `k` starts to rise after a contact at `patch` begins, ms.
     pub fn arrival_delay_ms(&self, patch: &ContactPatch, k: usize) -> f64 {
-        let centroid = centroid_mm(patch.cells);
+        let centroid = patch.centroid_mm();
         self.delay_base_ms + dist2(centroid, self.sensors_mm[k]).sqrt() / self.front_speed_mm_per_ms
     }
 }

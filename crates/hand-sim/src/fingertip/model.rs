@@ -58,6 +58,10 @@ pub struct TapConfig {
     pub cols: u8,
     /// Total force, kgf (Table 2 uses 5, 7, 9).
     pub force_kgf: f64,
+    /// Shift of the whole press off its cells (x right, y up), mm: at most half a cell
+    /// (1.5 mm) each way; default none.
+    #[serde(default)]
+    pub offset_mm: [f64; 2],
 }
 
 fn default_osr() -> u16 {
@@ -305,12 +309,18 @@ fn tap_timeline(taps: &[TapConfig]) -> Result<Vec<(u64, ContactPatch)>, SimError
                 "at_s, hold_s and force_kgf finite, ≥ 0",
             ));
         }
+        if !super::contact::offset_in_range(tap.offset_mm) {
+            return Err(SimError::config(
+                "taps.offset_mm",
+                "at most half a cell (1.5 mm) each way",
+            ));
+        }
         let start = (tap.at_s * 1e9) as u64;
         let end = start + (tap.hold_s * 1e9) as u64;
         spans.push((
             start,
             end,
-            ContactPatch::from_kgf(tap.cells()?, tap.force_kgf),
+            ContactPatch::from_kgf(tap.cells()?, tap.force_kgf).shifted(tap.offset_mm),
         ));
     }
     spans.sort_by_key(|s| s.0);

@@ -1,7 +1,7 @@
 //! The fingertip's true pressures over time: baseline, drift, re-zero, and the delayed
 //! first-order response to a timeline of contacts.
 
-use super::contact::ContactPatch;
+use super::contact::{ContactPatch, offset_in_range};
 use super::geometry::SENSORS;
 use super::law::LawParams;
 use crate::SimError;
@@ -76,8 +76,8 @@ impl FingertipPhysics {
 
     /// From `t_ns` on, the pad is pressed by `patch` (or released, with [`ContactPatch::NONE`]).
     ///
-    /// Times must not go backwards. A force that is negative, NaN or infinite is rejected;
-    /// forces beyond the law's clamp saturate.
+    /// Times must not go backwards. A force that is negative or NaN is rejected, as is a
+    /// shift beyond half a cell or NaN; forces beyond the law's clamp saturate.
     pub fn set_contact(&mut self, t_ns: u64, patch: ContactPatch) -> Result<(), SimError> {
         if t_ns < self.last_change_ns {
             return Err(SimError::config(
@@ -87,6 +87,12 @@ impl FingertipPhysics {
         }
         if patch.force_n.is_nan() || patch.force_n < 0.0 {
             return Err(SimError::config("force", "a force is zero or positive"));
+        }
+        if !offset_in_range(patch.offset_mm) {
+            return Err(SimError::config(
+                "offset_mm",
+                "a patch shifts at most half a cell (1.5 mm) each way",
+            ));
         }
         let before = self.law.steady_rise_hpa(&self.current);
         let after = self.law.steady_rise_hpa(&patch);

@@ -80,7 +80,11 @@ pub fn patch(obj: &ObjectParams, force_n: f64) -> ContactPatch {
             .filter(|c| dist(c) <= nearest + 1e-9)
             .fold(CellSet::EMPTY, CellSet::with);
     }
-    ContactPatch { cells, force_n }
+    ContactPatch {
+        cells,
+        force_n,
+        offset_mm: [0.0, 0.0],
+    }
 }
 
 /// How far the object can slide along the pad before it leaves it, m: the pad height.

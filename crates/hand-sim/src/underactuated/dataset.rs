@@ -1,13 +1,21 @@
 //! The seeded softness grasps issue 8 trains and tests on, following seed 001's protocol
 //! (§3.1, §3.3, §4): training = the 27 model objects × [`REPEATS`] poses, 18 household objects
 //! and 6 empty grasps; tests = 24 regular-shape objects (new instances of the model shapes, new
-//! poses) and 30 irregular household objects.
+//! poses) and 30 irregular household objects; and, beyond the paper, a fresh draw of
+//! [`LARGE_IRREGULAR_TESTS`] household test objects from the same generator (issue 21: at 30
+//! objects one object is worth 3.3 points).
 //!
 //! Household objects have one overall modulus (their label's class) but each finger meets a
 //! different local stiffness (log-normal spread, and with probability [`FEATURE_PROBABILITY`]
 //! a feature — a cap, a rib, a hollow — of the adjacent class) and a different local width:
 //! the paper's explanation of its irregular-set errors, "lack of similarity softness between
 //! certain sides" (§4).
+//!
+//! A household object is labelled by what its fingers measure ([`sensor_class`]: the class
+//! band holding the median of its four local moduli), as the paper labels its test objects
+//! "related to the softness of objects measured by sensors" (§4); its hidden overall class
+//! stays beside it ([`GraspSpec::overall`]). Model and regular objects meet one material on
+//! every finger, and carry that material's class as both.
 //!
 //! The files' rows are [`GraspRow`] (`grasps.csv`) and [`SampleRow`] (`train.csv`,
 //! `test_regular.csv`, `test_irregular.csv`), [`Schema`] records paper-experiments reads back.
@@ -33,6 +41,8 @@ pub const EMPTY_GRASPS: usize = 6;
 pub const REGULAR_TESTS: usize = 24;
 /// Irregular-shape test objects (seed 001 §4: 30).
 pub const IRREGULAR_TESTS: usize = 30;
+/// Household test objects of the large fresh draw (issue 21; not in the paper).
+pub const LARGE_IRREGULAR_TESTS: usize = 1000;
 /// Sampling rate of the series, Hz.
 pub const SAMPLE_HZ: f64 = 10.0;
 /// Chance that a finger of a household object meets a feature of the adjacent class.
@@ -51,11 +61,19 @@ pub enum Set {
     TestRegular,
     /// Irregular household objects.
     TestIrregular,
+    /// The fresh draw of [`LARGE_IRREGULAR_TESTS`] household objects (same generator and law
+    /// as [`Set::TestIrregular`], its own seeded stream).
+    TestIrregular1000,
 }
 
 impl Set {
     /// Every set, in file order.
-    pub const ALL: [Set; 3] = [Set::Train, Set::TestRegular, Set::TestIrregular];
+    pub const ALL: [Set; 4] = [
+        Set::Train,
+        Set::TestRegular,
+        Set::TestIrregular,
+        Set::TestIrregular1000,
+    ];
 
     /// The name used in the CSV files (also the series file's stem).
     pub fn name(self) -> &'static str {
@@ -63,7 +81,20 @@ impl Set {
             Set::Train => "train",
             Set::TestRegular => "test_regular",
             Set::TestIrregular => "test_irregular",
+            Set::TestIrregular1000 => "test_irregular_1000",
         }
+    }
+
+    /// Whether the set's series file is gzip-compressed (`<name>.csv.gz`, the same CSV inside):
+    /// the large draw's 141 000 rows are ≈ 8 MB as text, ≈ 2 MB compressed.
+    pub fn compressed(self) -> bool {
+        self == Set::TestIrregular1000
+    }
+
+    /// The series file's name: `<name>.csv`, or `<name>.csv.gz` when [`compressed`](Self::compressed).
+    pub fn series_file(self) -> String {
+        let gz = if self.compressed() { ".gz" } else { "" };
+        format!("{}.csv{gz}", self.name())
     }
 }
 
@@ -78,8 +109,12 @@ pub struct GraspSpec {
     pub object_id: String,
     /// `model`, `regular`, `household` or `empty`.
     pub kind: &'static str,
-    /// The class label: the object's overall softness; `None` for an empty grasp.
+    /// The class label: what the fingers measure ([`sensor_class`] of the local moduli) for a
+    /// household object, the material's class otherwise; `None` for an empty grasp.
     pub label: Option<Softness>,
+    /// The object's hidden overall class (the band its overall modulus was drawn from); the
+    /// material's class for model and regular objects; `None` for an empty grasp.
+    pub overall: Option<Softness>,
     /// The object.
     pub object: ObjectConfig,
     /// The grasp's scene seed (pose, sensor spread and noise).
@@ -167,22 +202,79 @@ pub(super) fn household(rng: &mut ChaCha8Rng, class: Softness) -> ObjectConfig {
     }
 }
 
-/// Every grasp of the dataset seeded with `seed`, in file order.
-pub fn specs(seed: u64) -> Vec<GraspSpec> {
+/// The label rule of a household object (issue 21): the class of the band holding the median
+/// of its four local moduli — in ln, the mean of the ln of the second and third smallest (the
+/// geometric mean of the middle two). A median in the gap between two bands belongs to the
+/// band nearer in ln (the boundary is the gap's geometric midpoint: 51.96 kPa between soft and
+/// moderate, 3.162 MPa between moderate and hard), one at a boundary to the harder class; below
+/// the soft band is soft, above the hard band hard.
+///
+/// Errors on a modulus that is not finite and positive.
+///
+/// ```
+/// use hand_sim::underactuated::dataset::sensor_class;
+/// use hand_traits::Softness;
+/// // Two fingers on a moderate 200 kPa, two on soft 20 kPa: median √(20 k · 200 k) = 63 kPa.
+/// assert_eq!(sensor_class([20e3, 200e3, 20e3, 200e3]).unwrap(), Softness::Moderate);
+/// // One finger on a hard feature does not move the median of a soft object.
+/// assert_eq!(sensor_class([20e3, 30e3, 1e9, 15e3]).unwrap(), Softness::Soft);
+/// assert!(sensor_class([20e3, f64::NAN, 20e3, 20e3]).is_err());
+/// ```
+pub fn sensor_class(local_moduli_pa: [f64; 4]) -> Result<Softness, SimError> {
+    check_moduli(&local_moduli_pa)?;
+    let mut ln = local_moduli_pa.map(f64::ln);
+    ln.sort_by(f64::total_cmp);
+    let median = 0.5 * (ln[1] + ln[2]);
+    let boundary = |softer: Softness, harder: Softness| {
+        0.5 * (household_band(softer).1.ln() + household_band(harder).0.ln())
+    };
+    Ok(if median < boundary(Softness::Soft, Softness::Moderate) {
+        Softness::Soft
+    } else if median < boundary(Softness::Moderate, Softness::Hard) {
+        Softness::Moderate
+    } else {
+        Softness::Hard
+    })
+}
+
+/// Errors unless every one of four local moduli is finite and positive.
+pub(super) fn check_moduli(local_moduli_pa: &[f64; 4]) -> Result<(), SimError> {
+    match local_moduli_pa
+        .iter()
+        .find(|m| !(m.is_finite() && **m > 0.0))
+    {
+        Some(bad) => Err(SimError::config(
+            "local_moduli_pa",
+            format!("must be finite and > 0, got {bad}"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Every grasp of the dataset seeded with `seed`, in file order: the paper's protocol, then
+/// the large household test draw ([`Set::TestIrregular1000`], its own stream, so the paper's
+/// objects do not depend on it).
+pub fn specs(seed: u64) -> Result<Vec<GraspSpec>, SimError> {
     let mut rng = crate::seed::stream(seed, "underactuated/dataset");
     let mut out: Vec<GraspSpec> = Vec::new();
-    let mut push = |set, object_id: String, kind, label, object| {
+    let mut push = |set, object_id: String, kind, class: Option<Softness>, object: ObjectConfig| {
         let id = out.len();
         let seed = crate::seed::derive(seed, &format!("underactuated/grasp/{id}"));
+        let label = match (kind, class) {
+            ("household", Some(_)) => Some(sensor_class(object.local_moduli())?),
+            _ => class,
+        };
         out.push(GraspSpec {
             id,
             set,
             object_id,
             kind,
             label,
+            overall: class,
             object,
             seed,
         });
+        Ok::<(), SimError>(())
     };
     for shape in Shape::ALL {
         for (size_name, size_mm) in ["small", "medium", "big"].into_iter().zip(MODEL_SIZES_MM) {
@@ -196,7 +288,7 @@ pub fn specs(seed: u64) -> Vec<GraspSpec> {
                     class_name(Some(class))
                 );
                 for _ in 0..REPEATS {
-                    push(Set::Train, name.clone(), "model", Some(class), object);
+                    push(Set::Train, name.clone(), "model", Some(class), object)?;
                 }
             }
         }
@@ -233,10 +325,22 @@ pub fn specs(seed: u64) -> Vec<GraspSpec> {
                 },
             };
             let label = (kind != "empty").then_some(class);
-            push(set, format!("{prefix}-{i:02}"), kind, label, object);
+            push(set, format!("{prefix}-{i:02}"), kind, label, object)?;
         }
     }
-    out
+    let mut fresh = crate::seed::stream(seed, "underactuated/irregular-1000");
+    for i in 0..LARGE_IRREGULAR_TESTS {
+        let class = Softness::ALL[i % 3];
+        let object = household(&mut fresh, class);
+        push(
+            Set::TestIrregular1000,
+            format!("irregular-1000-{i:04}"),
+            "household",
+            Some(class),
+            object,
+        )?;
+    }
+    Ok(out)
 }
 
 /// Runs one spec with the default hand.
@@ -254,7 +358,7 @@ pub fn run(spec: &GraspSpec) -> Result<Grasp, SimError> {
 /// Runs every grasp of the dataset seeded with `seed`, on up to two threads (grasps are
 /// independent, so the result does not depend on the scheduling).
 pub fn generate(seed: u64) -> Result<Vec<Grasp>, SimError> {
-    let specs = specs(seed);
+    let specs = specs(seed)?;
     let (first, second) = specs.split_at(specs.len() / 2);
     let (a, b) = std::thread::scope(|s| {
         let other = s.spawn(|| second.iter().map(run).collect::<Result<Vec<_>, _>>());
@@ -343,9 +447,21 @@ pub struct GraspRow {
     pub size_mm: Fixed<f64, 1>,
     /// Overall effective modulus, Pa.
     pub modulus_pa: Exp<f64, 4>,
-    /// The object's overall softness ([`class_name`]); `None` for an empty grasp.
+    /// The class label ([`class_name`]): what the fingers measure ([`sensor_class`]) for a
+    /// household object, the material's class otherwise; `None` for an empty grasp.
     #[serde(with = "label")]
     pub label: Option<Softness>,
+    /// The hidden overall class ([`GraspSpec::overall`]); `None` for an empty grasp.
+    #[serde(with = "label")]
+    pub overall: Option<Softness>,
+    /// Local modulus finger 1 meets, Pa (household objects differ per finger).
+    pub e1_pa: Exp<f64, 4>,
+    /// Local modulus finger 2 meets, Pa.
+    pub e2_pa: Exp<f64, 4>,
+    /// Local modulus finger 3 meets, Pa.
+    pub e3_pa: Exp<f64, 4>,
+    /// Local modulus finger 4 meets, Pa.
+    pub e4_pa: Exp<f64, 4>,
     /// First contact, s after the actuator started; empty for an empty grasp.
     pub t1_s: Option<Fixed<f64, 3>>,
     /// Rows of the grasp in its series file.
@@ -358,6 +474,7 @@ impl GraspRow {
     /// The row of `g`.
     pub fn new(g: &Grasp) -> Self {
         let s = &g.spec;
+        let [e1_pa, e2_pa, e3_pa, e4_pa] = s.object.local_moduli().map(Exp);
         GraspRow {
             grasp: s.id,
             set: s.set,
@@ -372,6 +489,11 @@ impl GraspRow {
             size_mm: Fixed(s.object.size_mm),
             modulus_pa: Exp(s.object.modulus()),
             label: s.label,
+            overall: s.overall,
+            e1_pa,
+            e2_pa,
+            e3_pa,
+            e4_pa,
             t1_s: g.series.first_contact_s.map(Fixed),
             samples: g.series.frames.len(),
         }

@@ -41,10 +41,22 @@ pub struct Tap {
     pub aot_region: u8,
     /// Contact force, kgf.
     pub force_kgf: u32,
-    /// Repeat index (0 or 1).
+    /// Repeat index (0 or 1; the draw, 0…2, in the jittered set).
     pub repeat: u32,
+    /// Shift of the contact off its cells (x right, y up), mm: zero on the lattice.
+    pub offset_mm: [f32; 2],
     /// Held pressure of sensors 1–3, Pa.
     pub held_pa: [f32; 3],
+}
+
+impl Tap {
+    /// The patch centroid in pad millimetres (x right, y up, origin at the pad centre; 3 mm
+    /// cells): the cells' centroid plus the shift. `None` for an empty mask.
+    pub fn centroid_mm(&self) -> Option<[f32; 2]> {
+        let centroid = aot_locate::CellSet::from_bits(self.mask)?.centroid()?;
+        let [x, y] = aot_locate::AreaGrid::SIMULATED_PAD.grid_point_mm(centroid);
+        Some([x + self.offset_mm[0], y + self.offset_mm[1]])
+    }
 }
 
 /// A tap's frames from 30 ms before to 90 ms after contact onset, in time order.
@@ -139,15 +151,48 @@ impl TapRecord {
     }
 }
 
-/// `taps.csv` and `series.csv` below the workspace root `root`.
-pub fn dataset_paths(root: &Path) -> (PathBuf, PathBuf) {
-    let dir = root.join(DATASET_DIR);
-    (dir.join("taps.csv"), dir.join("series.csv"))
+/// The two tap sets of the dataset.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TapSet {
+    /// `taps.csv` / `series.csv`: every contact centred on its cells, two repeats (repeat 0
+    /// trains, repeat 1 is held out).
+    Lattice,
+    /// `jittered_taps.csv` / `jittered_series.csv.gz` (gzipped: 3.8 MB of text): the same
+    /// contacts shifted off the lattice within ± half a cell, three draws each; held out
+    /// entirely (issue 21).
+    Jittered,
 }
 
-/// Reads the committed dataset below the workspace root `root`.
+impl TapSet {
+    /// Its (taps, series) file names.
+    pub fn files(self) -> (&'static str, &'static str) {
+        match self {
+            TapSet::Lattice => ("taps.csv", "series.csv"),
+            TapSet::Jittered => ("jittered_taps.csv", "jittered_series.csv.gz"),
+        }
+    }
+}
+
+/// `taps.csv` and `series.csv` below the workspace root `root`.
+pub fn dataset_paths(root: &Path) -> (PathBuf, PathBuf) {
+    set_paths(root, TapSet::Lattice)
+}
+
+/// The (taps, series) files of `set` below the workspace root `root`.
+pub fn set_paths(root: &Path, set: TapSet) -> (PathBuf, PathBuf) {
+    let dir = root.join(DATASET_DIR);
+    let (taps, series) = set.files();
+    (dir.join(taps), dir.join(series))
+}
+
+/// Reads the committed lattice taps below the workspace root `root`.
 pub fn load(root: &Path) -> Result<Dataset, DatasetError> {
-    let (taps, series) = dataset_paths(root);
+    load_set(root, TapSet::Lattice)
+}
+
+/// Reads the committed tap set `set` below the workspace root `root`.
+pub fn load_set(root: &Path, set: TapSet) -> Result<Dataset, DatasetError> {
+    let (taps, series) = set_paths(root, set);
     join(
         &taps,
         records::read(&taps)?,
@@ -196,6 +241,7 @@ fn join(
             aot_region: r.aot_region,
             force_kgf: r.force_kgf,
             repeat: r.repeat,
+            offset_mm: [r.dx_mm.0 as f32, r.dy_mm.0 as f32],
             held_pa: [r.held1_pa.0, r.held2_pa.0, r.held3_pa.0].map(|p| p as f32),
         });
     }
@@ -298,8 +344,8 @@ mod tests {
     use hand_sim::records::ErrorKind;
 
     const TAPS: &str = "# comment\n\
-        tap,osr,shape,size,mask,average_area,aot_region,force_kgf,repeat,held1_pa,held2_pa,held3_pa\n\
-        0,256,1,1,1,1.1000,0,5,0,102345.8,101041.8,103412.7\n";
+        tap,osr,shape,size,mask,average_area,aot_region,force_kgf,repeat,dx_mm,dy_mm,held1_pa,held2_pa,held3_pa\n\
+        0,256,1,1,1,1.1000,0,5,0,0.000,0.000,102345.8,101041.8,103412.7\n";
     const SERIES: &str = "tap,t_us,p1_pa,p2_pa,p3_pa\n\
         0,-2000,100,200,300\n0,-1000,102,200,300\n0,0,101,200,300\n\
         0,1000,111,200,300\n0,2000,131,200,400\n";
@@ -358,11 +404,14 @@ mod tests {
 
     #[test]
     fn retain_keeps_taps_and_series_together() -> Result<(), DatasetError> {
-        let two = format!("{TAPS}1,512,1,1,2,1.2000,0,7,1,1.0,2.0,3.0\n");
+        let two = format!("{TAPS}1,512,1,1,2,1.2000,0,7,1,0.25,-1.5,1.0,2.0,3.0\n");
         let mut data = parse(&two, &format!("{SERIES}1,-5,7,8,9\n"))?;
         data.retain(|t| t.osr == 512);
         assert_eq!(data.taps().len(), 1);
         assert_eq!(data.taps()[0].id, 1);
+        assert_eq!(data.taps()[0].offset_mm, [0.25, -1.5]);
+        // Cell 1.2's centre (-4.5, 4.5) mm, shifted.
+        assert_eq!(data.taps()[0].centroid_mm(), Some([-4.25, 3.0]));
         assert_eq!(data.series()[0].t_us.to_vec(), [-5]);
         Ok(())
     }

@@ -1,7 +1,7 @@
 //! The simulated underactuated hand's softness grasps (`fixtures/datasets/underactuated/`,
 //! written by `hand-sim`, protocol of seed 001 §3.1, §3.3, §4): `grasps.csv` (one row per
-//! grasp: set, object, kind, label; schema [`GraspRow`]) and `train.csv` / `test_regular.csv` /
-//! `test_irregular.csv` (the series, 10 Hz from first contact to 14 s after it: 4 FSR forces in
+//! grasp: set, object, kind, label, hidden overall class; schema [`GraspRow`]) and `train.csv` /
+//! `test_regular.csv` / `test_irregular.csv` / `test_irregular_1000.csv.gz` (the series, 10 Hz from first contact to 14 s after it: 4 FSR forces in
 //! N, then 4 distal joint angles in degrees; schema [`SampleRow`]), read into one [`Grasp`]
 //! per grasp with its series as a samples × 8 array.
 
@@ -27,8 +27,15 @@ pub struct Grasp {
     pub object: String,
     /// `model`, `regular`, `household` or `empty`.
     pub kind: String,
-    /// The object's overall softness; `None` for the empty grasps (the paper states no label).
+    /// The class label: for a household object the class its fingers' local moduli indicate
+    /// (`hand_sim::underactuated::dataset::sensor_class`), else its material's; `None` for the
+    /// empty grasps (the paper states no label).
     pub label: Option<Softness>,
+    /// The object's hidden overall class (equal to `label` except for household objects whose
+    /// fingers meet mostly another class); `None` for the empty grasps.
+    pub overall: Option<Softness>,
+    /// The local modulus each finger meets, Pa (`e1_pa..e4_pa`).
+    pub local_moduli_pa: [f64; 4],
     /// The series: one sample of [`N_VARIABLES`] readings per 0.1 s, from first contact.
     pub series: GraspSeries,
 }
@@ -80,7 +87,7 @@ pub fn load(root: &Path) -> Result<Vec<Grasp>, DatasetError> {
     let grasps = dir.join("grasps.csv");
     let mut series = Vec::new();
     for set in GraspSet::ALL {
-        let path = dir.join(format!("{}.csv", set.name()));
+        let path = dir.join(set.series_file());
         let rows = records::read(&path)?;
         series.push((path, Some(set), rows));
     }
@@ -170,6 +177,8 @@ fn join(
                 object: r.object,
                 kind: r.kind,
                 label: r.label,
+                overall: r.overall,
+                local_moduli_pa: [r.e1_pa.0, r.e2_pa.0, r.e3_pa.0, r.e4_pa.0],
                 series: GraspSeries::new(series),
             })
         })
@@ -181,8 +190,10 @@ mod tests {
     use super::*;
     use hand_sim::records::ErrorKind;
 
-    const GRASPS: &str = "grasp,set,object,kind,shape,size_mm,modulus_pa,label,t1_s,samples\n\
-                          0,train,o,model,sphere,65.0,1.0000e4,soft,1.000,2\n";
+    const GRASPS: &str = "grasp,set,object,kind,shape,size_mm,modulus_pa,label,overall,\
+                          e1_pa,e2_pa,e3_pa,e4_pa,t1_s,samples\n\
+                          0,train,o,model,sphere,65.0,1.0000e4,soft,soft,\
+                          1.0000e4,1.0000e4,1.0000e4,1.0000e4,1.000,2\n";
     const SERIES: &str = "grasp,t_s,f1_n,f2_n,f3_n,f4_n,a1_deg,a2_deg,a3_deg,a4_deg\n\
                           0,0.0,1,2,3,4,5,6,7,8\n0,0.1,1,2,3,4,5,6,7,9\n";
 
@@ -197,7 +208,8 @@ mod tests {
         let short = &SERIES[..SERIES.rfind("0,0.1").unwrap_or(0)];
         let e = parse(GRASPS, &[short]).expect_err("a sample short");
         assert_eq!((e.line, e.column.as_deref()), (Some(2), Some("samples")));
-        let e = parse(&GRASPS.replace("soft", "squishy"), &[SERIES]).expect_err("a label");
+        let e =
+            parse(&GRASPS.replace("soft,soft", "squishy,soft"), &[SERIES]).expect_err("a label");
         assert_eq!((e.line, e.column.as_deref()), (Some(2), Some("label")));
         let e = parse(GRASPS, &[&SERIES.replace("\n0,0.1,", "\n1,0.1,")]).expect_err("grasp 1");
         assert_eq!((e.line, e.column.as_deref()), (Some(3), Some("grasp")));

@@ -1,6 +1,8 @@
-//! The arm a paper scene names: ur-bridge's UR controller simulator on loopback by default, or
-//! the controller at `host`; either way the real ur_rtde client (`handstack::stack::arm`).
+//! The arm a paper scene names: ur-bridge's UR controller simulator on loopback by default (at
+//! the `[sim.arm]` time scale), or the controller at `host`; either way the real ur_rtde client
+//! (`handstack::stack::arm`).
 
+use crate::scene::PaperScene;
 use handstack::RunError;
 use std::net::Ipv4Addr;
 use std::sync::atomic::{AtomicU8, Ordering};
@@ -28,15 +30,22 @@ pub struct ArmStack {
     pub sim: Option<UrSim>,
 }
 
-/// Connects to `host`, or starts a simulator on a fresh loopback address and connects to it.
-pub fn open(host: Option<&str>) -> Result<ArmStack, RunError> {
+/// Connects to the controller at the host `scene`'s `[arm]` names, or starts a simulator
+/// (run as `[sim.arm]` says) on a fresh loopback address and connects to it.
+pub fn open(scene: &PaperScene) -> Result<ArmStack, RunError> {
+    let host = scene
+        .file
+        .arm
+        .as_ref()
+        .and_then(|a| a.get_ref().host.as_ref().map(|h| h.get_ref().clone()));
     let (host, sim) = match host {
-        Some(h) => (h.to_owned(), None),
+        Some(h) => (h, None),
         None => {
             let octet = NEXT_OCTET.fetch_add(1, Ordering::Relaxed);
             let address = Ipv4Addr::new(127, 0, 0, octet);
             let sim = UrSim::start(SimConfig {
                 address,
+                time_scale: scene.arm_sim.time_scale,
                 ..SimConfig::default()
             })
             .map_err(|e| RunError::Open {

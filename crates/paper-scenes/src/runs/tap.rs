@@ -12,7 +12,7 @@ use crate::scene::experiments::{Tap, WindowPlacement};
 use handstack::RunError;
 use handstack::{Line, Plot};
 use paper_experiments::cnn_eval::{MODEL_DIR, model_file};
-use paper_experiments::tap_run::{self, ROUNDS, Row};
+use paper_experiments::tap_run::{self, DEPTH_MM, Row};
 use tactile_nets::contact_cnn::{ContactCnn, Variant};
 use ur_bridge::tap_to_move::TapToMoveConfig;
 
@@ -20,14 +20,9 @@ use ur_bridge::tap_to_move::TapToMoveConfig;
 pub fn run(scene: &PaperScene, exp: &Tap, cx: &RunContext<'_>) -> Result<Part, crate::Error> {
     let path = cx.root.join(MODEL_DIR).join(model_file(Variant::Paper));
     let mut cnn = ContactCnn::load(&path)?;
-    let host = scene
-        .file
-        .arm
-        .as_ref()
-        .and_then(|a| a.get_ref().host.as_ref().map(|h| h.get_ref().clone()));
-    let mut arm = crate::devices::arm::open(host.as_deref())?;
-    let rounds = (*exp.rounds.get_ref()).min(ROUNDS.len());
-    let pad = crate::devices::pad::open(scene, tap_run::schedule(&ROUNDS[..rounds]))?;
+    let mut arm = crate::devices::arm::open(scene)?;
+    let per_region = *exp.taps_per_region.get_ref();
+    let pad = crate::devices::pad::open(scene, tap_run::schedule(scene.seed(), per_region))?;
     let config = match exp.window {
         WindowPlacement::Aligned => tap_run::training_aligned(),
         WindowPlacement::Trigger => TapToMoveConfig::default(),
@@ -55,7 +50,12 @@ fn part(rows: &[Row], host: &str) -> Part {
         .ok();
     let f = measured(
         "tap_accuracy_pct",
-        &format!("CNN region accuracy, {} taps (arm at {host})", rows.len()),
+        &format!(
+            "CNN region accuracy, {} taps: {} per region on seeded rows, {DEPTH_MM} mm (arm at \
+             {host})",
+            rows.len(),
+            rows.len() / 9
+        ),
         100.0 * correct as f64 / n,
         "%",
     );
@@ -69,6 +69,14 @@ fn part(rows: &[Row], host: &str) -> Part {
     part.figures.push(f);
     part.figures
         .push(measured("tap_count", "taps", rows.len() as f64, ""));
+    for (region, (right, taps)) in tap_run::per_region(rows).into_iter().enumerate() {
+        part.figures.push(measured(
+            &format!("tap_region_{region}_pct"),
+            &format!("region {region}: {}", tap_run::fraction(right, taps)),
+            100.0 * right as f64 / taps.max(1) as f64,
+            "%",
+        ));
+    }
     part.figures.push(measured(
         "triggers_in_tap",
         "triggers inside their tap",
@@ -90,14 +98,20 @@ fn part(rows: &[Row], host: &str) -> Part {
     ));
     part.figures.push(measured(
         "move_mean_s",
+        "moveL to the grid pose, mean (controller time, RTDE timestamp)",
+        mean(|r| r.move_controller_s),
+        "s",
+    ));
+    part.figures.push(measured(
+        "move_wall_mean_s",
         "moveL to the grid pose, mean (wall)",
         mean(|r| r.move_s),
         "s",
     ));
     part.figures.push(measured(
         "cycle_mean_s",
-        "cycle: window + locate + move, mean",
-        mean(|r| r.window_s + r.locate_s + r.move_s),
+        "cycle: window + locate + move, mean (pad, wall, controller time)",
+        mean(|r| r.window_s + r.locate_s + r.move_controller_s),
         "s",
     ));
     part.figures.push(target(
@@ -134,6 +148,14 @@ fn part(rows: &[Row], host: &str) -> Part {
                     .iter()
                     .enumerate()
                     .map(|(i, r)| (i as f64, r.window_s))
+                    .collect(),
+            },
+            Line {
+                label: "moveL (controller time)".into(),
+                points: rows
+                    .iter()
+                    .enumerate()
+                    .map(|(i, r)| (i as f64, r.move_controller_s))
                     .collect(),
             },
             Line {

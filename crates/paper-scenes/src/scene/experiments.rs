@@ -115,13 +115,13 @@ impl ExperimentTable for Experiments {
                     "sensors.imu_pad without i2c_bus",
                 ));
             }
-            let rounds = &t.get_ref().rounds;
-            if !(1..=3).contains(rounds.get_ref()) {
+            let per = &t.get_ref().taps_per_region;
+            if !(1..=MAX_TAPS_PER_REGION).contains(per.get_ref()) {
                 return Err(cx.err(
-                    rounds.span(),
-                    "experiment.tap.rounds",
-                    format!("is {}", rounds.get_ref()),
-                    "1…3 rounds of nine taps",
+                    per.span(),
+                    "experiment.tap.taps_per_region",
+                    format!("is {}", per.get_ref()),
+                    format!("1…{MAX_TAPS_PER_REGION} taps on each of the nine regions"),
                 ));
             }
         }
@@ -219,37 +219,8 @@ fn yes() -> bool {
     true
 }
 
-/// Which committed contact MLP of an OSR.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MlpChoice {
-    /// The validation-chosen configuration (docs/contact-location.md).
-    #[default]
-    Chosen,
-    /// The paper's recipe, cell-set head.
-    CellSet,
-    /// The paper's recipe, eq. 4 average-area regression.
-    AverageArea,
-}
-
-impl MlpChoice {
-    /// Its file inside `crates/tactile-nets/models/contact_mlp/` and its metrics row label at `osr`.
-    pub fn file_and_label(self, osr: u16) -> (String, String) {
-        use paper_experiments::contact_eval as ce;
-        use tactile_nets::contact_mlp::Head;
-        match self {
-            MlpChoice::Chosen => (ce::chosen_file(osr), ce::chosen_label(osr)),
-            MlpChoice::CellSet => (
-                ce::model_file(osr, Head::CellSet),
-                ce::row_label(osr, Head::CellSet),
-            ),
-            MlpChoice::AverageArea => (
-                ce::model_file(osr, Head::AverageArea),
-                ce::row_label(osr, Head::AverageArea),
-            ),
-        }
-    }
-}
+/// Which committed contact MLP of an OSR (`chosen`, `cell_set`, `average_area`).
+pub use paper_experiments::contact_location::Mlp as MlpChoice;
 
 /// Seed 000 §3–4: the held-out simulated taps (every Figure 7 shape × position × 5 / 7 / 9
 /// kgf, repeat 1) at the fingertip's OSR, located by each fingertip locator the scene names.
@@ -309,16 +280,22 @@ pub enum WindowPlacement {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tap {
-    /// Rounds of nine taps (regions 0…8), 1…3 (rows of `paper_experiments::tap_run::ROUNDS`).
-    #[serde(default = "three")]
-    pub rounds: Spanned<usize>,
+    /// Taps on each region, 1…[`MAX_TAPS_PER_REGION`] (default
+    /// `paper_experiments::tap_run::TAPS_PER_REGION`, 10): as many rounds of regions 0…8, each
+    /// tap on a seeded row of its region (`paper_experiments::tap_run::schedule` with the
+    /// scene seed).
+    #[serde(default = "taps_per_region")]
+    pub taps_per_region: Spanned<usize>,
     /// The window placement (default `aligned`).
     #[serde(default)]
     pub window: WindowPlacement,
 }
 
-fn three() -> Spanned<usize> {
-    Spanned::new(0..0, 3)
+/// Most taps per region a tap scene may schedule (every tap is a move of the arm).
+pub const MAX_TAPS_PER_REGION: usize = 100;
+
+fn taps_per_region() -> Spanned<usize> {
+    Spanned::new(0..0, paper_experiments::tap_run::TAPS_PER_REGION)
 }
 
 /// Seed 000 §7, Table 5: each object closed on, lifted at 3 s and held by the fuzzy grasp loop

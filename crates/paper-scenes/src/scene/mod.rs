@@ -32,6 +32,7 @@ pub mod experiments;
 mod sim;
 
 pub use experiments::Experiments;
+pub use sim::ArmSim;
 
 use hand_sim::scene::SceneConfig;
 use handstack::scene::{Checker, SceneError, SceneOf};
@@ -44,6 +45,8 @@ pub struct PaperScene {
     pub scene: SceneOf<Experiments>,
     /// The simulated physics with the sensor knobs applied.
     pub sim: SceneConfig,
+    /// `[sim.arm]`: the UR controller simulator, for an `[arm]` without a host.
+    pub arm_sim: ArmSim,
 }
 
 impl core::ops::Deref for PaperScene {
@@ -63,8 +66,12 @@ impl PaperScene {
     /// Parses and validates scene text; `file` names it in errors.
     pub fn parse(file: &str, text: &str) -> Result<PaperScene, SceneError> {
         let scene = SceneOf::<Experiments>::parse(file, text)?;
-        let sim = sim::check(&scene.file, &Checker::new(file, text))?;
-        Ok(PaperScene { scene, sim })
+        let (sim, arm_sim) = sim::check(&scene.file, &Checker::new(file, text))?;
+        Ok(PaperScene {
+            scene,
+            sim,
+            arm_sim,
+        })
     }
 
     /// The scene's root seed (`[sim] seed`, 0 without a `[sim]` table).

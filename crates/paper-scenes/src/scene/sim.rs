@@ -1,6 +1,7 @@
 //! `[sim]`: the simulated physics of a paper scene (hand-sim's scene config), checked against
 //! the parts: a simulated device gets the sensor knobs the scene gives its part (OSR, pressure
 //! mode); a device the scene reads from real hardware, or none, must not be simulated.
+//! `[sim.arm]` is ur-bridge's UR controller simulator, for an `[arm]` without a host.
 
 use super::Experiments;
 use hand_sim::scene::SceneConfig;
@@ -8,6 +9,26 @@ use handstack::scene::parts::HandModel;
 use handstack::scene::{Checker, SceneError, SceneFile};
 use serde::Deserialize;
 use toml::Spanned;
+use toml::de::{DeTable, DeValue, Deserializer, ValueDeserializer};
+use ur_bridge::sim::TimeScale;
+
+/// `[sim.arm]`: how ur-bridge's UR controller simulator runs when the scene's `[arm]` names no
+/// host. The arm itself is still reached through ur_rtde on loopback; nothing here reaches the
+/// runner.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ArmSim {
+    /// `time_scale`: controller seconds per wall-clock second (`ur_bridge::sim::SimConfig::
+    /// time_scale`; default 1, real time). Moves keep their controller-time profiles and RTDE
+    /// `timestamp`s; they end `time_scale` × sooner on the wall clock.
+    pub time_scale: TimeScale,
+}
+
+/// The `[sim.arm]` table as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ArmSimTable {
+    time_scale: Option<Spanned<f64>>,
+}
 
 /// The `[sim]` table alone, parsed again from the text so its errors keep their spans.
 #[derive(Deserialize, Default)]
@@ -34,13 +55,24 @@ struct KnobTable {
     baro_mode: Option<Spanned<toml::Value>>,
 }
 
-/// Validates `scene` (the text of `file`) and returns its physics with the sensor knobs applied.
-/// The physics of `scene` (the text `cx` checks) with the sensor knobs applied.
+/// The physics of `scene` (the text `cx` checks) with the sensor knobs applied, and the arm
+/// simulator's settings.
 pub(crate) fn check(
     scene: &SceneFile<Experiments>,
     cx: &Checker<'_>,
-) -> Result<SceneConfig, SceneError> {
-    let only: SimOnly = toml::from_str(cx.text()).map_err(|e| cx.syntax(&e))?;
+) -> Result<(SceneConfig, ArmSim), SceneError> {
+    // `[sim.arm]` is taken out before hand-sim reads `[sim]` (its table knows no arm); both
+    // parses keep the text's spans.
+    let mut doc = DeTable::parse(cx.text()).map_err(|e| cx.syntax(&e))?;
+    let arm_table = match doc.get_mut().get_mut("sim").map(Spanned::get_mut) {
+        Some(DeValue::Table(t)) => t.remove("arm"),
+        _ => None,
+    };
+    let only = SimOnly::deserialize(Deserializer::from(doc)).map_err(|e| cx.syntax(&e))?;
+    let arm = match arm_table {
+        Some(t) => arm_sim(scene, t, cx)?,
+        None => ArmSim::default(),
+    };
     let mut sim = only
         .sim
         .as_ref()
@@ -151,5 +183,47 @@ pub(crate) fn check(
             ));
         }
     }
-    Ok(sim)
+    Ok((sim, arm))
+}
+
+/// Checks `[sim.arm]` (`table`, as written) against the scene's `[arm]`.
+fn arm_sim(
+    scene: &SceneFile<Experiments>,
+    table: Spanned<DeValue<'_>>,
+    cx: &Checker<'_>,
+) -> Result<ArmSim, SceneError> {
+    let span = table.span();
+    let written =
+        ArmSimTable::deserialize(ValueDeserializer::from(table)).map_err(|e| cx.syntax(&e))?;
+    match &scene.arm {
+        None => {
+            return Err(cx.err(
+                span,
+                "sim.arm",
+                "simulates an arm no part names",
+                "[arm] with it",
+            ));
+        }
+        Some(a) if a.get_ref().host.is_some() => {
+            return Err(cx.err(
+                span,
+                "sim.arm",
+                "simulates an arm the scene reaches at a host",
+                "no [sim.arm] with arm.host",
+            ));
+        }
+        Some(_) => {}
+    }
+    let time_scale = match written.time_scale {
+        Some(v) => TimeScale::new(*v.get_ref()).map_err(|e| {
+            cx.err(
+                v.span(),
+                "sim.arm.time_scale",
+                e.to_string(),
+                "a finite positive number (1 = real time)",
+            )
+        })?,
+        None => TimeScale::REAL_TIME,
+    };
+    Ok(ArmSim { time_scale })
 }

@@ -16,7 +16,7 @@ use handstack::RunError;
 use handstack::scene::parts::{ForceModel, Locator};
 use paper_experiments::cnn_eval::{MODEL_DIR as CNN_DIR, model_file};
 use paper_experiments::grasp_rig::{self, LIFT_AT_S};
-use paper_experiments::tap_run::{self, ROUNDS};
+use paper_experiments::tap_run;
 use tactile_nets::contact_cnn::{ContactCnn, Variant};
 use tactile_nets::contact_mlp::ContactMlp;
 use tactile_nets::force_dnn::ForceDnn;
@@ -171,8 +171,7 @@ where
     };
     let estimators = Estimators::new(force, mlp, config.tare_cycles);
     // The pad, its trigger and the CNN, as the tap scene builds them.
-    let rounds = (*tap.rounds.get_ref()).clamp(1, ROUNDS.len());
-    let taps = tap_run::schedule(&ROUNDS[..rounds]);
+    let taps = tap_run::schedule(scene.seed(), *tap.taps_per_region.get_ref());
     let trigger = match tap.window {
         WindowPlacement::Aligned => tap_run::training_aligned(),
         WindowPlacement::Trigger => TapToMoveConfig::default(),
@@ -185,12 +184,7 @@ where
         to_input: tap_run::cnn_window,
     };
     // The arm.
-    let host = scene
-        .file
-        .arm
-        .as_ref()
-        .and_then(|a| a.get_ref().host.as_ref().map(|h| h.get_ref().clone()));
-    let arm = crate::devices::arm::open(host.as_deref())?;
+    let arm = crate::devices::arm::open(scene)?;
     let grid = RegionToGrid::ur3_default().map_err(|e| dev("arm")(e.to_string()))?;
     let arm_part = ArmPart::new(arm.arm, grid, trigger.motion);
     let policy = fuzzy_mamdani::grasp_controller()

@@ -3,6 +3,7 @@
 //! after training, or alone with `--docs-only`.
 
 mod contact_cnn;
+mod contact_location;
 mod contact_mlp;
 mod force_dnn;
 mod plot;
@@ -21,7 +22,7 @@ pub(crate) type Timings = BTreeMap<String, String>;
 /// contact CNN's section quotes `timings` (a missing id reads "not measured").
 pub(crate) fn write(root: &Path, model: &str, timings: &Timings) -> Result<()> {
     match model {
-        "contact-mlp" => contact_mlp::write(root),
+        "contact-mlp" => contact_mlp::write(root).and_then(|()| contact_location::write(root)),
         "force-dnn" => force_dnn::write(root),
         "softness" => softness::write(root),
         "contact-cnn" => contact_cnn::write(root, timings),
