@@ -449,9 +449,10 @@ mod tests {
     #[test]
     fn with_one_silent_sensor_the_crossing_away_from_it_is_taken() {
         // Sensors (3, 0), (0, −3), (−3, 0). A press at (1, 2): sensor 2 (bottom) stays silent;
-        // sensors 1 and 3 give ranges √5 and √17, whose circles also cross at (1, −2), the
-        // mirror image across y = 0 and the crossing nearer the pad centre's start. Silent
-        // sensor 2 is 5 mm from (1, 2) and 1.4 mm from (1, −2): the far one is the answer.
+        // sensors 1 and 3 give ranges √8 and √20, whose circles also cross at (1, −2), the
+        // mirror image across y = 0 — the line through the pad centre, where a search started
+        // at the centre stalls. Silent sensor 2 is 5.1 mm from (1, 2) and 1.4 mm from (1, −2):
+        // the far one is the answer.
         let m = Ranging::new(0.0, 1000.0, 0.0, 30.0).unwrap();
         let mut e = at([1.0, 2.0], &m, [5000.0; 3]);
         e.arrival_us[1] = None;
@@ -460,8 +461,8 @@ mod tests {
             (p[0] - 1.0).abs() < 1e-2 && (p[1] - 2.0).abs() < 1e-2,
             "{p:?}"
         );
-        // The same press seen with its mirror's silence (sensor 2 silent at (1, −2) would be
-        // odd, but defined): a press at (1, −2) with sensor 2 silent stays the farther point.
+        // The mirror press's ranges are the same, so with sensor 2 silent the answer is the
+        // same far crossing (a press at (1, −2) silencing sensor 2, 1.4 mm away, would be odd).
         let mut below = at([1.0, -2.0], &m, [5000.0; 3]);
         below.arrival_us[1] = None;
         let q = m.position_mm(&hand_pad(), &below).unwrap();

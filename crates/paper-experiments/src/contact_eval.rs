@@ -80,11 +80,6 @@ impl Evaluation {
     pub fn mean_centroid_error(&self) -> f64 {
         ratio(self.centroid_error_sum, self.taps)
     }
-    /// Fraction of taps located on the cell under their centroid (see
-    /// [`Evaluation::centroid_cell_hits`]).
-    pub fn centroid_cell_accuracy(&self) -> f64 {
-        ratio(self.centroid_cell_hits as f64, self.taps)
-    }
 
     /// The metrics as a row's values (counts included).
     pub fn values(&self) -> BTreeMap<String, f64> {

@@ -174,6 +174,18 @@ impl ContactLocation {
             .unwrap_or_default()
     }
 
+    /// The taps of `set` that `mlp` at `osr` places on the cell under their centroid (the
+    /// strict 24-area label of every tap; meaningful off the lattice).
+    pub fn mlp_centroid_cell(&self, set: Set, mlp: Mlp, osr: u16) -> Tally {
+        self.mlp
+            .get(&(set, osr, mlp))
+            .map(|e| Tally {
+                hits: e.centroid_cell_hits as u32,
+                n: e.taps as u32,
+            })
+            .unwrap_or_default()
+    }
+
     /// The OSR where `figure` is highest (the lowest such OSR on a tie), with its tally.
     pub fn best(&self, figure: impl Fn(u16) -> Tally) -> Option<(u16, Tally)> {
         self.osrs().into_iter().map(|osr| (osr, figure(osr))).fold(
@@ -293,15 +305,7 @@ pub fn targets_section(cl: &ContactLocation) -> String {
             cl,
             &format!("MLP 24 areas, {name}: jittered set, every tap, cell under the centroid"),
             None,
-            |osr| {
-                cl.mlp
-                    .get(&(Set::Jittered, osr, mlp))
-                    .map(|e| Tally {
-                        hits: e.centroid_cell_hits as u32,
-                        n: e.taps as u32,
-                    })
-                    .unwrap_or_default()
-            },
+            |osr| cl.mlp_centroid_cell(Set::Jittered, mlp, osr),
         );
     }
     s
@@ -326,13 +330,7 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
     );
     for osr in cl.osrs() {
         let aot = |rule| cl.aot(Set::Jittered, rule, osr);
-        let e = cl.mlp.get(&(Set::Jittered, osr, Mlp::Chosen));
-        let every = e
-            .map(|e| Tally {
-                hits: e.centroid_cell_hits as u32,
-                n: e.taps as u32,
-            })
-            .unwrap_or_default();
+        let every = cl.mlp_centroid_cell(Set::Jittered, Mlp::Chosen, osr);
         let _ = writeln!(
             s,
             "| {osr} | {} | {} | {} | {} | {every} | {} / {} |",

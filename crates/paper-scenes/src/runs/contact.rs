@@ -13,7 +13,9 @@ use handstack::Plot;
 use handstack::scene::parts::Locator;
 use paper_experiments::aot_eval::{Rule, Tally};
 use paper_experiments::contact_eval;
-use paper_experiments::contact_location::{AOT_TARGET_PCT, ContactLocation, MLP_TARGET_PCT, Set};
+use paper_experiments::contact_location::{
+    AOT_TARGET_PCT, ContactLocation, MLP_TARGET_PCT, Mlp, Set,
+};
 
 /// Runs the contact experiment of `scene`.
 pub fn run(scene: &PaperScene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, crate::Error> {
@@ -37,10 +39,8 @@ pub fn run(scene: &PaperScene, exp: &Contact, cx: &RunContext<'_>) -> Result<Par
         aot_part(&cl, rule, osr, &mut part);
     }
     if locators.contains(&Locator::Mlp) {
-        let lattice = cl.mlp.get(&(Set::Lattice, osr, exp.mlp));
-        let jittered = cl.mlp.get(&(Set::Jittered, osr, exp.mlp));
-        if let (Some(lattice), Some(jittered)) = (lattice, jittered) {
-            mlp_part(lattice, jittered, osr, &mut part);
+        if let Some(lattice) = cl.mlp.get(&(Set::Lattice, osr, exp.mlp)) {
+            mlp_part(&cl, exp.mlp, lattice, osr, &mut part);
         }
     }
     Ok(part)
@@ -124,36 +124,31 @@ fn aot_part(cl: &ContactLocation, rule: Rule, osr: u16, part: &mut Part) {
     });
 }
 
+/// The MLP's figures: `e` is its evaluation on the lattice's held-out repeat.
 fn mlp_part(
+    cl: &ContactLocation,
+    mlp: Mlp,
     e: &contact_eval::Evaluation,
-    jittered: &contact_eval::Evaluation,
     osr: u16,
     part: &mut Part,
 ) {
-    let area = |e: &contact_eval::Evaluation| Tally {
-        hits: e.area_hits as u32,
-        n: e.single_cell_taps as u32,
-    };
     part.figures.push(tally(
         "mlp_area_accuracy_pct",
         "MLP: 24-area accuracy, lattice single-cell taps",
-        area(e),
+        cl.mlp_area(Set::Lattice, mlp, osr),
         Some(MLP_TARGET_PCT),
     ));
     part.figures.push(tally(
         "mlp_jittered_area_accuracy_pct",
         "MLP: 24-area accuracy, jittered single-cell taps",
-        area(jittered),
+        cl.mlp_area(Set::Jittered, mlp, osr),
         Some(MLP_TARGET_PCT),
     ));
-    part.figures.push(measured(
+    part.figures.push(tally(
         "mlp_jittered_centroid_cell_pct",
-        &format!(
-            "MLP: jittered taps on the cell under their centroid (n = {})",
-            jittered.taps
-        ),
-        100.0 * jittered.centroid_cell_accuracy(),
-        "%",
+        "MLP: jittered taps on the cell under their centroid",
+        cl.mlp_centroid_cell(Set::Jittered, mlp, osr),
+        None,
     ));
     part.figures.push(measured(
         "mlp_exact_accuracy_pct",
