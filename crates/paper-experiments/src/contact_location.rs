@@ -165,23 +165,31 @@ impl ContactLocation {
 
     /// The MLP's 24-area figure (single-cell taps) of `mlp` at `osr` on `set`.
     pub fn mlp_area(&self, set: Set, mlp: Mlp, osr: u16) -> Tally {
-        self.mlp
-            .get(&(set, osr, mlp))
-            .map(|e| Tally {
-                hits: e.area_hits as u32,
-                n: e.single_cell_taps as u32,
-            })
-            .unwrap_or_default()
+        self.mlp_tally(set, mlp, osr, |e| (e.area_hits, e.single_cell_taps))
     }
 
     /// The taps of `set` that `mlp` at `osr` places on the cell under their centroid (the
     /// strict 24-area label of every tap; meaningful off the lattice).
     pub fn mlp_centroid_cell(&self, set: Set, mlp: Mlp, osr: u16) -> Tally {
+        self.mlp_tally(set, mlp, osr, |e| (e.centroid_cell_hits, e.taps))
+    }
+
+    /// `(hits, trials)` of one MLP evaluation as a tally (empty when not evaluated).
+    fn mlp_tally(
+        &self,
+        set: Set,
+        mlp: Mlp,
+        osr: u16,
+        count: impl Fn(&Evaluation) -> (usize, usize),
+    ) -> Tally {
         self.mlp
             .get(&(set, osr, mlp))
-            .map(|e| Tally {
-                hits: e.centroid_cell_hits as u32,
-                n: e.taps as u32,
+            .map(|e| {
+                let (hits, n) = count(e);
+                Tally {
+                    hits: hits as u32,
+                    n: n as u32,
+                }
             })
             .unwrap_or_default()
     }
