@@ -34,10 +34,13 @@
 //! - `demo [--screenshot]`: runs every scene in `fixtures/scenes/` on the simulated default
 //!   and writes `target/demo/report.html` (`--screenshot`: also `docs/demo-report.png`).
 //! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
+//! - `cell-doc [--seconds S] [--rounds R]`: the Zenoh cell measured on loopback, into
+//!   `docs/cell.md` ([`cell_doc`]).
 
 pub mod architecture;
 pub mod bench;
 pub mod bench_doc;
+pub mod cell_doc;
 pub mod chromium;
 pub mod consumer;
 pub mod demo;

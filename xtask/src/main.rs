@@ -2,7 +2,8 @@
 
 use std::process::ExitCode;
 use xtask::{
-    bench, consumer, demo, firmware, fixtures, package, test, trade, train, venv, workspace_root,
+    bench, cell_doc, consumer, demo, firmware, fixtures, package, test, trade, train, venv,
+    workspace_root,
 };
 
 const USAGE: &str = "usage: cargo xtask <command>
@@ -34,7 +35,9 @@ commands:
   trade                     measure every speed / accuracy knob, write docs/trade.md (+ docs/trade/)
   demo [--screenshot]       run every scene (fixtures/scenes/) into target/demo/report.html
                             (--screenshot: and its full-page picture, docs/demo-report.png)
-  demo tap-to-move          seed 002 §IV-B on the simulated UR3 via ur_rtde, into docs/arm-tap-to-move.md";
+  demo tap-to-move          seed 002 §IV-B on the simulated UR3 via ur_rtde, into docs/arm-tap-to-move.md
+  cell-doc [--seconds S] [--rounds R]
+                            measure the Zenoh cell on loopback (hand-zenoh's cell_latency), into docs/cell.md";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -52,6 +55,7 @@ fn main() -> ExitCode {
         Some("bench") => bench::run(&root, &args[1..]),
         Some("train") => train::run(&root, &args[1..]),
         Some("demo") => demo::run(&root, &args[1..]),
+        Some("cell-doc") => cell_doc::run(&root, &args[1..]),
         Some("trade") if args.len() == 1 => trade::run(&root),
         Some("firmware") if args.len() == 1 => firmware::check(&root),
         Some("firmware") if args.len() == 2 && args[1] == "--write" => firmware::write(&root),

@@ -7,8 +7,11 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// Every module a test or generator imports, checked once the install is done.
-const IMPORTS: &str =
-    "import rtde_control, rtde_receive, dashboard_client, dynamixel_sdk, skfuzzy, fuzzylite";
+const IMPORTS: &str = "import rtde_control, rtde_receive, dashboard_client, dynamixel_sdk, \
+     skfuzzy, fuzzylite, zenoh, rosbags";
+
+/// A second Zenoh (rmw_zenoh's 1.6.x) for hand-zenoh's interop test, beside the venv's own.
+const ZENOH_16: &str = "python/requirements-zenoh-1.6.txt";
 
 /// The venv's python, creating `.venv` and installing `python/requirements.txt` when the venv
 /// is missing or was made from other requirements. Uses `$PYTHON`, else `python3`.
@@ -16,8 +19,9 @@ pub fn ensure(root: &Path) -> Result<PathBuf> {
     let venv = root.join(".venv");
     let python = python_in(&venv);
     let requirements = root.join("python/requirements.txt");
-    let wanted = std::fs::read(&requirements)
+    let mut wanted = std::fs::read(&requirements)
         .with_context(|| format!("reading {}", requirements.display()))?;
+    wanted.extend(std::fs::read(root.join(ZENOH_16)).with_context(|| ZENOH_16.to_owned())?);
     // The stamp is the requirements file the venv was built from: a change re-installs.
     let stamp = venv.join("handstack-requirements.txt");
     if python.exists() && std::fs::read(&stamp).is_ok_and(|s| s == wanted) {
@@ -32,16 +36,16 @@ pub fn ensure(root: &Path) -> Result<PathBuf> {
     }
     step(
         "pip install python/requirements.txt",
-        Command::new(&python)
-            .args([
-                "-m",
-                "pip",
-                "install",
-                "--disable-pip-version-check",
-                "--quiet",
-                "-r",
-            ])
-            .arg(&requirements),
+        pip_install(&python).arg("-r").arg(&requirements),
+    )?;
+    step(
+        "pip install --target .venv/zenoh-1.6 (rmw_zenoh's Zenoh)",
+        pip_install(&python)
+            .arg("--upgrade")
+            .arg("--target")
+            .arg(venv.join("zenoh-1.6"))
+            .arg("-r")
+            .arg(root.join(ZENOH_16)),
     )?;
     step(
         "python imports",
@@ -49,6 +53,19 @@ pub fn ensure(root: &Path) -> Result<PathBuf> {
     )?;
     std::fs::write(&stamp, wanted).with_context(|| format!("writing {}", stamp.display()))?;
     Ok(python)
+}
+
+/// `python -m pip install`, quietly.
+fn pip_install(python: &Path) -> Command {
+    let mut cmd = Command::new(python);
+    cmd.args([
+        "-m",
+        "pip",
+        "install",
+        "--disable-pip-version-check",
+        "--quiet",
+    ]);
+    cmd
 }
 
 /// The python executable inside a venv.

@@ -26,6 +26,8 @@
 //! their report and the speed / accuracy trade are the reproduction's (`paper-scenes`,
 //! `papers`).
 
+#[cfg(feature = "cell")]
+pub mod cell;
 pub mod error;
 pub mod outcome;
 pub mod progress;

@@ -13,6 +13,8 @@
 //! - [`runs`]: one runner per experiment, joined into the scene's `handstack::Outcome`;
 //! - [`report`]: the HTML report of a set of outcomes.
 
+#[cfg(feature = "cell")]
+pub mod cell;
 pub mod devices;
 pub mod error;
 pub mod report;

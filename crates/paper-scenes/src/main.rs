@@ -30,6 +30,20 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         report: Option<PathBuf>,
     },
+    /// Run one part of a scene (pad, arm or fingertip) on its simulated device as a ROS 2 node
+    /// on Zenoh, until stdin closes.
+    #[cfg(feature = "cell")]
+    Node {
+        #[command(flatten)]
+        node: handstack::cell::cli::NodeCommand,
+        /// Read the simulated device this many times faster than real time.
+        #[arg(long, default_value_t = 1.0)]
+        sim_speed: f64,
+    },
+    /// Start a Zenoh router, the nodes a cell file names (each a `paper-scenes node` process)
+    /// and the coordinator of seed 002's tap-to-move across them.
+    #[cfg(feature = "cell")]
+    Cell(handstack::cell::cli::CellCommand),
 }
 
 fn main() -> ExitCode {
@@ -39,6 +53,15 @@ fn main() -> ExitCode {
             json,
             report,
         } => run(&scenes, json, report.as_deref()),
+        #[cfg(feature = "cell")]
+        Command::Node { node, sim_speed } => node.main(|args, stop| {
+            let scene = paper_scenes::scene::PaperScene::load(&node.scene)?;
+            let progress = handstack::progress::Quiet;
+            let cx = RunContext::new(&progress);
+            paper_scenes::cell::run_node(&scene, args, sim_speed, &cx, stop)
+        }),
+        #[cfg(feature = "cell")]
+        Command::Cell(cmd) => cmd.main(paper_scenes::cell::outcome),
     }
 }
 

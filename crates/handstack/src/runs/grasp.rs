@@ -24,28 +24,10 @@ const SURFACE_STEPS: usize = 21;
 /// Runs `[experiment.grasp]` of `scene` on its real fingertip and hand: the sensors open first,
 /// so a bus that cannot be opened fails before any servo command.
 pub fn run(scene: &Scene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part, RunError> {
-    let [lo, hi] = *exp.torque_band.get_ref();
-    let band = band(lo, hi, "grasp")?;
-    let defaults = LoopConfig::new();
-    let config = LoopConfig {
-        band,
-        goal_rad: exp
-            .goal_rad
-            .as_ref()
-            .map_or(defaults.goal_rad, |g| *g.get_ref()),
-        ..defaults
-    };
+    let config = loop_config(exp)?;
+    let band = config.band;
     let tip = crate::stack::fingertip::open(scene, &*cx.platform)?;
-    let (hand, port) = scene
-        .file
-        .hand
-        .as_ref()
-        .and_then(|h| Some((h.get_ref(), h.get_ref().serial_port.as_ref()?.get_ref())))
-        .ok_or(RunError::Device {
-            device: "hand",
-            reason: "the grasp needs a hand on a serial_port".into(),
-        })?;
-    let servo = crate::stack::hand::open(hand, port)?;
+    let servo = crate::stack::hand::open_scene(scene)?;
     let hold_s = *exp.hold_s.get_ref();
     cx.progress.stage("grasp: hold", 1);
     let log = hold(tip, servo, cx.platform.clock(), config, hold_s)?.log;
@@ -61,6 +43,21 @@ pub fn band(lo: u16, hi: u16, what: &str) -> Result<TorqueBand, RunError> {
     TorqueBand::new(lo, hi).map_err(|e| RunError::Device {
         device: "grasp",
         reason: format!("{what}: {e}"),
+    })
+}
+
+/// The grasp loop's configuration for `exp`: its torque band and closing goal over
+/// hand-control's defaults.
+pub fn loop_config(exp: &Grasp) -> Result<LoopConfig, RunError> {
+    let [lo, hi] = *exp.torque_band.get_ref();
+    let defaults = LoopConfig::new();
+    Ok(LoopConfig {
+        band: band(lo, hi, "grasp")?,
+        goal_rad: exp
+            .goal_rad
+            .as_ref()
+            .map_or(defaults.goal_rad, |g| *g.get_ref()),
+        ..defaults
     })
 }
 

@@ -32,3 +32,17 @@ pub fn open(hand: &Hand, port: &str) -> Result<ServoHand, RunError> {
         .map_err(|e| fail(format!("setting up the servos: {e}")))?;
     Ok(servo)
 }
+
+/// Opens the hand `scene` names on its `serial_port` (a simulated hand has none: an error).
+pub fn open_scene<X>(scene: &crate::scene::SceneOf<X>) -> Result<ServoHand, RunError> {
+    let (hand, port) = scene
+        .file
+        .hand
+        .as_ref()
+        .and_then(|h| Some((h.get_ref(), h.get_ref().serial_port.as_ref()?.get_ref())))
+        .ok_or(RunError::Device {
+            device: "hand",
+            reason: "a hardware hand needs a [hand] on a serial_port".into(),
+        })?;
+    open(hand, port)
+}

@@ -1,0 +1,30 @@
+//! hand-zenoh: a tactile hand stack on Zenoh, following ROS 2's rmw_zenoh conventions, so a
+//! ROS 2 node with `RMW_IMPLEMENTATION=rmw_zenoh_cpp` sees our topics and calls our services
+//! without a bridge.
+//!
+//! - [`msg`]: the messages (standard ROS 2 types where they fit, `handstack_msgs` for ours),
+//!   each declared once with its CDR encoding ([`cdr`]) and type description ([`types`]);
+//! - [`types`]: RIHS01 type hashes (REP 2011) and DDS type names; [`HashMode::Humble`]
+//!   writes `TypeHashNotSupported` for ROS 2 Humble;
+//! - [`keys`], [`attachment`]: rmw_zenoh's key expressions, liveliness tokens, GIDs and the
+//!   sequence number / timestamp / GID attachment;
+//! - [`node`]: nodes, publishers, subscriptions, services and clients over a Zenoh session
+//!   ([`config`]: peer of a router on `tcp/127.0.0.1:7447`, multicast scouting off, TCP only).
+//!
+//! The README lists the topic layout and shows a ROS 2 user how to see the topics.
+#![doc = include_str!("../README.md")]
+#![forbid(unsafe_code)]
+
+pub mod attachment;
+pub mod cdr;
+pub mod config;
+pub mod convert;
+mod error;
+pub mod keys;
+pub mod msg;
+pub mod node;
+pub mod tactile;
+pub mod types;
+
+pub use error::NodeError;
+pub use types::HashMode;

@@ -1,0 +1,155 @@
+//! A Universal Robots arm as a node (`/arm0`): `joint_states` (`sensor_msgs/JointState`) and
+//! `tcp_pose` (`geometry_msgs/PoseStamped`, the UR rotation vector as a quaternion) at the
+//! node's rate; `goal` (`PoseStamped`) in: each goal starts a moveL to it, a newer goal
+//! replacing the move under way; the service `stop` (`std_srvs/Trigger`): stopL.
+//!
+//! Safe state: when the last node publishing goals leaves the graph while the arm moves (its
+//! liveliness token goes: a crash, a kill, a lost link), the arm is stopped (stopL) at once;
+//! so it is when the node itself stops.
+
+use super::commanders::Commanders;
+use super::error::CellError;
+use super::pace::{Pacer, Stop};
+use hand_traits::LinearMotion;
+use hand_zenoh::convert::{header, pose_from_msg, pose_to_msg};
+use hand_zenoh::msg::geometry_msgs::PoseStamped;
+use hand_zenoh::msg::sensor_msgs::JointState;
+use hand_zenoh::msg::std_srvs::{Trigger, TriggerResponse};
+use hand_zenoh::node::{Node, now_ns};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use ur_bridge::{MoveHandle, UrArm};
+
+/// The joints' names, as Universal Robots' ROS 2 driver calls them.
+pub const UR_JOINTS: [&str; 6] = [
+    "shoulder_pan_joint",
+    "shoulder_lift_joint",
+    "elbow_joint",
+    "wrist_1_joint",
+    "wrist_2_joint",
+    "wrist_3_joint",
+];
+
+/// How the arm node runs.
+#[derive(Debug, Clone)]
+pub struct ArmNodeConfig {
+    /// State messages (and move polls) per second.
+    pub rate_hz: f64,
+    /// The frame id of its messages (`arm0_base`).
+    pub frame_id: String,
+    /// Speed and acceleration of the moves.
+    pub motion: LinearMotion,
+    /// stopL's deceleration, m/s².
+    pub stop_decel_m_per_s2: f64,
+}
+
+impl Default for ArmNodeConfig {
+    fn default() -> Self {
+        ArmNodeConfig {
+            rate_hz: 50.0,
+            frame_id: "base".to_owned(),
+            motion: LinearMotion::default(),
+            stop_decel_m_per_s2: 1.2,
+        }
+    }
+}
+
+/// What the arm node did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ArmNodeReport {
+    /// Goals received.
+    pub goals: u64,
+    /// Moves that ran to their end.
+    pub moves_done: u64,
+    /// stopL on request (the `stop` service).
+    pub stops: u64,
+    /// stopL because the goals' publisher left the graph mid-move.
+    pub safe_stops: u64,
+}
+
+/// Runs the arm node on `node` until `stop`.
+pub fn run(
+    node: &Node,
+    arm: &mut UrArm,
+    config: &ArmNodeConfig,
+    stop: &Stop,
+) -> Result<ArmNodeReport, CellError> {
+    let ur = |e| CellError::device("arm", e);
+    let mut goals = node.subscription::<PoseStamped>("goal", 16)?;
+    let mut joints = node.publisher::<JointState>("joint_states")?;
+    let mut tcp = node.publisher::<PoseStamped>("tcp_pose")?;
+    let asked = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&asked);
+    let _stop_service = node.service::<Trigger, _>("stop", move |_| {
+        flag.store(true, Ordering::Relaxed);
+        TriggerResponse {
+            success: true,
+            message: "stopL".to_owned(),
+        }
+    })?;
+    let mut commanders = Commanders::watch(node, "goal")?;
+    let mut current: Option<MoveHandle> = None;
+    let mut report = ArmNodeReport::default();
+    let mut pacer = Pacer::new(config.rate_hz);
+    let result = loop {
+        // A stop request first: it is answered before the node looks at anything else.
+        if asked.swap(false, Ordering::Relaxed) {
+            current = None;
+            if let Err(e) = arm.stop_linear(config.stop_decel_m_per_s2) {
+                break Err(ur(e));
+            }
+            report.stops += 1;
+        }
+        if stop.is_set() {
+            break Ok(());
+        }
+        if commanders.last_left()? && current.take().is_some() {
+            arm.stop_linear(config.stop_decel_m_per_s2).map_err(ur)?;
+            report.safe_stops += 1;
+        }
+        let mut latest = None;
+        while let Some(g) = goals.try_recv()? {
+            latest = Some(g.message);
+        }
+        if let Some(goal) = latest {
+            report.goals += 1;
+            match arm.start_move_linear(&pose_from_msg(&goal.pose), &config.motion) {
+                Ok(h) => current = Some(h),
+                Err(e) => break Err(ur(e)),
+            }
+        }
+        if let Some(h) = &current {
+            match arm.progress(h) {
+                Ok(p) if !p.running => {
+                    current = None;
+                    report.moves_done += 1;
+                }
+                Ok(_) => {}
+                Err(e) => break Err(ur(e)),
+            }
+        }
+        let h = header(now_ns(), &config.frame_id);
+        let (pose, q) = match (arm.tool_pose(), arm.joint_positions()) {
+            (Ok(p), Ok(q)) => (p, q),
+            (Err(e), _) | (_, Err(e)) => break Err(ur(e)),
+        };
+        tcp.publish(&PoseStamped {
+            header: h.clone(),
+            pose: pose_to_msg(&pose),
+        })?;
+        joints.publish(&JointState {
+            header: h,
+            name: UR_JOINTS.iter().map(|n| (*n).to_owned()).collect(),
+            position: q.to_vec(),
+            velocity: Vec::new(),
+            effort: Vec::new(),
+        })?;
+        pacer.wait();
+    };
+    if current.is_some() {
+        // Leaving mid-move (stopped, or a fault): the arm does not go on alone.
+        let _ = arm.stop_linear(config.stop_decel_m_per_s2);
+        report.safe_stops += 1;
+    }
+    result.map(|()| report)
+}

@@ -1,0 +1,183 @@
+//! A grasp hand as a node (`/hand0`): hand-control's grasp loop (fingertip → contact estimate
+//! → the paper's Mamdani controller → Protocol 2.0 hand) with, each cycle, `tactile/raw` (the
+//! loop's frame), `grasp/state` (`handstack_msgs/GraspState`) and `gripper/joint_states`;
+//! `gripper/command` (`handstack_msgs/GripperCommand`) in: its position becomes the loop's goal
+//! (the effort stays the controller's); services `grasp/start` (start cycling: tare, then
+//! grasp) and `grasp/stop` (the hand's safe action, then idle).
+//!
+//! Safe state: when the last node publishing commands leaves the graph while the loop runs (its
+//! command stream stops: a crash, a kill, a lost link), the hand goes to its configured safe
+//! action at once and the loop idles until started again; so it does when the node stops.
+
+use super::commanders::Commanders;
+use super::error::CellError;
+use super::pace::{Pacer, Stop};
+use hand_control::grasp_loop::{GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator};
+use hand_traits::{Effort, PressureFrame, TactileSource};
+use hand_zenoh::convert::header;
+use hand_zenoh::msg::handstack_msgs::{self as hs, GraspState, GripperCommand};
+use hand_zenoh::msg::sensor_msgs::JointState;
+use hand_zenoh::msg::std_srvs::{Trigger, TriggerResponse};
+use hand_zenoh::node::{Node, now_ns};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU8, Ordering};
+
+/// How the hand node runs.
+#[derive(Debug, Clone)]
+pub struct HandNodeConfig {
+    /// Cycles per second the node paces the loop at (a loop on a real clock paces itself).
+    pub rate_hz: f64,
+    /// The frame id of its messages (`hand0`).
+    pub frame_id: String,
+}
+
+/// What the hand node did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct HandNodeReport {
+    /// Loop cycles run.
+    pub cycles: u64,
+    /// Goals taken from `gripper/command`.
+    pub commands: u64,
+    /// Commands refused: a goal outside the loop's limits (never sent to the hand).
+    pub refused: u64,
+    /// `grasp/start` calls that started the loop.
+    pub starts: u64,
+    /// `grasp/stop` calls that stopped it.
+    pub stops: u64,
+    /// Safe actions because the command stream's publisher left mid-grasp (or the node
+    /// stopped while the loop ran).
+    pub safe_stops: u64,
+}
+
+const IDLE: u8 = 0;
+const START: u8 = 1;
+const STOP: u8 = 2;
+
+fn mode_code(m: Mode) -> u8 {
+    match m {
+        Mode::Tare => 0,
+        Mode::Grasp => 1,
+        Mode::Safe => 2,
+        Mode::Halted => 3,
+    }
+}
+
+/// Runs the hand node on `node` until `stop`: the paper's controller in `config.band` drives
+/// `hand` from `tip` on `clock`.
+pub fn run<S, A, C>(
+    node: &Node,
+    tip: S,
+    hand: A,
+    clock: C,
+    config: LoopConfig,
+    node_config: &HandNodeConfig,
+    stop: &Stop,
+) -> Result<HandNodeReport, CellError>
+where
+    S: TactileSource<Frame = PressureFrame<3>>,
+    A: RebootableActuator,
+    C: LoopClock,
+{
+    let band = config.band;
+    let safe_action = config.safe_action;
+    let policy = fuzzy_mamdani::grasp_controller().with_torque_band(band.min_raw(), band.max_raw());
+    let mut grasp = GraspLoop::new(tip, policy, hand, clock, config)
+        .map_err(|e| CellError::device("grasp loop", e))?;
+    let mut raw = node.publisher::<hs::PressureFrame>("tactile/raw")?;
+    let mut state = node.publisher::<GraspState>("grasp/state")?;
+    let mut joints = node.publisher::<JointState>("gripper/joint_states")?;
+    let mut commands = node.subscription::<GripperCommand>("gripper/command", 16)?;
+    let asked = Arc::new(AtomicU8::new(IDLE));
+    let service = |what: u8, text: &'static str| {
+        let flag = Arc::clone(&asked);
+        move |_| {
+            flag.store(what, Ordering::Relaxed);
+            TriggerResponse {
+                success: true,
+                message: text.to_owned(),
+            }
+        }
+    };
+    let _start = node.service::<Trigger, _>("grasp/start", service(START, "grasping"))?;
+    let _stop = node.service::<Trigger, _>("grasp/stop", service(STOP, "safe action sent"))?;
+    let mut commanders = Commanders::watch(node, "gripper/command")?;
+    let mut running = false;
+    let mut report = HandNodeReport::default();
+    let mut pacer = Pacer::new(node_config.rate_hz);
+    let safe = |grasp: &mut GraspLoop<_, _, A, C, 3>| {
+        grasp
+            .actuator_mut()
+            .safe_stop(safe_action)
+            .map_err(|e| CellError::device("hand", e))
+    };
+    let result = loop {
+        match asked.swap(IDLE, Ordering::Relaxed) {
+            START if !running => {
+                running = true;
+                report.starts += 1;
+            }
+            STOP if running => {
+                running = false;
+                report.stops += 1;
+                if let Err(e) = safe(&mut grasp) {
+                    break Err(e);
+                }
+            }
+            _ => {}
+        }
+        if stop.is_set() {
+            break Ok(());
+        }
+        if commanders.last_left()? && running {
+            running = false;
+            report.safe_stops += 1;
+            safe(&mut grasp)?;
+        }
+        while let Some(c) = commands.try_recv()? {
+            match grasp.set_goal_rad(c.message.position_rad) {
+                Ok(()) => report.commands += 1,
+                Err(_) => report.refused += 1,
+            }
+        }
+        if running {
+            let sample = *grasp.cycle();
+            report.cycles += 1;
+            let h = header(now_ns(), &node_config.frame_id);
+            if let Some(f) = sample.frame {
+                raw.publish(&hs::PressureFrame {
+                    header: h.clone(),
+                    pressure_pa: f.pressure_pa.to_vec(),
+                })?;
+            }
+            let gs = sample.state;
+            state.publish(&GraspState {
+                header: h.clone(),
+                mode: mode_code(sample.mode),
+                pressure_pa: sample.estimate.map_or(f32::NAN, |e| e.pressure_pa),
+                in_contact: sample.estimate.is_some_and(|e| e.in_contact),
+                effort: sample
+                    .torque_raw
+                    .map_or(0.0, |r| Effort::from_torque_limit_raw(r).fraction()),
+                position_rad: gs.map_or(f32::NAN, |s| s.position_rad),
+                load_fraction: gs.map_or(f32::NAN, |s| s.load_fraction),
+                faults: gs.map_or(0, |s| s.faults.bits()),
+            })?;
+            if let Some(s) = gs {
+                joints.publish(&JointState {
+                    header: h,
+                    name: vec!["gripper".to_owned()],
+                    position: vec![f64::from(s.position_rad)],
+                    velocity: vec![f64::from(s.velocity_rad_per_s)],
+                    effort: vec![f64::from(s.load_fraction)],
+                })?;
+            }
+        }
+        pacer.wait();
+    };
+    if running {
+        // Leaving mid-grasp (stopped, or a fault): the hand is left in its safe state.
+        let _ = safe(&mut grasp);
+        report.safe_stops += 1;
+    }
+    result.map(|()| report)
+}

@@ -1,0 +1,86 @@
+//! An ICM-20789 pad as a node (`/pad0`): `imu` (`sensor_msgs/Imu`, every frame),
+//! `tactile/raw` (the barometer, every frame) and `tactile/contact` (one `ContactArray` per
+//! tap: the pressure trigger of seed 002 §IV-B, the window around it, the contact locator).
+
+use super::error::CellError;
+use super::pace::{Pacer, Stop};
+use hand_traits::{ContactLocator, ImuFrame, TactileSource};
+use hand_zenoh::convert::{contact_to_msg, header, imu_to_msg};
+use hand_zenoh::msg::handstack_msgs::{ContactArray, PressureFrame};
+use hand_zenoh::msg::sensor_msgs::Imu;
+use hand_zenoh::node::{Node, now_ns};
+use std::borrow::Borrow;
+use ur_bridge::tap_to_move::{TapToMoveConfig, TapTrigger};
+
+/// How the pad node runs.
+#[derive(Debug, Clone)]
+pub struct PadNodeConfig {
+    /// Frames read per second.
+    pub rate_hz: f64,
+    /// The frame id of its messages (`pad0`).
+    pub frame_id: String,
+    /// The trigger and the window.
+    pub trigger: TapToMoveConfig,
+    /// Stop after this many frames (`None`: until stopped).
+    pub max_frames: Option<u64>,
+}
+
+/// What the pad node did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PadNodeReport {
+    /// Frames read and published.
+    pub frames: u64,
+    /// Contacts located and published.
+    pub contacts: u64,
+}
+
+/// Runs the pad node on `node` until `stop` (or `max_frames`): reads `source` at the configured
+/// rate, publishes each frame, and locates each tap with `locator` on `to_input(window)`.
+pub fn run<S, L, F, B>(
+    node: &Node,
+    source: &mut S,
+    locator: &mut L,
+    mut to_input: F,
+    config: &PadNodeConfig,
+    stop: &Stop,
+) -> Result<PadNodeReport, CellError>
+where
+    S: TactileSource<Frame = ImuFrame>,
+    L: ContactLocator,
+    F: FnMut(&[ImuFrame]) -> B,
+    B: Borrow<L::Input>,
+{
+    let mut imu = node.publisher::<Imu>("imu")?;
+    let mut raw = node.publisher::<PressureFrame>("tactile/raw")?;
+    let mut contact = node.publisher::<ContactArray>("tactile/contact")?;
+    let mut trigger = TapTrigger::new(config.trigger);
+    let mut pacer = Pacer::new(config.rate_hz);
+    let mut report = PadNodeReport::default();
+    while !stop.is_set() && config.max_frames.is_none_or(|m| report.frames < m) {
+        let frame = source
+            .read_frame()
+            .map_err(|e| CellError::device("pad", e))?;
+        let h = header(now_ns(), &config.frame_id);
+        imu.publish(&imu_to_msg(&frame, h.clone()))?;
+        if let Some(p) = frame.pressure_pa {
+            raw.publish(&PressureFrame {
+                header: h.clone(),
+                pressure_pa: vec![p],
+            })?;
+        }
+        report.frames += 1;
+        if let Some((window, _trigger_t_us)) = trigger.push(frame) {
+            let input = to_input(window);
+            let c = locator
+                .locate(input.borrow())
+                .map_err(|e| CellError::device("contact locator", e))?;
+            contact.publish(&ContactArray {
+                header: h,
+                contacts: vec![contact_to_msg(&c)],
+            })?;
+            report.contacts += 1;
+        }
+        pacer.wait();
+    }
+    Ok(report)
+}

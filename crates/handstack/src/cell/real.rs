@@ -1,0 +1,82 @@
+//! The `handstack node` command on real devices: the part of a scene it names, opened as
+//! `handstack run` opens it ([`crate::stack`]), run as a node until stopped.
+
+use super::arm::{self, ArmNodeConfig};
+use super::error::CellError;
+use super::file::Part;
+use super::hand::{self, HandNodeConfig};
+use super::pace::Stop;
+use super::{NodeArgs, tactile};
+use crate::scene::Scene;
+use crate::stack::platform::LinuxPlatform;
+use crate::stack::platform::Platform as _;
+use hand_control::grasp_loop::LoopConfig;
+use hand_zenoh::node::Node;
+use hand_zenoh::tactile::TactileInfo;
+
+/// The fingertip's frame rate as a node (seed 000 reads its fingertips at 100 Hz).
+pub const FINGERTIP_RATE_HZ: f32 = 100.0;
+
+/// Runs `args.part` of `scene` on its real device as a node until `stop`; says what it did.
+pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, CellError> {
+    let frame_id = args.namespace.trim_start_matches('/').to_owned();
+    match args.part {
+        Part::Arm => {
+            let host = scene
+                .file
+                .arm
+                .as_ref()
+                .and_then(|a| a.get_ref().host.as_ref())
+                .ok_or_else(|| CellError::Device {
+                    device: "arm",
+                    reason: "the scene's [arm] names no host".into(),
+                })?;
+            let mut ur = crate::stack::arm::open(host.get_ref())?;
+            let node = Node::open(args.options())?;
+            let config = ArmNodeConfig {
+                frame_id: format!("{frame_id}_base"),
+                ..ArmNodeConfig::default()
+            };
+            Ok(format!("{:?}", arm::run(&node, &mut ur, &config, stop)?))
+        }
+        Part::Fingertip => {
+            let tip = crate::stack::fingertip::open(scene, &LinuxPlatform::new())?;
+            let node = Node::open(args.options())?;
+            let info = TactileInfo {
+                chip: "MS5611".into(),
+                rate_hz: FINGERTIP_RATE_HZ,
+                frame_id,
+            };
+            let frames = tactile::run(&node, tip, info, stop)?;
+            Ok(format!("{frames} frames"))
+        }
+        Part::Hand => {
+            let platform = LinuxPlatform::new();
+            let tip = crate::stack::fingertip::open(scene, &platform)?;
+            let servo = crate::stack::hand::open_scene(scene)?;
+            let config = match scene.file.experiment.get_ref().grasp.as_ref() {
+                Some(g) => crate::runs::grasp::loop_config(g.get_ref())?,
+                None => LoopConfig::new(),
+            };
+            let node = Node::open(args.options())?;
+            let hand_config = HandNodeConfig {
+                rate_hz: 1e6 / config.period_us as f64,
+                frame_id,
+            };
+            let report = hand::run(
+                &node,
+                tip,
+                servo,
+                platform.clock(),
+                config,
+                &hand_config,
+                stop,
+            )?;
+            Ok(format!("{report:?}"))
+        }
+        Part::Pad => Err(CellError::Device {
+            device: "sensors.imu_pad",
+            reason: "a real pad is opened and identified, but is not yet a frame source".into(),
+        }),
+    }
+}

@@ -1,0 +1,127 @@
+//! The arm node's safe state (feature `cell`): when the node commanding it leaves the graph in
+//! the middle of a move, the arm is stopped (stopL) and does not arrive; a stop request stops
+//! it too. ur-bridge's UR controller simulator on 127.0.0.95 at real time, through the real
+//! ur_rtde (needs `$HANDSTACK_PYTHON`); the router and the nodes on 127.0.0.1.
+#![cfg(feature = "cell")]
+
+use hand_zenoh::config::SessionConfig;
+use hand_zenoh::convert::{pose_from_msg, pose_to_msg};
+use hand_zenoh::keys::EntityKind;
+use hand_zenoh::msg::geometry_msgs::PoseStamped;
+use hand_zenoh::node::{Node, NodeOptions, Router};
+use handstack::cell::Stop;
+use handstack::cell::arm::{self, ArmNodeConfig};
+use std::net::Ipv4Addr;
+use std::time::{Duration, Instant};
+use ur_bridge::sim::{SimConfig, UrSim};
+use ur_bridge::{UrArm, UrConfig};
+
+const WAIT: Duration = Duration::from_secs(20);
+
+fn node(endpoint: &str, ns: &str, name: &str) -> Node {
+    let mut o = NodeOptions::new(ns, name);
+    o.session = SessionConfig::peer(endpoint);
+    Node::open(o).expect("node")
+}
+
+#[test]
+fn the_arm_stops_when_its_commander_leaves_mid_move() {
+    if std::env::var_os("HANDSTACK_PYTHON").is_none() {
+        eprintln!(
+            "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"
+        );
+        return;
+    }
+    let address = Ipv4Addr::new(127, 0, 0, 95);
+    let sim = UrSim::start(SimConfig {
+        address,
+        ..SimConfig::default()
+    })
+    .expect("UR simulator");
+    let port = std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .unwrap()
+        .port();
+    let endpoint = format!("tcp/127.0.0.1:{port}");
+    let _router = Router::open(&endpoint).unwrap();
+    let stop = Stop::new();
+    let arm_thread = {
+        let (endpoint, stop) = (endpoint.clone(), stop.clone());
+        std::thread::spawn(move || {
+            let mut ur = UrArm::connect(UrConfig::new(address.to_string())).expect("ur_rtde");
+            let n = node(&endpoint, "/arm0", "arm");
+            arm::run(&n, &mut ur, &ArmNodeConfig::default(), &stop)
+        })
+    };
+    let commander = node(&endpoint, "/cell", "coordinator");
+    let mut tcp = commander
+        .subscription::<PoseStamped>("/arm0/tcp_pose", 256)
+        .unwrap();
+    let mut goal = commander.publisher::<PoseStamped>("/arm0/goal").unwrap();
+    assert!(
+        commander
+            .wait_for(EntityKind::Subscription, "/arm0/goal", WAIT)
+            .unwrap()
+    );
+    let start = pose_from_msg(
+        &tcp.recv_timeout(WAIT)
+            .unwrap()
+            .expect("a pose")
+            .message
+            .pose,
+    );
+    let mut target = start;
+    target.position_m[2] -= 0.15; // 0.6 s at 0.25 m/s
+    goal.publish(&PoseStamped {
+        pose: pose_to_msg(&target),
+        ..Default::default()
+    })
+    .unwrap();
+    // Wait until the move is under way (1 cm), then the commander goes.
+    let deadline = Instant::now() + WAIT;
+    let moving = loop {
+        let p = tcp.recv_timeout(Duration::from_millis(100)).unwrap();
+        if p.is_some_and(|p| pose_from_msg(&p.message.pose).distance_m(&start) > 0.01) {
+            break true;
+        }
+        if Instant::now() > deadline {
+            break false;
+        }
+    };
+    assert!(moving, "the arm did not start moving");
+    drop((tcp, goal, commander));
+    // Watch the arm from a second node until it has stood still for 0.5 s.
+    let watcher = node(&endpoint, "/cell", "watcher");
+    let mut tcp = watcher
+        .subscription::<PoseStamped>("/arm0/tcp_pose", 256)
+        .unwrap();
+    let mut last = None::<(hand_traits::Pose, Instant)>;
+    let deadline = Instant::now() + WAIT;
+    let rest = loop {
+        assert!(Instant::now() < deadline, "the arm never came to rest");
+        let Some(p) = tcp.recv_timeout(Duration::from_millis(100)).unwrap() else {
+            continue;
+        };
+        let pose = pose_from_msg(&p.message.pose);
+        match last {
+            Some((prev, since)) if prev.distance_m(&pose) < 1e-6 => {
+                if since.elapsed() > Duration::from_millis(500) {
+                    break pose;
+                }
+            }
+            _ => last = Some((pose, Instant::now())),
+        }
+    };
+    assert!(
+        rest.distance_m(&target) > 0.01,
+        "the arm went on to its goal: {:.4} m from it",
+        rest.distance_m(&target)
+    );
+    stop.set();
+    let report = arm_thread.join().unwrap().expect("the arm node");
+    assert_eq!(report.goals, 1);
+    assert_eq!(report.safe_stops, 1, "{report:?}");
+    assert_eq!(report.moves_done, 0, "{report:?}");
+    drop(watcher);
+    sim.kill();
+}

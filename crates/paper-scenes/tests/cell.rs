@@ -1,0 +1,263 @@
+//! `fixtures/cells/tap-to-move.toml` across processes (feature `cell`): a Zenoh router in this
+//! process, the pad and the UR3 nodes as `paper-scenes node` processes, the coordinator here.
+//! The nine taps are located as the in-process tap-to-move locates the same taps (same pad
+//! seed and schedule, same CNN, same window), every move arrives, nothing is lost; and a pad
+//! node killed mid-run is seen going within a stated bound and ends the run with the arm told
+//! to stop. Needs `$HANDSTACK_PYTHON` (ur-rtde). Everything on 127.0.0.x.
+#![cfg(feature = "cell")]
+
+mod common;
+
+use common::root;
+use hand_zenoh::config::SessionConfig;
+use hand_zenoh::node::{Node, NodeOptions, Router};
+use handstack::cell::coordinator::{self, TapToMoveCell};
+use handstack::cell::launch::{self, start_nodes};
+use handstack::cell::{CellError, CellFile, Stop};
+use paper_experiments::cnn_eval::{MODEL_DIR, model_file};
+use paper_experiments::tap_run;
+use paper_scenes::scene::PaperScene;
+use std::path::PathBuf;
+use std::sync::Mutex;
+use std::time::Instant;
+use tactile_nets::contact_cnn::{ContactCnn, Variant};
+use ur_bridge::RegionToGrid;
+
+/// The arm node processes each start their simulator on 127.0.0.60: one cell at a time.
+static ONE_CELL: Mutex<()> = Mutex::new(());
+
+fn python_ok() -> bool {
+    let ok = std::env::var_os("HANDSTACK_PYTHON").is_some();
+    if !ok {
+        eprintln!(
+            "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"
+        );
+    }
+    ok
+}
+
+fn program() -> PathBuf {
+    PathBuf::from(env!("CARGO_BIN_EXE_paper-scenes"))
+}
+
+/// The committed cell file with its router on a free loopback port and its scenes absolute,
+/// written to a fresh folder.
+fn cell_file(name: &str) -> PathBuf {
+    let port = std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .expect("a free loopback port")
+        .port();
+    let scenes = root().join("fixtures/scenes");
+    let text = std::fs::read_to_string(root().join("fixtures/cells/tap-to-move.toml"))
+        .expect("the cell file")
+        .replace("tcp/127.0.0.1:7447", &format!("tcp/127.0.0.1:{port}"))
+        .replace("../scenes", &scenes.display().to_string());
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tap-to-move.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// The regions the in-process tap-to-move locates for the first `n` taps of the scene.
+fn in_process_located(n: usize) -> Vec<u16> {
+    paper_scenes::devices::arm::sim_addresses_from(230);
+    let scene = PaperScene::load(&root().join("fixtures/scenes/tap-to-ur3.toml")).unwrap();
+    let schedule = tap_run::schedule(scene.seed(), tap_run::TAPS_PER_REGION);
+    let pad = paper_scenes::devices::pad::open(&scene, schedule[..n].to_vec()).unwrap();
+    let mut arm = paper_scenes::devices::arm::open(&scene).unwrap();
+    let model = root().join(MODEL_DIR).join(model_file(Variant::Paper));
+    let mut cnn = ContactCnn::load(&model).unwrap();
+    let rows = tap_run::run_on(
+        &mut arm.arm,
+        pad,
+        tap_run::training_aligned(),
+        &mut cnn,
+        tap_run::cnn_window,
+    )
+    .expect("in-process run");
+    rows.iter().map(|r| r.located).collect()
+}
+
+#[test]
+fn tap_to_move_across_processes_locates_as_in_process() {
+    if !python_ok() {
+        return;
+    }
+    let _one = ONE_CELL.lock().unwrap_or_else(|e| e.into_inner());
+    let path = cell_file("across");
+    let run = launch::run(&path, &program(), &Stop::new(), |_| {}).expect("the cell run");
+    let r = &run.report;
+    assert_eq!(r.rows.len(), 9, "{r:?}");
+    assert_eq!(r.lost_contacts, 0);
+    assert_eq!(r.malformed, 0);
+    for row in &r.rows {
+        assert!(row.tcp_error_m < 1e-4, "{row:?}");
+        assert!(
+            row.contact_latency_s.is_finite() && row.contact_latency_s < 1.0,
+            "{row:?}"
+        );
+    }
+    let seqs: Vec<i64> = r.rows.iter().map(|x| x.seq).collect();
+    let first = seqs[0];
+    assert_eq!(
+        seqs,
+        (first..first + 9).collect::<Vec<_>>(),
+        "contacts in order"
+    );
+    let reference = in_process_located(first as usize + 8);
+    for row in &r.rows {
+        assert_eq!(
+            row.region,
+            reference[row.seq as usize - 1],
+            "tap {}: across processes vs in process",
+            row.seq
+        );
+    }
+    let outcome = paper_scenes::cell::outcome(&path, &run);
+    let tapped = paper_scenes::cell::tapped_regions(&run.cell).unwrap();
+    let right = r
+        .rows
+        .iter()
+        .filter(|x| tapped[x.seq as usize - 1] == x.region)
+        .count();
+    let acc = outcome.figure("tap_accuracy_pct").unwrap().value;
+    assert!((acc - 100.0 * right as f64 / 9.0).abs() < 1e-9);
+}
+
+#[test]
+fn a_pad_node_killed_mid_run_is_seen_going_and_the_arm_is_stopped() {
+    if !python_ok() {
+        return;
+    }
+    let _one = ONE_CELL.lock().unwrap_or_else(|e| e.into_inner());
+    let path = cell_file("killed");
+    let cell = CellFile::load(&path).unwrap();
+    let _router = Router::open(&cell.router).unwrap();
+    let nodes = Mutex::new(start_nodes(&cell, &program()).unwrap());
+    let mut options = NodeOptions::new("/cell", "coordinator");
+    options.session = SessionConfig::peer(&cell.router);
+    let node = Node::open(options).unwrap();
+    let grid = RegionToGrid::ur3_default().unwrap();
+    let mut killed_at = None;
+    let result = coordinator::run(&node, &TapToMoveCell::new(9), &grid, &Stop::new(), |_| {
+        if killed_at.is_none() {
+            let mut n = nodes.lock().unwrap();
+            n.child_mut("/pad0").unwrap().kill().unwrap();
+            killed_at = Some(Instant::now());
+        }
+    });
+    let seen_after = killed_at.expect("a tap before the kill").elapsed();
+    match result {
+        Err(CellError::Graph { node, what }) => {
+            assert_eq!(node, "/pad0");
+            assert!(what.contains("left the graph after 1 taps"), "{what}");
+        }
+        other => panic!("expected the pad node's loss, got {other:?}"),
+    }
+    // The bound the docs state: a killed node's TCP link closes at once on loopback, the router
+    // withdraws its tokens; seen well within 2 s (the coordinator polls every 50 ms).
+    assert!(seen_after.as_secs_f64() < 2.0, "{seen_after:?}");
+    let logs = nodes.into_inner().unwrap().finish();
+    let arm = logs
+        .iter()
+        .find(|(ns, _)| ns == "/arm0")
+        .map(|(_, l)| l.as_str());
+    assert!(
+        arm.is_some_and(|l| l.contains("stops: 1")),
+        "the arm node was not told to stop: {arm:?}"
+    );
+}
+
+#[test]
+fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
+    use hand_zenoh::keys::EntityKind;
+    use hand_zenoh::msg::handstack_msgs::{GraspState, GripperCommand};
+    use hand_zenoh::msg::std_srvs::{Trigger, TriggerRequest};
+    use handstack::cell::{NodeArgs, Part};
+    use std::time::Duration;
+
+    let wait = Duration::from_secs(20);
+    let port = std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .unwrap()
+        .port();
+    let endpoint = format!("tcp/127.0.0.1:{port}");
+    let _router = Router::open(&endpoint).unwrap();
+    let stop = Stop::new();
+    // The Table 5 world (its first object, the cube) behind the real driver and Protocol 2.0,
+    // paced at 5 × real time; the world is single-threaded, so it is made in the node's thread.
+    let hand = {
+        let (endpoint, stop) = (endpoint.clone(), stop.clone());
+        std::thread::spawn(move || {
+            let scene = PaperScene::load(&root().join("fixtures/scenes/grasp-table5.toml"))?;
+            let progress = handstack::progress::Quiet;
+            let cx = paper_scenes::runs::RunContext::new(&progress);
+            let args = NodeArgs {
+                part: Part::Hand,
+                namespace: "/hand0".into(),
+                connect: endpoint,
+                domain_id: 0,
+                humble: false,
+            };
+            paper_scenes::cell::run_node(&scene, &args, 5.0, &cx, &stop)
+        })
+    };
+    let mut options = NodeOptions::new("/cell", "commander");
+    options.session = SessionConfig::peer(&endpoint);
+    let commander = Node::open(options).unwrap();
+    for (kind, name) in [
+        (EntityKind::Service, "/hand0/grasp/start"),
+        (EntityKind::Subscription, "/hand0/gripper/command"),
+    ] {
+        assert!(commander.wait_for(kind, name, wait).unwrap(), "{name}");
+    }
+    let mut state = commander
+        .subscription::<GraspState>("/hand0/grasp/state", 4096)
+        .unwrap();
+    let mut command = commander
+        .publisher::<GripperCommand>("/hand0/gripper/command")
+        .unwrap();
+    assert!(command.wait_matched(wait).unwrap());
+    let mut start = commander.client::<Trigger>("/hand0/grasp/start").unwrap();
+    assert!(start.call(&TriggerRequest {}, wait).unwrap().success);
+    // A goal 0.3 rad past the servo's start (inside the rig's limits), and one far outside
+    // them: taken, and refused.
+    let first = state.recv_timeout(wait).unwrap().expect("a state").message;
+    for position_rad in [first.position_rad + 0.3, first.position_rad + 3.0] {
+        command
+            .publish(&GripperCommand {
+                position_rad,
+                ..Default::default()
+            })
+            .unwrap();
+    }
+    // Grasping (mode 1, in contact), then the command stream's publisher goes.
+    let deadline = Instant::now() + wait;
+    loop {
+        assert!(Instant::now() < deadline, "the hand never grasped");
+        let s = state.recv_timeout(Duration::from_millis(100)).unwrap();
+        if s.is_some_and(|s| s.message.mode == 1 && s.message.in_contact) {
+            break;
+        }
+    }
+    drop(command);
+    // The loop stops: no state for half a second (bounded).
+    let deadline = Instant::now() + wait;
+    let mut last = Instant::now();
+    while last.elapsed() < Duration::from_millis(500) {
+        assert!(Instant::now() < deadline, "the hand kept grasping");
+        if state
+            .recv_timeout(Duration::from_millis(50))
+            .unwrap()
+            .is_some()
+        {
+            last = Instant::now();
+        }
+    }
+    stop.set();
+    let report = hand.join().unwrap().expect("the hand node");
+    assert!(report.contains("safe_stops: 1"), "{report}");
+    assert!(report.contains("commands: 1, refused: 1"), "{report}");
+    assert!(report.contains("starts: 1"), "{report}");
+}
