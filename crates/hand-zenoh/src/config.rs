@@ -100,3 +100,35 @@ impl SessionConfig {
         Ok(c)
     }
 }
+
+/// Linux: the inodes of the UDP sockets process `pid` (this process for `None`) holds. A node
+/// on these settings holds none (Zenoh's UDP transports are not built and multicast scouting
+/// is off); tests check it so, of their own process and of node processes. Empty where
+/// `/proc` cannot be read.
+pub fn udp_sockets(pid: Option<u32>) -> Vec<String> {
+    let udp: Vec<String> = ["/proc/net/udp", "/proc/net/udp6"]
+        .iter()
+        .filter_map(|p| std::fs::read_to_string(p).ok())
+        .flat_map(|t| {
+            t.lines()
+                .skip(1)
+                .filter_map(|l| l.split_whitespace().nth(9).map(str::to_owned))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let fds = match pid {
+        Some(p) => format!("/proc/{p}/fd"),
+        None => "/proc/self/fd".to_owned(),
+    };
+    std::fs::read_dir(fds)
+        .map(|d| {
+            d.filter_map(|e| std::fs::read_link(e.ok()?.path()).ok())
+                .filter_map(|l| {
+                    let l = l.to_string_lossy();
+                    let inode = l.strip_prefix("socket:[")?.strip_suffix(']')?.to_owned();
+                    udp.contains(&inode).then_some(inode)
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}

@@ -140,14 +140,26 @@ fn a_pad_node_killed_mid_run_is_seen_going_and_the_arm_is_stopped() {
     let node = Node::open(options).unwrap();
     let grid = RegionToGrid::ur3_default().unwrap();
     let mut killed_at = None;
+    let mut udp = Vec::new();
     let result = coordinator::run(&node, &TapToMoveCell::new(9), &grid, &Stop::new(), |_| {
         if killed_at.is_none() {
             let mut n = nodes.lock().unwrap();
+            // Nothing may leave the loopback: no node process holds a UDP socket.
+            for ns in ["/pad0", "/arm0"] {
+                let pid = n.child_mut(ns).unwrap().id();
+                udp.extend(hand_zenoh::config::udp_sockets(Some(pid)));
+            }
             n.child_mut("/pad0").unwrap().kill().unwrap();
             killed_at = Some(Instant::now());
         }
     });
     let seen_after = killed_at.expect("a tap before the kill").elapsed();
+    eprintln!("the killed pad node was seen leaving {seen_after:?} after the kill");
+    assert_eq!(
+        udp,
+        Vec::<String>::new(),
+        "UDP sockets in the node processes"
+    );
     match result {
         Err(CellError::Graph { node, what }) => {
             assert_eq!(node, "/pad0");
