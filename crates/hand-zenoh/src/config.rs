@@ -101,6 +101,15 @@ impl SessionConfig {
     }
 }
 
+/// `tcp/127.0.0.1:PORT` on a port that was free a moment ago (bound, read, released): for
+/// tests and cells on one machine. Another process may take the port before it is used.
+pub fn free_loopback_endpoint() -> std::io::Result<String> {
+    let port = std::net::TcpListener::bind("127.0.0.1:0")?
+        .local_addr()?
+        .port();
+    Ok(format!("tcp/127.0.0.1:{port}"))
+}
+
 /// Linux: the inodes of the UDP sockets process `pid` (this process for `None`) holds. A node
 /// on these settings holds none (Zenoh's UDP transports are not built and multicast scouting
 /// is off); tests check it so, of their own process and of node processes. Empty where

@@ -38,11 +38,7 @@ fn the_arm_stops_when_its_commander_leaves_mid_move() {
         ..SimConfig::default()
     })
     .expect("UR simulator");
-    let port = std::net::TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .unwrap()
-        .port();
-    let endpoint = format!("tcp/127.0.0.1:{port}");
+    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
     let _router = Router::open(&endpoint).unwrap();
     let stop = Stop::new();
     let arm_thread = {

@@ -43,14 +43,11 @@ fn program() -> PathBuf {
 /// The committed cell file with its router on a free loopback port and its scenes absolute,
 /// written to a fresh folder.
 fn cell_file(name: &str) -> PathBuf {
-    let port = std::net::TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .expect("a free loopback port")
-        .port();
+    let endpoint = hand_zenoh::config::free_loopback_endpoint().expect("a free loopback port");
     let scenes = root().join("fixtures/scenes");
     let text = std::fs::read_to_string(root().join("fixtures/cells/tap-to-move.toml"))
         .expect("the cell file")
-        .replace("tcp/127.0.0.1:7447", &format!("tcp/127.0.0.1:{port}"))
+        .replace("tcp/127.0.0.1:7447", &endpoint)
         .replace("../scenes", &scenes.display().to_string());
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     std::fs::create_dir_all(&dir).unwrap();
@@ -190,11 +187,7 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
     use std::time::Duration;
 
     let wait = Duration::from_secs(20);
-    let port = std::net::TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .unwrap()
-        .port();
-    let endpoint = format!("tcp/127.0.0.1:{port}");
+    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
     let _router = Router::open(&endpoint).unwrap();
     let stop = Stop::new();
     // The Table 5 world (its first object, the cube) behind the real driver and Protocol 2.0,

@@ -56,10 +56,7 @@ pub(crate) fn run(args: &Args<'_>) -> Result<(), Error> {
     });
 
     // The publish calls, to a subscriber in another session over a loopback router.
-    let port = std::net::TcpListener::bind("127.0.0.1:0")?
-        .local_addr()?
-        .port();
-    let endpoint = format!("tcp/127.0.0.1:{port}");
+    let endpoint = hand_zenoh::config::free_loopback_endpoint()?;
     let _router = zenoh::open(SessionConfig::router(&endpoint).to_zenoh()?).wait()?;
     let mut sink_options = NodeOptions::new("/sink", "costs");
     sink_options.session = SessionConfig::peer(&endpoint);

@@ -133,12 +133,6 @@ fn load_average() -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-/// A free TCP port on 127.0.0.1 (bound, read, released).
-fn free_port() -> Result<u16, Error> {
-    let l = std::net::TcpListener::bind("127.0.0.1:0")?;
-    Ok(l.local_addr()?.port())
-}
-
 struct Run<'a> {
     exe: &'a Path,
     hands: usize,
@@ -154,7 +148,7 @@ impl Run<'_> {
     }
 
     fn measure(&self, procs: &mut Vec<Proc>) -> Result<Value, Error> {
-        let endpoint = format!("tcp/127.0.0.1:{}", free_port()?);
+        let endpoint = hand_zenoh::config::free_loopback_endpoint()?;
         let cap = format!("{}", self.seconds + self.discovery_s + 30.0);
         let with_mode = |mut a: Vec<String>| {
             if self.bare {

@@ -6,8 +6,7 @@ use hand_zenoh::node::{Node, NodeOptions};
 
 /// `tcp/127.0.0.1:PORT` on a port free a moment ago.
 pub fn free_endpoint() -> String {
-    let l = std::net::TcpListener::bind("127.0.0.1:0").expect("a free loopback port");
-    format!("tcp/127.0.0.1:{}", l.local_addr().unwrap().port())
+    hand_zenoh::config::free_loopback_endpoint().expect("a free loopback port")
 }
 
 /// Node `name` in `namespace`, a peer of the router at `endpoint`.

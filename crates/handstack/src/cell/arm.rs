@@ -91,6 +91,12 @@ pub fn run(
     let mut current: Option<MoveHandle> = None;
     let mut report = ArmNodeReport::default();
     let mut pacer = Pacer::new(config.rate_hz);
+    // One message, its names set once; each cycle updates its stamp and positions.
+    let mut joint_msg = JointState {
+        name: UR_JOINTS.iter().map(|n| (*n).to_owned()).collect(),
+        position: vec![0.0; UR_JOINTS.len()],
+        ..JointState::default()
+    };
     let result = loop {
         // A stop request first: it is answered before the node looks at anything else.
         if asked.swap(false, Ordering::Relaxed) {
@@ -137,13 +143,9 @@ pub fn run(
             header: h.clone(),
             pose: pose_to_msg(&pose),
         })?;
-        joints.publish(&JointState {
-            header: h,
-            name: UR_JOINTS.iter().map(|n| (*n).to_owned()).collect(),
-            position: q.to_vec(),
-            velocity: Vec::new(),
-            effort: Vec::new(),
-        })?;
+        joint_msg.header = h;
+        joint_msg.position.copy_from_slice(&q);
+        joints.publish(&joint_msg)?;
         pacer.wait();
     };
     if current.is_some() {

@@ -104,6 +104,14 @@ where
     let mut running = false;
     let mut report = HandNodeReport::default();
     let mut pacer = Pacer::new(node_config.rate_hz);
+    // One message, its name set once; each cycle updates its stamp and values.
+    let mut joint_msg = JointState {
+        name: vec!["gripper".to_owned()],
+        position: vec![0.0],
+        velocity: vec![0.0],
+        effort: vec![0.0],
+        ..JointState::default()
+    };
     let safe = |grasp: &mut GraspLoop<_, _, A, C, 3>| {
         grasp
             .actuator_mut()
@@ -163,13 +171,11 @@ where
                 faults: gs.map_or(0, |s| s.faults.bits()),
             })?;
             if let Some(s) = gs {
-                joints.publish(&JointState {
-                    header: h,
-                    name: vec!["gripper".to_owned()],
-                    position: vec![f64::from(s.position_rad)],
-                    velocity: vec![f64::from(s.velocity_rad_per_s)],
-                    effort: vec![f64::from(s.load_fraction)],
-                })?;
+                joint_msg.header = h;
+                joint_msg.position[0] = f64::from(s.position_rad);
+                joint_msg.velocity[0] = f64::from(s.velocity_rad_per_s);
+                joint_msg.effort[0] = f64::from(s.load_fraction);
+                joints.publish(&joint_msg)?;
             }
         }
         pacer.wait();
