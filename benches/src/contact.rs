@@ -122,6 +122,11 @@ impl ContactCycle {
         Ok(self.mlp.predict(&features(reading))?)
     }
 
+    /// Contacts the MLP's decoder chooses from.
+    pub fn catalogue_len(&self) -> usize {
+        self.mlp.catalogue().len()
+    }
+
     /// One full cycle.
     pub fn cycle(&mut self) -> Result<ContactOut, CycleError> {
         let frame = self.decode()?;

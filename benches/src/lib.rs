@@ -14,14 +14,14 @@
 //! | [`full_hand`] | all of the above in one cycle | | | |
 //!
 //! The full hand is benched as a whole cycle only: its stages are the scenes' stages.
+//! [`workloads`] lists every benchmark (the stages, the cycles and the compute kernels) once, for
+//! criterion's wall time and callgrind's instruction counts alike.
 //!
 //! # Allocations
 //!
 //! `tests/zero_alloc.rs` counts heap blocks (dhat) over 500 cycles after a 200-cycle warm-up:
-//! none in the weight, grasp, softness and tap cycles, none in the contact cycle outside the
-//! MLP. `tactile_nets::contact_mlp::ContactMlp::predict` allocates 3 blocks per call (its
-//! outputs copied into a `Vec`, the per-catalogue log-likelihoods and their softmax), so the
-//! contact and full-hand cycles allocate 3 blocks in every cycle that runs the MLP.
+//! none in any scene's cycle, the contact MLP's calls counted apart and none there either. It
+//! also prints each scene's peak heap (one child process per scene).
 //! `tests/grasp_loop_log.rs` measures `GraspLoop::cycle` itself over the grasp scene's parts:
 //! its only allocations are its per-cycle log `Vec` growing (one sample a cycle, a reallocation
 //! per doubling), which is why the grasp scene's cycle calls the loop's steps one by one.
@@ -49,6 +49,11 @@ pub mod replay;
 pub mod softness;
 pub mod tap;
 pub mod weight;
+pub mod workloads;
+
+/// The fuzzy benches' reference engine (issue 5), shared with fuzzy-mamdani's tests.
+#[path = "../../crates/fuzzy-mamdani/tests/common/mod.rs"]
+mod fuzzy_reference;
 
 pub use error::CycleError;
 

@@ -5,6 +5,10 @@
 //! Target zero for every scene. The contact MLP is counted on its own as well, because it used
 //! to allocate three blocks per call (outputs, log-likelihoods and their softmax in `Vec`s); it
 //! now decodes into a fixed buffer with a streaming log-sum-exp, and this test keeps it so.
+//!
+//! It also reports each scene's peak heap: the binary runs itself once per scene
+//! (`HANDSTACK_PEAK_SCENE`), so dhat's peak is that scene's alone — building it (models,
+//! simulated devices) and running it.
 
 use handstack_benches::CycleError;
 use handstack_benches::contact::ContactCycle;
@@ -98,9 +102,86 @@ fn cycles_allocate_nothing_in_steady_state() {
     );
 }
 
+/// The scenes whose peak heap is reported.
+const SCENES: [&str; 6] = ["weight", "contact", "grasp", "softness", "tap", "full_hand"];
+
+/// Child mode: build `scene`, run it, print dhat's peak (bytes, blocks) and what stays live.
+fn peak_of(scene: &str) {
+    let _profiler = dhat::Profiler::builder().testing().build();
+    let mut cycle: Box<dyn FnMut() -> Result<(), CycleError>> = match scene {
+        "weight" => {
+            let mut c = WeightCycle::new().expect("weight");
+            Box::new(move || c.cycle().map(drop))
+        }
+        "contact" => {
+            let mut c = ContactCycle::new().expect("contact");
+            Box::new(move || c.cycle().map(drop))
+        }
+        "grasp" => {
+            let mut c = GraspCycle::new().expect("grasp");
+            Box::new(move || c.cycle().map(drop))
+        }
+        "softness" => {
+            let mut c = SoftnessCycle::new().expect("softness");
+            Box::new(move || c.cycle().map(drop))
+        }
+        "tap" => {
+            let mut c = TapCycle::new().expect("tap");
+            Box::new(move || c.cycle().map(drop))
+        }
+        _ => {
+            let mut c = FullHandCycle::new().expect("full hand");
+            Box::new(move || c.cycle().map(drop))
+        }
+    };
+    blocks(&mut cycle);
+    let stats = dhat::HeapStats::get();
+    println!(
+        "peak {} {} {}",
+        stats.max_bytes, stats.max_blocks, stats.curr_bytes
+    );
+}
+
+/// Each scene's peak heap, from one child process per scene.
+fn peak_heap_per_scene() {
+    let exe = std::env::current_exe().expect("own path");
+    println!("| scene | peak heap | peak blocks | live after {CYCLES} cycles |");
+    for scene in SCENES {
+        let out = std::process::Command::new(&exe)
+            .env("HANDSTACK_PEAK_SCENE", scene)
+            .output()
+            .expect("child runs");
+        assert!(
+            out.status.success(),
+            "{scene}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8_lossy(&out.stdout);
+        let v: Vec<usize> = text
+            .lines()
+            .find_map(|l| l.strip_prefix("peak "))
+            .map(|l| l.split(' ').filter_map(|x| x.parse().ok()).collect())
+            .unwrap_or_default();
+        assert_eq!(v.len(), 3, "{scene}: {text}");
+        // Every scene holds a model or a simulated device on the heap, and its peak bounds it.
+        assert!(v[0] > 0 && v[2] > 0 && v[2] <= v[0], "{scene}: {v:?}");
+        println!(
+            "| {scene} | {:.1} KiB | {} | {:.1} KiB |",
+            v[0] as f64 / 1024.0,
+            v[1],
+            v[2] as f64 / 1024.0
+        );
+    }
+}
+
 // No libtest harness (`harness = false`): its main thread allocates (the running-test table, the
 // timeout queue) while a test thread runs, and dhat counts every thread's blocks.
 fn main() {
+    if let Ok(scene) = std::env::var("HANDSTACK_PEAK_SCENE") {
+        peak_of(&scene);
+        return;
+    }
     cycles_allocate_nothing_in_steady_state();
     println!("cycles_allocate_nothing_in_steady_state: ok");
+    peak_heap_per_scene();
 }

@@ -32,6 +32,11 @@ pub struct Measurement {
 /// `docs/benchmarks.md` from this run), then `--` and arguments passed to every criterion bench
 /// (e.g. `-- --quick`).
 pub fn run(root: &Path, args: &[String]) -> Result<()> {
+    match args {
+        [a] if a == "--check" => return instructions(root, "check"),
+        [a] if a == "--bless" => return instructions(root, "bless"),
+        _ => {}
+    }
     let (ours, passthrough) = match args.iter().position(|a| a == "--") {
         Some(i) => (&args[..i], &args[i + 1..]),
         None => (args, &[][..]),
@@ -75,12 +80,39 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
             .chain(args.iter().map(String::as_str))
             .collect::<Vec<_>>()
             .join(" ");
-        let doc = crate::bench_doc::document(&command, &machine.finish(root), &measurements);
+        let tsv = std::fs::read_to_string(root.join(crate::bench_doc::INSTRUCTIONS)).ok();
+        let doc = crate::bench_doc::document(
+            &command,
+            &machine.finish(root),
+            &measurements,
+            tsv.as_deref(),
+        );
         let out = root.join(crate::bench_doc::DOC);
         std::fs::write(&out, doc).with_context(|| format!("writing {}", out.display()))?;
         println!("bench: wrote {}", crate::bench_doc::DOC);
     }
     Ok(())
+}
+
+/// `--check` / `--bless`: every workload's instructions per call under callgrind
+/// (`benches/tests/instructions.rs`), compared with or written to
+/// `benches/baselines/instructions.tsv`. It runs the test binary `cargo xtask test` builds
+/// (same profile and features), so in CI it adds the valgrind runs only; valgrind is installed
+/// with `apt-get` when missing.
+pub fn instructions(root: &Path, mode: &str) -> Result<()> {
+    crate::firmware::ensure_apt("valgrind", "valgrind", "the instruction-count benchmarks")?;
+    step(
+        &format!("bench --{mode} (instructions per call, callgrind)"),
+        cargo(root)
+            .args([
+                "test",
+                "--workspace",
+                "--all-features",
+                "--test",
+                "instructions",
+            ])
+            .env("HANDSTACK_INSTRUCTIONS", mode),
+    )
 }
 
 /// The workspace's target directory and every bench target of its members, from `cargo metadata`.

@@ -442,7 +442,7 @@ fn instruction_counts(root: &Path, run: &str) -> Result<String> {
 
 /// Installs Debian's `package` with `apt-get` when `binary` is missing (as root), or says what
 /// to install.
-fn ensure_apt(binary: &str, package: &str, why: &str) -> Result<()> {
+pub fn ensure_apt(binary: &str, package: &str, why: &str) -> Result<()> {
     if Command::new(binary).arg("--version").output().is_ok() {
         return Ok(());
     }

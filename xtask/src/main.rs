@@ -18,6 +18,9 @@ commands:
   bench [FILTER] [--write] [-- ARGS]
                             run the criterion benches (names containing FILTER), print a summary;
                             --write: also write docs/benchmarks.md (`bench cycles --write`)
+  bench --check | --bless   instructions per call of every workload (callgrind) against
+                            benches/baselines/instructions.tsv: --check fails on a count > 1 %
+                            above its baseline, --bless rewrites the baselines
   train contact-mlp [--docs-only]
                             train the contact-area MLP, write its weights, metrics, plot and the
                             generated sections of docs/contact-location.md (--docs-only: those alone)

@@ -10,7 +10,7 @@ use std::path::Path;
 /// linked for both and run on the host ([`firmware::check`]), the MSRV check ([`msrv::check`]),
 /// `cargo package` of every
 /// product crate ([`package::run`]) and every README against the packages ([`consumer::run`]),
-/// every test with every feature,
+/// every test with every feature, the instruction-count gate (`bench --check`),
 /// the docs with warnings denied, and `fixtures --check` (again with numpy's widest SIMD kernels off).
 pub fn run(root: &Path) -> Result<()> {
     let python = venv::ensure(root)?;
@@ -40,6 +40,7 @@ pub fn run(root: &Path) -> Result<()> {
             .env("HANDSTACK_PYTHON", &python)
             .env("HANDSTACK_CHROMIUM", &chromium),
     )?;
+    crate::bench::instructions(root, "check")?;
     step(
         "doc",
         cargo(root)

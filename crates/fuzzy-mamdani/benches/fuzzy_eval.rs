@@ -9,15 +9,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
 fn inputs() -> Vec<[f64; 2]> {
-    // A deterministic sweep over the universes, including the ends and a little beyond.
-    (0..64)
-        .map(|k| {
-            [
-                -1.05 + 2.1 * (k as f64 * 0.618_034).fract(),
-                -1.05 + 2.1 * (k as f64 * 0.414_214).fract(),
-            ]
-        })
-        .collect()
+    common::bench_inputs()
 }
 
 fn reference(c: &mut Criterion) {

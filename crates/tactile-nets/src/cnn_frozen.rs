@@ -2,14 +2,18 @@
 //! (valid 3 × 3 conv, ReLU, 2 × 2 max-pool, dense + ReLU, dense), without dfdx's per-call
 //! tensor allocations — the single-sample path the 50 µs budget is measured on.
 //!
-//! The conv kernel and the dense head are [`crate::frozen`] layers frozen from the trained
-//! dfdx modules; this module adds only the patch walk and the pool. The tests check it
-//! against dfdx's forward to 1e-5.
+//! The conv kernel is copied patch-element-major and computed four columns at a time; the
+//! dense head reads ReLU outputs, so both its layers are [`crate::frozen::SparseDense`]
+//! (input-major, zeros skipped). The tests check it against dfdx's forward to 1e-5.
 
-use crate::cnn_layers::{CONV_ROWS, KERNEL, PATCH, POOLED};
+use crate::cnn_layers::{CONV_COLS, CONV_ROWS, KERNEL, PATCH, POOLED};
+
+/// Conv columns computed together (it divides the 36 columns).
+const GROUP: usize = 4;
+const _: () = assert!(CONV_COLS.is_multiple_of(GROUP));
 use crate::contact_cnn::{REGIONS, WINDOW, WINDOW_VALUES};
 use crate::error::NetError;
-use crate::frozen::{Dense, Freeze, Layer, Relu};
+use crate::frozen::{Freeze, Layer, Relu, SparseDense};
 use dfdx::nn::modules::Linear;
 use dfdx::prelude::{Cpu, ReLU};
 
@@ -24,8 +28,12 @@ pub type Head<const FLAT: usize, const H: usize> = (
 /// plain arrays.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FrozenCnn<const F: usize, const FLAT: usize, const H: usize> {
-    conv: Dense<PATCH, F>,
-    head: (Dense<FLAT, H>, Relu, Dense<H, REGIONS>),
+    // The 3 × 3 kernels patch-element-major: `conv[k][f]` is filter f's weight on element k.
+    conv: Box<[[f32; F]; PATCH]>,
+    conv_bias: [f32; F],
+    // Both dense layers read ReLU outputs (the pooled map, the hidden layer): input-major, so
+    // the zeros cost nothing.
+    head: (SparseDense<FLAT, H>, Relu, SparseDense<H, REGIONS>),
 }
 
 impl<const F: usize, const FLAT: usize, const H: usize> FrozenCnn<F, FLAT, H> {
@@ -34,9 +42,26 @@ impl<const F: usize, const FLAT: usize, const H: usize> FrozenCnn<F, FLAT, H> {
     /// Freezes a trained net's conv kernel (`Linear<9, F>`) and dense head.
     pub fn new(conv: &Linear<PATCH, F, f32, Cpu>, head: &Head<FLAT, H>) -> Result<Self, NetError> {
         let () = Self::SIZES_AGREE;
+        let w = conv.weight.as_vec();
+        let b = conv.bias.as_vec();
+        if w.len() != F * PATCH || b.len() != F {
+            return Err(NetError::TensorMismatch {
+                name: "conv".to_owned(),
+                stored: format!("{} weights, {} biases", w.len(), b.len()),
+                expected: format!("[{F}, {PATCH}] and [{F}]"),
+            });
+        }
+        let (dense, _, out) = head.freeze()?;
         Ok(FrozenCnn {
-            conv: conv.freeze()?,
-            head: head.freeze()?,
+            conv: Box::new(core::array::from_fn(|k| {
+                core::array::from_fn(|f| w[f * PATCH + k])
+            })),
+            conv_bias: core::array::from_fn(|f| b[f]),
+            head: (
+                SparseDense::from_dense(&dense),
+                Relu,
+                SparseDense::from_dense(&out),
+            ),
         })
     }
 
@@ -46,12 +71,23 @@ impl<const F: usize, const FLAT: usize, const H: usize> FrozenCnn<F, FLAT, H> {
         // pool takes the max of the raw conv values and ReLU follows.
         let mut pooled = [f32::NEG_INFINITY; FLAT];
         for r in 0..CONV_ROWS {
-            for c in 0..2 * POOLED {
-                let patch: [f32; PATCH] =
-                    core::array::from_fn(|k| z[(r + k / KERNEL) * WINDOW + c + k % KERNEL]);
-                let y = self.conv.forward(patch);
-                for (m, v) in pooled[(c / 2) * F..(c / 2 + 1) * F].iter_mut().zip(y) {
-                    *m = m.max(v);
+            // Four neighbouring columns at once: four independent sums per filter, so the adds
+            // of one column do not wait on each other (one column alone is latency-bound).
+            for c0 in (0..CONV_COLS).step_by(GROUP) {
+                let mut y = [self.conv_bias; GROUP];
+                for (k, w) in self.conv.iter().enumerate() {
+                    let at = (r + k / KERNEL) * WINDOW + c0 + k % KERNEL;
+                    for (y, &v) in y.iter_mut().zip(&z[at..at + GROUP]) {
+                        for (y, w) in y.iter_mut().zip(w) {
+                            *y += v * w;
+                        }
+                    }
+                }
+                for (dc, y) in y.iter().enumerate() {
+                    let c = c0 + dc;
+                    for (m, &v) in pooled[(c / 2) * F..(c / 2 + 1) * F].iter_mut().zip(y) {
+                        *m = m.max(v);
+                    }
                 }
             }
         }

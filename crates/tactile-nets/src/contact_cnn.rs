@@ -38,7 +38,7 @@
 
 use crate::activations::softmax_into;
 use crate::cnn_frozen::FrozenCnn;
-use crate::cnn_layers::{Im2Col, PATCH, POOLED, PoolFlatten};
+use crate::cnn_layers::{Im2Col, PATCH, POOLED, POSITIONS, PoolFlatten};
 use crate::error::{NetError, check_input, check_output};
 use crate::io::TensorFile;
 use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
@@ -110,6 +110,13 @@ impl Variant {
             Variant::Paper => 1,
             Variant::Small | Variant::Wide => 6,
         }
+    }
+
+    /// Multiply-adds of one forward pass: the 3 × 3 conv at each of its 2 × 36 positions per
+    /// filter, then both dense layers.
+    pub fn mul_adds(self) -> usize {
+        let (f, h) = self.sizes();
+        POSITIONS * PATCH * f + POOLED * f * h + h * REGIONS
     }
 
     /// Trainable parameters.

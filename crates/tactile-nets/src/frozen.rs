@@ -106,6 +106,132 @@ impl<const I: usize, const O: usize> Layer<[f32; I]> for Dense<I, O> {
     }
 }
 
+/// A dense layer `y = W x + b` for inputs that are mostly zero (those after a ReLU), stored
+/// input-major: the forward pass adds `x_j · W[:, j]` for the non-zero `x_j` only, so it
+/// reads and multiplies only the weights that matter.
+///
+/// Same arithmetic as [`Dense`] up to the order of the additions (results agree to f32
+/// rounding); how much it saves is the share of zero inputs. The outputs are accumulated in
+/// blocks of [`BLOCK`], each block's weights contiguous and input-major, so a block's partial
+/// sums stay in registers while its weights stream through in order.
+#[cfg(feature = "std")]
+#[derive(Debug, Clone, PartialEq)]
+pub struct SparseDense<const I: usize, const O: usize> {
+    // `blocks[b * I + j][k]` = W[b · BLOCK + k][j]; the last block is zero-padded.
+    blocks: Box<[[f32; BLOCK]]>,
+    bias: Box<[f32; O]>,
+}
+
+/// Outputs accumulated together in [`SparseDense`]: 32 `f32` are 8 SSE (or 4 AVX) registers.
+pub const BLOCK: usize = 32;
+
+#[cfg(feature = "std")]
+impl<const I: usize, const O: usize> SparseDense<I, O> {
+    /// The input-major copy of `dense`.
+    pub fn from_dense(dense: &Dense<I, O>) -> Self {
+        const {
+            assert!(
+                I <= u16::MAX as usize,
+                "SparseDense indexes its inputs with u16"
+            )
+        };
+        let mut blocks = vec![[0.0f32; BLOCK]; O.div_ceil(BLOCK) * I].into_boxed_slice();
+        for (o, row) in dense.weight.iter().enumerate() {
+            for (j, &w) in row.iter().enumerate() {
+                blocks[(o / BLOCK) * I + j][o % BLOCK] = w;
+            }
+        }
+        SparseDense {
+            blocks,
+            bias: dense.bias.clone(),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl<const I: usize, const O: usize> Layer<[f32; I]> for SparseDense<I, O> {
+    type Output = [f32; O];
+
+    fn forward(&self, x: [f32; I]) -> [f32; O] {
+        // The non-zero inputs, compacted without a branch (a zero is written, then overwritten).
+        let mut index = [0u16; I];
+        let mut value = [0.0f32; I];
+        let mut n = 0;
+        for (j, &v) in x.iter().enumerate() {
+            index[n] = j as u16;
+            value[n] = v;
+            n += usize::from(v != 0.0);
+        }
+        let (index, value) = (&index[..n], &value[..n]);
+        let mut y = *self.bias;
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: the one requirement of a `target_feature` function is that the CPU has
+            // the feature, checked just above. Why: the same lane-wise mul and add on 8 lanes
+            // instead of SSE2's 4 (bit-identical results: each output's sum keeps its order),
+            // measured 3.61 → 2.70 µs per paper-CNN call on an AMD EPYC (issue 23).
+            #[allow(unsafe_code)]
+            unsafe {
+                accumulate_avx::<I, O>(&self.blocks, index, value, &mut y);
+            }
+            return y;
+        }
+        accumulate::<I, O, 1>(&self.blocks, index, value, &mut y);
+        y
+    }
+}
+
+/// `y += W x` over the non-zero inputs (`index`, `value`) of [`SparseDense`]'s blocks, `P`
+/// blocks per pass over the inputs. Each output's sum runs over the inputs in order whatever
+/// `P` is, so every `P` gives the same bits; a larger `P` gives the adds of one input more
+/// independent chains (one chain per register waits ~3 cycles per add), at the cost of
+/// registers: 2 with AVX's 16 × 8 lanes, 1 with SSE2's 16 × 4.
+#[cfg(feature = "std")]
+#[inline(always)]
+fn accumulate<const I: usize, const O: usize, const P: usize>(
+    blocks: &[[f32; BLOCK]],
+    index: &[u16],
+    value: &[f32],
+    y: &mut [f32; O],
+) {
+    for (group, out) in blocks.chunks(P * I).zip(y.chunks_mut(P * BLOCK)) {
+        let mut acc = [[0.0f32; BLOCK]; P];
+        if group.len() == P * I {
+            for (&j, &v) in index.iter().zip(value) {
+                for (p, acc) in acc.iter_mut().enumerate() {
+                    for (a, w) in acc.iter_mut().zip(&group[p * I + usize::from(j)]) {
+                        *a += v * w;
+                    }
+                }
+            }
+        } else {
+            // The last, shorter group: its blocks one at a time.
+            for (block, acc) in group.chunks_exact(I).zip(acc.iter_mut()) {
+                for (&j, &v) in index.iter().zip(value) {
+                    for (a, w) in acc.iter_mut().zip(&block[usize::from(j)]) {
+                        *a += v * w;
+                    }
+                }
+            }
+        }
+        for (o, a) in out.iter_mut().zip(acc.iter().flatten()) {
+            *o += a;
+        }
+    }
+}
+
+/// [`accumulate`] compiled for AVX (8-lane `f32`), two blocks per pass, chosen at run time.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx")]
+fn accumulate_avx<const I: usize, const O: usize>(
+    blocks: &[[f32; BLOCK]],
+    index: &[u16],
+    value: &[f32],
+    y: &mut [f32; O],
+) {
+    accumulate::<I, O, 2>(blocks, index, value, y);
+}
+
 /// A dense layer `y = W x + b` over `'static` weights (flash on a microcontroller): the
 /// inference form of the models built into the crate ([`crate::pretrained`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -321,6 +447,45 @@ mod tests {
         let (x, fast) = ([0.5f32; 40], other.freeze().expect("freezes"));
         let gap = (c.forward(dev.tensor(x)).array()[0] - fast.forward(x)[0]).abs();
         assert!(gap > 1e-3, "gap {gap}");
+    }
+
+    #[test]
+    fn sparse_dense_equals_dense_and_its_paths_agree_bit_for_bit() -> Result<(), NetError> {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        // 70 outputs: two full blocks and a padded one; a 9-wide layer: one padded block.
+        let w: Vec<f32> = (0..40 * 70).map(|_| rng.random_range(-1.0..1.0)).collect();
+        let b: Vec<f32> = (0..70).map(|_| rng.random_range(-1.0..1.0)).collect();
+        let dense = Dense::<40, 70>::new(&w, &b)?;
+        let sparse = SparseDense::from_dense(&dense);
+        let narrow = Dense::<40, 9>::new(&w[..360], &b[..9])?;
+        let narrow_sparse = SparseDense::from_dense(&narrow);
+        for round in 0..50 {
+            // ReLU-like inputs: about half zero, one round all zero, one all non-zero.
+            let x: [f32; 40] = core::array::from_fn(|_| match round {
+                0 => 0.0,
+                1 => rng.random_range(0.1..2.0),
+                _ => rng.random_range(-2.0f32..2.0).max(0.0),
+            });
+            let (want, got) = (dense.forward(x), sparse.forward(x));
+            assert!(want.iter().zip(got).all(|(a, b)| (a - b).abs() <= 1e-5));
+            let (want, got) = (narrow.forward(x), narrow_sparse.forward(x));
+            assert!(want.iter().zip(got).all(|(a, b)| (a - b).abs() <= 1e-5));
+            // The portable kernel gives the same bits as whichever `forward` chose.
+            let index: Vec<u16> = (0..40u16).filter(|&j| x[usize::from(j)] != 0.0).collect();
+            let value: Vec<f32> = index.iter().map(|&j| x[usize::from(j)]).collect();
+            let mut y = *sparse.bias;
+            accumulate::<40, 70, 1>(&sparse.blocks, &index, &value, &mut y);
+            assert_eq!(y.map(f32::to_bits), got_bits(&sparse, x));
+        }
+        // A NaN input reaches every output, as in `Dense`.
+        let mut x = [0.0f32; 40];
+        x[7] = f32::NAN;
+        assert!(sparse.forward(x).iter().all(|v| v.is_nan()));
+        Ok(())
+    }
+
+    fn got_bits(layer: &SparseDense<40, 70>, x: [f32; 40]) -> [u32; 70] {
+        layer.forward(x).map(f32::to_bits)
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! ticks-per-instruction ratio is calibrated in the program on a loop of known length, and each
 //! stage runs 1 and 101 times so that start-up and the timer reads cancel: (ticks(101) −
 //! ticks(1)) / 100 per call. The inputs are one fixed, realistic reading per stage; the contact
-//! MLP's decode costs somewhat more or less on other inputs (its `log_sigmoid` calls vary).
+//! MLP's decode costs a little more or less on other inputs (its soft-float `exp` varies).
 //!
 //! Output, one line per stage: `stage NAME: X instructions per call` (parsed by `cargo xtask
 //! firmware --write`). Instructions are not cycles: soft-float helpers, loads and flash wait

@@ -57,6 +57,19 @@ pub fn reference_engine<T: Real>(defuzz: Defuzzifier) -> Engine<T> {
     b.build().expect("the reference engine builds")
 }
 
+/// The benchmarks' inputs: a deterministic sweep over the universes, including the ends and a
+/// little beyond (fuzzy-mamdani's criterion bench and the workspace's instruction counts).
+pub fn bench_inputs() -> Vec<[f64; 2]> {
+    (0..64)
+        .map(|k| {
+            [
+                -1.05 + 2.1 * (k as f64 * 0.618_034).fract(),
+                -1.05 + 2.1 * (k as f64 * 0.414_214).fract(),
+            ]
+        })
+        .collect()
+}
+
 /// The reference engine with its benchmark defuzzifier: centroid over 201 samples.
 pub fn reference_201<T: Real>() -> Engine<T> {
     reference_engine(Defuzzifier::Centroid(Resolution::Samples(201)))
