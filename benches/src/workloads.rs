@@ -16,7 +16,7 @@ use crate::replay::Replay;
 use crate::softness::SoftnessCycle;
 use crate::tap::TapCycle;
 use crate::weight::WeightCycle;
-use aot_locate::{AotLocator, ArrivalEvent, Geometry, Ranging, Scorer};
+use aot_locate::{AotLocator, Geometry, Ranging, Scorer};
 use hand_traits::ContactLocator;
 use std::hint::black_box;
 
@@ -371,14 +371,6 @@ fn kernels() -> Result<Vec<Workload>, CycleError> {
 
     let ranging = Ranging::new(3_000.0, 2_500.0, 25_000.0, 30.0).map_err(CycleError::Ranging)?;
     let mut ranging = AotLocator::with_scorer(Geometry::simulated_pad(), Scorer::Ranging(ranging));
-    let mut three: Vec<ArrivalEvent> = Vec::new();
-    while three.len() < 64 {
-        let e = *events.next_item();
-        if e.arrival_us.iter().all(Option::is_some) || three.len() + events.len() > 128 {
-            three.push(e);
-        }
-    }
-    let mut three = replay(three)?;
 
     let reference = crate::fuzzy_reference::reference_201::<f32>();
     let mut reference_scratch = reference.scratch();
@@ -423,7 +415,8 @@ fn kernels() -> Result<Vec<Workload>, CycleError> {
             black_box(tap.policy(windows.next_item()).ok());
         }),
         Workload::new("kernel/aot_ranging", move || {
-            black_box(ranging.locate(three.next_item()).ok());
+            // Every arrival event of the contact cycle, one, two or three sensors arrived.
+            black_box(ranging.locate(events.next_item()).ok());
         }),
         Workload::new("kernel/fuzzy_reference_201", move || {
             let x = reference_inputs.next_item();
