@@ -8,8 +8,8 @@ use crate::defuzz::{self, Statistic};
 use crate::engine::{AndIndex, Compiled, OutputPlan, ScratchShape};
 use crate::rules::{self, MAX_DEPTH, Op};
 use crate::{
-    BuildError, Defuzzifier, Engine, InputVariable, Mf, OutOfRange, OutputVariable, Real,
-    Resolution, Rule, SNorm, TNorm, Term,
+    Activation, BuildError, Defuzzifier, Engine, Hedges, InputVariable, Mf, OutOfRange,
+    OutputVariable, Real, Resolution, Rule, SNorm, TNorm, Term,
 };
 
 /// The most samples a sampled defuzzifier may ask for (the table is terms × samples values).
@@ -36,6 +36,8 @@ pub struct EngineBuilder<T> {
     defuzzifier: Defuzzifier,
     default: Option<T>,
     out_of_range: OutOfRange,
+    activation_threshold: T,
+    activation: Activation<T>,
 }
 
 #[derive(Debug, Clone)]
@@ -69,6 +71,8 @@ impl<T: Real> EngineBuilder<T> {
             defuzzifier: Defuzzifier::Centroid(Resolution::Samples(101)),
             default: None,
             out_of_range: OutOfRange::Clamp,
+            activation_threshold: T::zero(),
+            activation: Activation::General,
         }
     }
 
@@ -166,6 +170,20 @@ impl<T: Real> EngineBuilder<T> {
         self.default = Some(v);
         self
     }
+    /// A conclusion takes part only when its activation degree (its rule's weighted strength,
+    /// hedged) is above `t`: 0 (the default, MATLAB's and pyfuzzylite 8's) drops silent rules
+    /// only; fuzzylite 6 / 7 in C++ use `1e-6` (its `macheps` comparison), which also drops
+    /// rules that fire faintly. In `[0, 1)`; checked at `build`.
+    pub fn activation_threshold(mut self, t: T) -> Self {
+        self.activation_threshold = t;
+        self
+    }
+    /// How the rules' degrees decide which rules take part (default [`Activation::General`]:
+    /// all of them).
+    pub fn activation(mut self, a: Activation<T>) -> Self {
+        self.activation = a;
+        self
+    }
     /// The out-of-range policy of the inputs added with [`input`](Self::input).
     pub fn out_of_range(mut self, p: OutOfRange) -> Self {
         self.out_of_range = p;
@@ -199,6 +217,12 @@ impl<T: Real> EngineBuilder<T> {
         if inputs.is_empty() || outputs.is_empty() {
             return Err(BuildError::Empty);
         }
+        if !(b.activation_threshold >= T::zero() && b.activation_threshold < T::one()) {
+            return Err(BuildError::BadThreshold);
+        }
+        if !b.activation.is_valid() {
+            return Err(BuildError::BadThreshold);
+        }
         let mut names: Vec<&str> = Vec::new();
         for (name, min, max, terms) in inputs
             .iter()
@@ -227,7 +251,12 @@ impl<T: Real> EngineBuilder<T> {
                 .any(|c| c.output == o && c.negated);
             check_defuzzifier(var, b.implication, negated)?;
         }
-        let compiled = compile(&inputs, &outputs, &rules_);
+        let compiled = compile(
+            &inputs,
+            &outputs,
+            &rules_,
+            b.activation == Activation::General,
+        );
         Ok(Engine {
             name: self.name,
             inputs,
@@ -236,6 +265,8 @@ impl<T: Real> EngineBuilder<T> {
             conjunction: self.conjunction,
             disjunction: self.disjunction,
             implication: self.implication,
+            activation_threshold: self.activation_threshold,
+            activation: self.activation,
             compiled,
         })
     }
@@ -284,6 +315,12 @@ fn check_rule<T: Real>(
         inputs: &[InputVariable<T>],
     ) -> Result<(), BuildError> {
         match e {
+            crate::Expr::Any { input, .. } if *input >= inputs.len() => Err(BuildError::Unknown {
+                rule: i,
+                what: "input",
+                name: input.to_string(),
+            }),
+            crate::Expr::Any { .. } => Ok(()),
             crate::Expr::Is { input, term, .. } => match inputs.get(*input) {
                 None => Err(BuildError::Unknown {
                     rule: i,
@@ -372,6 +409,10 @@ fn check_defuzzifier<T: Real>(
             fail("samples must be in 2..=2^20")
         }
         Some(Resolution::Samples(_)) => Ok(()),
+        Some(Resolution::Midpoints(n)) if !(1..=MAX_SAMPLES).contains(&n) => {
+            fail("midpoints must be in 1..=2^20")
+        }
+        Some(Resolution::Midpoints(_)) => Ok(()),
         Some(Resolution::Exact)
             if var
                 .terms
@@ -398,12 +439,13 @@ fn compile<T: Real>(
     inputs: &[InputVariable<T>],
     outputs: &[OutputVariable<T>],
     rules_: &[Rule<T>],
+    general: bool,
 ) -> Compiled<T> {
     let mut input_offsets = Vec::with_capacity(inputs.len() + 1);
     let mut input_mfs = Vec::new();
     for v in inputs {
         input_offsets.push(input_mfs.len());
-        input_mfs.extend(v.terms.iter().map(|t| t.mf));
+        input_mfs.extend(v.terms.iter().map(|t| t.mf.clone()));
     }
     input_offsets.push(input_mfs.len());
     let (mut ops, mut rule_ops, mut weights) = (Vec::new(), Vec::new(), Vec::new());
@@ -419,17 +461,25 @@ fn compile<T: Real>(
             [
                 Op::Term {
                     mu: a,
-                    negated: false,
+                    hedges: Hedges::NONE,
                 },
                 Op::Term {
                     mu: b,
-                    negated: false,
+                    hedges: Hedges::NONE,
                 },
                 Op::And,
             ] => Some([a, b]),
             _ => None,
         })
-        .collect::<Option<Vec<_>>>();
+        .collect::<Option<Vec<_>>>()
+        // A hedged conclusion can act on a rule that did not fire (`not` of 0 is 1), and the
+        // other activation methods look at every rule.
+        .filter(|_| {
+            general
+                && rules_
+                    .iter()
+                    .all(|r| r.consequents.iter().all(|c| c.hedges.is_empty()))
+        });
     let and_index = and_pairs.map(|pairs| and_index(&pairs, input_mfs.len()));
     let plans: Vec<OutputPlan<T>> = outputs
         .iter()
@@ -480,35 +530,36 @@ fn and_index(pairs: &[[u32; 2]], terms: usize) -> AndIndex {
 }
 
 fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputPlan<T> {
-    let mfs: Vec<Mf<T>> = v.terms.iter().map(|t| t.mf).collect();
+    let mfs: Vec<Mf<T>> = v.terms.iter().map(|t| t.mf.clone()).collect();
     let consequents = rules_
         .iter()
         .enumerate()
         .flat_map(|(r, rule)| rule.consequents.iter().map(move |c| (r, c)))
         .filter(|(_, c)| c.output == o)
-        .map(|(r, c)| (r as u32, c.term as u32, c.negated))
+        .map(|(r, c)| (r as u32, c.term as u32, c.negated, c.hedges))
         .collect::<Vec<_>>();
     // Consequents come in rule order, so each rule's are one contiguous run.
     let mut rule_offsets = vec![0u32; rules_.len() + 1];
-    for &(r, _, _) in &consequents {
+    for &(r, _, _, _) in &consequents {
         rule_offsets[r as usize + 1] += 1;
     }
     for r in 0..rules_.len() {
         rule_offsets[r + 1] += rule_offsets[r];
     }
-    let samples = match v.defuzzifier.resolution() {
-        Some(Resolution::Samples(n)) => n,
-        _ => 0,
+    let (samples, midpoints) = match v.defuzzifier.resolution() {
+        Some(Resolution::Samples(n)) => (n, false),
+        Some(Resolution::Midpoints(n)) => (n, true),
+        _ => (0, false),
     };
     let span = v.max - v.min;
-    let dx = if samples > 1 {
-        span / T::of((samples - 1) as f64)
-    } else {
-        span
+    let (dx, offset) = match (midpoints, samples) {
+        (true, n) => (span / T::of(n as f64), T::of(0.5)),
+        (false, n) if n > 1 => (span / T::of((n - 1) as f64), T::zero()),
+        (false, _) => (span, T::zero()),
     };
     let mut table = Vec::with_capacity(samples * mfs.len());
     for mf in &mfs {
-        table.extend((0..samples).map(|k| mf.membership(v.min + T::of(k as f64) * dx)));
+        table.extend((0..samples).map(|k| mf.membership(v.min + (T::of(k as f64) + offset) * dx)));
     }
     let centers = mfs
         .iter()
@@ -520,10 +571,12 @@ fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputP
     OutputPlan {
         mfs,
         centers,
+        hedged: consequents.iter().any(|c| !c.3.is_empty()),
         consequents,
         rule_offsets,
         stat: Statistic::of(v.defuzzifier),
         samples,
+        midpoints,
         dx,
         table,
     }
@@ -536,7 +589,7 @@ fn term_centroid<T: Real>(mf: &Mf<T>, min: T, max: T) -> T {
     let mu: Vec<T> = (0..n)
         .map(|k| mf.membership(min + T::of(k as f64) * dx))
         .collect();
-    defuzz::sampled(Statistic::Centroid, &mu, min, dx)
+    defuzz::sampled(Statistic::Centroid, &mu, min, dx, false)
         .unwrap_or((min + max) / (T::one() + T::one()))
 }
 
@@ -546,7 +599,9 @@ impl<T: Real> From<&Engine<T>> for EngineBuilder<T> {
         let mut b = EngineBuilder::new(engine.name.clone())
             .conjunction(engine.conjunction)
             .disjunction(engine.disjunction)
-            .implication(engine.implication);
+            .implication(engine.implication)
+            .activation_threshold(engine.activation_threshold)
+            .activation(engine.activation);
         b.inputs = engine.inputs.iter().map(|v| (v.clone(), true)).collect();
         b.outputs = engine.outputs.iter().map(|v| (v.clone(), true)).collect();
         b.rules = engine

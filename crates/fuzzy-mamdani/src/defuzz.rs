@@ -1,11 +1,22 @@
 //! Defuzzifiers: how an output's aggregated fuzzy set becomes one crisp value.
 //!
-//! The integral and maximum defuzzifiers come in two flavours:
+//! The integral and maximum defuzzifiers come in three flavours:
 //! [`Resolution::Samples`] follows MATLAB's `defuzz` on `n` evenly spaced points (ends included),
-//! so its numbers match MATLAB's `evalfis` at the same number of points; [`Resolution::Exact`]
-//! integrates the piecewise-linear aggregated set in closed form (triangle / trapezoid terms,
-//! min or product implication, max or sum aggregation), which is what every sampled method
-//! converges to.
+//! so its numbers match MATLAB's `evalfis` at the same number of points;
+//! [`Resolution::Midpoints`] follows fuzzylite, which integrates with the midpoint rule on `n`
+//! cells; [`Resolution::Exact`] integrates the piecewise-linear aggregated set in closed form
+//! (triangle / trapezoid terms, min or product implication, max or sum aggregation), which is
+//! what both sampled methods converge to.
+//!
+//! # Sampling bias
+//!
+//! The two sampled rules weigh the ends of the universe differently. End-point samples give
+//! the first and last sample a full weight where the trapezoid rule would give half, so a term
+//! reaching an end of the range pulls the centroid towards that end by O(1/n) of the span:
+//! the issue-25 probe (an output term at the end of 0…1023, 201 samples) was 2.41 off the
+//! exact centroid. Midpoints integrate with an O(1/n²) error for smooth sets (0.038 in the
+//! same probe) but can miss a peak narrower than one cell. Use [`Resolution::Exact`] where the
+//! terms allow it; use the sampled rule of the tool whose numbers you must reproduce.
 
 use crate::Real;
 
@@ -15,6 +26,10 @@ pub enum Resolution {
     /// `n ≥ 2` evenly spaced points over `[min, max]`, ends included (MATLAB's
     /// `DefuzzificationSamples` is 101 by default).
     Samples(usize),
+    /// The midpoints `min + (k + ½)·(max − min)/n` of `n ≥ 1` equal cells (fuzzylite's
+    /// `resolution`, 1000 by default in pyfuzzylite 8; its bisector takes the mean of the
+    /// points whose cumulative area is nearest to half, as fuzzylite does).
+    Midpoints(usize),
     /// Closed form over the piecewise-linear set; needs triangle / trapezoid output terms,
     /// min or product implication and max or unbounded-sum aggregation.
     Exact,
@@ -92,9 +107,17 @@ impl Statistic {
     }
 }
 
-/// MATLAB's `defuzz` on samples `mu[k]` at `x = min + k·dx`; `None` when the set is empty.
-pub(crate) fn sampled<T: Real>(stat: Statistic, mu: &[T], min: T, dx: T) -> Option<T> {
-    let x = |k: usize| min + T::of(k as f64) * dx;
+/// MATLAB's `defuzz` on samples `mu[k]` at `x = min + k·dx` or, with `midpoints`, fuzzylite's
+/// on `x = min + (k + ½)·dx`; `None` when the set is empty.
+pub(crate) fn sampled<T: Real>(
+    stat: Statistic,
+    mu: &[T],
+    min: T,
+    dx: T,
+    midpoints: bool,
+) -> Option<T> {
+    let offset = if midpoints { T::of(0.5) } else { T::zero() };
+    let x = |k: usize| min + (T::of(k as f64) + offset) * dx;
     let (mut total, mut moment, mut peak) = (T::zero(), T::zero(), T::zero());
     for (k, &m) in mu.iter().enumerate() {
         total = total + m;
@@ -106,7 +129,26 @@ pub(crate) fn sampled<T: Real>(stat: Statistic, mu: &[T], min: T, dx: T) -> Opti
     }
     match stat {
         // Σ x μ / Σ μ with x = min + k dx: the offset is pulled out for precision.
-        Statistic::Centroid => Some(min + dx * moment / total),
+        Statistic::Centroid => Some(min + dx * (moment / total + offset)),
+        Statistic::Bisector if midpoints => {
+            // fuzzylite: the mean of the points whose cumulative share is nearest to ½.
+            let half = T::of(0.5);
+            let gap = |run: T| (run / total - half).abs();
+            let (mut run, mut best) = (T::zero(), T::infinity());
+            for &m in mu {
+                run = run + m;
+                best = best.min(gap(run));
+            }
+            let (mut run, mut n, mut sum) = (T::zero(), 0usize, T::zero());
+            for (k, &m) in mu.iter().enumerate() {
+                run = run + m;
+                if gap(run) == best {
+                    n += 1;
+                    sum = sum + x(k);
+                }
+            }
+            (n > 0).then(|| sum / T::of(n as f64))
+        }
         Statistic::Bisector => {
             let half = total / (T::one() + T::one());
             let mut run = T::zero();
@@ -123,7 +165,7 @@ pub(crate) fn sampled<T: Real>(stat: Statistic, mu: &[T], min: T, dx: T) -> Opti
                 n += 1;
                 sum = sum + T::of(k as f64);
             }
-            Some(min + dx * sum / T::of(n as f64))
+            Some(min + dx * (sum / T::of(n as f64) + offset))
         }
         Statistic::Som => mu.iter().position(|&m| m == peak).map(x),
         Statistic::Lom => mu.iter().rposition(|&m| m == peak).map(x),
@@ -240,12 +282,21 @@ mod tests {
     fn sampled_statistics_of_a_plateau() {
         // μ = 0 0 1 1 1 0 at x = 0..5.
         let mu = [0.0, 0.0, 1.0, 1.0, 1.0, 0.0f64];
-        assert_eq!(sampled(Statistic::Centroid, &mu, 0.0, 1.0), Some(3.0));
-        assert_eq!(sampled(Statistic::Mom, &mu, 0.0, 1.0), Some(3.0));
-        assert_eq!(sampled(Statistic::Som, &mu, 0.0, 1.0), Some(2.0));
-        assert_eq!(sampled(Statistic::Lom, &mu, 0.0, 1.0), Some(4.0));
-        assert_eq!(sampled(Statistic::Bisector, &mu, 0.0, 1.0), Some(3.0));
-        assert_eq!(sampled(Statistic::Centroid, &[0.0f64; 4], 0.0, 1.0), None);
+        assert_eq!(
+            sampled(Statistic::Centroid, &mu, 0.0, 1.0, false),
+            Some(3.0)
+        );
+        assert_eq!(sampled(Statistic::Mom, &mu, 0.0, 1.0, false), Some(3.0));
+        assert_eq!(sampled(Statistic::Som, &mu, 0.0, 1.0, false), Some(2.0));
+        assert_eq!(sampled(Statistic::Lom, &mu, 0.0, 1.0, false), Some(4.0));
+        assert_eq!(
+            sampled(Statistic::Bisector, &mu, 0.0, 1.0, false),
+            Some(3.0)
+        );
+        assert_eq!(
+            sampled(Statistic::Centroid, &[0.0f64; 4], 0.0, 1.0, false),
+            None
+        );
     }
 
     #[test]

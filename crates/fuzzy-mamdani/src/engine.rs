@@ -7,7 +7,8 @@ use crate::defuzz::{self, PieceStats, Statistic};
 use crate::exact::{self, Act};
 use crate::rules::{self, Op};
 use crate::{
-    Defuzzifier, EvalError, InputVariable, Mf, OutOfRange, OutputVariable, Real, Rule, SNorm, TNorm,
+    Activation, Defuzzifier, EvalError, Hedges, InputVariable, Mf, OutOfRange, OutputVariable,
+    Real, Rule, SNorm, TNorm,
 };
 
 /// A Mamdani fuzzy inference engine, built by [`crate::EngineBuilder`] or imported from a
@@ -43,6 +44,8 @@ pub struct Engine<T> {
     pub(crate) conjunction: TNorm,
     pub(crate) disjunction: SNorm,
     pub(crate) implication: TNorm,
+    pub(crate) activation_threshold: T,
+    pub(crate) activation: Activation<T>,
     pub(crate) compiled: Compiled<T>,
 }
 
@@ -79,13 +82,17 @@ pub(crate) struct OutputPlan<T> {
     pub(crate) mfs: Vec<Mf<T>>,
     /// Centre of each term for the averaging defuzzifiers.
     pub(crate) centers: Vec<T>,
-    /// `(rule, term, negated)` of every consequent on this output, in rule order.
-    pub(crate) consequents: Vec<(u32, u32, bool)>,
+    /// `(rule, term, negated, hedges)` of every consequent on this output, in rule order.
+    pub(crate) consequents: Vec<(u32, u32, bool, Hedges)>,
+    /// Whether a consequent has hedges (the evaluation is then the general one).
+    pub(crate) hedged: bool,
     /// `consequents[rule_offsets[r]..rule_offsets[r + 1]]` are rule `r`'s.
     pub(crate) rule_offsets: Vec<u32>,
     pub(crate) stat: Option<Statistic>,
     /// Sample count of the sampled path, 0 otherwise.
     pub(crate) samples: usize,
+    /// Samples at cell midpoints (fuzzylite) rather than from end to end (MATLAB).
+    pub(crate) midpoints: bool,
     pub(crate) dx: T,
     /// μ of each term at each sample, term-major: input independent, so computed once.
     pub(crate) table: Vec<T>,
@@ -148,6 +155,15 @@ impl<T: Real> Engine<T> {
     /// The T-norm shaping a consequent term by its rule's strength.
     pub fn implication(&self) -> TNorm {
         self.implication
+    }
+    /// The activation method of the rules (fuzzylite's `activation:`).
+    pub fn activation(&self) -> Activation<T> {
+        self.activation
+    }
+    /// A conclusion takes part only when its activation degree (the rule's weighted strength,
+    /// hedged) is above this; see [`crate::EngineBuilder::activation_threshold`].
+    pub fn activation_threshold(&self) -> T {
+        self.activation_threshold
     }
 
     /// Scratch space sized for this engine (the only allocation evaluation needs).
@@ -248,6 +264,7 @@ impl<T: Real> Engine<T> {
             let ops = &c.ops[lo as usize..hi as usize];
             *s = c.weights[r] * rules::eval_ops(ops, mu, self.conjunction, self.disjunction);
         }
+        self.activation.apply(strength, fired);
     }
 
     fn defuzzify(
@@ -258,7 +275,7 @@ impl<T: Real> Engine<T> {
     ) -> Option<T> {
         let Scratch {
             strength,
-            fired: fired_rules,
+            fired,
             acts,
             levels,
             agg,
@@ -266,17 +283,52 @@ impl<T: Real> Engine<T> {
             lines,
             ..
         } = s;
-        let fired = plan
-            .consequents
-            .iter()
-            .filter(|c| strength[c.0 as usize] > T::zero());
+        let bufs = Buffers {
+            fired,
+            acts,
+            levels,
+            agg,
+            points,
+            lines,
+        };
+        let strength: &[T] = strength;
+        // A conclusion's activation degree: its rule's strength, hedged. Monomorphised twice
+        // so that engines without hedged conclusions pay nothing for them.
+        if plan.hedged {
+            self.defuzzify_with(var, plan, bufs, |&(r, _, _, h)| {
+                h.apply(strength[r as usize])
+            })
+        } else {
+            self.defuzzify_with(var, plan, bufs, |&(r, _, _, _)| strength[r as usize])
+        }
+    }
+
+    #[inline(always)]
+    fn defuzzify_with(
+        &self,
+        var: &OutputVariable<T>,
+        plan: &OutputPlan<T>,
+        s: Buffers<'_, T>,
+        degree: impl Fn(&(u32, u32, bool, Hedges)) -> T + Copy,
+    ) -> Option<T> {
+        let Buffers {
+            fired: fired_rules,
+            acts,
+            levels,
+            agg,
+            points,
+            lines,
+        } = s;
+        let threshold = self.activation_threshold;
         if var.defuzzifier == Defuzzifier::CenterAverage {
             // Silent rules add 0 to both sums, so only fired rules need visiting where they
-            // are known; elsewhere every consequent, without a branch.
+            // are known (no hedged conclusion then); elsewhere every consequent.
             let (mut num, mut den) = (T::zero(), T::zero());
-            let mut add = |&(r, t, _): &(u32, u32, bool)| {
-                let w = strength[r as usize];
-                num = num + w * plan.centers[t as usize];
+            let mut add = |c: &(u32, u32, bool, Hedges)| {
+                // A select, not a branch: below the threshold is weight 0.
+                let w = degree(c);
+                let w = if w > threshold { w } else { T::zero() };
+                num = num + w * plan.centers[c.1 as usize];
                 den = den + w;
             };
             if self.compiled.and_index.is_some() {
@@ -294,12 +346,17 @@ impl<T: Real> Engine<T> {
             }
             return ratio(num, den);
         }
+        let fired = plan
+            .consequents
+            .iter()
+            .map(|c| (c, degree(c)))
+            .filter(|(_, w)| *w > threshold);
         // Per term (and its complement) the aggregation of its rules' strengths.
         let levels = &mut levels[..2 * plan.mfs.len()];
         levels.fill(T::zero());
-        for &(r, t, neg) in fired.clone() {
+        for (&(_, t, neg, _), w) in fired.clone() {
             let slot = &mut levels[2 * t as usize + usize::from(neg)];
-            *slot = var.aggregation.apply(*slot, strength[r as usize]);
+            *slot = var.aggregation.apply(*slot, w);
         }
         if var.defuzzifier == Defuzzifier::WeightedAverage {
             let (mut num, mut den) = (T::zero(), T::zero());
@@ -319,17 +376,13 @@ impl<T: Real> Engine<T> {
                 w,
             }));
         } else {
-            acts.extend(fired.map(|&(r, term, negated)| Act {
-                term,
-                negated,
-                w: strength[r as usize],
-            }));
+            acts.extend(fired.map(|(&(_, term, negated, _), w)| Act { term, negated, w }));
         }
         let stat = plan.stat?;
         if plan.samples > 0 {
             let agg = &mut agg[..plan.samples];
             accumulate(agg, acts, &plan.table, self.implication, var.aggregation);
-            return defuzz::sampled(stat, agg, var.min, plan.dx);
+            return defuzz::sampled(stat, agg, var.min, plan.dx, plan.midpoints);
         }
         let (imp, aggr, range) = (self.implication, var.aggregation, (var.min, var.max));
         let mut walk = |visit: &mut dyn FnMut(T, T, T, T)| {
@@ -355,6 +408,16 @@ impl<T: Real> Engine<T> {
         // Rounding can leave the running sum a hair under `half` at the end: the right end.
         found.or(Some(var.max))
     }
+}
+
+/// The parts of [`Scratch`] defuzzification writes (the strengths are read beside them).
+struct Buffers<'s, T> {
+    fired: &'s mut Vec<u32>,
+    acts: &'s mut Vec<Act<T>>,
+    levels: &'s mut Vec<T>,
+    agg: &'s mut Vec<T>,
+    points: &'s mut Vec<T>,
+    lines: &'s mut Vec<(T, T)>,
 }
 
 fn admit<T: Real>(var: &InputVariable<T>, x: T, input: usize) -> Result<T, EvalError> {

@@ -55,13 +55,15 @@ pub enum BuildError {
         reason: &'static str,
     },
     /// A rule's text could not be parsed.
-    #[error("rule {rule}: cannot parse `{text}`: {reason}")]
+    #[error("rule {rule}, column {column}: expected {reason} in `{text}`")]
     RuleSyntax {
         /// The rule's index (0-based).
         rule: usize,
         /// The rule text.
         text: String,
-        /// What was expected.
+        /// 1-based column (in characters) of the word where parsing stopped.
+        column: usize,
+        /// What was expected there.
         reason: &'static str,
     },
     /// The defuzzifier cannot be used with this output variable.
@@ -72,6 +74,10 @@ pub enum BuildError {
         /// Why (e.g. the exact path needs piecewise-linear terms).
         reason: &'static str,
     },
+    /// The activation threshold is outside `[0, 1)` or NaN, or an activation method's
+    /// parameter is not finite.
+    #[error("the activation threshold must be in [0, 1) and activation parameters finite")]
+    BadThreshold,
     /// The engine has no inputs or no outputs.
     #[error("an engine needs at least one input and one output")]
     Empty,

@@ -8,9 +8,9 @@ use std::format;
 use std::string::{String, ToString};
 use std::vec::Vec;
 
-use crate::format::{FileError, numbers, syntax};
+use crate::format::{FileError, at_line_start, numbers, syntax};
 use crate::{
-    Consequent, Defuzzifier, Engine, EngineBuilder, Expr, InputVariable, Mf, OutOfRange,
+    Consequent, Defuzzifier, Engine, EngineBuilder, Expr, Hedges, InputVariable, Mf, OutOfRange,
     OutputVariable, Real, Resolution, Rule, SNorm, TNorm, Term,
 };
 
@@ -58,7 +58,8 @@ fn mf_from<T: Real>(kind: &str, p: &[f64], line: usize) -> Result<Mf<T>, FileErr
     })
 }
 
-fn mf_name<T>(mf: &Mf<T>) -> &'static str {
+/// MATLAB's name of a shape, `None` for fuzzylite's shapes MATLAB lacks.
+fn mf_name<T>(mf: &Mf<T>) -> Option<&'static str> {
     let i = match mf {
         Mf::Triangle { .. } => 0,
         Mf::Trapezoid { .. } => 1,
@@ -72,8 +73,15 @@ fn mf_name<T>(mf: &Mf<T>) -> &'static str {
         Mf::Z { .. } => 9,
         Mf::Pi { .. } => 10,
         Mf::Singleton { .. } => 11,
+        Mf::Ramp { .. }
+        | Mf::Rectangle { .. }
+        | Mf::Spike { .. }
+        | Mf::Cosine { .. }
+        | Mf::Concave { .. }
+        | Mf::Binary { .. }
+        | Mf::Discrete { .. } => return None,
     };
-    MF_NAMES[i]
+    Some(MF_NAMES[i])
 }
 
 const DEFUZZ: [&str; 6] = ["centroid", "bisector", "mom", "som", "lom", "wtaver"];
@@ -110,10 +118,14 @@ enum Block {
 /// let engine = fuzzy_mamdani::from_fis::<f64>(fis)?;
 /// assert_eq!(engine.outputs()[0].name, "y");
 /// let bad = fis.replace("trimf',[0 0 1]", "trimf',[0 0]");
-/// assert!(fuzzy_mamdani::from_fis::<f64>(&bad).unwrap_err().to_string().starts_with("line 9:"));
+/// assert!(fuzzy_mamdani::from_fis::<f64>(&bad).unwrap_err().to_string().starts_with("line 9, column 1:"));
 /// # Ok::<(), fuzzy_mamdani::FileError>(())
 /// ```
 pub fn from_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
+    read_fis(text).map_err(|e| at_line_start(e, text))
+}
+
+fn read_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
     let mut name = String::new();
     let (mut and, mut or, mut imp, mut agg) = (
         TNorm::Minimum,
@@ -335,11 +347,8 @@ fn fis_rule<T: Real>(
             continue;
         }
         let term = k.abs() as usize - 1;
-        let e = Expr::Is {
-            input,
-            term,
-            negated: k < 0.0,
-        };
+        let hedges = if k < 0.0 { Hedges::NOT } else { Hedges::NONE };
+        let e = Expr::hedged(input, term, hedges);
         antecedent = Some(match antecedent {
             None => e,
             Some(a) if or => a.or(e),
@@ -351,9 +360,8 @@ fn fis_rule<T: Real>(
         .enumerate()
         .filter(|(_, k)| **k != 0.0)
         .map(|(output, &k)| Consequent {
-            output,
-            term: k.abs() as usize - 1,
             negated: k < 0.0,
+            ..Consequent::new(output, k.abs() as usize - 1)
         })
         .collect();
     let antecedent = antecedent.ok_or_else(|| bad("no input is used"))?;
@@ -369,7 +377,25 @@ fn fis_rule<T: Real>(
 /// Fails with [`FileError::Unsupported`] for what MATLAB cannot express: nested AND / OR,
 /// an input used twice in a rule, per-output operators that differ, norms other than MATLAB's.
 pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
-    let unsupported = |what: &str| FileError::Unsupported(what.to_string());
+    let unsupported = |what: &str| FileError::Unsupported {
+        feature: what.to_string(),
+        line: None,
+    };
+    if engine
+        .outputs()
+        .iter()
+        .any(|o| matches!(o.defuzzifier.resolution(), Some(Resolution::Midpoints(_))))
+    {
+        return Err(unsupported(
+            "fuzzylite's midpoint integration (Resolution::Midpoints)",
+        ));
+    }
+    if engine.activation_threshold() > T::zero() {
+        return Err(unsupported("an activation threshold"));
+    }
+    if engine.activation() != crate::Activation::General {
+        return Err(unsupported("an activation method other than General"));
+    }
     let first = &engine.outputs()[0];
     if engine
         .outputs()
@@ -436,13 +462,13 @@ pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
         for (j, term) in terms.iter().enumerate() {
             let (p, n) = term.mf.params();
             let p: Vec<String> = p[..n].iter().map(|v| v.to_string()).collect();
-            s += &format!(
-                "MF{}='{}':'{}',[{}]\n",
-                j + 1,
-                term.name,
-                mf_name(&term.mf),
-                p.join(" ")
-            );
+            let kind = mf_name(&term.mf).ok_or_else(|| {
+                unsupported(&format!(
+                    "term `{}`: a shape MATLAB has no MF for",
+                    term.name
+                ))
+            })?;
+            s += &format!("MF{}='{}':'{}',[{}]\n", j + 1, term.name, kind, p.join(" "));
         }
     }
     s += "\n[Rules]\n";
@@ -452,6 +478,9 @@ pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
             .ok_or_else(|| unsupported("a nested or repeated antecedent"))?;
         let mut outs = std::vec![0i64; engine.outputs().len()];
         for c in &r.consequents {
+            if !c.hedges.is_empty() {
+                return Err(unsupported("hedges on a rule's conclusion"));
+            }
             outs[c.output] = if c.negated {
                 -(c.term as i64 + 1)
             } else {
@@ -481,13 +510,13 @@ fn flatten(e: &Expr, row: &mut [i64], conn: Option<bool>) -> Option<Option<bool>
         Expr::Is {
             input,
             term,
-            negated,
+            hedges,
         } => {
             let slot = row.get_mut(*input)?;
-            if *slot != 0 {
+            if *slot != 0 || !matches!(*hedges, Hedges::NONE | Hedges::NOT) {
                 return None;
             }
-            *slot = if *negated {
+            *slot = if *hedges == Hedges::NOT {
                 -(*term as i64 + 1)
             } else {
                 *term as i64 + 1
@@ -502,5 +531,6 @@ fn flatten(e: &Expr, row: &mut [i64], conn: Option<bool>) -> Option<Option<bool>
             flatten(a, row, Some(is_or))?;
             flatten(b, row, Some(is_or))
         }
+        Expr::Any { .. } => None,
     }
 }

@@ -8,6 +8,7 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+mod activation;
 mod builder;
 mod defuzz;
 mod engine;
@@ -19,6 +20,7 @@ mod fis;
 mod fll;
 #[cfg(feature = "std")]
 mod format;
+mod hedge;
 mod mf;
 mod norms;
 mod preset;
@@ -28,6 +30,7 @@ mod rules;
 mod surface;
 mod variable;
 
+pub use activation::{Activation, Comparison};
 pub use builder::{EngineBuilder, MAX_SAMPLES};
 pub use defuzz::{Defuzzifier, Resolution};
 pub use engine::{Engine, Scratch};
@@ -38,6 +41,7 @@ pub use fis::{from_fis, to_fis};
 pub use fll::{from_fll, to_fll};
 #[cfg(feature = "std")]
 pub use format::FileError;
+pub use hedge::{Hedge, Hedges};
 pub use mf::{Mf, MfError};
 pub use norms::{SNorm, TNorm};
 pub use preset::{

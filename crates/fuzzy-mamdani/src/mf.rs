@@ -3,6 +3,8 @@
 //! Parameters follow MATLAB's Fuzzy Logic Toolbox order (`trimf [a b c]`, `gaussmf [σ c]`, …) so
 //! that a `.fis` file maps onto a variant field by field.
 
+use alloc::boxed::Box;
+
 use crate::Real;
 
 /// A membership function μ(x) ∈ [0, 1].
@@ -14,7 +16,7 @@ use crate::Real;
 /// let g = Mf::Gaussian { sigma: 1.0, mean: 0.0 };
 /// assert!((g.membership(1.0) - (-0.5f64).exp()).abs() < 1e-15);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Mf<T> {
     /// Triangle with feet `a`, `c` and peak `b` (eq. 6 of the grasp paper; MATLAB `trimf`).
     Triangle {
@@ -124,6 +126,59 @@ pub enum Mf<T> {
         /// The one point of support.
         x: T,
     },
+    /// A linear ramp from 0 at `start` to 1 at `end`, flat beyond (fuzzylite `Ramp`); falls
+    /// when `end < start`. `start ≠ end`.
+    Ramp {
+        /// Where μ = 0.
+        start: T,
+        /// Where μ = 1.
+        end: T,
+    },
+    /// 1 on `[start, end]` (both ends included), 0 elsewhere (fuzzylite `Rectangle`).
+    Rectangle {
+        /// Left edge.
+        start: T,
+        /// Right edge, `≥ start`.
+        end: T,
+    },
+    /// `exp(−|10 (x − center) / width|)` (fuzzylite `Spike`).
+    Spike {
+        /// Peak.
+        center: T,
+        /// Width (positive): μ = e⁻⁵ at `center ± width / 2`.
+        width: T,
+    },
+    /// `½ (1 + cos(2π (x − center) / width))` on `[center − width/2, center + width/2]`, 0
+    /// elsewhere (fuzzylite `Cosine`).
+    Cosine {
+        /// Peak.
+        center: T,
+        /// Support width (positive).
+        width: T,
+    },
+    /// fuzzylite's `Concave`: rising `(e − i) / (2e − i − x)` below `end` when
+    /// `inflection ≤ end` (½ at the inflection, 1 from `end` on), falling
+    /// `(i − e) / (i − 2e + x)` above `end` otherwise.
+    Concave {
+        /// Where μ = ½.
+        inflection: T,
+        /// Where μ reaches 1.
+        end: T,
+    },
+    /// A step: 1 for `x ≥ start` when `rising`, for `x ≤ start` otherwise (fuzzylite `Binary`
+    /// with direction `+∞` / `−∞`).
+    Binary {
+        /// The step's position (μ = 1 there).
+        start: T,
+        /// Which side is 1.
+        rising: bool,
+    },
+    /// Linear interpolation between points `(x, μ)` with ascending `x`, the end values
+    /// beyond (fuzzylite `Discrete`). The one shape not `Copy`-sized: its points are boxed.
+    Discrete {
+        /// The points, `x` ascending, `μ` in `[0, 1]`; at least one.
+        points: Box<[(T, T)]>,
+    },
 }
 
 /// Why a membership function's parameters are unusable.
@@ -139,13 +194,20 @@ pub enum MfError {
     /// A width (σ, bell half width) is zero or negative.
     #[error("a width parameter must be positive")]
     NonPositiveWidth,
+    /// A discrete shape has no point.
+    #[error("a discrete shape needs at least one point")]
+    NoPoints,
+    /// A discrete shape's membership value is outside `[0, 1]`.
+    #[error("membership values must be in [0, 1]")]
+    OutOfUnitInterval,
 }
 
 impl<T: Real> Mf<T> {
-    /// The parameters in MATLAB order.
+    /// The parameters in MATLAB order (none for [`Mf::Discrete`], whose points are its own).
     pub fn params(&self) -> ([T; 4], usize) {
         let z = T::zero();
         match *self {
+            Mf::Discrete { .. } => ([z; 4], 0),
             Mf::Triangle { a, b, c } | Mf::Bell { a, b, c } => ([a, b, c, z], 3),
             Mf::Trapezoid { a, b, c, d } | Mf::Pi { a, b, c, d } => ([a, b, c, d], 4),
             Mf::Gaussian { sigma, mean } => ([sigma, mean, z, z], 2),
@@ -159,7 +221,12 @@ impl<T: Real> Mf<T> {
             Mf::SigmoidDifference { a1, c1, a2, c2 } | Mf::SigmoidProduct { a1, c1, a2, c2 } => {
                 ([a1, c1, a2, c2], 4)
             }
-            Mf::Singleton { x } => ([x, z, z, z], 1),
+            Mf::Singleton { x } | Mf::Binary { start: x, .. } => ([x, z, z, z], 1),
+            Mf::Ramp { start, end } | Mf::Rectangle { start, end } => ([start, end, z, z], 2),
+            Mf::Spike { center, width } | Mf::Cosine { center, width } => {
+                ([center, width, z, z], 2)
+            }
+            Mf::Concave { inflection, end } => ([inflection, end, z, z], 2),
         }
     }
 
@@ -175,6 +242,20 @@ impl<T: Real> Mf<T> {
         if p[..n].iter().any(|v| !v.is_finite()) {
             return Err(MfError::NotFinite);
         }
+        if let Mf::Discrete { points } = self {
+            if points.is_empty() {
+                return Err(MfError::NoPoints);
+            }
+            if points.iter().any(|(x, y)| !x.is_finite() || !y.is_finite()) {
+                return Err(MfError::NotFinite);
+            }
+            if points.windows(2).any(|w| !(w[0].0 <= w[1].0)) {
+                return Err(MfError::Unordered);
+            }
+            if points.iter().any(|p| p.1 < T::zero() || p.1 > T::one()) {
+                return Err(MfError::OutOfUnitInterval);
+            }
+        }
         let ascending = |s: &[T]| s.windows(2).all(|w| w[0] <= w[1]);
         match *self {
             Mf::Triangle { a, b, c } if !ascending(&[a, b, c]) => Err(MfError::Unordered),
@@ -186,6 +267,11 @@ impl<T: Real> Mf<T> {
                 Err(MfError::NonPositiveWidth)
             }
             Mf::Bell { a, .. } if a == T::zero() => Err(MfError::NonPositiveWidth),
+            Mf::Ramp { start, end } if start == end => Err(MfError::NonPositiveWidth),
+            Mf::Rectangle { start, end } if start > end => Err(MfError::Unordered),
+            Mf::Spike { width, .. } | Mf::Cosine { width, .. } if width <= T::zero() => {
+                Err(MfError::NonPositiveWidth)
+            }
             _ => Ok(()),
         }
     }
@@ -253,6 +339,61 @@ impl<T: Real> Mf<T> {
                     zero
                 }
             }
+            Mf::Ramp { start, end } => {
+                if start < end {
+                    if x <= start {
+                        zero
+                    } else if x >= end {
+                        one
+                    } else {
+                        (x - start) / (end - start)
+                    }
+                } else if x >= start {
+                    zero
+                } else if x <= end {
+                    one
+                } else {
+                    (start - x) / (start - end)
+                }
+            }
+            Mf::Rectangle { start, end } => {
+                if x >= start && x <= end {
+                    one
+                } else {
+                    zero
+                }
+            }
+            Mf::Spike { center, width } => (-(T::of(10.0) / width * (x - center)).abs()).exp(),
+            Mf::Cosine { center, width } => {
+                let two = one + one;
+                let half = width / two;
+                if x < center - half || x > center + half {
+                    zero
+                } else {
+                    let pi = T::of(core::f64::consts::PI);
+                    (one + (two * pi / width * (x - center)).cos()) / two
+                }
+            }
+            Mf::Concave {
+                inflection: i,
+                end: e,
+            } => {
+                if i <= e && x < e {
+                    (e - i) / (e + e - i - x)
+                } else if i >= e && x > e {
+                    (i - e) / (i - e - e + x)
+                } else {
+                    one
+                }
+            }
+            Mf::Binary { start, rising } => {
+                if (rising && x >= start) || (!rising && x <= start) {
+                    one
+                } else {
+                    zero
+                }
+            }
+            Mf::Discrete { ref points } => discrete(points, x),
         }
     }
 
@@ -303,13 +444,40 @@ impl<T: Real> Mf<T> {
             Mf::Gaussian2 { mean1, mean2, .. } => Some((mean1 + mean2) / two),
             Mf::Bell { c, .. } => Some(c),
             Mf::Singleton { x } => Some(x),
+            Mf::Rectangle { start, end } => Some((start + end) / two),
+            Mf::Spike { center, .. } | Mf::Cosine { center, .. } => Some(center),
             Mf::Sigmoid { .. }
             | Mf::SigmoidDifference { .. }
             | Mf::SigmoidProduct { .. }
             | Mf::S { .. }
-            | Mf::Z { .. } => None,
+            | Mf::Z { .. }
+            | Mf::Ramp { .. }
+            | Mf::Concave { .. }
+            | Mf::Binary { .. }
+            | Mf::Discrete { .. } => None,
         }
     }
+}
+
+/// numpy's `interp` (pyfuzzylite's `Discrete`): the end values outside, linear between.
+fn discrete<T: Real>(points: &[(T, T)], x: T) -> T {
+    let (Some(first), Some(last)) = (points.first(), points.last()) else {
+        return T::zero();
+    };
+    if x.is_nan() {
+        return x;
+    }
+    if x <= first.0 {
+        return first.1;
+    }
+    if x >= last.0 {
+        return last.1;
+    }
+    // The first point strictly right of x (x < last.0, so there is one).
+    let k = points.partition_point(|p| p.0 <= x);
+    let ((x0, y0), (x1, y1)) = (points[k - 1], points[k]);
+    // numpy: slope · (x − x0) + y0.
+    (y1 - y0) / (x1 - x0) * (x - x0) + y0
 }
 
 fn gauss<T: Real>(x: T, sigma: T, mean: T) -> T {

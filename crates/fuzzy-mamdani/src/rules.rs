@@ -5,26 +5,36 @@ use alloc::string::{String, ToString};
 use alloc::vec::Vec;
 use core::fmt::Write;
 
-use crate::{BuildError, InputVariable, OutputVariable, Real, SNorm, TNorm};
+use crate::{BuildError, Hedge, Hedges, InputVariable, OutputVariable, Real, SNorm, TNorm};
 
-/// An antecedent: propositions `input is [not] term` joined by AND / OR.
+/// An antecedent: propositions `input is [hedges] term` joined by AND / OR.
 ///
 /// ```
-/// use fuzzy_mamdani::Expr;
-/// // (input 0 is term 2) and not (input 1 is term 0)
-/// let e = Expr::is(0, 2).and(Expr::is_not(1, 0));
+/// use fuzzy_mamdani::{Expr, Hedge, Hedges};
+/// // (input 0 is term 2) and not (input 1 is term 0) or input 1 is very term 1
+/// let very = Hedges::new(&[Hedge::Very]).expect("one hedge");
+/// let e = Expr::is(0, 2).and(Expr::is_not(1, 0)).or(Expr::hedged(1, 1, very));
 /// assert_eq!(e.depth(), 2);
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Expr {
-    /// `input is term`, or its complement `1 − μ` when `negated`.
+    /// `input is hedges term`: the term's membership with the hedges applied, the rightmost
+    /// first (`not` alone is the complement `1 − μ`).
     Is {
         /// Input index.
         input: usize,
         /// Term index within that input.
         term: usize,
-        /// `is not`.
-        negated: bool,
+        /// The hedges as written (empty for `input is term`).
+        hedges: Hedges,
+    },
+    /// `input is hedges any`: holds fully (degree 1) whatever the input, then the hedges
+    /// written before `any` apply (`input is not any` is 0), as in fuzzylite.
+    Any {
+        /// Input index.
+        input: usize,
+        /// The hedges written before `any`.
+        hedges: Hedges,
     },
     /// Conjunction with the engine's T-norm.
     And(Box<Expr>, Box<Expr>),
@@ -35,18 +45,18 @@ pub enum Expr {
 impl Expr {
     /// `input is term`.
     pub fn is(input: usize, term: usize) -> Self {
-        Expr::Is {
-            input,
-            term,
-            negated: false,
-        }
+        Expr::hedged(input, term, Hedges::NONE)
     }
     /// `input is not term`.
     pub fn is_not(input: usize, term: usize) -> Self {
+        Expr::hedged(input, term, Hedges::NOT)
+    }
+    /// `input is hedges term`.
+    pub fn hedged(input: usize, term: usize, hedges: Hedges) -> Self {
         Expr::Is {
             input,
             term,
-            negated: true,
+            hedges,
         }
     }
     /// `self and other`.
@@ -60,21 +70,37 @@ impl Expr {
     /// How many values the postfix evaluation stack holds at most.
     pub fn depth(&self) -> usize {
         match self {
-            Expr::Is { .. } => 1,
+            Expr::Is { .. } | Expr::Any { .. } => 1,
             Expr::And(a, b) | Expr::Or(a, b) => a.depth().max(1 + b.depth()),
         }
     }
 }
 
-/// `output is [not] term` in a rule's conclusion.
+/// `output is [hedges] term` in a rule's conclusion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Consequent {
     /// Output index.
     pub output: usize,
     /// Term index within that output.
     pub term: usize,
-    /// Use the complement `1 − μ` of the term (MATLAB's negative output index).
+    /// Use the complement `1 − μ` of the term (MATLAB's negative output index; no rule text
+    /// expresses it).
     pub negated: bool,
+    /// Hedges on the rule's activation degree before it implies the term (fuzzylite's
+    /// `then y is very B`; `then y is not B` implies `B` with `1 − w`).
+    pub hedges: Hedges,
+}
+
+impl Consequent {
+    /// `output is term`.
+    pub fn new(output: usize, term: usize) -> Self {
+        Consequent {
+            output,
+            term,
+            negated: false,
+            hedges: Hedges::NONE,
+        }
+    }
 }
 
 /// `if antecedent then consequents with weight`.
@@ -94,10 +120,14 @@ pub(crate) const MAX_DEPTH: usize = 16;
 /// One step of a compiled (postfix) antecedent.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Op {
-    /// Push the membership at this flat input-term index (or its complement).
+    /// Push the membership at this flat input-term index, hedged.
     Term {
         mu: u32,
-        negated: bool,
+        hedges: Hedges,
+    },
+    /// Push `hedges(1)` (`input is … any`).
+    Any {
+        hedges: Hedges,
     },
     And,
     Or,
@@ -108,12 +138,13 @@ pub(crate) fn compile(expr: &Expr, offsets: &[usize], out: &mut Vec<Op>) {
         Expr::Is {
             input,
             term,
-            negated,
+            hedges,
         } => out.push(Op::Term {
             // Indices were validated before compiling; the total term count fits in u32.
             mu: (offsets[*input] + term) as u32,
-            negated: *negated,
+            hedges: *hedges,
         }),
+        Expr::Any { hedges, .. } => out.push(Op::Any { hedges: *hedges }),
         Expr::And(a, b) | Expr::Or(a, b) => {
             compile(a, offsets, out);
             compile(b, offsets, out);
@@ -129,17 +160,21 @@ pub(crate) fn compile(expr: &Expr, offsets: &[usize], out: &mut Vec<Op>) {
 /// Runs a compiled antecedent on the fuzzified inputs `mu`.
 #[inline]
 pub(crate) fn eval_ops<T: Real>(ops: &[Op], mu: &[T], and: TNorm, or: SNorm) -> T {
-    let term = |i: u32, negated: bool| {
+    let term = |i: u32, hedges: Hedges| {
         let m = mu.get(i as usize).copied().unwrap_or_else(T::zero);
-        if negated { T::one() - m } else { m }
+        match hedges {
+            Hedges::NONE => m,
+            Hedges::NOT => T::one() - m,
+            h => h.apply(m),
+        }
     };
     // The shapes of nearly every rule (one or two propositions) skip the stack.
     match *ops {
-        [Op::Term { mu: a, negated }] => return term(a, negated),
+        [Op::Term { mu: a, hedges }] => return term(a, hedges),
         [
-            Op::Term { mu: a, negated: na },
-            Op::Term { mu: b, negated: nb },
-            op,
+            Op::Term { mu: a, hedges: na },
+            Op::Term { mu: b, hedges: nb },
+            op @ (Op::And | Op::Or),
         ] => {
             let (x, y) = (term(a, na), term(b, nb));
             return if op == Op::And {
@@ -154,9 +189,14 @@ pub(crate) fn eval_ops<T: Real>(ops: &[Op], mu: &[T], and: TNorm, or: SNorm) -> 
     let mut top = 0usize;
     for op in ops {
         match *op {
-            Op::Term { mu: i, negated } => {
+            Op::Term { .. } | Op::Any { .. } => {
+                let v = match *op {
+                    Op::Term { mu: i, hedges } => term(i, hedges),
+                    Op::Any { hedges } => hedges.apply(T::one()),
+                    _ => T::zero(),
+                };
                 if let Some(slot) = stack.get_mut(top) {
-                    *slot = term(i, negated);
+                    *slot = v;
                 }
                 top += 1;
             }
@@ -178,30 +218,32 @@ pub(crate) fn eval_ops<T: Real>(ops: &[Op], mu: &[T], and: TNorm, or: SNorm) -> 
 
 /// Parses a rule in fuzzylite's syntax against the engine's variables.
 ///
-/// `if e is NH and (de is not PB or de is ZO) then tau is PH and u is ZO with 0.5`
+/// `if e is NH and (de is not PB or de is very ZO) then tau is PH and u is somewhat ZO with 0.5`
 ///
-/// `and` binds tighter than `or`; parentheses group; `with w` is optional (default 1).
-/// Hedges other than `not` are not supported.
+/// `and` binds tighter than `or`; parentheses group; `with w` is optional (default 1). A
+/// proposition takes any [`Hedge`]s before its term; `input is any` has no term. Hedges in a
+/// conclusion modify the rule's activation degree (fuzzylite's meaning, see
+/// [`Consequent::hedges`]). Errors carry the 1-based column of the offending word.
 pub fn parse_rule<T: Real>(
     text: &str,
     index: usize,
     inputs: &[InputVariable<T>],
     outputs: &[OutputVariable<T>],
 ) -> Result<Rule<T>, BuildError> {
-    let syntax = |reason| BuildError::RuleSyntax {
+    let tokens = tokenize(text);
+    let syntax = |at: Option<&(usize, &str)>, reason| BuildError::RuleSyntax {
         rule: index,
         text: text.to_string(),
+        column: at.map_or(text.chars().count() + 1, |t| t.0),
         reason,
     };
-    let spaced = text.replace('(', " ( ").replace(')', " ) ");
-    let tokens: Vec<&str> = spaced.split_whitespace().collect();
-    if tokens.first() != Some(&"if") {
-        return Err(syntax("a rule starts with `if`"));
+    if tokens.first().map(|t| t.1) != Some("if") {
+        return Err(syntax(tokens.first(), "`if` at the start"));
     }
     let then = tokens
         .iter()
-        .position(|t| *t == "then")
-        .ok_or_else(|| syntax("missing `then`"))?;
+        .position(|t| t.1 == "then")
+        .ok_or_else(|| syntax(None, "`then`"))?;
     let mut p = Parser {
         tokens: &tokens[1..then],
         pos: 0,
@@ -211,43 +253,54 @@ pub fn parse_rule<T: Real>(
     };
     let antecedent = p.disjunction()?;
     if p.pos != p.tokens.len() {
-        return Err(syntax("unexpected token in the antecedent"));
+        return Err(syntax(p.tokens.get(p.pos), "`and`, `or` or `then`"));
     }
     let mut rest = &tokens[then + 1..];
     let mut weight = T::one();
-    if let Some(w) = rest.iter().position(|t| *t == "with") {
+    if let Some(w) = rest.iter().position(|t| t.1 == "with") {
         let value = rest
             .get(w + 1)
-            .ok_or_else(|| syntax("missing weight after `with`"))?;
+            .ok_or_else(|| syntax(None, "a weight after `with`"))?;
         weight = value
+            .1
             .parse::<f64>()
             .map(T::of)
-            .map_err(|_| syntax("weight is not a number"))?;
-        if rest.len() != w + 2 {
-            return Err(syntax("unexpected token after the weight"));
+            .map_err(|_| syntax(Some(value), "a number as the weight"))?;
+        if let Some(extra) = rest.get(w + 2) {
+            return Err(syntax(Some(extra), "the end of the rule after the weight"));
         }
         rest = &rest[..w];
     }
     let mut consequents = Vec::new();
-    for clause in rest.split(|t| *t == "and") {
-        let (name, negated, term) = match clause {
-            [v, "is", t] => (*v, false, *t),
-            [v, "is", "not", t] => (*v, true, *t),
-            _ => return Err(syntax("a consequent is `output is [not] term`")),
+    for clause in rest.split(|t| t.1 == "and") {
+        let [name, is, words @ ..] = clause else {
+            return Err(syntax(
+                clause.first(),
+                "a conclusion `output is [hedges] term`",
+            ));
         };
+        if is.1 != "is" {
+            return Err(syntax(Some(is), "`is`"));
+        }
+        let (hedges, term) = hedges_and_term(words).map_err(|(at, reason)| match at {
+            Some(w) if reason == UNKNOWN_HEDGE => unknown(index, "hedge", w.1),
+            at => syntax(at.or_else(|| clause.last()), reason),
+        })?;
+        let term = term.ok_or_else(|| syntax(Some(name), "a term, not `any`, in a conclusion"))?;
         let output = outputs
             .iter()
-            .position(|o| o.name == name)
-            .ok_or_else(|| unknown(index, "output", name))?;
+            .position(|o| o.name == name.1)
+            .ok_or_else(|| unknown(index, "output", name.1))?;
         let term = outputs[output]
             .terms
             .iter()
-            .position(|t| t.name == term)
-            .ok_or_else(|| unknown(index, "term", term))?;
+            .position(|t| t.name == term.1)
+            .ok_or_else(|| unknown(index, "term", term.1))?;
         consequents.push(Consequent {
             output,
             term,
-            negated,
+            negated: false,
+            hedges,
         });
     }
     Ok(Rule {
@@ -255,6 +308,69 @@ pub fn parse_rule<T: Real>(
         consequents,
         weight,
     })
+}
+
+/// The words of a rule with their 1-based columns; parentheses are words of their own.
+fn tokenize(text: &str) -> Vec<(usize, &str)> {
+    let mut out = Vec::new();
+    let mut start: Option<(usize, usize)> = None;
+    let mut column = 0;
+    for (byte, ch) in text.char_indices() {
+        column += 1;
+        let split = ch.is_whitespace() || ch == '(' || ch == ')';
+        if split {
+            if let Some((col, from)) = start.take() {
+                out.push((col, &text[from..byte]));
+            }
+            if ch != ' ' && !ch.is_whitespace() {
+                out.push((column, &text[byte..byte + 1]));
+            }
+        } else if start.is_none() {
+            start = Some((column, byte));
+        }
+    }
+    if let Some((col, from)) = start {
+        out.push((col, &text[from..]));
+    }
+    out
+}
+
+type Word<'a> = (usize, &'a str);
+
+/// Where [`hedges_and_term`] stopped (the word, `None` at the end) and what it expected.
+type WordError<'a, 'w> = (Option<&'w Word<'a>>, &'static str);
+
+/// The reason [`hedges_and_term`] gives for a word that is neither a hedge nor the last.
+const UNKNOWN_HEDGE: &str = "a hedge";
+
+/// Splits `[hedge…] term` (or `[hedge…] any`) into the hedges and the term word (`None` after
+/// `any`); the error names the word and what was expected instead.
+fn hedges_and_term<'a, 'w>(
+    words: &'w [Word<'a>],
+) -> Result<(Hedges, Option<&'w Word<'a>>), WordError<'a, 'w>> {
+    let mut list = [Hedge::Not; Hedges::MAX];
+    let mut n = 0;
+    for (k, w) in words.iter().enumerate() {
+        let last = k + 1 == words.len();
+        match Hedge::from_name(w.1) {
+            Some(Hedge::Any) if last => {
+                let hedges = Hedges::new(&list[..n]).ok_or((Some(w), "at most 10 hedges"))?;
+                return Ok((hedges, None));
+            }
+            Some(Hedge::Any) => return Err((words.get(k + 1), "nothing after `any`")),
+            Some(h) if !last => {
+                *list.get_mut(n).ok_or((Some(w), "at most 10 hedges"))? = h;
+                n += 1;
+            }
+            _ if last => {
+                let hedges = Hedges::new(&list[..n]).ok_or((Some(w), "at most 10 hedges"))?;
+                return Ok((hedges, Some(w)));
+            }
+            // A word before the last that is not a hedge: an unknown hedge (fuzzylite's reading).
+            _ => return Err((Some(w), UNKNOWN_HEDGE)),
+        }
+    }
+    Err((None, "a term after `is`"))
 }
 
 fn unknown(rule: usize, what: &'static str, name: &str) -> BuildError {
@@ -265,24 +381,28 @@ fn unknown(rule: usize, what: &'static str, name: &str) -> BuildError {
     }
 }
 
-struct Parser<'a, T> {
-    tokens: &'a [&'a str],
+struct Parser<'a, 't, T> {
+    tokens: &'t [Word<'a>],
     pos: usize,
     rule: usize,
     text: &'a str,
-    inputs: &'a [InputVariable<T>],
+    inputs: &'t [InputVariable<T>],
 }
 
-impl<'a, T> Parser<'a, T> {
-    fn err(&self, reason: &'static str) -> BuildError {
+impl<'a, 't, T> Parser<'a, 't, T> {
+    fn err(&self, at: usize, reason: &'static str) -> BuildError {
         BuildError::RuleSyntax {
             rule: self.rule,
             text: self.text.to_string(),
+            column: self
+                .tokens
+                .get(at)
+                .map_or_else(|| column_after(self.tokens, self.text), |t| t.0),
             reason,
         }
     }
     fn peek(&self) -> Option<&'a str> {
-        self.tokens.get(self.pos).copied()
+        self.tokens.get(self.pos).map(|t| t.1)
     }
     fn disjunction(&mut self) -> Result<Expr, BuildError> {
         let mut e = self.conjunction()?;
@@ -305,43 +425,69 @@ impl<'a, T> Parser<'a, T> {
             self.pos += 1;
             let e = self.disjunction()?;
             if self.peek() != Some(")") {
-                return Err(self.err("unbalanced parenthesis"));
+                return Err(self.err(self.pos, "`)`"));
             }
             self.pos += 1;
             return Ok(e);
         }
-        let name = self
-            .peek()
-            .ok_or_else(|| self.err("expected a proposition"))?;
-        if self.tokens.get(self.pos + 1) != Some(&"is") {
-            return Err(self.err("a proposition is `input is [not] term`"));
+        let Some(name) = self.peek() else {
+            return Err(self.err(self.pos, "a proposition `input is [hedges] term`"));
+        };
+        if self.tokens.get(self.pos + 1).map(|t| t.1) != Some("is") {
+            return Err(self.err(self.pos + 1, "`is`"));
         }
-        self.pos += 2;
-        let negated = self.peek() == Some("not");
-        if negated {
-            self.pos += 1;
-        }
-        let term = self.peek().ok_or_else(|| self.err("missing term"))?;
-        self.pos += 1;
+        let start = self.pos + 2;
+        // The proposition's words run to the next operator, parenthesis or the end.
+        let end = self.tokens[start.min(self.tokens.len())..]
+            .iter()
+            .position(|t| matches!(t.1, "and" | "or" | "(" | ")"))
+            .map_or(self.tokens.len(), |k| start + k);
+        let words = &self.tokens[start.min(end)..end];
+        let (hedges, term) = hedges_and_term(words).map_err(|(at, reason)| {
+            if let (Some(w), UNKNOWN_HEDGE) = (at, reason) {
+                return unknown(self.rule, "hedge", w.1);
+            }
+            let at = at.map_or(end, |w| {
+                self.tokens
+                    .iter()
+                    .position(|t| core::ptr::eq(t, w))
+                    .unwrap_or(end)
+            });
+            self.err(at, reason)
+        })?;
+        self.pos = end;
         let input = self
             .inputs
             .iter()
             .position(|v| v.name == name)
             .ok_or_else(|| unknown(self.rule, "input", name))?;
+        let Some(term) = term else {
+            return Ok(Expr::Any { input, hedges });
+        };
         let term = self.inputs[input]
             .terms
             .iter()
-            .position(|t| t.name == term)
-            .ok_or_else(|| unknown(self.rule, "term", term))?;
+            .position(|t| t.name == term.1)
+            .ok_or_else(|| unknown(self.rule, "term", term.1))?;
         Ok(Expr::Is {
             input,
             term,
-            negated,
+            hedges,
         })
     }
 }
 
+/// The column just past the last word (an error at the end of the text).
+fn column_after(tokens: &[Word<'_>], text: &str) -> usize {
+    tokens
+        .last()
+        .map_or(text.chars().count() + 1, |t| t.0 + t.1.chars().count())
+}
+
 /// Writes a rule in fuzzylite's syntax (the inverse of [`parse_rule`]).
+///
+/// A complemented conclusion ([`Consequent::negated`], MATLAB's negative index) has no rule
+/// text; it is written as its term alone ([`crate::to_fll`] refuses such engines).
 pub fn rule_text<T: Real>(
     rule: &Rule<T>,
     inputs: &[InputVariable<T>],
@@ -355,8 +501,9 @@ pub fn rule_text<T: Real>(
             s.push_str(" and ");
         }
         let o = &outputs[c.output];
-        let not = if c.negated { "not " } else { "" };
-        let _ = write!(s, "{} is {}{}", o.name, not, o.terms[c.term].name);
+        let _ = write!(s, "{} is ", o.name);
+        write_hedges(&mut s, c.hedges);
+        let _ = write!(s, "{}", o.terms[c.term].name);
     }
     if rule.weight != T::one() {
         let _ = write!(s, " with {}", rule.weight);
@@ -369,11 +516,17 @@ fn write_expr<T>(s: &mut String, e: &Expr, inputs: &[InputVariable<T>], top: boo
         Expr::Is {
             input,
             term,
-            negated,
+            hedges,
         } => {
             let v = &inputs[*input];
-            let not = if *negated { "not " } else { "" };
-            let _ = write!(s, "{} is {}{}", v.name, not, v.terms[*term].name);
+            let _ = write!(s, "{} is ", v.name);
+            write_hedges(s, *hedges);
+            let _ = write!(s, "{}", v.terms[*term].name);
+        }
+        Expr::Any { input, hedges } => {
+            let _ = write!(s, "{} is ", inputs[*input].name);
+            write_hedges(s, *hedges);
+            s.push_str("any");
         }
         Expr::And(a, b) | Expr::Or(a, b) => {
             // Parenthesise every nested operation: unambiguous whatever the reader's precedence.
@@ -391,5 +544,12 @@ fn write_expr<T>(s: &mut String, e: &Expr, inputs: &[InputVariable<T>], top: boo
                 s.push(')');
             }
         }
+    }
+}
+
+fn write_hedges(s: &mut String, hedges: Hedges) {
+    for h in hedges.iter() {
+        s.push_str(h.name());
+        s.push(' ');
     }
 }

@@ -189,9 +189,9 @@ fn skfuzzy_maxima_of_a_trapezoid() {
         d: 8.0,
     };
     for res in [Resolution::Exact, Resolution::Samples(201)] {
-        let som = single_term(t, -10.0, 10.0, Defuzzifier::SmallestOfMaximum(res));
-        let mom = single_term(t, -10.0, 10.0, Defuzzifier::MeanOfMaximum(res));
-        let lom = single_term(t, -10.0, 10.0, Defuzzifier::LargestOfMaximum(res));
+        let som = single_term(t.clone(), -10.0, 10.0, Defuzzifier::SmallestOfMaximum(res));
+        let mom = single_term(t.clone(), -10.0, 10.0, Defuzzifier::MeanOfMaximum(res));
+        let lom = single_term(t.clone(), -10.0, 10.0, Defuzzifier::LargestOfMaximum(res));
         assert!(
             (som - 3.0).abs() < 1e-12 && (mom - 5.0).abs() < 1e-12 && (lom - 7.0).abs() < 1e-12,
             "{res:?}: {som} {mom} {lom}"
