@@ -374,6 +374,9 @@ fn kernels() -> Result<Vec<Workload>, CycleError> {
 
     let reference = crate::fuzzy_reference::reference_201::<f32>();
     let mut reference_scratch = reference.scratch();
+    let midpoints = crate::fuzzy_reference::reference_midpoints_201::<f32>();
+    let mut midpoints_scratch = midpoints.scratch();
+    let mut midpoints_inputs = replay(fuzzy_inputs())?;
     let preset = fuzzy_mamdani::grasp_engine::<f32>();
     let mut preset_scratch = preset.scratch();
     let mut reference_inputs = replay(fuzzy_inputs())?;
@@ -423,6 +426,14 @@ fn kernels() -> Result<Vec<Workload>, CycleError> {
             black_box(
                 reference
                     .evaluate(&mut reference_scratch, black_box(x))
+                    .ok(),
+            );
+        }),
+        Workload::new("kernel/fuzzy_reference_midpoints_201", move || {
+            let x = midpoints_inputs.next_item();
+            black_box(
+                midpoints
+                    .evaluate(&mut midpoints_scratch, black_box(x))
                     .ok(),
             );
         }),

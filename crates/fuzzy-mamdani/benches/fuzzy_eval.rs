@@ -1,5 +1,5 @@
-//! Evaluation cost of the issue-5 reference engine (centroid, 201 samples) and of the paper's
-//! grasp preset (center average).
+//! Evaluation cost of the issue-5 reference engine (centroid, 201 samples; MATLAB's end points
+//! and fuzzylite's midpoints) and of the paper's grasp preset (center average).
 #![allow(missing_docs)] // criterion's macros generate undocumented items
 
 #[path = "../tests/common/mod.rs"]
@@ -21,6 +21,15 @@ fn reference(c: &mut Criterion) {
         b.iter(|| {
             k = (k + 1) % xs.len();
             black_box(e64.evaluate(&mut s64, black_box(&xs[k])).map(|y| y[0]))
+        })
+    });
+    // fuzzylite's semantics (midpoint integration), as pyfuzzylite's peer runs it.
+    let mid = common::reference_midpoints_201::<f64>();
+    let mut smid = mid.scratch();
+    c.bench_function("reference_midpoints201_f64", |b| {
+        b.iter(|| {
+            k = (k + 1) % xs.len();
+            black_box(mid.evaluate(&mut smid, black_box(&xs[k])).map(|y| y[0]))
         })
     });
     let e32 = common::reference_201::<f32>();

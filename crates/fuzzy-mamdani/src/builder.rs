@@ -4,7 +4,7 @@ use alloc::string::{String, ToString};
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::defuzz::{self, Statistic};
+use crate::defuzz::{self, Grid, Statistic};
 use crate::engine::{AndIndex, Compiled, OutputPlan, ScratchShape};
 use crate::rules::{self, MAX_DEPTH, Op};
 use crate::{
@@ -245,6 +245,18 @@ impl<T: Real> EngineBuilder<T> {
             rules_.push(rule);
         }
         for (o, var) in outputs.iter().enumerate() {
+            // An output whose every conclusion has weight 0 (and no hedge to lift it) can never
+            // fire: without a default it could never answer.
+            let live = rules_.iter().any(|r| {
+                r.consequents
+                    .iter()
+                    .any(|c| c.output == o && (r.weight > T::zero() || !c.hedges.is_empty()))
+            });
+            if !live && var.default.is_none() {
+                return Err(BuildError::NeverAnswers {
+                    output: var.name.clone(),
+                });
+            }
             let negated = rules_
                 .iter()
                 .flat_map(|r| &r.consequents)
@@ -408,11 +420,37 @@ fn check_defuzzifier<T: Real>(
         Some(Resolution::Samples(n)) if !(2..=MAX_SAMPLES).contains(&n) => {
             fail("samples must be in 2..=2^20")
         }
-        Some(Resolution::Samples(_)) => Ok(()),
         Some(Resolution::Midpoints(n)) if !(1..=MAX_SAMPLES).contains(&n) => {
             fail("midpoints must be in 1..=2^20")
         }
-        Some(Resolution::Midpoints(_)) => Ok(()),
+        Some(Resolution::Samples(n) | Resolution::Midpoints(n)) => {
+            // A term no sample sees can never shape the answer: whether a rule concluding it
+            // gives a value would depend on where the samples fall.
+            let grid = Grid::new(
+                var.min,
+                var.max,
+                n,
+                matches!(var.defuzzifier.resolution(), Some(Resolution::Midpoints(_))),
+            );
+            let seen =
+                |mf: &Mf<T>| (0..n).any(|k| mf.membership(grid.x(T::of(k as f64))) > T::zero());
+            if var.terms.iter().all(|t| seen(&t.mf)) {
+                Ok(())
+            } else {
+                fail(
+                    "a term lies between the samples (no sample sees it): widen it or raise the resolution",
+                )
+            }
+        }
+        Some(Resolution::Exact)
+            if var.terms.iter().any(|t| match t.mf {
+                Mf::Triangle { a, c, .. } => !(c > a),
+                Mf::Trapezoid { a, d, .. } => !(d > a),
+                _ => false,
+            }) =>
+        {
+            fail("a term has no area (zero width): the exact path never sees it")
+        }
         Some(Resolution::Exact)
             if var
                 .terms
@@ -551,15 +589,10 @@ fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputP
         Some(Resolution::Midpoints(n)) => (n, true),
         _ => (0, false),
     };
-    let span = v.max - v.min;
-    let (dx, offset) = match (midpoints, samples) {
-        (true, n) => (span / T::of(n as f64), T::of(0.5)),
-        (false, n) if n > 1 => (span / T::of((n - 1) as f64), T::zero()),
-        (false, _) => (span, T::zero()),
-    };
+    let grid = Grid::new(v.min, v.max, samples, midpoints);
     let mut table = Vec::with_capacity(samples * mfs.len());
     for mf in &mfs {
-        table.extend((0..samples).map(|k| mf.membership(v.min + (T::of(k as f64) + offset) * dx)));
+        table.extend((0..samples).map(|k| mf.membership(grid.x(T::of(k as f64)))));
     }
     let centers = mfs
         .iter()
@@ -576,8 +609,7 @@ fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputP
         rule_offsets,
         stat: Statistic::of(v.defuzzifier),
         samples,
-        midpoints,
-        dx,
+        grid,
         table,
     }
 }
@@ -585,12 +617,12 @@ fn plan<T: Real>(o: usize, v: &OutputVariable<T>, rules_: &[Rule<T>]) -> OutputP
 /// The centroid of a term without a natural centre, over 1001 samples of the universe.
 fn term_centroid<T: Real>(mf: &Mf<T>, min: T, max: T) -> T {
     let n = 1001;
-    let dx = (max - min) / T::of((n - 1) as f64);
+    let grid = Grid::new(min, max, n, false);
     let mu: Vec<T> = (0..n)
-        .map(|k| mf.membership(min + T::of(k as f64) * dx))
+        .map(|k| mf.membership(grid.x(T::of(k as f64))))
         .collect();
-    defuzz::sampled(Statistic::Centroid, &mu, min, dx, false)
-        .unwrap_or((min + max) / (T::one() + T::one()))
+    defuzz::sampled(Statistic::Centroid, &mu, &grid)
+        .unwrap_or_else(|| crate::mf::midpoint(min, max))
 }
 
 impl<T: Real> From<&Engine<T>> for EngineBuilder<T> {

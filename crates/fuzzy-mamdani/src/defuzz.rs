@@ -107,17 +107,52 @@ impl Statistic {
     }
 }
 
-/// MATLAB's `defuzz` on samples `mu[k]` at `x = min + k·dx` or, with `midpoints`, fuzzylite's
-/// on `x = min + (k + ½)·dx`; `None` when the set is empty.
-pub(crate) fn sampled<T: Real>(
-    stat: Statistic,
-    mu: &[T],
+/// The points a sampled defuzzifier looks at: `x = min + k·dx` (MATLAB, ends included) or
+/// `min + (k + ½)·dx` (fuzzylite's midpoints).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Grid<T> {
     min: T,
+    max: T,
     dx: T,
-    midpoints: bool,
-) -> Option<T> {
-    let offset = if midpoints { T::of(0.5) } else { T::zero() };
-    let x = |k: usize| min + (T::of(k as f64) + offset) * dx;
+    cells: T,
+    offset: T,
+}
+
+impl<T: Real> Grid<T> {
+    /// `n` points over `[min, max]`.
+    pub(crate) fn new(min: T, max: T, n: usize, midpoints: bool) -> Self {
+        let (cells, offset) = match midpoints {
+            true => (T::of(n as f64), T::of(0.5)),
+            false => (T::of(n.saturating_sub(1).max(1) as f64), T::zero()),
+        };
+        Grid {
+            min,
+            max,
+            dx: (max - min) / cells,
+            cells,
+            offset,
+        }
+    }
+
+    /// The point at (fractional) index `k`: the textbook `min + (k + offset)·dx`, or where the
+    /// span overflows (a universe wider than the largest float) the same point without it.
+    #[inline]
+    pub(crate) fn x(&self, k: T) -> T {
+        let x = if self.dx.is_finite() {
+            self.min + (k + self.offset) * self.dx
+        } else {
+            crate::mf::lerp(self.min, self.max, (k + self.offset) / self.cells)
+        };
+        // The last end point can round an ulp past `max` (and miss a term ending there).
+        x.min(self.max)
+    }
+}
+
+/// MATLAB's `defuzz` (end-point grids) or fuzzylite's (midpoint grids) on samples `mu[k]` at
+/// `grid.x(k)`; `None` when the set is empty.
+pub(crate) fn sampled<T: Real>(stat: Statistic, mu: &[T], grid: &Grid<T>) -> Option<T> {
+    let midpoints = grid.offset > T::zero();
+    let x = |k: usize| grid.x(T::of(k as f64));
     let (mut total, mut moment, mut peak) = (T::zero(), T::zero(), T::zero());
     for (k, &m) in mu.iter().enumerate() {
         total = total + m;
@@ -129,7 +164,7 @@ pub(crate) fn sampled<T: Real>(
     }
     match stat {
         // Σ x μ / Σ μ with x = min + k dx: the offset is pulled out for precision.
-        Statistic::Centroid => Some(min + dx * (moment / total + offset)),
+        Statistic::Centroid => Some(grid.x(moment / total)),
         Statistic::Bisector if midpoints => {
             // fuzzylite: the mean of the points whose cumulative share is nearest to ½.
             let half = T::of(0.5);
@@ -165,7 +200,7 @@ pub(crate) fn sampled<T: Real>(
                 n += 1;
                 sum = sum + T::of(k as f64);
             }
-            Some(min + dx * (sum / T::of(n as f64) + offset))
+            Some(grid.x(sum / T::of(n as f64)))
         }
         Statistic::Som => mu.iter().position(|&m| m == peak).map(x),
         Statistic::Lom => mu.iter().rposition(|&m| m == peak).map(x),
@@ -283,18 +318,31 @@ mod tests {
         // μ = 0 0 1 1 1 0 at x = 0..5.
         let mu = [0.0, 0.0, 1.0, 1.0, 1.0, 0.0f64];
         assert_eq!(
-            sampled(Statistic::Centroid, &mu, 0.0, 1.0, false),
-            Some(3.0)
-        );
-        assert_eq!(sampled(Statistic::Mom, &mu, 0.0, 1.0, false), Some(3.0));
-        assert_eq!(sampled(Statistic::Som, &mu, 0.0, 1.0, false), Some(2.0));
-        assert_eq!(sampled(Statistic::Lom, &mu, 0.0, 1.0, false), Some(4.0));
-        assert_eq!(
-            sampled(Statistic::Bisector, &mu, 0.0, 1.0, false),
+            sampled(Statistic::Centroid, &mu, &Grid::new(0.0, 5.0, 6, false)),
             Some(3.0)
         );
         assert_eq!(
-            sampled(Statistic::Centroid, &[0.0f64; 4], 0.0, 1.0, false),
+            sampled(Statistic::Mom, &mu, &Grid::new(0.0, 5.0, 6, false)),
+            Some(3.0)
+        );
+        assert_eq!(
+            sampled(Statistic::Som, &mu, &Grid::new(0.0, 5.0, 6, false)),
+            Some(2.0)
+        );
+        assert_eq!(
+            sampled(Statistic::Lom, &mu, &Grid::new(0.0, 5.0, 6, false)),
+            Some(4.0)
+        );
+        assert_eq!(
+            sampled(Statistic::Bisector, &mu, &Grid::new(0.0, 5.0, 6, false)),
+            Some(3.0)
+        );
+        assert_eq!(
+            sampled(
+                Statistic::Centroid,
+                &[0.0f64; 4],
+                &Grid::new(0.0, 3.0, 4, false)
+            ),
             None
         );
     }

@@ -3,8 +3,8 @@
 use alloc::string::String;
 use alloc::vec::Vec;
 
-use crate::defuzz::{self, PieceStats, Statistic};
-use crate::exact::{self, Act};
+use crate::defuzz::{self, Grid, PieceStats, Statistic};
+use crate::exact::{self, Act, Frame};
 use crate::rules::{self, Op};
 use crate::{
     Activation, Defuzzifier, EvalError, Hedges, InputVariable, Mf, OutOfRange, OutputVariable,
@@ -76,6 +76,9 @@ pub(crate) struct AndIndex {
     pub(crate) entries: Vec<(u32, u32)>,
 }
 
+/// One conclusion on an output: `(rule, term, negated, hedges)`.
+pub(crate) type Conclusion = (u32, u32, bool, Hedges);
+
 /// Per output: its consequents and what its defuzzifier precomputes.
 #[derive(Debug, Clone)]
 pub(crate) struct OutputPlan<T> {
@@ -83,7 +86,7 @@ pub(crate) struct OutputPlan<T> {
     /// Centre of each term for the averaging defuzzifiers.
     pub(crate) centers: Vec<T>,
     /// `(rule, term, negated, hedges)` of every consequent on this output, in rule order.
-    pub(crate) consequents: Vec<(u32, u32, bool, Hedges)>,
+    pub(crate) consequents: Vec<Conclusion>,
     /// Whether a consequent has hedges (the evaluation is then the general one).
     pub(crate) hedged: bool,
     /// `consequents[rule_offsets[r]..rule_offsets[r + 1]]` are rule `r`'s.
@@ -91,9 +94,8 @@ pub(crate) struct OutputPlan<T> {
     pub(crate) stat: Option<Statistic>,
     /// Sample count of the sampled path, 0 otherwise.
     pub(crate) samples: usize,
-    /// Samples at cell midpoints (fuzzylite) rather than from end to end (MATLAB).
-    pub(crate) midpoints: bool,
-    pub(crate) dx: T,
+    /// Where the samples are.
+    pub(crate) grid: Grid<T>,
     /// μ of each term at each sample, term-major: input independent, so computed once.
     pub(crate) table: Vec<T>,
 }
@@ -309,7 +311,7 @@ impl<T: Real> Engine<T> {
         var: &OutputVariable<T>,
         plan: &OutputPlan<T>,
         s: Buffers<'_, T>,
-        degree: impl Fn(&(u32, u32, bool, Hedges)) -> T + Copy,
+        degree: impl Fn(&Conclusion) -> T + Copy,
     ) -> Option<T> {
         let Buffers {
             fired: fired_rules,
@@ -323,14 +325,34 @@ impl<T: Real> Engine<T> {
         if var.defuzzifier == Defuzzifier::CenterAverage {
             // Silent rules add 0 to both sums, so only fired rules need visiting where they
             // are known (no hedged conclusion then); elsewhere every consequent.
-            let (mut num, mut den) = (T::zero(), T::zero());
-            let mut add = |c: &(u32, u32, bool, Hedges)| {
-                // A select, not a branch: below the threshold is weight 0.
+            // The conclusions to visit: the fired rules' where they are known.
+            let visit = |f: &mut dyn FnMut(&Conclusion)| {
+                if self.compiled.and_index.is_some() {
+                    for &r in fired_rules.iter() {
+                        let (lo, hi) = (
+                            plan.rule_offsets[r as usize],
+                            plan.rule_offsets[r as usize + 1],
+                        );
+                        plan.consequents[lo as usize..hi as usize]
+                            .iter()
+                            .for_each(&mut *f);
+                    }
+                } else {
+                    plan.consequents.iter().for_each(f);
+                }
+            };
+            // A select, not a branch: below the threshold is weight 0.
+            let weight = |c: &Conclusion| {
                 let w = degree(c);
-                let w = if w > threshold { w } else { T::zero() };
+                if w > threshold { w } else { T::zero() }
+            };
+            let (mut num, mut den) = (T::zero(), T::zero());
+            let mut add = |c: &Conclusion| {
+                let w = weight(c);
                 num = num + w * plan.centers[c.1 as usize];
                 den = den + w;
             };
+            // The hot loop written out (not through `visit`'s indirect call).
             if self.compiled.and_index.is_some() {
                 for &r in fired_rules.iter() {
                     let (lo, hi) = (
@@ -344,7 +366,13 @@ impl<T: Real> Engine<T> {
             } else {
                 plan.consequents.iter().for_each(&mut add);
             }
-            return ratio(num, den);
+            // Where Σ w c overflowed: the weights normalised, the centres halved.
+            let halved = || {
+                let mut n = T::zero();
+                visit(&mut |c| n = n + weight(c) / den * (plan.centers[c.1 as usize] * T::of(0.5)));
+                n
+            };
+            return weighted_mean(num, den, halved);
         }
         let fired = plan
             .consequents
@@ -364,7 +392,11 @@ impl<T: Real> Engine<T> {
                 num = num + h[0] * plan.centers[t];
                 den = den + h[0];
             }
-            return ratio(num, den);
+            let halved = || {
+                let terms = levels.chunks_exact(2).zip(&plan.centers);
+                terms.fold(T::zero(), |n, (h, &c)| n + h[0] / den * (c * T::of(0.5)))
+            };
+            return weighted_mean(num, den, halved);
         }
         acts.clear();
         if var.aggregation == SNorm::Maximum {
@@ -382,16 +414,18 @@ impl<T: Real> Engine<T> {
         if plan.samples > 0 {
             let agg = &mut agg[..plan.samples];
             accumulate(agg, acts, &plan.table, self.implication, var.aggregation);
-            return defuzz::sampled(stat, agg, var.min, plan.dx, plan.midpoints);
+            return defuzz::sampled(stat, agg, &plan.grid);
         }
         let (imp, aggr, range) = (self.implication, var.aggregation, (var.min, var.max));
         let mut walk = |visit: &mut dyn FnMut(T, T, T, T)| {
             exact::for_each_piece(acts, &plan.mfs, imp, aggr, range, points, lines, visit);
         };
+        // The walk is in the universe's frame; answers go back to the universe.
+        let frame = Frame::new(var.min, var.max);
         let mut stats = PieceStats::new();
         walk(&mut |a, b, c, d| stats.add(a, b, c, d));
         if stat != Statistic::Bisector {
-            return stats.finish(stat);
+            return stats.finish(stat).map(|u| frame.x(u));
         }
         if !(stats.area > T::zero()) {
             return None;
@@ -406,7 +440,7 @@ impl<T: Real> Engine<T> {
             run = run + piece;
         });
         // Rounding can leave the running sum a hair under `half` at the end: the right end.
-        found.or(Some(var.max))
+        Some(found.map_or(var.max, |u| frame.x(u)))
     }
 }
 
@@ -434,8 +468,18 @@ fn admit<T: Real>(var: &InputVariable<T>, x: T, input: usize) -> Result<T, EvalE
     }
 }
 
-fn ratio<T: Real>(num: T, den: T) -> Option<T> {
-    (den > T::zero()).then(|| num / den)
+/// `num / den` for a positive `den`; where `num` overflowed (centres near the largest float),
+/// `2 · halved()`, the mean of the halved centres recomputed with normalised weights.
+fn weighted_mean<T: Real>(num: T, den: T, halved: impl FnOnce() -> T) -> Option<T> {
+    if !(den > T::zero()) {
+        return None;
+    }
+    let mean = num / den;
+    Some(if mean.is_finite() {
+        mean
+    } else {
+        halved() * (T::one() + T::one())
+    })
 }
 
 /// `agg[k] = S_a I(w_a, μ_a(x_k))` over the activations, from the precomputed term table.

@@ -78,6 +78,13 @@ pub enum BuildError {
     /// parameter is not finite.
     #[error("the activation threshold must be in [0, 1) and activation parameters finite")]
     BadThreshold,
+    /// No rule can ever fire for this output (none concludes on it, or only with weight 0)
+    /// and it has no default value: every evaluation would fail.
+    #[error("output `{output}`: no rule can fire for it and it has no default value")]
+    NeverAnswers {
+        /// The output's name.
+        output: String,
+    },
     /// The engine has no inputs or no outputs.
     #[error("an engine needs at least one input and one output")]
     Empty,
@@ -112,6 +119,14 @@ pub enum EvalError {
     NoRuleFired {
         /// The output's index.
         output: usize,
+    },
+    /// A control surface was asked for more steps per axis than it takes.
+    #[error("{steps} steps per axis asked for, at most {max}")]
+    TooManySteps {
+        /// The steps asked for.
+        steps: usize,
+        /// The most accepted (`MAX_SURFACE_STEPS`).
+        max: usize,
     },
     /// The scratch space was made for a different engine.
     #[error("scratch was made for another engine")]

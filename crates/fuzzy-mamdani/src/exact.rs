@@ -25,8 +25,10 @@ fn implied<T: Real>(mf: &Mf<T>, a: &Act<T>, implication: TNorm, x: T) -> T {
     implication.apply(a.w, if a.negated { T::one() - m } else { m })
 }
 
-/// Calls `visit(x0, y0, x1, y1)` for each linear piece of the aggregated set over `[min, max]`,
-/// left to right. `points` and `lines` are scratch with enough capacity (no allocation).
+/// Calls `visit(u0, y0, u1, y1)` for each linear piece of the aggregated set over `[min, max]`,
+/// left to right, in the universe's own frame `u = (x − centre) / half-span` ∈ [−1, 1] ([`Frame`]):
+/// the moments and areas then stay far from overflow whatever the universe's size. `points` and
+/// `lines` are scratch with enough capacity (no allocation).
 #[allow(clippy::too_many_arguments)] // internal: every argument is a distinct piece of state
 pub(crate) fn for_each_piece<T: Real>(
     acts: &[Act<T>],
@@ -56,6 +58,10 @@ pub(crate) fn for_each_piece<T: Real>(
     }
     points.sort_unstable_by(|a, b| a.partial_cmp(b).unwrap_or(core::cmp::Ordering::Equal));
     points.dedup();
+    let frame = Frame::new(min, max);
+    for p in points.iter_mut() {
+        *p = frame.u(*p);
+    }
 
     let quarter = T::of(0.25);
     let (k1, k3) = (T::of(1.5), T::of(0.5));
@@ -67,7 +73,7 @@ pub(crate) fn for_each_piece<T: Real>(
         }
         // Sample strictly inside and extrapolate to the ends: a shoulder (a == b) jumps at its
         // break point, and only the one-sided limit belongs to this piece.
-        let (q1, q3) = (x0 + quarter * h, x1 - quarter * h);
+        let (q1, q3) = (frame.x(x0 + quarter * h), frame.x(x1 - quarter * h));
         lines.clear();
         for a in acts {
             let Some(mf) = mfs.get(a.term as usize) else {
@@ -91,6 +97,31 @@ pub(crate) fn for_each_piece<T: Real>(
         } else {
             upper_envelope(lines, x0, x1, visit);
         }
+    }
+}
+
+/// A universe's frame: its centre and half-span, both finite for any finite `[min, max]`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Frame<T> {
+    centre: T,
+    half: T,
+}
+
+impl<T: Real> Frame<T> {
+    pub(crate) fn new(min: T, max: T) -> Self {
+        let h = T::of(0.5);
+        Frame {
+            centre: crate::mf::midpoint(min, max),
+            half: max * h - min * h,
+        }
+    }
+    /// The frame coordinate of `x` (in `[−1, 1]` inside the universe).
+    pub(crate) fn u(&self, x: T) -> T {
+        (x - self.centre) / self.half
+    }
+    /// The point at frame coordinate `u`.
+    pub(crate) fn x(&self, u: T) -> T {
+        self.centre + self.half * u
     }
 }
 
@@ -180,6 +211,7 @@ mod tests {
             &mut |a, b, c, d| pieces.push((a, b, c, d)),
         );
         assert_eq!(pieces.len(), 4);
-        assert_eq!(pieces[1], (0.5, 0.5, 1.0, 0.5));
+        // Pieces come in the frame of [0, 2]: u = x − 1.
+        assert_eq!(pieces[1], (-0.5, 0.5, 0.0, 0.5));
     }
 }

@@ -52,5 +52,5 @@ pub use rules::{Consequent, Expr, Rule, parse_rule, rule_text};
 #[cfg(feature = "plot")]
 pub use surface::plot_surface;
 #[cfg(feature = "std")]
-pub use surface::{surface, write_surface_csv};
+pub use surface::{MAX_SURFACE_STEPS, surface, write_surface_csv};
 pub use variable::{InputVariable, OutOfRange, OutputVariable, Term};

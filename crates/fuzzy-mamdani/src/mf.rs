@@ -288,9 +288,9 @@ impl<T: Real> Mf<T> {
                 } else if x == b {
                     one
                 } else if x < b {
-                    (x - a) / (b - a)
+                    ratio(x, a, b, a)
                 } else {
-                    (c - x) / (c - b)
+                    ratio(c, x, c, b)
                 }
             }
             Mf::Trapezoid { a, b, c, d } => {
@@ -299,9 +299,9 @@ impl<T: Real> Mf<T> {
                 } else if x >= b && x <= c {
                     one
                 } else if x < b {
-                    (x - a) / (b - a)
+                    ratio(x, a, b, a)
                 } else {
-                    (d - x) / (d - c)
+                    ratio(d, x, d, c)
                 }
             }
             Mf::Gaussian { sigma, mean } => gauss(x, sigma, mean),
@@ -323,7 +323,7 @@ impl<T: Real> Mf<T> {
                 };
                 left * right
             }
-            Mf::Bell { a, b, c } => one / (one + ((x - c) / a).abs().powf(b + b)),
+            Mf::Bell { a, b, c } => one / (one + quotient(x, c, a).abs().powf(b + b)),
             Mf::Sigmoid { a, c } => sigmoid(x, a, c),
             Mf::SigmoidDifference { a1, c1, a2, c2 } => {
                 (sigmoid(x, a1, c1) - sigmoid(x, a2, c2)).abs()
@@ -346,14 +346,14 @@ impl<T: Real> Mf<T> {
                     } else if x >= end {
                         one
                     } else {
-                        (x - start) / (end - start)
+                        ratio(x, start, end, start)
                     }
                 } else if x >= start {
                     zero
                 } else if x <= end {
                     one
                 } else {
-                    (start - x) / (start - end)
+                    ratio(start, x, start, end)
                 }
             }
             Mf::Rectangle { start, end } => {
@@ -363,15 +363,35 @@ impl<T: Real> Mf<T> {
                     zero
                 }
             }
-            Mf::Spike { center, width } => (-(T::of(10.0) / width * (x - center)).abs()).exp(),
+            Mf::Spike { center, width } => {
+                let ten = T::of(10.0);
+                let t = x - center;
+                // fuzzylite's order where x − center is finite (replayed to the last bits).
+                let z = if t.is_finite() {
+                    ten / width * t
+                } else {
+                    ten * quotient(x, center, width)
+                };
+                (-z.abs()).exp()
+            }
             Mf::Cosine { center, width } => {
                 let two = one + one;
                 let half = width / two;
-                if x < center - half || x > center + half {
-                    zero
+                let pi = T::of(core::f64::consts::PI);
+                if (x - center).is_finite() && (center + half).is_finite() {
+                    // fuzzylite's order of operations (replayed to the last bits).
+                    if x < center - half || x > center + half {
+                        zero
+                    } else {
+                        (one + (two * pi / width * (x - center)).cos()) / two
+                    }
                 } else {
-                    let pi = T::of(core::f64::consts::PI);
-                    (one + (two * pi / width * (x - center)).cos()) / two
+                    let t = quotient(x, center, width);
+                    if !(t.abs() <= T::of(0.5)) {
+                        zero
+                    } else {
+                        (one + (two * pi * t).cos()) / two
+                    }
                 }
             }
             Mf::Concave {
@@ -379,9 +399,9 @@ impl<T: Real> Mf<T> {
                 end: e,
             } => {
                 if i <= e && x < e {
-                    (e - i) / (e + e - i - x)
+                    concave(e, i, e + e - i - x, [e, i, e, x])
                 } else if i >= e && x > e {
-                    (i - e) / (i - e - e + x)
+                    concave(i, e, i - e - e + x, [i, e, x, e])
                 } else {
                     one
                 }
@@ -421,11 +441,11 @@ impl<T: Real> Mf<T> {
         let mut out = [T::zero(); 2];
         let mut n = 0;
         if b > a {
-            out[n] = a + level * (b - a);
+            out[n] = lerp(a, b, level);
             n += 1;
         }
         if d > c {
-            out[n] = d - level * (d - c);
+            out[n] = lerp(d, c, level);
             n += 1;
         }
         (out, n)
@@ -436,15 +456,14 @@ impl<T: Real> Mf<T> {
     ///
     /// The center-average defuzzifier uses it; see [`crate::Defuzzifier::CenterAverage`].
     pub fn center(&self) -> Option<T> {
-        let two = T::one() + T::one();
         match *self {
             Mf::Triangle { b, .. } => Some(b),
-            Mf::Trapezoid { b, c, .. } | Mf::Pi { b, c, .. } => Some((b + c) / two),
+            Mf::Trapezoid { b, c, .. } | Mf::Pi { b, c, .. } => Some(midpoint(b, c)),
             Mf::Gaussian { mean, .. } => Some(mean),
-            Mf::Gaussian2 { mean1, mean2, .. } => Some((mean1 + mean2) / two),
+            Mf::Gaussian2 { mean1, mean2, .. } => Some(midpoint(mean1, mean2)),
             Mf::Bell { c, .. } => Some(c),
             Mf::Singleton { x } => Some(x),
-            Mf::Rectangle { start, end } => Some((start + end) / two),
+            Mf::Rectangle { start, end } => Some(midpoint(start, end)),
             Mf::Spike { center, .. } | Mf::Cosine { center, .. } => Some(center),
             Mf::Sigmoid { .. }
             | Mf::SigmoidDifference { .. }
@@ -476,34 +495,113 @@ fn discrete<T: Real>(points: &[(T, T)], x: T) -> T {
     // The first point strictly right of x (x < last.0, so there is one).
     let k = points.partition_point(|p| p.0 <= x);
     let ((x0, y0), (x1, y1)) = (points[k - 1], points[k]);
-    // numpy: slope · (x − x0) + y0.
-    (y1 - y0) / (x1 - x0) * (x - x0) + y0
+    // numpy: slope · (x − x0) + y0, in that order where nothing overflows.
+    if (x1 - x0).is_finite() && (x - x0).is_finite() {
+        (y1 - y0) / (x1 - x0) * (x - x0) + y0
+    } else {
+        y0 + (y1 - y0) * ratio(x, x0, x1, x0)
+    }
+}
+
+/// `(p − q) / (r − s)` for `|p − q| ≤ |r − s|` (a point inside a slope: so only the
+/// denominator can overflow, and it depends on the parameters alone), also where it overflows
+/// (the operands halved, exact for normal numbers); the textbook form otherwise, so ordinary
+/// numbers round as it does.
+#[inline]
+pub(crate) fn ratio<T: Real>(p: T, q: T, r: T, s: T) -> T {
+    let d = r - s;
+    if d.is_finite() {
+        (p - q) / d
+    } else {
+        let h = T::of(0.5);
+        (p * h - q * h) / (r * h - s * h)
+    }
+}
+
+/// `(x − c) / w`, also where `x − c` overflows.
+#[inline]
+fn quotient<T: Real>(x: T, c: T, w: T) -> T {
+    let n = x - c;
+    if n.is_finite() {
+        n / w
+    } else {
+        let h = T::of(0.5);
+        (x * h - c * h) / (w * h)
+    }
+}
+
+/// fuzzylite's Concave `(p − q) / den`, where `den` is `(p − q) + (r − s)` written in
+/// fuzzylite's order (`parts` = `[p, q, r, s]`), recomputed halved where it overflows.
+#[inline]
+fn concave<T: Real>(p: T, q: T, den: T, [_, _, r, s]: [T; 4]) -> T {
+    let n = p - q;
+    if n.is_finite() && den.is_finite() {
+        n / den
+    } else {
+        let h = T::of(0.5);
+        let n = p * h - q * h;
+        n / (n + (r * h - s * h))
+    }
+}
+
+/// `(a + b) / 2`, also where the sum overflows.
+#[inline]
+pub(crate) fn midpoint<T: Real>(a: T, b: T) -> T {
+    let two = T::one() + T::one();
+    let sum = a + b;
+    if sum.is_finite() {
+        sum / two
+    } else {
+        a / two + b / two
+    }
+}
+
+/// `a + t (b − a)` for `t` in `[0, 1]`, also where `b − a` overflows.
+#[inline]
+pub(crate) fn lerp<T: Real>(a: T, b: T, t: T) -> T {
+    let d = b - a;
+    if d.is_finite() {
+        a + t * d
+    } else {
+        a * (T::one() - t) + b * t
+    }
 }
 
 fn gauss<T: Real>(x: T, sigma: T, mean: T) -> T {
-    let t = (x - mean) / sigma;
+    let t = quotient(x, mean, sigma);
     (-(t * t) / (T::one() + T::one())).exp()
 }
 
 fn sigmoid<T: Real>(x: T, a: T, c: T) -> T {
-    // exp overflows to +inf far on the closed side; 1 / (1 + inf) is then exactly 0.
-    T::one() / (T::one() + (-a * (x - c)).exp())
+    // exp overflows to +inf far on the closed side; 1 / (1 + inf) is then exactly 0. A flat
+    // sigmoid (a = 0) is ½ everywhere, even where x − c overflows (0 · ∞ would be NaN).
+    if a == T::zero() {
+        return T::of(0.5);
+    }
+    let t = x - c;
+    let e = if t.is_finite() {
+        -a * t
+    } else {
+        // Only the exponent's sign matters: its size is beyond any exp's range.
+        -a.signum() * t
+    };
+    T::one() / (T::one() + e.exp())
 }
 
 /// MATLAB's `smf`: a quadratic spline from 0 at `a` to 1 at `b`; a step at the middle if a ≥ b.
 fn s_shape<T: Real>(x: T, a: T, b: T) -> T {
     let two = T::one() + T::one();
-    let mid = (a + b) / two;
+    let mid = midpoint(a, b);
     if a >= b {
         return if x >= mid { T::one() } else { T::zero() };
     }
     if x <= a {
         T::zero()
     } else if x <= mid {
-        let t = (x - a) / (b - a);
+        let t = ratio(x, a, b, a);
         two * t * t
     } else if x <= b {
-        let t = (x - b) / (b - a);
+        let t = ratio(x, b, b, a);
         T::one() - two * t * t
     } else {
         T::one()

@@ -5,6 +5,9 @@ use std::vec::Vec;
 
 use crate::{Engine, EvalError, Real};
 
+/// The most steps per axis [`surface`] takes (a grid of 16.8 M points).
+pub const MAX_SURFACE_STEPS: usize = 1 << 12;
+
 /// Samples output 0 of a two-input engine on a `steps × steps` grid over the input universes:
 /// rows of `(x, y, z)`, x-major.
 ///
@@ -16,6 +19,12 @@ use crate::{Engine, EvalError, Real};
 /// # Ok::<(), fuzzy_mamdani::EvalError>(())
 /// ```
 pub fn surface<T: Real>(engine: &Engine<T>, steps: usize) -> Result<Vec<(T, T, T)>, EvalError> {
+    if steps > MAX_SURFACE_STEPS {
+        return Err(EvalError::TooManySteps {
+            steps,
+            max: MAX_SURFACE_STEPS,
+        });
+    }
     let inputs = engine.inputs();
     if inputs.len() != 2 {
         return Err(EvalError::InputCount {
@@ -25,7 +34,7 @@ pub fn surface<T: Real>(engine: &Engine<T>, steps: usize) -> Result<Vec<(T, T, T
     }
     let steps = steps.max(2);
     let at = |v: &crate::InputVariable<T>, k: usize| {
-        v.min + (v.max - v.min) * T::of(k as f64 / (steps - 1) as f64)
+        crate::mf::lerp(v.min, v.max, T::of(k as f64 / (steps - 1) as f64))
     };
     let mut scratch = engine.scratch();
     let mut out = Vec::with_capacity(steps * steps);

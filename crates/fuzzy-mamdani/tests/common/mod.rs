@@ -74,3 +74,8 @@ pub fn bench_inputs() -> Vec<[f64; 2]> {
 pub fn reference_201<T: Real>() -> Engine<T> {
     reference_engine(Defuzzifier::Centroid(Resolution::Samples(201)))
 }
+
+/// The reference engine under fuzzylite's integration: centroid over 201 midpoints.
+pub fn reference_midpoints_201<T: Real>() -> Engine<T> {
+    reference_engine(Defuzzifier::Centroid(Resolution::Midpoints(201)))
+}
