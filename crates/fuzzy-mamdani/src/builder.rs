@@ -9,7 +9,7 @@ use crate::engine::{AndIndex, Compiled, OutputPlan, ScratchShape};
 use crate::rules::{self, MAX_DEPTH, Op};
 use crate::{
     Activation, BuildError, Defuzzifier, Engine, Hedges, InputVariable, Mf, OutOfRange,
-    OutputVariable, Real, Resolution, Rule, SNorm, TNorm, Term,
+    OutputVariable, Real, Resolution, Rule, RuleBlock, SNorm, TNorm, Term,
 };
 
 /// The most samples a sampled defuzzifier may ask for (the table is terms × samples values).
@@ -38,6 +38,9 @@ pub struct EngineBuilder<T> {
     out_of_range: OutOfRange,
     activation_threshold: T,
     activation: Activation<T>,
+    /// The current block's name; `blocks` holds the blocks closed before it.
+    block: String,
+    blocks: Vec<RuleBlock<T>>,
 }
 
 #[derive(Debug, Clone)]
@@ -73,6 +76,8 @@ impl<T: Real> EngineBuilder<T> {
             out_of_range: OutOfRange::Clamp,
             activation_threshold: T::zero(),
             activation: Activation::General,
+            block: String::from("rules"),
+            blocks: Vec::new(),
         }
     }
 
@@ -184,6 +189,40 @@ impl<T: Real> EngineBuilder<T> {
         self.activation = a;
         self
     }
+    /// Closes the current rule block and starts another called `name`: the rules added from
+    /// here on belong to it, and `conjunction`, `disjunction`, `implication` and `activation`
+    /// set its operators (it starts with the closed block's). fuzzylite's several
+    /// `RuleBlock`s; MATLAB has one.
+    ///
+    /// ```
+    /// use fuzzy_mamdani::{Activation, EngineBuilder, Mf, TNorm};
+    /// let tri = |a, b, c| Mf::Triangle { a, b, c };
+    /// let e = EngineBuilder::<f64>::new("two blocks")
+    ///     .input("x", 0.0, 1.0, [("lo", tri(0.0, 0.0, 1.0)), ("hi", tri(0.0, 1.0, 1.0))])
+    ///     .output("y", 0.0, 1.0, [("a", tri(0.0, 0.0, 1.0)), ("b", tri(0.0, 1.0, 1.0))])
+    ///     .rule("if x is lo then y is a")
+    ///     .rule_block("strongest")
+    ///     .implication(TNorm::AlgebraicProduct)
+    ///     .activation(Activation::Highest { rules: 1 })
+    ///     .rule("if x is hi then y is b")
+    ///     .rule("if x is lo then y is b with 0.5")
+    ///     .build()?;
+    /// assert_eq!(e.rule_blocks().len(), 2);
+    /// assert_eq!(e.rule_blocks()[1].rules, 1..3);
+    /// # Ok::<(), fuzzy_mamdani::BuildError>(())
+    /// ```
+    pub fn rule_block(mut self, name: impl Into<String>) -> Self {
+        let start = self.blocks.last().map_or(0, |b| b.rules.end);
+        self.blocks.push(RuleBlock {
+            name: core::mem::replace(&mut self.block, name.into()),
+            conjunction: self.conjunction,
+            disjunction: self.disjunction,
+            implication: self.implication,
+            activation: self.activation,
+            rules: start..self.rules.len(),
+        });
+        self
+    }
     /// The out-of-range policy of the inputs added with [`input`](Self::input).
     pub fn out_of_range(mut self, p: OutOfRange) -> Self {
         self.out_of_range = p;
@@ -220,7 +259,16 @@ impl<T: Real> EngineBuilder<T> {
         if !(b.activation_threshold >= T::zero() && b.activation_threshold < T::one()) {
             return Err(BuildError::BadThreshold);
         }
-        if !b.activation.is_valid() {
+        let mut blocks = b.blocks.clone();
+        blocks.push(RuleBlock {
+            name: b.block.clone(),
+            conjunction: b.conjunction,
+            disjunction: b.disjunction,
+            implication: b.implication,
+            activation: b.activation,
+            rules: blocks.last().map_or(0, |l| l.rules.end)..b.rules.len(),
+        });
+        if blocks.iter().any(|k| !k.activation.is_valid()) {
             return Err(BuildError::BadThreshold);
         }
         let mut names: Vec<&str> = Vec::new();
@@ -261,24 +309,25 @@ impl<T: Real> EngineBuilder<T> {
                 .iter()
                 .flat_map(|r| &r.consequents)
                 .any(|c| c.output == o && c.negated);
-            check_defuzzifier(var, b.implication, negated)?;
+            // Under the implication of every block that concludes on this output.
+            for k in &blocks {
+                if rules_[k.rules.clone()]
+                    .iter()
+                    .any(|r| r.consequents.iter().any(|c| c.output == o))
+                {
+                    check_defuzzifier(var, k.implication, negated)?;
+                }
+            }
+            check_defuzzifier(var, blocks[0].implication, negated)?;
         }
-        let compiled = compile(
-            &inputs,
-            &outputs,
-            &rules_,
-            b.activation == Activation::General,
-        );
+        let compiled = compile(&inputs, &outputs, &rules_, &blocks);
         Ok(Engine {
             name: self.name,
             inputs,
             outputs,
             rules: rules_,
-            conjunction: self.conjunction,
-            disjunction: self.disjunction,
-            implication: self.implication,
+            blocks,
             activation_threshold: self.activation_threshold,
-            activation: self.activation,
             compiled,
         })
     }
@@ -477,8 +526,13 @@ fn compile<T: Real>(
     inputs: &[InputVariable<T>],
     outputs: &[OutputVariable<T>],
     rules_: &[Rule<T>],
-    general: bool,
+    blocks: &[RuleBlock<T>],
 ) -> Compiled<T> {
+    let general = blocks.len() == 1 && blocks[0].activation == Activation::General;
+    let mut implications = vec![TNorm::Minimum; rules_.len()];
+    for k in blocks {
+        implications[k.rules.clone()].fill(k.implication);
+    }
     let mut input_offsets = Vec::with_capacity(inputs.len() + 1);
     let mut input_mfs = Vec::new();
     for v in inputs {
@@ -536,6 +590,9 @@ fn compile<T: Real>(
         samples: plans.iter().map(|p| p.samples).max().unwrap_or(0),
         outputs: outputs.len(),
     };
+    let single = blocks[1..]
+        .iter()
+        .all(|k| k.implication == blocks[0].implication);
     Compiled {
         input_offsets,
         input_mfs,
@@ -543,6 +600,8 @@ fn compile<T: Real>(
         rule_ops,
         and_index,
         weights,
+        implications,
+        implication: single.then_some(blocks[0].implication),
         plans,
         shape,
     }
@@ -629,11 +688,20 @@ impl<T: Real> From<&Engine<T>> for EngineBuilder<T> {
     /// A builder holding the engine's variables (with their own settings) and rules, to edit.
     fn from(engine: &Engine<T>) -> Self {
         let mut b = EngineBuilder::new(engine.name.clone())
-            .conjunction(engine.conjunction)
-            .disjunction(engine.disjunction)
-            .implication(engine.implication)
-            .activation_threshold(engine.activation_threshold)
-            .activation(engine.activation);
+            .activation_threshold(engine.activation_threshold);
+        let (last, closed) = engine
+            .blocks
+            .split_last()
+            .map_or((None, &[][..]), |(l, c)| (Some(l), c));
+        b.blocks = closed.to_vec();
+        if let Some(last) = last {
+            b.block = last.name.clone();
+            b = b
+                .conjunction(last.conjunction)
+                .disjunction(last.disjunction)
+                .implication(last.implication)
+                .activation(last.activation);
+        }
         b.inputs = engine.inputs.iter().map(|v| (v.clone(), true)).collect();
         b.outputs = engine.outputs.iter().map(|v| (v.clone(), true)).collect();
         b.rules = engine

@@ -8,7 +8,7 @@ use crate::exact::{self, Act, Frame};
 use crate::rules::{self, Op};
 use crate::{
     Activation, Defuzzifier, EvalError, Hedges, InputVariable, Mf, OutOfRange, OutputVariable,
-    Real, Rule, SNorm, TNorm,
+    Real, Rule, RuleBlock, SNorm, TNorm,
 };
 
 /// A Mamdani fuzzy inference engine, built by [`crate::EngineBuilder`] or imported from a
@@ -41,11 +41,9 @@ pub struct Engine<T> {
     pub(crate) inputs: Vec<InputVariable<T>>,
     pub(crate) outputs: Vec<OutputVariable<T>>,
     pub(crate) rules: Vec<Rule<T>>,
-    pub(crate) conjunction: TNorm,
-    pub(crate) disjunction: SNorm,
-    pub(crate) implication: TNorm,
+    /// At least one; together they hold every rule, in order.
+    pub(crate) blocks: Vec<RuleBlock<T>>,
     pub(crate) activation_threshold: T,
-    pub(crate) activation: Activation<T>,
     pub(crate) compiled: Compiled<T>,
 }
 
@@ -62,6 +60,10 @@ pub(crate) struct Compiled<T> {
     /// When every rule is `a and b` (no NOT): the rules indexed by their first membership.
     pub(crate) and_index: Option<AndIndex>,
     pub(crate) weights: Vec<T>,
+    /// The implication of each rule's block.
+    pub(crate) implications: Vec<TNorm>,
+    /// The one implication of every block, if they share it.
+    pub(crate) implication: Option<TNorm>,
     pub(crate) plans: Vec<OutputPlan<T>>,
     pub(crate) shape: ScratchShape,
 }
@@ -146,21 +148,27 @@ impl<T: Real> Engine<T> {
     pub fn rules(&self) -> &[Rule<T>] {
         &self.rules
     }
-    /// The T-norm joining `and`ed propositions.
+    /// The rule blocks, in order (one unless built with
+    /// [`crate::EngineBuilder::rule_block`] or read from a file with several).
+    pub fn rule_blocks(&self) -> &[RuleBlock<T>] {
+        &self.blocks
+    }
+    /// The T-norm joining `and`ed propositions (of the first rule block).
     pub fn conjunction(&self) -> TNorm {
-        self.conjunction
+        self.blocks[0].conjunction
     }
-    /// The S-norm joining `or`ed propositions.
+    /// The S-norm joining `or`ed propositions (of the first rule block).
     pub fn disjunction(&self) -> SNorm {
-        self.disjunction
+        self.blocks[0].disjunction
     }
-    /// The T-norm shaping a consequent term by its rule's strength.
+    /// The T-norm shaping a consequent term by its rule's strength (of the first rule block).
     pub fn implication(&self) -> TNorm {
-        self.implication
+        self.blocks[0].implication
     }
-    /// The activation method of the rules (fuzzylite's `activation:`).
+    /// The activation method of the rules (of the first rule block; fuzzylite's
+    /// `activation:`).
     pub fn activation(&self) -> Activation<T> {
-        self.activation
+        self.blocks[0].activation
     }
     /// A conclusion takes part only when its activation degree (the rule's weighted strength,
     /// hedged) is above this; see [`crate::EngineBuilder::activation_threshold`].
@@ -248,7 +256,7 @@ impl<T: Real> Engine<T> {
                     if mb == T::zero() {
                         continue;
                     }
-                    let t = match self.conjunction {
+                    let t = match self.blocks[0].conjunction {
                         TNorm::Minimum => ma.min(mb),
                         TNorm::AlgebraicProduct => ma * mb,
                         t => t.apply(ma, mb),
@@ -261,12 +269,16 @@ impl<T: Real> Engine<T> {
             fired.sort_unstable();
             return;
         }
-        for (r, s) in strength.iter_mut().enumerate() {
-            let (lo, hi) = c.rule_ops[r];
-            let ops = &c.ops[lo as usize..hi as usize];
-            *s = c.weights[r] * rules::eval_ops(ops, mu, self.conjunction, self.disjunction);
+        for block in &self.blocks {
+            let rules = block.rules.clone();
+            for r in rules.clone() {
+                let (lo, hi) = c.rule_ops[r];
+                let ops = &c.ops[lo as usize..hi as usize];
+                strength[r] =
+                    c.weights[r] * rules::eval_ops(ops, mu, block.conjunction, block.disjunction);
+            }
+            block.activation.apply(&mut strength[rules], fired);
         }
-        self.activation.apply(strength, fired);
     }
 
     fn defuzzify(
@@ -399,26 +411,35 @@ impl<T: Real> Engine<T> {
             return weighted_mean(num, den, halved);
         }
         acts.clear();
-        if var.aggregation == SNorm::Maximum {
-            // max_r I(w_r, μ) = I(max_r w_r, μ) for any T-norm I: one activation per term.
-            let nonzero = levels.iter().enumerate().filter(|(_, w)| **w > T::zero());
-            acts.extend(nonzero.map(|(k, &w)| Act {
-                term: (k / 2) as u32,
-                negated: k % 2 == 1,
+        let c = &self.compiled;
+        match (var.aggregation, c.implication) {
+            // max_r I(w_r, μ) = I(max_r w_r, μ) for any T-norm I: one activation per term
+            // (when every block implies alike).
+            (SNorm::Maximum, Some(imp)) => {
+                let nonzero = levels.iter().enumerate().filter(|(_, w)| **w > T::zero());
+                acts.extend(nonzero.map(|(k, &w)| Act {
+                    term: (k / 2) as u32,
+                    negated: k % 2 == 1,
+                    w,
+                    imp,
+                }));
+            }
+            _ => acts.extend(fired.map(|(&(r, term, negated, _), w)| Act {
+                term,
+                negated,
                 w,
-            }));
-        } else {
-            acts.extend(fired.map(|(&(_, term, negated, _), w)| Act { term, negated, w }));
+                imp: c.implications[r as usize],
+            })),
         }
         let stat = plan.stat?;
         if plan.samples > 0 {
             let agg = &mut agg[..plan.samples];
-            accumulate(agg, acts, &plan.table, self.implication, var.aggregation);
+            accumulate(agg, acts, &plan.table, var.aggregation);
             return defuzz::sampled(stat, agg, &plan.grid);
         }
-        let (imp, aggr, range) = (self.implication, var.aggregation, (var.min, var.max));
+        let (aggr, range) = (var.aggregation, (var.min, var.max));
         let mut walk = |visit: &mut dyn FnMut(T, T, T, T)| {
-            exact::for_each_piece(acts, &plan.mfs, imp, aggr, range, points, lines, visit);
+            exact::for_each_piece(acts, &plan.mfs, aggr, range, points, lines, visit);
         };
         // The walk is in the universe's frame; answers go back to the universe.
         let frame = Frame::new(var.min, var.max);
@@ -483,14 +504,14 @@ fn weighted_mean<T: Real>(num: T, den: T, halved: impl FnOnce() -> T) -> Option<
 }
 
 /// `agg[k] = S_a I(w_a, μ_a(x_k))` over the activations, from the precomputed term table.
-fn accumulate<T: Real>(agg: &mut [T], acts: &[Act<T>], table: &[T], imp: TNorm, aggr: SNorm) {
+fn accumulate<T: Real>(agg: &mut [T], acts: &[Act<T>], table: &[T], aggr: SNorm) {
     agg.fill(T::zero());
     let n = agg.len();
     for a in acts {
         let Some(row) = table.get(a.term as usize * n..(a.term as usize + 1) * n) else {
             continue;
         };
-        let w = a.w;
+        let (w, imp) = (a.w, a.imp);
         // The common pairs get their own monomorphic loop so the compiler can vectorise it.
         match (imp, aggr, a.negated) {
             (TNorm::Minimum, SNorm::Maximum, false) => {

@@ -9,20 +9,22 @@ use alloc::vec::Vec;
 
 use crate::{Mf, Real, SNorm, TNorm};
 
-/// One implied consequent term: `term` of the output, its complement if `negated`, strength `w`.
+/// One implied consequent term: `term` of the output, its complement if `negated`, strength `w`,
+/// implied by its rule block's `imp`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Act<T> {
     pub(crate) term: u32,
     pub(crate) negated: bool,
     pub(crate) w: T,
+    pub(crate) imp: TNorm,
 }
 
 /// How many break points one activation contributes at most: 4 shape points + 2 clip points.
 pub(crate) const POINTS_PER_ACT: usize = 6;
 
-fn implied<T: Real>(mf: &Mf<T>, a: &Act<T>, implication: TNorm, x: T) -> T {
+fn implied<T: Real>(mf: &Mf<T>, a: &Act<T>, x: T) -> T {
     let m = mf.membership(x);
-    implication.apply(a.w, if a.negated { T::one() - m } else { m })
+    a.imp.apply(a.w, if a.negated { T::one() - m } else { m })
 }
 
 /// Calls `visit(u0, y0, u1, y1)` for each linear piece of the aggregated set over `[min, max]`,
@@ -33,7 +35,6 @@ fn implied<T: Real>(mf: &Mf<T>, a: &Act<T>, implication: TNorm, x: T) -> T {
 pub(crate) fn for_each_piece<T: Real>(
     acts: &[Act<T>],
     mfs: &[Mf<T>],
-    implication: TNorm,
     aggregation: SNorm,
     (min, max): (T, T),
     points: &mut Vec<T>,
@@ -50,7 +51,7 @@ pub(crate) fn for_each_piece<T: Real>(
         if let Some((p, n)) = mf.linear_breakpoints() {
             points.extend(p[..n].iter().copied().filter(|x| *x > min && *x < max));
         }
-        if implication == TNorm::Minimum {
+        if a.imp == TNorm::Minimum {
             let level = if a.negated { T::one() - a.w } else { a.w };
             let (p, n) = mf.level_crossings(level);
             points.extend(p[..n].iter().copied().filter(|x| *x > min && *x < max));
@@ -79,10 +80,7 @@ pub(crate) fn for_each_piece<T: Real>(
             let Some(mf) = mfs.get(a.term as usize) else {
                 continue;
             };
-            let (v1, v3) = (
-                implied(mf, a, implication, q1),
-                implied(mf, a, implication, q3),
-            );
+            let (v1, v3) = (implied(mf, a, q1), implied(mf, a, q3));
             let y0 = (k1 * v1 - k3 * v3).max(T::zero());
             let y1 = (k1 * v3 - k3 * v1).max(T::zero());
             if y0 > T::zero() || y1 > T::zero() {
@@ -197,13 +195,13 @@ mod tests {
             term: 0,
             negated: false,
             w: 0.5,
+            imp: TNorm::Minimum,
         }];
         let (mut pts, mut lines) = (Vec::with_capacity(8), Vec::with_capacity(1));
         let mut pieces = Vec::new();
         for_each_piece(
             &acts,
             &mfs,
-            TNorm::Minimum,
             SNorm::Maximum,
             (0.0, 2.0),
             &mut pts,

@@ -393,6 +393,9 @@ pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
     if engine.activation_threshold() > T::zero() {
         return Err(unsupported("an activation threshold"));
     }
+    if engine.rule_blocks().len() > 1 {
+        return Err(unsupported("several rule blocks"));
+    }
     if engine.activation() != crate::Activation::General {
         return Err(unsupported("an activation method other than General"));
     }

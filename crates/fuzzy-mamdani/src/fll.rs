@@ -8,9 +8,10 @@
 //! operator. `CenterAverage` is an extension of this crate (fuzzylite has none).
 //!
 //! What fuzzylite has and this crate does not is a typed [`FileError::Unsupported`] naming the
-//! feature and its line: several rule blocks, activation methods other than `General`, terms
-//! outside [`Mf`] (`Discrete`, …, and Takagi–Sugeno's `Constant`, `Linear`, `Function`),
-//! term heights other than 1, `lock-previous`, output `lock-range`, disabled blocks.
+//! feature and its line: output variables in antecedents (chained engines), the terms `Arc` and
+//! `SemiEllipse` (pyfuzzylite only) and Takagi–Sugeno's `Constant`, `Linear`, `Function`,
+//! weighted defuzzifiers (Takagi–Sugeno / Tsukamoto), term heights other than 1,
+//! `lock-previous`, output `lock-range`, disabled variables and blocks.
 
 use std::format;
 use std::string::{String, ToString};
@@ -96,11 +97,14 @@ pub fn from_fll<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
     read_fll(text).map_err(|e| at_line_start(e, text))
 }
 
-/// What the rule block's operators are, `None` for `none`.
-struct Operators {
+/// A rule block as read: its operators (`None` for `none`), activation and first rule.
+struct Block<T> {
+    name: String,
     conjunction: Option<TNorm>,
     disjunction: Option<SNorm>,
     implication: Option<TNorm>,
+    activation: Activation<T>,
+    first_rule: usize,
 }
 
 fn read_fll<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
@@ -110,14 +114,8 @@ fn read_fll<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
         Vec::<OutputVariable<T>>::new(),
         Vec::<Rule<T>>::new(),
     );
-    // fuzzylite's defaults for a block that names no operator: none at all.
-    let mut ops = Operators {
-        conjunction: None,
-        disjunction: None,
-        implication: None,
-    };
-    let (mut blocks, mut aggregation_none, mut rule_lines) = (0, Vec::new(), Vec::new());
-    let mut activation = Activation::General;
+    let mut blocks: Vec<Block<T>> = Vec::new();
+    let (mut aggregation_none, mut rule_lines) = (Vec::new(), Vec::new());
     let mut section = Section::None;
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
@@ -163,13 +161,15 @@ fn read_fll<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
                 });
             }
             ("RuleBlock", _) => {
-                blocks += 1;
-                if blocks > 1 {
-                    return Err(unsupported(
-                        line,
-                        "a second RuleBlock (several rule blocks)",
-                    ));
-                }
+                // fuzzylite's defaults for a block that names no operator: none at all.
+                blocks.push(Block {
+                    name: value.to_string(),
+                    conjunction: None,
+                    disjunction: None,
+                    implication: None,
+                    activation: Activation::General,
+                    first_rule: rules.len(),
+                });
                 section = Section::Rules
             }
             ("enabled", _) if value == "true" => {}
@@ -229,16 +229,16 @@ fn read_fll<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
                 last(&mut outputs, line)?.default = v.is_finite().then(|| T::of(v));
             }
             ("conjunction", Section::Rules) => {
-                ops.conjunction = lookup(&TNORMS, value, line).map_err(at)?
+                last(&mut blocks, line)?.conjunction = lookup(&TNORMS, value, line).map_err(at)?
             }
             ("disjunction", Section::Rules) => {
-                ops.disjunction = lookup(&SNORMS, value, line).map_err(at)?
+                last(&mut blocks, line)?.disjunction = lookup(&SNORMS, value, line).map_err(at)?
             }
             ("implication", Section::Rules) => {
-                ops.implication = lookup(&TNORMS, value, line).map_err(at)?
+                last(&mut blocks, line)?.implication = lookup(&TNORMS, value, line).map_err(at)?
             }
             ("activation", Section::Rules) => {
-                activation = activation_of(value, line).map_err(at)?
+                last(&mut blocks, line)?.activation = activation_of(value, line).map_err(at)?
             }
             ("rule", Section::Rules) => {
                 let mut rule =
@@ -254,7 +254,7 @@ fn read_fll<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
                         e => rule_error(e, line, column),
                     })?;
                 carry_hedges(&mut rule.consequents, line)?;
-                check_operators(&rule.antecedent, &ops, line)?;
+                check_operators(&rule.antecedent, last(&mut blocks, line)?, line)?;
                 rules.push(rule);
                 rule_lines.push(line);
             }
@@ -272,33 +272,44 @@ fn read_fll<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
             return Err(missing(line, "aggregation", &outputs[o].name));
         }
     }
-    if ops.implication.is_none() {
-        let integral = |o: usize| outputs[o].defuzzifier.is_integral();
-        if let Some(r) = rules
-            .iter()
-            .position(|r| r.consequents.iter().any(|c| integral(c.output)))
-        {
-            return Err(missing(
-                rule_lines[r],
-                "implication",
-                "a conclusion on an integral defuzzifier",
-            ));
+    let integral = |o: usize| outputs[o].defuzzifier.is_integral();
+    for (k, block) in blocks.iter().enumerate() {
+        let end = blocks.get(k + 1).map_or(rules.len(), |n| n.first_rule);
+        if block.implication.is_none() {
+            let first = rules[block.first_rule..end]
+                .iter()
+                .position(|r| r.consequents.iter().any(|c| integral(c.output)));
+            if let Some(r) = first {
+                return Err(missing(
+                    rule_lines[block.first_rule + r],
+                    "implication",
+                    "a conclusion on an integral defuzzifier",
+                ));
+            }
         }
     }
-    // An operator no rule uses is never evaluated: any value stands in for `none`.
-    let mut b = EngineBuilder::new(name)
-        .conjunction(ops.conjunction.unwrap_or(TNorm::Minimum))
-        .disjunction(ops.disjunction.unwrap_or(SNorm::Maximum))
-        .implication(ops.implication.unwrap_or(TNorm::Minimum))
-        .activation(activation);
+    let mut b = EngineBuilder::new(name);
     for v in inputs {
         b = b.input_variable(v);
     }
     for v in outputs {
         b = b.output_variable(v);
     }
-    for r in rules {
-        b = b.rule_struct(r);
+    let mut rules = rules.into_iter();
+    for (k, block) in blocks.iter().enumerate() {
+        if k > 0 {
+            b = b.rule_block(block.name.clone());
+        }
+        // An operator no rule uses is never evaluated: any value stands in for `none`.
+        b = b
+            .conjunction(block.conjunction.unwrap_or(TNorm::Minimum))
+            .disjunction(block.disjunction.unwrap_or(SNorm::Maximum))
+            .implication(block.implication.unwrap_or(TNorm::Minimum))
+            .activation(block.activation);
+        let end = blocks.get(k + 1).map_or(usize::MAX, |n| n.first_rule);
+        for r in rules.by_ref().take(end - block.first_rule) {
+            b = b.rule_struct(r);
+        }
     }
     Ok(b.build()?)
 }
@@ -372,7 +383,7 @@ fn uncarry_hedges<T: Real>(rule: &Rule<T>) -> Result<Rule<T>, FileError> {
 }
 
 /// Refuses a rule that needs an operator its block leaves `none`.
-fn check_operators(e: &Expr, ops: &Operators, line: usize) -> Result<(), FileError> {
+fn check_operators<T>(e: &Expr, ops: &Block<T>, line: usize) -> Result<(), FileError> {
     match e {
         Expr::And(..) if ops.conjunction.is_none() => Err(missing(line, "conjunction", "`and`")),
         Expr::Or(..) if ops.disjunction.is_none() => Err(missing(line, "disjunction", "`or`")),
@@ -663,19 +674,22 @@ pub fn to_fll<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
         s += &format!("  defuzzifier: {d}{marker}\n  default: {default}\n  lock-previous: false\n");
         write_terms(&mut s, &v.terms)?;
     }
-    s += &format!(
-        "RuleBlock: rules\n  enabled: true\n  conjunction: {}\n  disjunction: {}\n  implication: {}\n  activation: {}\n",
-        name_of(&TNORMS, engine.conjunction()),
-        name_of(&SNORMS, engine.disjunction()),
-        name_of(&TNORMS, engine.implication()),
-        activation_text(engine.activation()),
-    );
-    for r in engine.rules() {
-        let own = uncarry_hedges(r)?;
+    for block in engine.rule_blocks() {
         s += &format!(
-            "  rule: {}\n",
-            rule_text(&own, engine.inputs(), engine.outputs())
+            "RuleBlock: {}\n  enabled: true\n  conjunction: {}\n  disjunction: {}\n  implication: {}\n  activation: {}\n",
+            block.name,
+            name_of(&TNORMS, block.conjunction),
+            name_of(&SNORMS, block.disjunction),
+            name_of(&TNORMS, block.implication),
+            activation_text(block.activation),
         );
+        for r in &engine.rules()[block.rules.clone()] {
+            let own = uncarry_hedges(r)?;
+            s += &format!(
+                "  rule: {}\n",
+                rule_text(&own, engine.inputs(), engine.outputs())
+            );
+        }
     }
     Ok(s)
 }
@@ -801,11 +815,7 @@ RuleBlock: r
                 "  range: 0 1\n  lock-previous: true\n  term: t Triangle 0 1 1\nOutputVariable: b",
                 8,
             ),
-            (
-                "RuleBlock: r",
-                "RuleBlock: r\n  rule: if x is lo then a is t\nRuleBlock: s",
-                16,
-            ),
+            ("InputVariable: x", "InputVariable: x\n  enabled: false", 3),
             (
                 "defuzzifier: Centroid 100\n  term: t Triangle 0 1 1\nRuleBlock",
                 "defuzzifier: WeightedSum\n  term: t Triangle 0 1 1\nRuleBlock",

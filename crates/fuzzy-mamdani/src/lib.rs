@@ -9,6 +9,7 @@ extern crate alloc;
 extern crate std;
 
 mod activation;
+mod block;
 mod builder;
 mod defuzz;
 mod engine;
@@ -31,6 +32,7 @@ mod surface;
 mod variable;
 
 pub use activation::{Activation, Comparison};
+pub use block::RuleBlock;
 pub use builder::{EngineBuilder, MAX_SAMPLES};
 pub use defuzz::{Defuzzifier, Resolution};
 pub use engine::{Engine, Scratch};

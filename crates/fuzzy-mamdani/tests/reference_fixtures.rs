@@ -147,7 +147,7 @@ fn fuzzylite_semantics(path: &Path) -> bool {
 #[test]
 fn fuzzylite_semantics_replay_as_imported() {
     let mut names: Vec<String> = Vec::new();
-    let (mut failures, mut activations) = (Vec::new(), Vec::new());
+    let (mut failures, mut activations, mut blocks) = (Vec::new(), Vec::new(), 0);
     let mut entries: Vec<PathBuf> = std::fs::read_dir(dir())
         .expect("fixtures/fuzzy exists")
         .flatten()
@@ -169,6 +169,12 @@ fn fuzzylite_semantics_replay_as_imported() {
             fld.display()
         );
         activations.push(engine.activation().name());
+        blocks = blocks.max(engine.rule_blocks().len());
+        // What is read is what is written: the engine survives its own `.fll`.
+        let again =
+            from_fll::<f64>(&fuzzy_mamdani::to_fll(&engine).expect("writes")).expect("reads back");
+        assert_eq!(again.rule_blocks(), engine.rule_blocks());
+        assert_eq!(again.rules(), engine.rules());
         if engine.activation() != Activation::General {
             // The method decides the rows: the same engine under General does not give them.
             let general = EngineBuilder::from(&engine)
@@ -204,6 +210,7 @@ fn fuzzylite_semantics_replay_as_imported() {
     ] {
         assert!(activations.contains(&a), "no engine under activation {a}");
     }
+    assert!(blocks >= 2, "no engine with several rule blocks");
     for d in ["centroid", "bisector", "mom", "som", "lom"] {
         assert!(
             names.iter().any(|n| n.ends_with(d)),
