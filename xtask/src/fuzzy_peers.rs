@@ -6,6 +6,24 @@ use anyhow::{Context, Result, bail};
 use std::path::Path;
 use std::process::Command;
 
+/// Where the crate README's feature table starts and ends.
+const FEATURES_BEGIN: &str = "<!-- feature table";
+const FEATURES_END: &str = "<!-- /feature table -->";
+
+/// `text` with its one line starting with `prefix` replaced by `line`.
+fn replace_line(text: &str, prefix: &str, line: &str) -> Result<String> {
+    if !text.lines().any(|l| l.starts_with(prefix)) {
+        bail!("no line starting with `{prefix}`");
+    }
+    let mut out: String = text
+        .lines()
+        .map(|l| if l.starts_with(prefix) { line } else { l })
+        .collect::<Vec<_>>()
+        .join("\n");
+    out.push('\n');
+    Ok(out)
+}
+
 /// The criterion id of the reference engine (f64, centroid over 201 samples).
 const REFERENCE_ID: &str = "reference_centroid201_f64";
 
@@ -28,8 +46,10 @@ pub fn write_report(root: &Path, measurements: &[Measurement]) -> Result<()> {
         serde_json::from_slice(&out.stdout).context("fuzzy_peers.py printed no JSON")?;
     let mut md = String::from(
         "# fuzzy-mamdani performance\n\nWritten by `cargo xtask bench`. The issue-5 reference engine \
-         (2 inputs × 9 terms, 81 rules, min / max / min, centroid over 201 samples), one evaluation, \
-         on this machine.\n\n| engine | time per evaluation | × fuzzy-mamdani |\n|---|---:|---:|\n",
+         (2 inputs × 9 terms, 81 rules, min / max / min, centroid over 201 points), one evaluation, \
+         on this machine, in one run: MATLAB's end-point samples and fuzzylite's midpoints \
+         (pyfuzzylite's own rule, so the row to compare with it), and the grasp preset.\n\n\
+         | engine | time per evaluation | × fuzzy-mamdani |\n|---|---:|---:|\n",
     );
     md += &format!("| fuzzy-mamdani (f64) | {} | 1 |\n", human(ours.mean_ns));
     for m in measurements.iter().filter(|m| {
@@ -42,6 +62,7 @@ pub fn write_report(root: &Path, measurements: &[Measurement]) -> Result<()> {
             m.mean_ns / ours.mean_ns
         );
     }
+    let mut peer_cells = Vec::new();
     for (name, us) in peers.as_object().into_iter().flatten() {
         let ns = us.as_f64().context("peer time is not a number")? * 1e3;
         md += &format!(
@@ -49,7 +70,44 @@ pub fn write_report(root: &Path, measurements: &[Measurement]) -> Result<()> {
             human(ns),
             ns / ours.mean_ns
         );
+        peer_cells.push((
+            name.clone(),
+            format!("{} ({:.0} ×)", human(ns), ns / ours.mean_ns),
+        ));
     }
+    // The crate README's feature table, copied, and its speed row from this run.
+    let readme_path = root.join("crates/fuzzy-mamdani/README.md");
+    let readme = std::fs::read_to_string(&readme_path)?;
+    let cell = |peer: &str| {
+        peer_cells
+            .iter()
+            .find(|(n, _)| n.contains(peer))
+            .map_or_else(|| "—".to_string(), |(_, c)| c.clone())
+    };
+    let speed = format!(
+        "| Speed (issue-5 reference engine, one run) | {} | {} | {} |",
+        human(ours.mean_ns),
+        cell("fuzzylite"),
+        cell("scikit"),
+    );
+    let readme = replace_line(&readme, "| Speed (", &speed)?;
+    std::fs::write(&readme_path, &readme)?;
+    let (start, end) = (
+        readme
+            .find(FEATURES_BEGIN)
+            .context("README: no feature table")?,
+        readme
+            .find(FEATURES_END)
+            .context("README: no feature table end")?,
+    );
+    md += "\n## Features against the peers\n\nCopied from the crate README:\n\n";
+    md += readme[start..end]
+        .lines()
+        .filter(|l| !l.starts_with("<!--"))
+        .collect::<Vec<_>>()
+        .join("\n")
+        .trim();
+    md += "\n";
     let path = root.join("docs/fuzzy-performance.md");
     std::fs::create_dir_all(root.join("docs"))?;
     std::fs::write(&path, md).with_context(|| format!("writing {}", path.display()))?;

@@ -106,6 +106,17 @@ impl Comparison {
 }
 
 impl<T: Real> Activation<T> {
+    /// Every method's fuzzylite class name, in declaration order.
+    pub const NAMES: [&'static str; 7] = [
+        "General",
+        "First",
+        "Last",
+        "Highest",
+        "Lowest",
+        "Proportional",
+        "Threshold",
+    ];
+
     /// fuzzylite's class name.
     pub fn name(&self) -> &'static str {
         match self {

@@ -121,6 +121,13 @@ pub struct Scratch<T> {
     shape: ScratchShape,
     mu: Vec<T>,
     strength: Vec<T>,
+    work: Work<T>,
+    out: Vec<T>,
+}
+
+/// The parts of [`Scratch`] that firing and defuzzifying write beside the strengths.
+#[derive(Debug, Clone)]
+struct Work<T> {
     /// Rules with non-zero strength, ascending (filled on the AND-pairs path only).
     fired: Vec<u32>,
     acts: Vec<Act<T>>,
@@ -128,7 +135,6 @@ pub struct Scratch<T> {
     agg: Vec<T>,
     points: Vec<T>,
     lines: Vec<(T, T)>,
-    out: Vec<T>,
 }
 
 impl<T: Real> Engine<T> {
@@ -183,12 +189,14 @@ impl<T: Real> Engine<T> {
             shape: s,
             mu: alloc::vec![T::zero(); s.input_terms],
             strength: alloc::vec![T::zero(); s.rules],
-            fired: Vec::with_capacity(s.rules),
-            acts: Vec::with_capacity(s.acts),
-            levels: alloc::vec![T::zero(); s.levels],
-            agg: alloc::vec![T::zero(); s.samples],
-            points: Vec::with_capacity(s.acts * exact::POINTS_PER_ACT + 2),
-            lines: Vec::with_capacity(s.acts),
+            work: Work {
+                fired: Vec::with_capacity(s.rules),
+                acts: Vec::with_capacity(s.acts),
+                levels: alloc::vec![T::zero(); s.levels],
+                agg: alloc::vec![T::zero(); s.samples],
+                points: Vec::with_capacity(s.acts * exact::POINTS_PER_ACT + 2),
+                lines: Vec::with_capacity(s.acts),
+            },
             out: alloc::vec![T::zero(); s.outputs],
         }
     }
@@ -239,7 +247,7 @@ impl<T: Real> Engine<T> {
         let Scratch {
             mu,
             strength,
-            fired,
+            work: Work { fired, .. },
             ..
         } = scratch;
         if let Some(index) = &c.and_index {
@@ -287,33 +295,40 @@ impl<T: Real> Engine<T> {
         plan: &OutputPlan<T>,
         s: &mut Scratch<T>,
     ) -> Option<T> {
-        let Scratch {
-            strength,
-            fired,
-            acts,
-            levels,
-            agg,
-            points,
-            lines,
-            ..
-        } = s;
-        let bufs = Buffers {
-            fired,
-            acts,
-            levels,
-            agg,
-            points,
-            lines,
-        };
+        let Scratch { strength, work, .. } = s;
         let strength: &[T] = strength;
         // A conclusion's activation degree: its rule's strength, hedged. Monomorphised twice
         // so that engines without hedged conclusions pay nothing for them.
         if plan.hedged {
-            self.defuzzify_with(var, plan, bufs, |&(r, _, _, h)| {
+            self.defuzzify_with(var, plan, work, |&(r, _, _, h)| {
                 h.apply(strength[r as usize])
             })
         } else {
-            self.defuzzify_with(var, plan, bufs, |&(r, _, _, _)| strength[r as usize])
+            self.defuzzify_with(var, plan, work, |&(r, _, _, _)| strength[r as usize])
+        }
+    }
+
+    /// Calls `f` on an output's conclusions that can have fired: silent rules add 0 to any
+    /// sum, so where the fired rules are known (no hedged conclusion then) only theirs.
+    #[inline(always)]
+    fn visit_conclusions(
+        &self,
+        plan: &OutputPlan<T>,
+        fired_rules: &[u32],
+        mut f: impl FnMut(&Conclusion),
+    ) {
+        if self.compiled.and_index.is_some() {
+            for &r in fired_rules {
+                let (lo, hi) = (
+                    plan.rule_offsets[r as usize],
+                    plan.rule_offsets[r as usize + 1],
+                );
+                plan.consequents[lo as usize..hi as usize]
+                    .iter()
+                    .for_each(&mut f);
+            }
+        } else {
+            plan.consequents.iter().for_each(f);
         }
     }
 
@@ -322,10 +337,10 @@ impl<T: Real> Engine<T> {
         &self,
         var: &OutputVariable<T>,
         plan: &OutputPlan<T>,
-        s: Buffers<'_, T>,
+        s: &mut Work<T>,
         degree: impl Fn(&Conclusion) -> T + Copy,
     ) -> Option<T> {
-        let Buffers {
+        let Work {
             fired: fired_rules,
             acts,
             levels,
@@ -335,53 +350,23 @@ impl<T: Real> Engine<T> {
         } = s;
         let threshold = self.activation_threshold;
         if var.defuzzifier == Defuzzifier::CenterAverage {
-            // Silent rules add 0 to both sums, so only fired rules need visiting where they
-            // are known (no hedged conclusion then); elsewhere every consequent.
-            // The conclusions to visit: the fired rules' where they are known.
-            let visit = |f: &mut dyn FnMut(&Conclusion)| {
-                if self.compiled.and_index.is_some() {
-                    for &r in fired_rules.iter() {
-                        let (lo, hi) = (
-                            plan.rule_offsets[r as usize],
-                            plan.rule_offsets[r as usize + 1],
-                        );
-                        plan.consequents[lo as usize..hi as usize]
-                            .iter()
-                            .for_each(&mut *f);
-                    }
-                } else {
-                    plan.consequents.iter().for_each(f);
-                }
-            };
             // A select, not a branch: below the threshold is weight 0.
             let weight = |c: &Conclusion| {
                 let w = degree(c);
                 if w > threshold { w } else { T::zero() }
             };
             let (mut num, mut den) = (T::zero(), T::zero());
-            let mut add = |c: &Conclusion| {
+            self.visit_conclusions(plan, fired_rules, |c| {
                 let w = weight(c);
                 num = num + w * plan.centers[c.1 as usize];
                 den = den + w;
-            };
-            // The hot loop written out (not through `visit`'s indirect call).
-            if self.compiled.and_index.is_some() {
-                for &r in fired_rules.iter() {
-                    let (lo, hi) = (
-                        plan.rule_offsets[r as usize],
-                        plan.rule_offsets[r as usize + 1],
-                    );
-                    plan.consequents[lo as usize..hi as usize]
-                        .iter()
-                        .for_each(&mut add);
-                }
-            } else {
-                plan.consequents.iter().for_each(&mut add);
-            }
+            });
             // Where Σ w c overflowed: the weights normalised, the centres halved.
             let halved = || {
                 let mut n = T::zero();
-                visit(&mut |c| n = n + weight(c) / den * (plan.centers[c.1 as usize] * T::of(0.5)));
+                self.visit_conclusions(plan, fired_rules, |c| {
+                    n = n + weight(c) / den * (plan.centers[c.1 as usize] * T::of(0.5))
+                });
                 n
             };
             return weighted_mean(num, den, halved);
@@ -463,16 +448,6 @@ impl<T: Real> Engine<T> {
         // Rounding can leave the running sum a hair under `half` at the end: the right end.
         Some(found.map_or(var.max, |u| frame.x(u)))
     }
-}
-
-/// The parts of [`Scratch`] defuzzification writes (the strengths are read beside them).
-struct Buffers<'s, T> {
-    fired: &'s mut Vec<u32>,
-    acts: &'s mut Vec<Act<T>>,
-    levels: &'s mut Vec<T>,
-    agg: &'s mut Vec<T>,
-    points: &'s mut Vec<T>,
-    lines: &'s mut Vec<(T, T)>,
 }
 
 fn admit<T: Real>(var: &InputVariable<T>, x: T, input: usize) -> Result<T, EvalError> {

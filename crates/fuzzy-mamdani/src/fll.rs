@@ -554,7 +554,7 @@ fn activation_of<T: Real>(value: &str, line: usize) -> Result<Activation<T>, Fil
                 .ok_or_else(|| syntax(line, format!("`{op}` is not a comparison")))?,
             value: number(v)?,
         },
-        [kind, ..] if ACTIVATIONS.contains(&kind) => {
+        [kind, ..] if Activation::<T>::NAMES.contains(&kind) => {
             return Err(syntax(
                 line,
                 format!("wrong parameters for activation `{kind}`"),
@@ -563,16 +563,6 @@ fn activation_of<T: Real>(value: &str, line: usize) -> Result<Activation<T>, Fil
         [kind, ..] => return Err(syntax(line, format!("unknown activation `{kind}`"))),
     })
 }
-
-const ACTIVATIONS: [&str; 7] = [
-    "General",
-    "First",
-    "Last",
-    "Highest",
-    "Lowest",
-    "Proportional",
-    "Threshold",
-];
 
 fn first_last<T: Real>(kind: &str, rules: usize, threshold: T) -> Activation<T> {
     if kind == "First" {

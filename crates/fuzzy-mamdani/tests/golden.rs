@@ -1,5 +1,7 @@
 //! Golden values published by MATLAB and scikit-fuzzy.
 
+mod common;
+
 use fuzzy_mamdani::{Defuzzifier, Engine, EngineBuilder, Mf, Resolution};
 
 /// MATLAB's `tipper.fis` (Fuzzy Logic Toolbox example): service Gaussians σ = 1.5 at 0, 5, 10;
@@ -136,37 +138,11 @@ fn exact_tipper_is_close_to_the_sampled_one() {
     }
 }
 
-/// One output term defuzzified alone: a rule that always fires fully keeps the term as it is.
-fn single_term(term: Mf<f64>, min: f64, max: f64, defuzz: Defuzzifier) -> f64 {
-    let engine = EngineBuilder::new("one")
-        .input(
-            "x",
-            0.0,
-            1.0,
-            [(
-                "all",
-                Mf::Trapezoid {
-                    a: 0.0,
-                    b: 0.0,
-                    c: 1.0,
-                    d: 1.0,
-                },
-            )],
-        )
-        .defuzzifier(defuzz)
-        .output("y", min, max, [("t", term)])
-        .rule("if x is all then y is t")
-        .build()
-        .expect("builds");
-    let mut s = engine.scratch();
-    engine.evaluate(&mut s, &[0.5]).expect("fires")[0]
-}
-
 /// scikit-fuzzy `skfuzzy/defuzzify/tests/test_defuzz.py`: the bisector of `trimf` [0, 5, 5] over
 /// 0..5 is 3.53553390593274 (= 5/√2).
 #[test]
 fn skfuzzy_bisector_of_a_right_triangle() {
-    let b = single_term(
+    let b = common::single_term(
         Mf::Triangle {
             a: 0.0,
             b: 5.0,
@@ -175,7 +151,9 @@ fn skfuzzy_bisector_of_a_right_triangle() {
         0.0,
         5.0,
         Defuzzifier::Bisector(Resolution::Exact),
-    );
+        1,
+    )
+    .expect("fires");
     assert!((b - 3.535_533_905_932_74).abs() < 1e-12, "{b}");
 }
 
@@ -189,9 +167,24 @@ fn skfuzzy_maxima_of_a_trapezoid() {
         d: 8.0,
     };
     for res in [Resolution::Exact, Resolution::Samples(201)] {
-        let som = single_term(t.clone(), -10.0, 10.0, Defuzzifier::SmallestOfMaximum(res));
-        let mom = single_term(t.clone(), -10.0, 10.0, Defuzzifier::MeanOfMaximum(res));
-        let lom = single_term(t.clone(), -10.0, 10.0, Defuzzifier::LargestOfMaximum(res));
+        let som = common::single_term(
+            t.clone(),
+            -10.0,
+            10.0,
+            Defuzzifier::SmallestOfMaximum(res),
+            1,
+        )
+        .expect("fires");
+        let mom = common::single_term(t.clone(), -10.0, 10.0, Defuzzifier::MeanOfMaximum(res), 1)
+            .expect("fires");
+        let lom = common::single_term(
+            t.clone(),
+            -10.0,
+            10.0,
+            Defuzzifier::LargestOfMaximum(res),
+            1,
+        )
+        .expect("fires");
         assert!(
             (som - 3.0).abs() < 1e-12 && (mom - 5.0).abs() < 1e-12 && (lom - 7.0).abs() < 1e-12,
             "{res:?}: {som} {mom} {lom}"

@@ -358,41 +358,15 @@ fn the_probes_at_the_extremes_are_answered_or_refused() {
     }
 
     // Center average of two full rules into a term centred at the largest float.
-    let full = EngineBuilder::<f64>::new("edge")
-        .input(
-            "x",
-            0.0,
-            1.0,
-            [(
-                "all",
-                Mf::Trapezoid {
-                    a: 0.0,
-                    b: 0.0,
-                    c: 1.0,
-                    d: 1.0,
-                },
-            )],
-        )
-        .defuzzifier(Defuzzifier::CenterAverage)
-        .output(
-            "y",
-            0.0,
-            max,
-            [(
-                "top",
-                Mf::Triangle {
-                    a: 0.0,
-                    b: max,
-                    c: max,
-                },
-            )],
-        )
-        .rule("if x is all then y is top")
-        .rule("if x is all then y is top")
-        .build()
-        .expect("builds");
-    let mut s = full.scratch();
-    assert_eq!(full.evaluate(&mut s, &[0.5]), Ok(&[max][..]));
+    let top = Mf::Triangle {
+        a: 0.0,
+        b: max,
+        c: max,
+    };
+    assert_eq!(
+        common::single_term(top, 0.0, max, Defuzzifier::CenterAverage, 2),
+        Ok(max)
+    );
 }
 
 /// Engines that could never answer are refused when built.

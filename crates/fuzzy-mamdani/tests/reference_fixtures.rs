@@ -199,15 +199,7 @@ fn fuzzylite_semantics_replay_as_imported() {
             names.push(name);
         }
     }
-    for a in [
-        "General",
-        "First",
-        "Last",
-        "Highest",
-        "Lowest",
-        "Proportional",
-        "Threshold",
-    ] {
+    for a in Activation::<f64>::NAMES {
         assert!(activations.contains(&a), "no engine under activation {a}");
     }
     assert!(blocks >= 2, "no engine with several rule blocks");

@@ -79,3 +79,30 @@ pub fn reference_201<T: Real>() -> Engine<T> {
 pub fn reference_midpoints_201<T: Real>() -> Engine<T> {
     reference_engine(Defuzzifier::Centroid(Resolution::Midpoints(201)))
 }
+
+/// The crisp value of one output term `term` over `[min, max]` when `copies` identical rules
+/// fire it fully (an input term that holds everywhere).
+pub fn single_term(
+    term: Mf<f64>,
+    min: f64,
+    max: f64,
+    defuzz: Defuzzifier,
+    copies: usize,
+) -> Result<f64, fuzzy_mamdani::EvalError> {
+    let all = Mf::Trapezoid {
+        a: 0.0,
+        b: 0.0,
+        c: 1.0,
+        d: 1.0,
+    };
+    let mut b = EngineBuilder::new("one")
+        .input("x", 0.0, 1.0, [("all", all)])
+        .defuzzifier(defuzz)
+        .output("y", min, max, [("t", term)]);
+    for _ in 0..copies {
+        b = b.rule("if x is all then y is t");
+    }
+    let engine = b.build().expect("builds");
+    let mut s = engine.scratch();
+    engine.evaluate(&mut s, &[0.5]).map(|y| y[0])
+}
