@@ -25,15 +25,16 @@ use crate::{
     OutOfRange, OutputVariable, Real, Resolution, Rule, SNorm, TNorm, Term, parse_rule, rule_text,
 };
 
-const TNORMS: [(&str, TNorm); 6] = [
+const TNORMS: [(&str, TNorm); 7] = [
     ("Minimum", TNorm::Minimum),
     ("AlgebraicProduct", TNorm::AlgebraicProduct),
     ("BoundedDifference", TNorm::BoundedDifference),
     ("DrasticProduct", TNorm::DrasticProduct),
     ("EinsteinProduct", TNorm::EinsteinProduct),
     ("HamacherProduct", TNorm::HamacherProduct),
+    ("NilpotentMinimum", TNorm::NilpotentMinimum),
 ];
-const SNORMS: [(&str, SNorm); 7] = [
+const SNORMS: [(&str, SNorm); 9] = [
     ("Maximum", SNorm::Maximum),
     ("AlgebraicSum", SNorm::AlgebraicSum),
     ("BoundedSum", SNorm::BoundedSum),
@@ -41,6 +42,8 @@ const SNORMS: [(&str, SNorm); 7] = [
     ("EinsteinSum", SNorm::EinsteinSum),
     ("HamacherSum", SNorm::HamacherSum),
     ("UnboundedSum", SNorm::UnboundedSum),
+    ("NilpotentMaximum", SNorm::NilpotentMaximum),
+    ("NormalizedSum", SNorm::NormalizedSum),
 ];
 
 /// fuzzylite's resolution when a file gives none (pyfuzzylite 8's default).
@@ -326,16 +329,10 @@ fn range<T: Real>(value: &str, line: usize) -> Result<(T, T), FileError> {
     }
 }
 
-/// fuzzylite's norms that this crate does not have.
-const OTHER_NORMS: [&str; 3] = ["NilpotentMinimum", "NilpotentMaximum", "NormalizedSum"];
-
 /// The norm called `value`, `None` for `none` (or an empty value).
 fn lookup<N: Copy>(table: &[(&str, N)], value: &str, line: usize) -> Result<Option<N>, FileError> {
     if matches!(value, "" | "none") {
         return Ok(None);
-    }
-    if OTHER_NORMS.contains(&value) {
-        return Err(unsupported(line, format!("norm `{value}`")));
     }
     table
         .iter()
@@ -796,7 +793,6 @@ RuleBlock: r
     fn what_the_crate_lacks_is_a_typed_unsupported_with_its_line() {
         let cases = [
             ("term: hi Triangle 0 1 1", "term: hi SemiEllipse 0 1", 5),
-            ("conjunction: none", "conjunction: NilpotentMinimum", 15),
             ("term: hi Triangle 0 1 1", "term: hi Arc 0 1", 5),
             ("term: hi Triangle 0 1 1", "term: hi Constant 0.5", 5),
             ("term: hi Triangle 0 1 1", "term: hi Triangle 0 1 1 0.5", 5),

@@ -27,6 +27,8 @@ pub enum TNorm {
     EinsteinProduct,
     /// `a b / (a + b − a b)`, 0 when both are 0.
     HamacherProduct,
+    /// `min(a, b)` if `a + b > 1`, else 0 (fuzzylite's nilpotent minimum).
+    NilpotentMinimum,
 }
 
 /// An S-norm: disjunction of antecedents, or aggregation of the implied consequents.
@@ -53,17 +55,22 @@ pub enum SNorm {
     HamacherSum,
     /// `a + b`, unbounded (MATLAB `sum` aggregation; not a true S-norm).
     UnboundedSum,
+    /// `max(a, b)` if `a + b < 1`, else 1 (fuzzylite's nilpotent maximum).
+    NilpotentMaximum,
+    /// `(a + b) / max(1, a + b)` (fuzzylite's normalized sum).
+    NormalizedSum,
 }
 
 impl TNorm {
     /// Every T-norm, for exhaustive tests and pickers.
-    pub const ALL: [TNorm; 6] = [
+    pub const ALL: [TNorm; 7] = [
         TNorm::Minimum,
         TNorm::AlgebraicProduct,
         TNorm::BoundedDifference,
         TNorm::DrasticProduct,
         TNorm::EinsteinProduct,
         TNorm::HamacherProduct,
+        TNorm::NilpotentMinimum,
     ];
 
     /// The T-norm of `a` and `b`.
@@ -87,13 +94,20 @@ impl TNorm {
                 let d = a + b - a * b;
                 if d == zero { zero } else { a * b / d }
             }
+            TNorm::NilpotentMinimum => {
+                if a + b > one {
+                    a.min(b)
+                } else {
+                    zero
+                }
+            }
         }
     }
 }
 
 impl SNorm {
     /// Every S-norm, for exhaustive tests and pickers.
-    pub const ALL: [SNorm; 7] = [
+    pub const ALL: [SNorm; 9] = [
         SNorm::Maximum,
         SNorm::AlgebraicSum,
         SNorm::BoundedSum,
@@ -101,6 +115,8 @@ impl SNorm {
         SNorm::EinsteinSum,
         SNorm::HamacherSum,
         SNorm::UnboundedSum,
+        SNorm::NilpotentMaximum,
+        SNorm::NormalizedSum,
     ];
 
     /// The S-norm of `a` and `b`.
@@ -129,6 +145,14 @@ impl SNorm {
                 }
             }
             SNorm::UnboundedSum => a + b,
+            SNorm::NilpotentMaximum => {
+                if a + b < one {
+                    a.max(b)
+                } else {
+                    one
+                }
+            }
+            SNorm::NormalizedSum => (a + b) / (a + b).max(one),
         }
     }
 }
@@ -170,5 +194,11 @@ mod tests {
         assert!((SNorm::HamacherSum.apply(a, b) - (1.1 - 0.56) / 0.72).abs() < 1e-15);
         assert_eq!(SNorm::DrasticSum.apply(a, b), 1.0);
         assert_eq!(TNorm::DrasticProduct.apply(a, b), 0.0);
+        assert_eq!(TNorm::NilpotentMinimum.apply(a, b), 0.4);
+        assert_eq!(TNorm::NilpotentMinimum.apply(0.2, 0.7), 0.0);
+        assert_eq!(SNorm::NilpotentMaximum.apply(0.2, 0.7), 0.7);
+        assert_eq!(SNorm::NilpotentMaximum.apply(a, b), 1.0);
+        assert!((SNorm::NormalizedSum.apply(a, b) - 1.0).abs() < 1e-15);
+        assert!((SNorm::NormalizedSum.apply(0.2f64, 0.3) - 0.5).abs() < 1e-15);
     }
 }
