@@ -46,6 +46,9 @@ fn talking(
         b.wait_for(EntityKind::Publisher, "/hand0/tactile/raw", WAIT)
             .unwrap()
     );
+    // And the writer knows the reader (its subscription travels through the router): without
+    // this wait a first frame can go out before there is a route for it.
+    assert!(publisher.wait_matched(WAIT).unwrap());
     (a, b, publisher, sub)
 }
 
@@ -126,6 +129,9 @@ fn a_node_that_goes_is_seen_going() {
     );
     drop(publisher);
     let gone = Instant::now();
+    // The node goes as a process that exits cleanly: its session closed (a dropped handle may
+    // close in the background, and a vanished peer is only noticed at its lease, 10 s).
+    hand.session().close().wait().unwrap();
     drop(hand);
     let deadline = gone + WAIT;
     let mut seen = None;
