@@ -168,7 +168,8 @@ fn rounding_noise(_: &Ctx) -> anyhow::Result<Files> {
             let row: Vec<String> = line
                 .split(' ')
                 .map(|field| match field.parse::<f64>() {
-                    Ok(v) if i >= 2 && v.is_finite() && field.contains('.') => {
+                    // Zero has no ulp below it in this bit arithmetic: it stays as written.
+                    Ok(v) if i >= 2 && v.is_finite() && v != 0.0 && field.contains('.') => {
                         k += 1;
                         let ulps = 1 + k % 16;
                         let bits = if k % 2 == 0 {
@@ -258,7 +259,17 @@ fn last_digit_noise_in_every_float_passes_where_a_byte_check_would_not() {
         ..fuzzy_with(rounding_noise)
     };
     let changed = regenerate(&Ctx::new(&s.0), &[bytes], Mode::Check).unwrap();
-    assert_eq!(changed.len(), 8, "every .fld differs in bytes: {changed:?}");
+    let flds = std::fs::read_dir(s.0.join(FUZZY_DIR))
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().extension().is_some_and(|x| x == "fld"))
+        .count();
+    assert!(flds >= 8, "{flds} .fld files");
+    assert_eq!(
+        changed.len(),
+        flds,
+        "every .fld differs in bytes: {changed:?}"
+    );
     assert!(changed.iter().all(|d| matches!(d, Difference::Changed(_))));
 }
 
