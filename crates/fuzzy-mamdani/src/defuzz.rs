@@ -317,26 +317,12 @@ mod tests {
     fn sampled_statistics_of_a_plateau() {
         // μ = 0 0 1 1 1 0 at x = 0..5.
         let mu = [0.0, 0.0, 1.0, 1.0, 1.0, 0.0f64];
-        assert_eq!(
-            sampled(Statistic::Centroid, &mu, &Grid::new(0.0, 5.0, 6, false)),
-            Some(3.0)
-        );
-        assert_eq!(
-            sampled(Statistic::Mom, &mu, &Grid::new(0.0, 5.0, 6, false)),
-            Some(3.0)
-        );
-        assert_eq!(
-            sampled(Statistic::Som, &mu, &Grid::new(0.0, 5.0, 6, false)),
-            Some(2.0)
-        );
-        assert_eq!(
-            sampled(Statistic::Lom, &mu, &Grid::new(0.0, 5.0, 6, false)),
-            Some(4.0)
-        );
-        assert_eq!(
-            sampled(Statistic::Bisector, &mu, &Grid::new(0.0, 5.0, 6, false)),
-            Some(3.0)
-        );
+        let grid = Grid::new(0.0, 5.0, 6, false);
+        assert_eq!(sampled(Statistic::Centroid, &mu, &grid), Some(3.0));
+        assert_eq!(sampled(Statistic::Mom, &mu, &grid), Some(3.0));
+        assert_eq!(sampled(Statistic::Som, &mu, &grid), Some(2.0));
+        assert_eq!(sampled(Statistic::Lom, &mu, &grid), Some(4.0));
+        assert_eq!(sampled(Statistic::Bisector, &mu, &grid), Some(3.0));
         assert_eq!(
             sampled(
                 Statistic::Centroid,
