@@ -5,6 +5,10 @@
 //! All arithmetic is `i64`; every division by a power of two is an arithmetic right shift,
 //! i.e. a floor, as the datasheet's integer reference implementation does. For any 24-bit D1 /
 //! D2 and any 16-bit coefficients no intermediate reaches 2^62, so nothing can overflow.
+//!
+//! The ADC's codes are 24-bit ([`CODE_MAX`]). A larger D1 or D2 cannot come from the chip (a
+//! bus fault, or a caller's bug), so it is refused with [`CompensationError::CodeOutOfRange`]
+//! rather than masked to 24 bits: masking would turn the fault into a plausible reading.
 
 /// One compensated reading in the datasheet's integer units.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -56,6 +60,9 @@ impl Intermediates {
     }
 }
 
+/// The largest ADC code, D1 or D2: the MS5611 converts to 24 bits (2^24 − 1).
+pub const CODE_MAX: u32 = 0x00FF_FFFF;
+
 /// Why a pair of codes has no meaningful compensation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
@@ -63,7 +70,29 @@ pub enum CompensationError {
     /// The corrected sensitivity SENS − SENS2 is zero or negative: pressure would fall as D1
     /// rises. Only PROM / D2 combinations far outside the chip's range produce this.
     NonPositiveSensitivity,
+    /// D1 or D2 is above 24 bits, which the ADC cannot produce: a bus fault or a caller's bug.
+    CodeOutOfRange {
+        /// The code given (D1 if both are out of range).
+        code: u32,
+        /// The largest code accepted, [`CODE_MAX`].
+        max: u32,
+    },
 }
+
+impl core::fmt::Display for CompensationError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            CompensationError::NonPositiveSensitivity => {
+                f.write_str("codes out of range: non-positive sensitivity")
+            }
+            CompensationError::CodeOutOfRange { code, max } => {
+                write!(f, "ADC code {code:#x} is above the 24-bit maximum {max:#x}")
+            }
+        }
+    }
+}
+
+impl core::error::Error for CompensationError {}
 
 /// The six factory coefficients C1 … C6 (datasheet p. 7, "Read calibration data").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -88,10 +117,40 @@ impl Calibration {
     }
 
     /// The whole calculation with every intermediate, first and second order.
-    pub fn intermediates(&self, d1: u32, d2: u32) -> Intermediates {
-        // Codes are 24-bit; masking keeps the no-overflow bound true for any u32 input.
-        let d1 = i64::from(d1 & 0x00FF_FFFF);
-        let d2 = i64::from(d2 & 0x00FF_FFFF);
+    ///
+    /// D1 and D2 must be 24-bit codes (at most [`CODE_MAX`]); a larger one is
+    /// [`CompensationError::CodeOutOfRange`]. A non-positive sensitivity is not checked here
+    /// (the intermediates show it); [`compensate`](Self::compensate) refuses it.
+    ///
+    /// ```
+    /// use baro_drivers::{Calibration, CompensationError, CODE_MAX};
+    /// let cal = Calibration::new([40127, 36924, 23317, 23282, 33464, 28312]);
+    /// assert_eq!(cal.intermediates(9_085_466, 8_569_150)?.p, 100_009);
+    /// assert_eq!(
+    ///     cal.intermediates(9_085_466, CODE_MAX + 1),
+    ///     Err(CompensationError::CodeOutOfRange { code: CODE_MAX + 1, max: CODE_MAX })
+    /// );
+    /// # Ok::<(), CompensationError>(())
+    /// ```
+    pub fn intermediates(&self, d1: u32, d2: u32) -> Result<Intermediates, CompensationError> {
+        // One compare for both codes: the OR has a bit above 24 exactly when either has.
+        if (d1 | d2) > CODE_MAX {
+            let code = if d1 > CODE_MAX { d1 } else { d2 };
+            return Err(CompensationError::CodeOutOfRange {
+                code,
+                max: CODE_MAX,
+            });
+        }
+        Ok(self.intermediates_24(d1, d2))
+    }
+
+    /// [`intermediates`](Self::intermediates) for codes known to be 24-bit (the chip model's
+    /// inverse searches only those). Inlined so that a caller that needs only the temperature
+    /// (the model's D2 search) leaves the pressure terms out.
+    #[inline]
+    pub(crate) fn intermediates_24(&self, d1: u32, d2: u32) -> Intermediates {
+        let d1 = i64::from(d1);
+        let d2 = i64::from(d2);
 
         let dt = d2 - (self.coef(5) << 8);
         let temp = 2000 + ((dt * self.coef(6)) >> 23);
@@ -126,8 +185,23 @@ impl Calibration {
     }
 
     /// Compensated temperature and pressure from D1 (pressure code) and D2 (temperature code).
+    ///
+    /// Both codes must be 24-bit, 0 … [`CODE_MAX`]: a larger one cannot come from the ADC, so
+    /// it is [`CompensationError::CodeOutOfRange`], never masked into a plausible reading.
+    ///
+    /// ```
+    /// use baro_drivers::{Calibration, CompensationError, CODE_MAX};
+    /// let cal = Calibration::new([40127, 36924, 23317, 23282, 33464, 28312]);
+    /// let m = cal.compensate(9_085_466, 8_569_150)?; // the datasheet's example
+    /// assert_eq!((m.temperature_centi_celsius, m.pressure_pa), (2007, 100_009));
+    /// // A 25-bit D1 is a bus fault, not the code 0 it would mask to.
+    /// let err = cal.compensate(0x100_0000, 8_569_150).unwrap_err();
+    /// assert_eq!(err, CompensationError::CodeOutOfRange { code: 0x100_0000, max: CODE_MAX });
+    /// assert_eq!(err.to_string(), "ADC code 0x1000000 is above the 24-bit maximum 0xffffff");
+    /// # Ok::<(), CompensationError>(())
+    /// ```
     pub fn compensate(&self, d1: u32, d2: u32) -> Result<Measurement, CompensationError> {
-        let i = self.intermediates(d1, d2);
+        let i = self.intermediates(d1, d2)?;
         if i.sens - i.sens2 <= 0 {
             return Err(CompensationError::NonPositiveSensitivity);
         }

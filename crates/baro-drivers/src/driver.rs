@@ -272,7 +272,10 @@ where
     }
 
     /// Compensates a pressure code `d1` with the last temperature code read. Temperature
-    /// drifts slowly, so a fast loop may convert D2 only every few D1.
+    /// drifts slowly, so a fast loop may convert D2 only every few D1. A `d1` above 24 bits
+    /// (not one [`read_result`](Self::read_result) gave) is
+    /// [`Error::Compensation`] with
+    /// [`CompensationError::CodeOutOfRange`](crate::CompensationError::CodeOutOfRange).
     pub fn compensate(&self, d1: u32) -> Result<Measurement, Error<E>> {
         let d2 = self.last_d2.ok_or(Error::NoTemperature)?;
         Ok(self.state.calibration.compensate(d1, d2)?)

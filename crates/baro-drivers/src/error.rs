@@ -48,9 +48,7 @@ impl<E: fmt::Debug> fmt::Display for Error<E> {
             Error::AdcNotReady => f.write_str("ADC read before the conversion finished"),
             Error::NoConversionStarted => f.write_str("no conversion started"),
             Error::NoTemperature => f.write_str("no temperature code read yet"),
-            Error::Compensation(CompensationError::NonPositiveSensitivity) => {
-                f.write_str("codes out of range: non-positive sensitivity")
-            }
+            Error::Compensation(e) => write!(f, "{e}"),
         }
     }
 }

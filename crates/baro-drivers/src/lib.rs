@@ -98,7 +98,7 @@ mod mode;
 mod osr;
 mod prom;
 
-pub use compensation::{Calibration, CompensationError, Intermediates, Measurement};
+pub use compensation::{CODE_MAX, Calibration, CompensationError, Intermediates, Measurement};
 pub use error::{Error, ModeChangeError};
 #[cfg(feature = "async")]
 pub use interface::AsyncTransport;

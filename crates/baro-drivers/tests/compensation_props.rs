@@ -1,7 +1,7 @@
 //! Property tests: the compensation is total over every 24-bit code and every PROM that
-//! passes its CRC, and pressure never falls as D1 rises.
+//! passes its CRC, pressure never falls as D1 rises, and a code above 24 bits is refused.
 
-use baro_drivers::{CompensationError, Prom};
+use baro_drivers::{CODE_MAX, Calibration, CompensationError, Error, Prom};
 use proptest::prelude::*;
 
 fn any_crc_valid_prom() -> impl Strategy<Value = Prom> {
@@ -18,7 +18,7 @@ proptest! {
         let cal = prom.calibration().expect("filtered to valid");
         // Debug-checked arithmetic would panic on overflow; the release profile would wrap,
         // so also check the result against the no-overflow bounds.
-        let i = cal.intermediates(d1, d2);
+        let i = cal.intermediates(d1, d2).expect("24-bit codes");
         prop_assert!(i.temp.abs() < 1 << 18);
         prop_assert!(i.temperature().abs() < 1 << 18);
         match cal.compensate(d1, d2) {
@@ -45,9 +45,66 @@ proptest! {
     }
 
     #[test]
+    fn every_code_above_24_bits_is_refused(
+        prom in any_crc_valid_prom(),
+        wide in (CODE_MAX + 1)..=u32::MAX,
+        code in CODE,
+    ) {
+        let cal = prom.calibration().expect("filtered to valid");
+        let refused = Err(CompensationError::CodeOutOfRange { code: wide, max: CODE_MAX });
+        prop_assert_eq!(cal.compensate(wide, code), refused);
+        prop_assert_eq!(cal.compensate(code, wide), refused);
+        prop_assert_eq!(cal.intermediates(wide, code).map(|_| ()), refused.map(|_| ()));
+    }
+
+    #[test]
     fn crc_rejects_any_other_nibble(prom in any_crc_valid_prom(), wrong in 1u16..16) {
         let mut words = prom.words();
         words[7] ^= wrong;
         prop_assert!(Prom::from_words(words).calibration().is_err());
+    }
+}
+
+/// The datasheet's example coefficients and D2 (20.07 °C).
+const C: [u16; 6] = [40127, 36924, 23317, 23282, 33464, 28312];
+const D2: u32 = 8_569_150;
+
+/// Issue 24's probe: a 25-bit D1 compensated as if it were 0 (`0x1000000 & 0xFFFFFF`).
+#[test]
+fn a_25_bit_d1_is_an_error_not_masked_to_zero() {
+    let cal = Calibration::new(C);
+    let refused = CompensationError::CodeOutOfRange {
+        code: 0x100_0000,
+        max: 0xFF_FFFF,
+    };
+    assert_eq!(cal.compensate(0x100_0000, D2), Err(refused));
+    assert_eq!(cal.compensate(9_085_466, 0x100_0000), Err(refused));
+    assert!(cal.compensate(0, D2) != cal.compensate(0x100_0000, D2));
+    assert_eq!(
+        refused.to_string(),
+        "ADC code 0x1000000 is above the 24-bit maximum 0xffffff"
+    );
+    // Through the driver's error, as a caller prints it.
+    assert_eq!(
+        Error::<()>::from(refused).to_string(),
+        "ADC code 0x1000000 is above the 24-bit maximum 0xffffff"
+    );
+}
+
+#[test]
+fn the_24_bit_boundary_2_pow_24_minus_1_is_accepted_2_pow_24_refused() {
+    let cal = Calibration::new(C);
+    assert_eq!(CODE_MAX, (1 << 24) - 1);
+    // The top code compensates (to a pressure far above the chip's range, but defined).
+    assert!(cal.compensate(CODE_MAX, D2).is_ok());
+    assert!(cal.intermediates(D2, CODE_MAX).is_ok());
+    for (d1, d2) in [(CODE_MAX + 1, D2), (D2, CODE_MAX + 1)] {
+        assert_eq!(
+            cal.compensate(d1, d2),
+            Err(CompensationError::CodeOutOfRange {
+                code: 1 << 24,
+                max: CODE_MAX
+            })
+        );
     }
 }

@@ -10,7 +10,9 @@ const D2: u32 = 8_569_150;
 
 #[test]
 fn first_order_intermediates_match_the_datasheet_example() {
-    let i = Calibration::new(C).intermediates(D1, D2);
+    let i = Calibration::new(C)
+        .intermediates(D1, D2)
+        .expect("24-bit codes");
     assert_eq!(i.dt, 2366);
     assert_eq!(i.temp, 2007);
     assert_eq!(i.off, 2_420_281_617);
@@ -45,7 +47,9 @@ fn d2_for_first_order(temp: i64) -> u32 {
 #[test]
 fn below_20_celsius_uses_the_ms5611_second_order_terms() {
     // Datasheet p. 8: T2 = dT²/2^31, OFF2 = 5(TEMP−2000)²/2, SENS2 = 5(TEMP−2000)²/4.
-    let i = Calibration::new(C).intermediates(D1, d2_for_first_order(500));
+    let i = Calibration::new(C)
+        .intermediates(D1, d2_for_first_order(500))
+        .expect("24-bit codes");
     let below = (i.temp - 2000).pow(2);
     assert!(i.temp < 2000 && i.temp >= -1500);
     assert_eq!(i.t2, i.dt * i.dt / (1 << 31));
@@ -59,7 +63,9 @@ fn below_20_celsius_uses_the_ms5611_second_order_terms() {
 #[test]
 fn below_minus_15_celsius_adds_the_very_low_terms() {
     // Datasheet p. 8: OFF2 += 7(TEMP+1500)², SENS2 += 11(TEMP+1500)²/2.
-    let i = Calibration::new(C).intermediates(D1, d2_for_first_order(-3000));
+    let i = Calibration::new(C)
+        .intermediates(D1, d2_for_first_order(-3000))
+        .expect("24-bit codes");
     assert!(i.temp < -1500);
     let below = (i.temp - 2000).pow(2);
     let very = (i.temp + 1500).pow(2);
@@ -71,7 +77,9 @@ fn below_minus_15_celsius_adds_the_very_low_terms() {
 #[test]
 fn negative_intermediates_are_floored_like_arithmetic_shifts() {
     // dT < 0 here, so C4·dT/2^7 must round towards −∞ (datasheet integer code uses shifts).
-    let i = Calibration::new(C).intermediates(D1, d2_for_first_order(1000));
+    let i = Calibration::new(C)
+        .intermediates(D1, d2_for_first_order(1000))
+        .expect("24-bit codes");
     assert!(i.dt < 0);
     let c4_dt = i64::from(C[3]) * i.dt;
     assert_eq!(i.off - (i64::from(C[1]) << 16), c4_dt.div_euclid(128));

@@ -90,6 +90,33 @@ fn a_noisier_osr_really_is_noisier() {
     assert!(rms_fast > 2.0 * rms_slow, "{rms_fast} vs {rms_slow}");
 }
 
+/// Issue 24: NaN °C made the model answer the code for 0.00 °C, a plausible reading.
+#[test]
+fn non_finite_conditions_are_refused_not_turned_into_a_code() {
+    for (pressure_mbar, temperature_celsius) in [
+        (1013.25, f64::NAN),
+        (f64::NAN, 20.0),
+        (f64::INFINITY, 20.0),
+        (1013.25, f64::NEG_INFINITY),
+    ] {
+        let clock = SimClock::new();
+        let mut delay = clock.delay();
+        let air = Conditions {
+            pressure_mbar,
+            temperature_celsius,
+        };
+        let mut baro = Ms5611::new_with_i2c(Ms5611Sim::new(air, clock), Address::CsbLow)
+            .init(&mut delay)
+            .map_err(|e| e.error)
+            .unwrap();
+        assert_eq!(
+            baro.measure(&mut delay, Osr::Osr256),
+            Err(Error::Comm(SimError::NonFiniteConditions)),
+            "{air:?}"
+        );
+    }
+}
+
 #[test]
 fn reading_before_the_conversion_ends_returns_zero_like_the_chip() {
     let clock = SimClock::new();

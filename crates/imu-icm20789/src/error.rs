@@ -10,8 +10,20 @@ pub enum ConversionError {
     DegenerateCalibration,
     /// `C + p_LSB = 0`: the raw code sits on the curve's pole.
     Pole,
-    /// The result does not fit the integer output (only near the pole of a nonsensical OTP set).
+    /// The result does not fit its output: the integer pressure (only near the pole of a
+    /// nonsensical OTP set), or, for the inverse ([`crate::Calibration::raw_for`]), a code
+    /// outside the ADC's 24 bits (pressure) or 16 bits (temperature).
     OutOfRange,
+    /// A pressure code above 24 bits, which the ADC cannot produce: a bus fault or a caller's
+    /// bug, refused rather than converted into a plausible pressure.
+    CodeOutOfRange {
+        /// The code given.
+        code: u32,
+        /// The largest code accepted, [`crate::P_LSB_MAX`].
+        max: u32,
+    },
+    /// A NaN or infinite pressure or temperature given to the inverse: no code stands for it.
+    NotFinite,
 }
 
 /// All errors of the ICM-20789 driver; `E` is the I2C bus error.
@@ -49,6 +61,13 @@ impl core::fmt::Display for ConversionError {
             ConversionError::DegenerateCalibration => "calibration points are degenerate",
             ConversionError::Pole => "raw pressure code is on the conversion's pole",
             ConversionError::OutOfRange => "converted pressure does not fit the output type",
+            ConversionError::CodeOutOfRange { code, max } => {
+                return write!(
+                    f,
+                    "raw pressure code {code:#x} is above the 24-bit maximum {max:#x}"
+                );
+            }
+            ConversionError::NotFinite => "pressure or temperature is not a finite number",
         })
     }
 }

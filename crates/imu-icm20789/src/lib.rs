@@ -67,7 +67,7 @@ pub mod imu;
 pub mod sim;
 
 pub use baro::conversion::{
-    Coefficients, LutPoints, RawSample, temperature_c, temperature_milli_c,
+    Coefficients, LutPoints, P_LSB_MAX, RawSample, temperature_c, temperature_milli_c,
 };
 pub use baro::mode::{BaroMode, FrameOrder};
 pub use baro::otp::Calibration;

@@ -5,7 +5,8 @@ mod common;
 use common::{OTHER_T_LSB, OTP_SETS, WHOLE_CODE_T_LSB};
 use imu_icm20789::baro::conversion::{CALIBRATION_PA, t_lsb_for};
 use imu_icm20789::{
-    Calibration, ConversionError, Error, RawSample, crc8, temperature_c, temperature_milli_c,
+    Calibration, ConversionError, Error, P_LSB_MAX, RawSample, crc8, temperature_c,
+    temperature_milli_c,
 };
 
 #[test]
@@ -156,6 +157,100 @@ fn degenerate_calibrations_and_the_pole_are_typed_errors() {
         ..pole
     };
     assert!(cal.pressure_milli_pa(beside).unwrap().abs() > 1_000_000_000); // huge but defined
+}
+
+/// Issue 24: a pressure code above 24 bits was converted although the docs say 0 … 2²⁴ − 1.
+#[test]
+fn a_pressure_code_above_24_bits_is_an_error_on_both_paths() {
+    let cal = Calibration::from_otp(OTP_SETS[0]);
+    let top = RawSample {
+        p_lsb: P_LSB_MAX,
+        t_lsb: 30_000,
+    };
+    assert_eq!(P_LSB_MAX, (1 << 24) - 1);
+    assert!(cal.pressure_pa(top).is_ok());
+    assert!(cal.pressure_milli_pa(top).is_ok());
+    let refused = Err(ConversionError::CodeOutOfRange {
+        code: 1 << 24,
+        max: P_LSB_MAX,
+    });
+    let wide = RawSample {
+        p_lsb: 1 << 24,
+        ..top
+    };
+    assert_eq!(cal.pressure_pa(wide), refused);
+    assert_eq!(cal.pressure_milli_pa(wide).map(|_| 0.0), refused);
+    let lut = cal.lut_points(top.t_lsb).unwrap();
+    assert_eq!(lut.pressure_milli_pa(1 << 24).map(|_| 0.0), refused);
+    // Refused before the calibration is looked at: a bus fault is the error to report.
+    let degenerate = Calibration::from_otp([0, 0, 0, 1_792]);
+    let at_t0 = RawSample {
+        p_lsb: u32::MAX,
+        t_lsb: 32_768,
+    };
+    assert!(matches!(
+        degenerate.pressure_pa(at_t0),
+        Err(ConversionError::CodeOutOfRange { code: u32::MAX, .. })
+    ));
+    assert_eq!(
+        Error::<()>::from(ConversionError::CodeOutOfRange {
+            code: 1 << 24,
+            max: P_LSB_MAX
+        })
+        .to_string(),
+        "pressure conversion: raw pressure code 0x1000000 is above the 24-bit maximum 0xffffff"
+    );
+}
+
+/// Issue 24: `raw_for(∞)` answered the pole's code and NaN °C the temperature code 0.
+#[test]
+fn raw_for_refuses_non_finite_and_out_of_range_inputs() {
+    let cal = Calibration::from_otp(OTP_SETS[0]);
+    assert!(cal.raw_for(100_000.0, 25.0).is_ok());
+    for pa in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+        assert_eq!(
+            cal.raw_for(pa, 25.0),
+            Err(ConversionError::NotFinite),
+            "{pa}"
+        );
+        let abc = cal.coefficients(30_000).unwrap();
+        assert_eq!(abc.p_lsb_for(pa), Err(ConversionError::NotFinite), "{pa}");
+    }
+    for celsius in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        assert_eq!(
+            cal.raw_for(100_000.0, celsius),
+            Err(ConversionError::NotFinite),
+            "{celsius}"
+        );
+    }
+    // The temperature code's ends: −45 °C is code 0; beyond either end there is no code.
+    assert_eq!(cal.raw_for(100_000.0, -45.0).map(|r| r.t_lsb), Ok(0));
+    assert_eq!(
+        cal.raw_for(100_000.0, 129.99).map(|r| r.t_lsb),
+        Ok(t_lsb_for(129.99))
+    );
+    for celsius in [-46.0, 131.0, 1e30] {
+        assert_eq!(
+            cal.raw_for(100_000.0, celsius),
+            Err(ConversionError::OutOfRange),
+            "{celsius}"
+        );
+    }
+}
+
+/// The chip model saturates a temperature by passing `temperature_c(t_lsb_for(°C))` to
+/// `raw_for`: every code's own temperature must come back as that code, the ends included.
+#[test]
+fn every_temperature_code_round_trips_through_raw_for() {
+    let cal = Calibration::from_otp(OTP_SETS[0]);
+    for t_lsb in 0..=u16::MAX {
+        let pa = cal
+            .coefficients(t_lsb)
+            .and_then(|abc| abc.pressure_pa(8_000_000.0))
+            .unwrap();
+        let raw = cal.raw_for(pa, temperature_c(t_lsb));
+        assert_eq!(raw.map(|r| r.t_lsb), Ok(t_lsb));
+    }
 }
 
 #[test]

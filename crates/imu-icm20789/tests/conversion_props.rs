@@ -1,7 +1,8 @@
 //! proptest: every 24-bit p_LSB, 16-bit T_LSB and OTP set that passes its CRC converts to a
-//! finite pressure or to a typed error — never a panic or a non-finite value.
+//! finite pressure or to a typed error — never a panic or a non-finite value — and every code
+//! above 24 bits is refused.
 
-use imu_icm20789::{Calibration, ConversionError, RawSample, crc8};
+use imu_icm20789::{Calibration, ConversionError, P_LSB_MAX, RawSample, crc8};
 use proptest::prelude::*;
 
 /// OTP reads as the bus delivers them: any data bytes with their correct CRC.
@@ -11,6 +12,19 @@ fn otp_reads() -> impl Strategy<Value = [[u8; 3]; 4]> {
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 4_000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn every_pressure_code_above_24_bits_is_refused(
+        reads in otp_reads(),
+        p_lsb in (P_LSB_MAX + 1)..=u32::MAX,
+        t_lsb in any::<u16>(),
+    ) {
+        let cal = Calibration::from_otp_reads::<()>(reads).expect("CRCs are valid by construction");
+        let raw = RawSample { p_lsb, t_lsb };
+        let refused = ConversionError::CodeOutOfRange { code: p_lsb, max: P_LSB_MAX };
+        prop_assert_eq!(cal.pressure_pa(raw), Err(refused));
+        prop_assert_eq!(cal.pressure_milli_pa(raw), Err(refused));
+    }
 
     #[test]
     fn any_crc_valid_otp_any_codes_give_finite_pressure_or_typed_error(

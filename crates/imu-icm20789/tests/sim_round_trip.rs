@@ -171,6 +171,33 @@ fn reading_before_the_conversion_ends_is_nacked_and_the_imu_can_be_read_meanwhil
     }
 }
 
+/// Issue 24: a NaN temperature read as code 0 and an infinite pressure as the pole's code.
+#[test]
+fn a_non_finite_truth_is_nacked_not_turned_into_a_sample() {
+    let bad = [
+        Truth::constant([0.0; 3], [0.0; 3], f64::NAN),
+        Truth::constant([0.0; 3], [0.0; 3], f64::INFINITY),
+        Truth::constant([0.0; 3], [0.0; 3], 100_000.0).at_temperature(f32::NAN),
+    ];
+    for truth in bad {
+        let chip = ChipModel::new(truth, 3).with_noise(SimNoise::NONE);
+        let (mut icm, mut delay) = started(chip);
+        assert_eq!(
+            icm.measure_pressure(BaroMode::LowNoise, FrameOrder::PressureFirst, &mut delay),
+            Err(NACK)
+        );
+    }
+    // Beyond the temperature ADC's range the model saturates its code, as before.
+    let hot = Truth::constant([0.0; 3], [0.0; 3], 100_000.0).at_temperature(150.0);
+    let chip = ChipModel::new(hot, 3).with_noise(SimNoise::NONE);
+    let (mut icm, mut delay) = started(chip);
+    let s = icm
+        .measure_pressure(BaroMode::LowNoise, FrameOrder::PressureFirst, &mut delay)
+        .unwrap();
+    assert_eq!(s.raw.t_lsb, u16::MAX);
+    assert!((f64::from(s.pressure_pa) - 100_000.0).abs() < 1.0);
+}
+
 #[test]
 fn the_barometer_needs_bypass_and_ids_are_checked() {
     let chip = ChipModel::new(Truth::constant([0.0; 3], [0.0; 3], 100_000.0), 1);

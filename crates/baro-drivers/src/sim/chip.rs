@@ -45,7 +45,9 @@ struct Conversion {
 /// * Conversions take their datasheet time on the shared [`SimClock`]; an ADC read before
 ///   the end returns 0 and loses the conversion, as on the chip.
 /// * Codes come from inverting the datasheet compensation for the [`Environment`]'s true
-///   pressure and temperature, plus seeded Gaussian noise of the OSR's datasheet RMS.
+///   pressure and temperature, plus seeded Gaussian noise of the OSR's datasheet RMS. Beyond
+///   the codes' range they saturate, as the ADC does; NaN or infinite conditions have no code,
+///   so the conversion command is refused with [`SimError::NonFiniteConditions`].
 #[derive(Debug)]
 pub struct Ms5611Sim<Env> {
     pub(super) env: Env,
@@ -185,8 +187,8 @@ impl<Env: Environment> Ms5611Sim<Env> {
                 let word = self.prom.words()[usize::from(index)];
                 self.set_answer(&word.to_be_bytes());
             }
-            Decoded::ConvertD1(osr) => self.start(osr, true),
-            Decoded::ConvertD2(osr) => self.start(osr, false),
+            Decoded::ConvertD1(osr) => self.start(osr, true)?,
+            Decoded::ConvertD2(osr) => self.start(osr, false)?,
             Decoded::AdcRead => {
                 let now = self.clock.now_ns();
                 // Early or repeated reads answer 0; an early read spoils the conversion.
@@ -217,22 +219,33 @@ impl<Env: Environment> Ms5611Sim<Env> {
         Normal::new(0.0, sigma).map_or(0.0, |n| n.sample(&mut self.rng))
     }
 
-    fn start(&mut self, osr: Osr, pressure: bool) {
+    /// Starts a conversion; an environment with no finite truth refuses it (a code made up
+    /// for NaN would read as a plausible pressure).
+    fn start(&mut self, osr: Osr, pressure: bool) -> Result<(), SimError> {
         let now = self.clock.now_ns();
         let truth = self.env.conditions(now);
         let code = match self.calibration {
-            None => 0,
+            None => Some(0),
             Some(cal) => {
                 // D1 depends on the die's true temperature; only the reading is noisy.
                 let d2_true = temperature_code(&cal, truth.temperature_celsius * 100.0);
                 if pressure {
                     let noise = self.gaussian(f64::from(osr.pressure_noise_rms_mbar()));
-                    pressure_code(&cal, d2_true, (truth.pressure_mbar + noise) * 100.0)
+                    d2_true.and_then(|d2| {
+                        pressure_code(&cal, d2, (truth.pressure_mbar + noise) * 100.0)
+                    })
                 } else {
                     let noise = self.gaussian(f64::from(osr.temperature_noise_rms_celsius()));
-                    temperature_code(&cal, (truth.temperature_celsius + noise) * 100.0)
+                    d2_true.and(temperature_code(
+                        &cal,
+                        (truth.temperature_celsius + noise) * 100.0,
+                    ))
                 }
             }
+        };
+        let Some(code) = code else {
+            self.pending = None;
+            return Err(SimError::NonFiniteConditions);
         };
         let duration = match self.conversion_time {
             ConversionTime::Typical => osr.conversion_time_typ_ns(),
@@ -242,5 +255,6 @@ impl<Env: Environment> Ms5611Sim<Env> {
             code,
             ready_at_ns: now + u64::from(duration),
         });
+        Ok(())
     }
 }

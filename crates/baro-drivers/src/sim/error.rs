@@ -10,6 +10,9 @@ pub enum SimError {
     NoAcknowledgeAddress(u8),
     /// The chip refused a byte it has no command for.
     UnknownCommand(u8),
+    /// A conversion was started while the environment's pressure or temperature was NaN or
+    /// infinite: no ADC code stands for it, so the model refuses the command.
+    NonFiniteConditions,
 }
 
 impl fmt::Display for SimError {
@@ -17,6 +20,9 @@ impl fmt::Display for SimError {
         match self {
             SimError::NoAcknowledgeAddress(a) => write!(f, "no acknowledge at address {a:#04x}"),
             SimError::UnknownCommand(c) => write!(f, "unknown command byte {c:#04x}"),
+            SimError::NonFiniteConditions => {
+                f.write_str("conversion refused: the environment's conditions are not finite")
+            }
         }
     }
 }
@@ -30,7 +36,9 @@ impl embedded_hal::i2c::Error for SimError {
             SimError::NoAcknowledgeAddress(_) => {
                 ErrorKind::NoAcknowledge(NoAcknowledgeSource::Address)
             }
-            SimError::UnknownCommand(_) => ErrorKind::NoAcknowledge(NoAcknowledgeSource::Data),
+            SimError::UnknownCommand(_) | SimError::NonFiniteConditions => {
+                ErrorKind::NoAcknowledge(NoAcknowledgeSource::Data)
+            }
         }
     }
 }

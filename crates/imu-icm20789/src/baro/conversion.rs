@@ -43,10 +43,27 @@ const WEIGHTS: (i128, i128) = {
     ((wm / a) as i128, (wn / a) as i128)
 };
 
+/// The largest pressure code, 2²⁴ − 1: the ADC converts to 24 bits.
+pub const P_LSB_MAX: u32 = (1 << 24) - 1;
+
+/// `p_lsb` if it is a 24-bit code, else [`ConversionError::CodeOutOfRange`]: a larger one
+/// cannot come from the ADC (a bus fault), and converting it would hide that.
+#[inline]
+pub(crate) fn check_p_lsb(p_lsb: u32) -> Result<u32, ConversionError> {
+    if p_lsb > P_LSB_MAX {
+        return Err(ConversionError::CodeOutOfRange {
+            code: p_lsb,
+            max: P_LSB_MAX,
+        });
+    }
+    Ok(p_lsb)
+}
+
 /// One raw measurement: the 24-bit pressure code and the 16-bit temperature code.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RawSample {
-    /// Pressure code, 0 … 2²⁴ − 1.
+    /// Pressure code, 0 … 2²⁴ − 1 ([`P_LSB_MAX`]); the conversions refuse a larger one with
+    /// [`ConversionError::CodeOutOfRange`].
     pub p_lsb: u32,
     /// Temperature code.
     pub t_lsb: u16,
@@ -145,8 +162,10 @@ impl LutPoints {
             .ok_or(ConversionError::OutOfRange)
     }
 
-    /// Integer path for a real 24-bit code: pressure in millipascal.
+    /// Integer path for a real 24-bit code: pressure in millipascal. A code above
+    /// [`P_LSB_MAX`] is [`ConversionError::CodeOutOfRange`].
     pub fn pressure_milli_pa(&self, p_lsb: u32) -> Result<i64, ConversionError> {
+        let p_lsb = check_p_lsb(p_lsb)?;
         self.pressure_milli_pa_scaled(i64::from(p_lsb) << QUADR_SHIFT)
     }
 
@@ -185,7 +204,12 @@ impl Coefficients {
 
     /// The inverse of [`Coefficients::pressure_pa`]: the (fractional) code that converts to
     /// `pressure_pa`, `p_LSB = B / (P − A) − C`. The chip model uses it to make its codes.
+    /// A NaN or infinite pressure is [`ConversionError::NotFinite`] (infinity would give the
+    /// pole, `−C`).
     pub fn p_lsb_for(&self, pressure_pa: f64) -> Result<f64, ConversionError> {
+        if !pressure_pa.is_finite() {
+            return Err(ConversionError::NotFinite);
+        }
         let den = pressure_pa - self.a;
         if den == 0.0 {
             return Err(ConversionError::Pole);
@@ -213,4 +237,19 @@ pub fn temperature_milli_c(t_lsb: u16) -> i32 {
 pub fn t_lsb_for(celsius: f32) -> u16 {
     let code = libm::roundf((celsius + 45.0) * 65_536.0 / 175.0);
     code.clamp(0.0, 65_535.0) as u16
+}
+
+/// The temperature code nearest to `celsius` without saturating: NaN or infinity is
+/// [`ConversionError::NotFinite`], a temperature outside the code range (about −45 … 130 °C)
+/// [`ConversionError::OutOfRange`].
+pub(crate) fn t_lsb_exact(celsius: f32) -> Result<u16, ConversionError> {
+    if !celsius.is_finite() {
+        return Err(ConversionError::NotFinite);
+    }
+    let code = libm::roundf((celsius + 45.0) * 65_536.0 / 175.0);
+    if (0.0..=65_535.0).contains(&code) {
+        Ok(code as u16)
+    } else {
+        Err(ConversionError::OutOfRange)
+    }
 }

@@ -52,15 +52,34 @@ impl Calibration {
     }
 
     /// Float path: pressure in pascal (`f64`, vendor A, B, C).
+    ///
+    /// `raw.p_lsb` must be a 24-bit code (at most [`P_LSB_MAX`](crate::P_LSB_MAX)): a larger one
+    /// cannot come from the ADC, so it is [`ConversionError::CodeOutOfRange`], never converted.
+    ///
+    /// ```
+    /// use imu_icm20789::{Calibration, ConversionError, RawSample, P_LSB_MAX};
+    /// let cal = Calibration::from_otp([1000, 2000, 3000, 4000]);
+    /// let ok = RawSample { p_lsb: 9_000_000, t_lsb: 30_000 };
+    /// assert!(cal.pressure_pa(ok).is_ok());
+    /// let bus_fault = RawSample { p_lsb: 1 << 24, ..ok };
+    /// assert_eq!(
+    ///     cal.pressure_pa(bus_fault),
+    ///     Err(ConversionError::CodeOutOfRange { code: 1 << 24, max: P_LSB_MAX })
+    /// );
+    /// ```
     pub fn pressure_pa(&self, raw: RawSample) -> Result<f64, ConversionError> {
+        let p_lsb = conversion::check_p_lsb(raw.p_lsb)?;
         self.lut_points(raw.t_lsb)?
             .coefficients()?
-            .pressure_pa(f64::from(raw.p_lsb))
+            .pressure_pa(f64::from(p_lsb))
     }
 
-    /// Integer path: pressure in millipascal (exact fraction, rounded once).
+    /// Integer path: pressure in millipascal (exact fraction, rounded once). A `raw.p_lsb`
+    /// above 24 bits is [`ConversionError::CodeOutOfRange`], as for [`Self::pressure_pa`].
     pub fn pressure_milli_pa(&self, raw: RawSample) -> Result<i64, ConversionError> {
-        self.lut_points(raw.t_lsb)?.pressure_milli_pa(raw.p_lsb)
+        let p_lsb = conversion::check_p_lsb(raw.p_lsb)?;
+        self.lut_points(raw.t_lsb)?
+            .pressure_milli_pa_scaled(i64::from(p_lsb) << conversion::QUADR_SHIFT)
     }
 
     /// The vendor's A, B, C at temperature code `t_lsb`.
@@ -69,13 +88,26 @@ impl Calibration {
     }
 
     /// The raw sample a chip with this calibration reports for `pressure_pa` at `celsius`:
-    /// the inverse of [`Calibration::pressure_pa`], rounded to whole codes. Codes outside
-    /// 24 bits give [`ConversionError::OutOfRange`].
+    /// the inverse of [`Calibration::pressure_pa`], rounded to whole codes. A pressure or
+    /// temperature whose code falls outside the ADC's 24 / 16 bits gives
+    /// [`ConversionError::OutOfRange`]; NaN or infinity gives [`ConversionError::NotFinite`]
+    /// (there is no code for it; the chip model refuses the read).
+    ///
+    /// ```
+    /// use imu_icm20789::{Calibration, ConversionError};
+    /// let cal = Calibration::from_otp([1000, 2000, 3000, 4000]);
+    /// let raw = cal.raw_for(100_000.0, 25.0)?;
+    /// assert!((cal.pressure_pa(raw)? - 100_000.0).abs() < 0.1);
+    /// assert_eq!(cal.raw_for(f64::INFINITY, 25.0), Err(ConversionError::NotFinite));
+    /// assert_eq!(cal.raw_for(100_000.0, f32::NAN), Err(ConversionError::NotFinite));
+    /// assert_eq!(cal.raw_for(100_000.0, 200.0), Err(ConversionError::OutOfRange));
+    /// # Ok::<(), ConversionError>(())
+    /// ```
     pub fn raw_for(&self, pressure_pa: f64, celsius: f32) -> Result<RawSample, ConversionError> {
-        let t_lsb = conversion::t_lsb_for(celsius);
+        let t_lsb = conversion::t_lsb_exact(celsius)?;
         let x = self.coefficients(t_lsb)?.p_lsb_for(pressure_pa)?;
         let code = libm::round(x);
-        if (0.0..=f64::from((1_u32 << 24) - 1)).contains(&code) {
+        if (0.0..=f64::from(conversion::P_LSB_MAX)).contains(&code) {
             Ok(RawSample {
                 p_lsb: code as u32,
                 t_lsb,

@@ -1,5 +1,6 @@
 //! The barometer half of the chip model: the command state machine at 0x63.
 
+use crate::baro::conversion;
 use crate::baro::frame::{self, FRAME_LEN};
 use crate::baro::mode::{BaroMode, FrameOrder};
 use crate::baro::otp::{self, Calibration};
@@ -108,12 +109,20 @@ impl BaroModel {
                 let truth = env.state(ready_ns / 1_000);
                 let sigma = f64::from(mode.noise_pa_rms() * sim.pressure_noise_scale);
                 let pressure = truth.pressure_pa + noise.gaussian(sigma);
+                if !(pressure.is_finite() && truth.temperature_c.is_finite()) {
+                    // No code stands for NaN or infinity: refuse the read rather than make
+                    // one up that converts to a plausible pressure.
+                    self.output = Output::Nothing;
+                    return Err(Refusal::Address);
+                }
+                // The temperature ADC saturates at its end codes (about −45 … 130 °C).
+                let celsius = conversion::temperature_c(conversion::t_lsb_for(truth.temperature_c));
                 let raw = self
                     .calibration
-                    .raw_for(pressure, truth.temperature_c)
+                    .raw_for(pressure, celsius)
                     .unwrap_or_else(|_| {
                         // Outside the codes this calibration can express: the ADC saturates.
-                        let t = crate::baro::conversion::t_lsb_for(truth.temperature_c);
+                        let t = conversion::t_lsb_for(truth.temperature_c);
                         let high = pressure > 80_000.0;
                         crate::RawSample {
                             p_lsb: if high { 0xFF_FFFF } else { 0 },

@@ -35,6 +35,10 @@ impl embedded_hal::i2c::Error for SimError {
 }
 
 /// The ICM-20789 as seen from its I2C pins. Give it to the driver as its bus.
+///
+/// A pressure beyond the codes the calibration can express saturates at the end code, and a
+/// temperature beyond −45 … 130 °C at its end code, as the ADC does; a NaN or infinite truth
+/// has no code, so the barometer NACKs that read instead of inventing one.
 pub struct ChipModel {
     imu_address: u8,
     imu: ImuModel,
