@@ -84,19 +84,41 @@ pub fn faults_from_hardware_error(bits: u8) -> Faults {
     .fold(Faults::NONE, |acc, (_, f)| acc.union(f))
 }
 
+/// Who an exchange asked, as an error names it: `servo 3`, or `the bus` for a broadcast
+/// (the `Option`'s own Debug, `servo Some(3)`, is not for users).
+struct Asked(Option<u8>);
+
+impl core::fmt::Display for Asked {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self.0 {
+            Some(id) => write!(f, "servo {id}"),
+            None => f.write_str("the bus"),
+        }
+    }
+}
+
 /// What can go wrong talking to Dynamixel servos.
+///
+/// Each text names the servo by its ID, or the bus for a broadcast exchange:
+///
+/// ```
+/// use hand_control::Error;
+/// assert_eq!(Error::Timeout { id: Some(1) }.to_string(), "servo 1: no answer (timeout)");
+/// assert_eq!(Error::Timeout { id: None }.to_string(), "the bus: no answer (timeout)");
+/// ```
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
     /// No status packet arrived before the deadline.
-    #[error("servo {id:?}: no answer (timeout)")]
+    #[error("{}: no answer (timeout)", Asked(*.id))]
     Timeout {
         /// The servo asked (`None` for a broadcast exchange).
         id: Option<u8>,
     },
     /// A status packet arrived with a wrong CRC-16.
     #[error(
-        "servo {id:?}: status packet CRC mismatch (sent {message:#06x}, computed {computed:#06x})"
+        "{}: status packet CRC mismatch (sent {message:#06x}, computed {computed:#06x})",
+        Asked(*.id)
     )]
     Crc {
         /// The servo asked.
@@ -158,7 +180,7 @@ pub enum Error {
     #[error("a servo hand needs at least one servo")]
     NoServos,
     /// A malformed or unexpected status packet (wrong ID, instruction or length).
-    #[error("servo {id:?}: invalid status packet: {detail}")]
+    #[error("{}: invalid status packet: {detail}", Asked(*.id))]
     Protocol {
         /// The servo asked.
         id: Option<u8>,
@@ -181,5 +203,48 @@ impl Error {
                 detail: format!("{b:?}"),
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Error;
+
+    /// The texts a user reads name the servo by its number, never as `Some(1)`.
+    #[test]
+    fn errors_name_the_servo_by_its_id_or_the_bus() {
+        assert_eq!(
+            Error::Timeout { id: Some(1) }.to_string(),
+            "servo 1: no answer (timeout)"
+        );
+        assert_eq!(
+            Error::Timeout { id: None }.to_string(),
+            "the bus: no answer (timeout)"
+        );
+        assert_eq!(
+            Error::Crc {
+                id: Some(7),
+                message: 0x1234,
+                computed: 0xabcd
+            }
+            .to_string(),
+            "servo 7: status packet CRC mismatch (sent 0x1234, computed 0xabcd)"
+        );
+        assert_eq!(
+            Error::Protocol {
+                id: Some(2),
+                detail: "wrong ID 3".into()
+            }
+            .to_string(),
+            "servo 2: invalid status packet: wrong ID 3"
+        );
+        assert_eq!(
+            Error::Protocol {
+                id: None,
+                detail: "short".into()
+            }
+            .to_string(),
+            "the bus: invalid status packet: short"
+        );
     }
 }

@@ -88,6 +88,15 @@ pub struct Runs {
     pub failures: Vec<(String, String)>,
 }
 
+/// The line a failed run prints: the error, after its file unless the error names the file
+/// already (a scene error says `a.toml:18:1: …`, as `check` prints it; a device error does not).
+fn error_line(file: &str, error: &str) -> String {
+    match error.strip_prefix(file) {
+        Some(rest) if rest.starts_with(':') => format!("error: {error}"),
+        _ => format!("error: {file}: {error}"),
+    }
+}
+
 /// Runs each of `scenes` with `run`, showing progress on `bars`: a summary table per outcome on
 /// stdout (unless `json`), each error on stderr; with `json`, the outcomes as JSON on stdout at
 /// the end. The `handstack` binary and the papers' `paper-scenes` both run their scenes so.
@@ -108,9 +117,10 @@ pub fn run_each<E: core::fmt::Display>(
                 runs.outcomes.push(o);
             }
             Err(e) => {
-                bars.suspend(|| eprintln!("error: {}: {e}", path.display()));
-                runs.failures
-                    .push((path.display().to_string(), e.to_string()));
+                let file = path.display().to_string();
+                let text = e.to_string();
+                bars.suspend(|| eprintln!("{}", error_line(&file, &text)));
+                runs.failures.push((file, text));
             }
         }
     }
@@ -125,4 +135,34 @@ pub fn run_each<E: core::fmt::Display>(
         }
     }
     runs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::error_line;
+
+    /// Issue 24: a scene error printed `error: a.toml: a.toml:18:1: …`.
+    #[test]
+    fn an_error_line_names_the_file_once() {
+        assert_eq!(
+            error_line("a.toml", "a.toml:18:1: unclosed table, expected `]`"),
+            "error: a.toml:18:1: unclosed table, expected `]`"
+        );
+        assert_eq!(
+            error_line(
+                "a.toml",
+                "a.toml: cannot read: No such file or directory (os error 2)"
+            ),
+            "error: a.toml: cannot read: No such file or directory (os error 2)"
+        );
+        assert_eq!(
+            error_line("a.toml", "cannot open hand at /dev/ttyUSB0: not found"),
+            "error: a.toml: cannot open hand at /dev/ttyUSB0: not found"
+        );
+        // Another file's name at the start is not this file's.
+        assert_eq!(
+            error_line("a.toml", "a.toml.bak:1:1: x"),
+            "error: a.toml: a.toml.bak:1:1: x"
+        );
+    }
 }

@@ -99,6 +99,12 @@ fn out_of_range_osr_lists_the_ratios() {
         ],
     );
     assert!(matches!(e.location(), Some(l) if l.column == 7), "{e}");
+    // The exact text a user reads: the file once, line:col, the key, what is allowed; the same
+    // through the run's error (issue 24: `handstack run` printed the file twice).
+    let text = "bad.toml:3:7: `sensors.fingertip.osr` is 8192, an OSR the MS5611 does not have; \
+                allowed: 256, 512, 1024, 2048, 4096";
+    assert_eq!(e.to_string(), text);
+    assert_eq!(paper_scenes::Error::from(e).to_string(), text);
 }
 
 #[test]
@@ -166,7 +172,13 @@ fn impossible_combinations_are_named() {
 fn an_unreadable_file_is_a_read_error() {
     let e = Scene::load(std::path::Path::new("/nonexistent/scene.toml")).expect_err("no file");
     assert!(matches!(e, SceneError::Read { .. }));
-    assert!(e.to_string().contains("/nonexistent/scene.toml"), "{e}");
+    // The file first, once, as the other scene errors name it.
+    let text = e.to_string();
+    assert!(
+        text.starts_with("/nonexistent/scene.toml: cannot read: "),
+        "{text}"
+    );
+    assert_eq!(text.matches("/nonexistent/scene.toml").count(), 1, "{text}");
 }
 
 const TAP: &str = r#"title = "tap"

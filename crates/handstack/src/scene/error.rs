@@ -43,7 +43,7 @@ impl fmt::Display for Location {
 #[non_exhaustive]
 pub enum SceneError {
     /// The file cannot be read.
-    #[error("cannot read scene {path}: {source}")]
+    #[error("{}: cannot read: {source}", .path.display())]
     Read {
         /// The file.
         path: PathBuf,
