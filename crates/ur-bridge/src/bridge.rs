@@ -1,6 +1,7 @@
 //! [`UrArm`]: a UR arm driven through ur_rtde's `rtde_control`, `rtde_receive` and
 //! `dashboard_client`, embedded with pyo3. The GIL and every Python object stay in here.
 
+use std::net::{TcpStream, ToSocketAddrs};
 use std::time::{Duration, Instant};
 
 use hand_traits::{Arm, LinearMotion, Pose};
@@ -124,6 +125,43 @@ fn map_py(py: Python<'_>, err: PyErr, call: &'static str, host: &str) -> UrError
     UrError::Controller(format!("{call}: {message}"))
 }
 
+/// Longest wait for one probe of a port that ur_rtde could not connect to.
+const PROBE_TIMEOUT: Duration = Duration::from_secs(2);
+
+/// ur_rtde says "Timeout connecting to UR dashboard server." (or "Could not connect") at once
+/// also when the host refused the connection; a refused port is a different fix (start the
+/// controller, check the address) from a host that does not answer, so the bridge asks each
+/// of `ports` itself and names the first that refuses.
+fn refine_connect_error(err: UrError, host: &str, ports: &[u16]) -> UrError {
+    if !matches!(err, UrError::Connect { .. }) {
+        return err;
+    }
+    match ports.iter().find(|port| refuses(host, **port)) {
+        Some(&port) => UrError::ConnectionRefused {
+            host: host.to_owned(),
+            port,
+        },
+        None => err,
+    }
+}
+
+/// Whether every address `host` resolves to refuses a TCP connection on `port` (bounded: at
+/// most 4 addresses, [`PROBE_TIMEOUT`] each).
+fn refuses(host: &str, port: u16) -> bool {
+    let Ok(addrs) = (host, port).to_socket_addrs() else {
+        return false;
+    };
+    let mut tried = 0;
+    for addr in addrs.take(4) {
+        tried += 1;
+        match TcpStream::connect_timeout(&addr, PROBE_TIMEOUT) {
+            Err(e) if e.kind() == std::io::ErrorKind::ConnectionRefused => {}
+            _ => return false,
+        }
+    }
+    tried > 0
+}
+
 fn six(v: Vec<f64>, call: &'static str) -> Result<[f64; 6], UrError> {
     <[f64; 6]>::try_from(v).map_err(|v| UrError::BadReply {
         call,
@@ -167,20 +205,29 @@ impl UrArm {
                 .getattr("DashboardClient")
                 .and_then(|c| c.call1((host,)))
                 .map_err(|e| map_py(py, e, "DashboardClient", host))?;
-            dashboard
-                .call_method0("connect")
-                .map_err(|e| map_py(py, e, "dashboard connect", host))?;
+            dashboard.call_method0("connect").map_err(|e| {
+                refine_connect_error(map_py(py, e, "dashboard connect", host), host, &[29999])
+            })?;
             if config.power_up {
                 power_up(py, &dashboard, &config)?;
             }
             let receive = rtde_receive
                 .getattr("RTDEReceiveInterface")
                 .and_then(|c| c.call1((host, freq)))
-                .map_err(|e| map_py(py, e, "RTDEReceiveInterface", host))?;
+                .map_err(|e| {
+                    refine_connect_error(
+                        map_py(py, e, "RTDEReceiveInterface", host),
+                        host,
+                        &[30004],
+                    )
+                })?;
             let control = rtde_control
                 .getattr("RTDEControlInterface")
                 .and_then(|c| c.call1((host, freq)))
-                .map_err(|e| map_py(py, e, "RTDEControlInterface", host))?;
+                .map_err(|e| {
+                    let e = map_py(py, e, "RTDEControlInterface", host);
+                    refine_connect_error(e, host, &[30004, 30003, 29999])
+                })?;
             Ok(Self {
                 control: control.unbind(),
                 receive: receive.unbind(),
@@ -483,6 +530,43 @@ impl UrArm {
             motion.accel_rad_per_s2,
         )?;
         self.wait(&h, |_| {})
+    }
+
+    /// Whether the controller's inverse kinematics finds joint angles for `target` near the
+    /// present ones (ur_rtde `getInverseKinematicsHasSolution`, URScript
+    /// `get_inverse_kin_has_solution`: PolyScope 3.15 / 5.10 and later).
+    ///
+    /// A moveL to a pose without a solution is not refused up front by the controller: the arm
+    /// follows the line until it leaves the workspace and then protective-stops. Ask this first
+    /// where a target may be out of reach.
+    pub fn is_reachable(&self, target: &Pose) -> Result<bool, UrError> {
+        let v = vec_of(target);
+        Self::check_finite(&v, "target pose")?;
+        self.with("getInverseKinematicsHasSolution", |_, c, _| {
+            c.call_method1("getInverseKinematicsHasSolution", (v,))?
+                .extract::<bool>()
+        })
+    }
+
+    /// Arms the control script's RTDE watchdog (ur_rtde `setWatchdog`): from now on the
+    /// controller stops the program, and with it the arm, when no command or
+    /// [`UrArm::kick_watchdog`] reaches it for `1 / min_frequency_hz` s — so the arm stops when
+    /// this client goes away mid-move (process killed, cable pulled). Without it a real
+    /// controller finishes the running move.
+    pub fn set_watchdog(&mut self, min_frequency_hz: f64) -> Result<(), UrError> {
+        if !(min_frequency_hz.is_finite() && min_frequency_hz > 0.0) {
+            return Err(UrError::InvalidArgument(format!(
+                "setWatchdog: min_frequency {min_frequency_hz} Hz"
+            )));
+        }
+        self.command("setWatchdog", |c| {
+            c.call_method1("setWatchdog", (min_frequency_hz,))
+        })
+    }
+
+    /// Feeds the watchdog armed by [`UrArm::set_watchdog`] (ur_rtde `kickWatchdog`).
+    pub fn kick_watchdog(&mut self) -> Result<(), UrError> {
+        self.command("kickWatchdog", |c| c.call_method0("kickWatchdog"))
     }
 
     /// Decelerates the tool to rest at `decel_m_per_s2` (ur_rtde `stopL`, synchronous).

@@ -11,13 +11,26 @@ pub enum UrError {
     /// The embedded Python could not load ur_rtde (no venv, wrong interpreter, missing module).
     #[error("python environment: {0}")]
     Python(String),
-    /// The controller did not accept a connection (nothing listening, wrong host, timeout).
+    /// The controller did not accept a connection (wrong host, unreachable network, timeout).
     #[error("cannot connect to the controller at {host}: {message}")]
     Connect {
         /// The host name or address tried.
         host: String,
         /// ur_rtde's message.
         message: String,
+    },
+    /// The host refused the connection: it is there, but nothing listens on the port (no
+    /// controller software running, or another machine at that address). ur_rtde reports this
+    /// as a timeout; the bridge asks the port itself.
+    #[error(
+        "cannot connect to the controller at {host}: connection refused on port {port} \
+         (nothing is listening there: is the controller on, and is this its address?)"
+    )]
+    ConnectionRefused {
+        /// The host name or address tried.
+        host: String,
+        /// The port that refused (29999 dashboard, 30003 script, 30004 RTDE).
+        port: u16,
     },
     /// The controller went to a protective stop (a limit was hit, or the pose is unreachable).
     #[error("protective stop (safety status bits {safety_status_bits:#06x})")]

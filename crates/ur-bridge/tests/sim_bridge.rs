@@ -16,6 +16,9 @@ use ur_bridge::{JointMotion, RegionToGrid, UrArm, UrConfig, UrError};
 // The `ur-sim` binary and the README's CI job (in this test binary: one link, not two).
 #[path = "sim_bridge/ur_sim_binary.rs"]
 mod ur_sim_binary;
+// Many, vanishing and garbage-sending clients (same binary, for the same reason).
+#[path = "sim_bridge/abuse.rs"]
+mod abuse;
 
 /// 0.1 mm: the bound on the final TCP position.
 const TCP_TOLERANCE_M: f64 = 1e-4;
@@ -177,6 +180,105 @@ fn unreachable_pose_is_a_protective_stop() {
     arm.move_linear(grid.pose(4).unwrap(), &fast_linear())
         .unwrap();
     assert!(arm.tool_pose().unwrap().distance_m(grid.pose(4).unwrap()) < TCP_TOLERANCE_M);
+}
+
+/// A moveL 5 m away, as a user tried it. A real controller does not refuse it up front: ur_rtde's
+/// control script hands the pose to URScript `movel`, and the arm follows the line until it
+/// leaves the workspace, then protective-stops (Universal Robots' own client library tests it
+/// so: Universal_Robots_Client_Library PR #280). What refuses it without moving is asking
+/// first, `UrArm::is_reachable` (the controller's `get_inverse_kin_has_solution`).
+#[test]
+fn move_l_five_metres_away_is_unreachable_and_stops_the_arm_inside_its_reach() {
+    let (sim, mut arm) = start(26, |_| {}, |_| {});
+    let q0 = sim.joints();
+    let home = arm.tool_pose().unwrap();
+    let mut far = home;
+    far.position_m[0] += 5.0;
+
+    // Asked first: no solution, and the arm does not move.
+    assert!(!arm.is_reachable(&far).unwrap(), "{:?}", sim.log());
+    let grid = RegionToGrid::ur3_default().unwrap();
+    assert!(arm.is_reachable(grid.pose(4).unwrap()).unwrap());
+    let q1 = sim.joints();
+    assert!(
+        q0.iter().zip(&q1).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{q0:?} → {q1:?}"
+    );
+    assert!(arm.status().unwrap().is_program_running());
+
+    // Sent anyway: the controller's answer is a protective stop, typed as such.
+    match arm.move_linear(&far, &LinearMotion::default()) {
+        Err(UrError::ProtectiveStop { safety_status_bits }) => {
+            assert_ne!(safety_status_bits & 0b100, 0)
+        }
+        other => panic!(
+            "expected a protective stop, got {other:?}; log {:?}",
+            sim.log()
+        ),
+    }
+    let log = sim.log();
+    assert!(
+        log.iter().any(|l| l.starts_with("protective stop: ")),
+        "{log:?}"
+    );
+    // It stopped on the way, inside its joint limits and short of the 5 m, and stays there.
+    let model = UrModel::ur3();
+    let q = sim.joints();
+    model.check_limits(&q).unwrap();
+    let stopped = kinematics::to_pose(&model.forward(&q));
+    assert!(
+        stopped.distance_m(&far) < home.distance_m(&far),
+        "moved towards it"
+    );
+    assert!(stopped.distance_m(&home) < 1.0, "{stopped:?}");
+    assert!(at_rest(&arm));
+    assert!(arm.status().unwrap().is_protective_stopped());
+}
+
+#[test]
+fn watchdog_kicked_keeps_the_script_and_unkicked_stops_it() {
+    let (sim, mut arm) = start(29, |_| {}, |_| {});
+    arm.set_watchdog(2.0)
+        .unwrap_or_else(|e| panic!("setWatchdog: {e}; log {:?}", sim.log()));
+    // Kicked every 0.1 s of controller time for 1 s: twice the period, still running.
+    for _ in 0..10 {
+        wait_controller(&arm, 0.1);
+        arm.kick_watchdog().unwrap();
+    }
+    assert!(
+        arm.status().unwrap().is_program_running(),
+        "{:?}",
+        sim.log()
+    );
+    // Left alone: the controller stops the program within the period.
+    let start = Instant::now();
+    while arm.status().unwrap().is_program_running() {
+        assert!(start.elapsed() < Duration::from_secs(10), "{:?}", sim.log());
+    }
+    assert!(
+        sim.log().iter().any(|l| l.starts_with("RTDE watchdog: ")),
+        "{:?}",
+        sim.log()
+    );
+}
+
+#[test]
+fn a_host_with_nothing_listening_is_connection_refused() {
+    // A loopback port that was bound and let go: nothing listens, the host refuses.
+    let listener = std::net::TcpListener::bind("127.0.0.25:29999").expect("bind");
+    drop(listener);
+    let mut config = UrConfig::new("127.0.0.25");
+    config.move_timeout = Duration::from_secs(5);
+    let t0 = Instant::now();
+    let err = UrArm::connect(config).unwrap_err();
+    assert!(
+        matches!(&err, UrError::ConnectionRefused { host, port: 29999 } if host == "127.0.0.25"),
+        "{err:?}"
+    );
+    let text = err.to_string();
+    assert!(text.contains("connection refused"), "{text}");
+    assert!(!text.to_lowercase().contains("timeout"), "{text}");
+    assert!(t0.elapsed() < Duration::from_secs(5), "{:?}", t0.elapsed());
 }
 
 #[test]

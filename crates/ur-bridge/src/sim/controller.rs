@@ -29,6 +29,9 @@ mod cmd {
     pub(super) const PROTECTIVE_STOP: i32 = 31;
     pub(super) const STOPL: i32 = 33;
     pub(super) const STOPJ: i32 = 34;
+    pub(super) const SET_WATCHDOG: i32 = 35;
+    pub(super) const IK_HAS_SOLUTION_DEFAULT: i32 = 60;
+    pub(super) const IK_HAS_SOLUTION_ARGS: i32 = 61;
     pub(super) const STOP_SCRIPT: i32 = 255;
     /// Commands the script's main loop runs every cycle without the ready/done handshake.
     pub(super) const REALTIME: [i32; 10] = [24, 11, 9, 10, 6, 25, 26, 27, 38, 58];
@@ -92,6 +95,14 @@ struct Script {
     async_op_id: i32,
 }
 
+/// `rtde_set_watchdog(variable, min_frequency, "stop")`, as ur_rtde's `setWatchdog` arms it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Watchdog {
+    /// The watched `input_int_register_N`.
+    register: usize,
+    min_frequency_hz: f64,
+}
+
 /// The simulated controller.
 #[derive(Debug)]
 pub(crate) struct Controller {
@@ -108,6 +119,9 @@ pub(crate) struct Controller {
     pub(crate) in_double: [f64; 48],
     pub(crate) out_int: [i32; 48],
     pub(crate) out_double: [f64; 48],
+    /// Controller time of the last RTDE write of each `input_int_register_N` (the watchdog's clock).
+    in_int_written_s: [f64; 48],
+    watchdog: Option<Watchdog>,
     /// The last script received (kept so that dashboard `play` can restart it).
     program: Option<Script>,
     motion: Motion,
@@ -133,6 +147,8 @@ impl Controller {
             in_double: [0.0; 48],
             out_int: [0; 48],
             out_double: [0.0; 48],
+            in_int_written_s: [0.0; 48],
+            watchdog: None,
             program: None,
             motion: Motion::Idle,
             waiters: Vec::new(),
@@ -224,7 +240,14 @@ impl Controller {
     /// Dashboard `stop`: ends the program, the arm decelerates to rest.
     pub(crate) fn stop_program(&mut self) {
         self.runtime_state = runtime_state::STOPPED;
+        self.end_program();
+    }
+
+    /// What every program end shares: its threads die, the arm stops, and (URScript manual,
+    /// `rtde_set_watchdog`) "all watchdogs are removed on program stop".
+    fn end_program(&mut self) {
         self.waiters.clear();
+        self.watchdog = None;
         self.halt();
     }
 
@@ -266,10 +289,9 @@ impl Controller {
         self.start_script(reg_offset);
     }
 
-    fn start_script(&mut self, reg_offset: usize) {
+    pub(crate) fn start_script(&mut self, reg_offset: usize) {
         // A new program replaces the running one: its threads die, the arm stops.
-        self.waiters.clear();
-        self.halt();
+        self.end_program();
         let mut s = Script {
             reg_offset,
             ..Script::default()
@@ -300,10 +322,29 @@ impl Controller {
     /// Advances `dt` seconds: the script's main loop reads its registers, then the arm moves.
     pub(crate) fn tick(&mut self, dt: f64) {
         self.time_s += dt;
+        self.check_watchdog();
         self.script_cycle();
         self.step_motion(dt);
         if matches!(self.motion, Motion::Idle) {
             self.motion_ended();
+        }
+    }
+
+    /// The "stop" action of an armed RTDE watchdog: no update of the watched register for
+    /// longer than `1 / min_frequency` (a client that went away, or stopped kicking) stops the
+    /// program, and with it the arm.
+    fn check_watchdog(&mut self) {
+        let Some(w) = self.watchdog else { return };
+        if self.runtime_state != runtime_state::PLAYING {
+            return;
+        }
+        let silent_s = self.time_s - self.in_int_written_s[w.register];
+        if silent_s > 1.0 / w.min_frequency_hz {
+            self.textmsg(format!(
+                "RTDE watchdog: input_int_register_{} not updated for {silent_s:.3} s (minimum {} Hz): program stopped",
+                w.register, w.min_frequency_hz
+            ));
+            self.stop_program();
         }
     }
 
@@ -370,6 +411,17 @@ impl Controller {
                         .model
                         .inverse_near(&kinematics::to_isometry(&pose6(&target)), &self.q)
                         .map(|to| PathKind::Joint { from: self.q, to }),
+                    // No reach check up front, as on a real controller: ur_rtde's
+                    // rtde_control.script hands the pose to URScript `movel` unchecked (cmd 3;
+                    // MOVEJ_IK alone calls get_inverse_kin first), and the controller follows
+                    // the line until it leaves the workspace, then protective-stops. Universal
+                    // Robots' own client library tests it so (Universal_Robots_Client_Library
+                    // PR #280, test `unfeasible_movel_target_results_in_failure`: "with `movel`
+                    // we cannot request a motion running outside the reachable volume without
+                    // running into a singularity, we'll have to check for a protective stop");
+                    // UR forum "Cartesian linear move can wind up the wrist": "the protective
+                    // stop occurs after the robot started executing the path". A client that
+                    // wants the check asks first: getInverseKinematicsHasSolution (cmd 60).
                     cmd::MOVEL => Ok(PathKind::Linear {
                         from: self.tcp(),
                         to: kinematics::to_isometry(&pose6(&target)),
@@ -388,6 +440,7 @@ impl Controller {
                         // get_inverse_kin raised: on a UR this is a runtime error that halts the program.
                         self.textmsg(format!("runtime error: get_inverse_kin: {e}"));
                         self.runtime_state = runtime_state::STOPPED;
+                        self.end_program();
                         return;
                     }
                 }
@@ -418,6 +471,41 @@ impl Controller {
                 self.wait_for_rest(s, asynchronous, Waiter::StopThread)
             }
             cmd::SET_PAYLOAD => true, // the kinematic model carries no payload
+            cmd::SET_WATCHDOG => {
+                let hz = self.arg(s, 0);
+                // The script watches input_int_register_0 (+ offset); the controller refuses a
+                // frequency it cannot use (a runtime error, the program stops).
+                if !(hz.is_finite() && hz > 0.0) {
+                    self.textmsg(format!(
+                        "runtime error: rtde_set_watchdog: min_frequency {hz}"
+                    ));
+                    self.runtime_state = runtime_state::STOPPED;
+                    self.end_program();
+                    return;
+                }
+                self.watchdog = Some(Watchdog {
+                    register: off,
+                    min_frequency_hz: hz,
+                });
+                // The watchdog's period starts now, not at the register's last write.
+                self.in_int_written_s[off] = self.time_s;
+                self.textmsg(format!(
+                    "rtde_set_watchdog(\"input_int_register_{off}\", {hz}, \"stop\")"
+                ));
+                true
+            }
+            cmd::IK_HAS_SOLUTION_DEFAULT | cmd::IK_HAS_SOLUTION_ARGS => {
+                // get_inverse_kin_has_solution(x[, qnear, …]) into output_int_register_1.
+                let x = kinematics::to_isometry(&pose6(&self.args6(s)));
+                let qnear = if c == cmd::IK_HAS_SOLUTION_ARGS {
+                    core::array::from_fn(|i| self.arg(s, 6 + i))
+                } else {
+                    self.q
+                };
+                let found = self.model.inverse_near(&x, &qnear).is_ok();
+                self.out_int[1 + off] = i32::from(found);
+                true
+            }
             cmd::PROTECTIVE_STOP => {
                 self.protective_stop("protective_stop() called by the script");
                 return;
@@ -425,14 +513,14 @@ impl Controller {
             cmd::STOP_SCRIPT => {
                 self.textmsg("Received stop script!");
                 self.runtime_state = runtime_state::STOPPED;
-                self.halt();
+                self.end_program();
                 return;
             }
             other => {
                 // Not modelled: on purpose a visible failure, never a silent success.
                 self.textmsg(format!("runtime error: command {other} is not simulated"));
                 self.runtime_state = runtime_state::STOPPED;
-                self.halt();
+                self.end_program();
                 return;
             }
         };
@@ -674,6 +762,7 @@ impl Controller {
             Value::Int32(v) => {
                 if let Some(i) = idx("input_int_register_") {
                     self.in_int[i] = v;
+                    self.in_int_written_s[i] = self.time_s;
                 }
             }
             Value::Double(v) => {

@@ -1,7 +1,7 @@
 //! The dashboard server (port 29999): one command a line, one answer a line, in PolyScope's
 //! wording (Universal Robots' "Dashboard Server CB-Series" command list).
 
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
 
 use super::Shared;
@@ -95,22 +95,50 @@ fn answer(shared: &Shared, line: &str) -> Option<String> {
     })
 }
 
+/// The longest command line served; PolyScope's commands are a few dozen bytes. A longer line
+/// (or garbage without newlines) ends the connection instead of growing a buffer.
+pub(crate) const MAX_LINE_BYTES: usize = 4096;
+
 /// Serves one dashboard connection until it closes, `quit` or the simulator stops.
 pub(crate) fn serve(shared: &Shared, stream: TcpStream) -> std::io::Result<()> {
-    let mut out = stream.try_clone()?;
+    let out = stream.try_clone()?;
+    serve_io(shared, BufReader::new(stream), out, |_| {})
+}
+
+/// The dashboard over any byte stream (a socket, or a fuzzer's bytes); `after_line` runs after
+/// each answered line.
+pub(crate) fn serve_io(
+    shared: &Shared,
+    mut input: impl BufRead,
+    mut out: impl Write,
+    mut after_line: impl FnMut(&Shared),
+) -> std::io::Result<()> {
     out.write_all(b"Connected: Universal Robots Dashboard Server\n")?;
-    for line in BufReader::new(stream).lines() {
-        let line = line?;
-        if shared.stopped() {
+    let mut line = Vec::new();
+    loop {
+        line.clear();
+        let limit = (MAX_LINE_BYTES + 1) as u64;
+        let n = (&mut input).take(limit).read_until(b'\n', &mut line)?;
+        if n == 0 || shared.stopped() {
             break;
         }
-        match answer(shared, &line) {
+        if !line.ends_with(b"\n") && line.len() > MAX_LINE_BYTES {
+            out.write_all(
+                format!("could not understand: a line over {MAX_LINE_BYTES} bytes\nDisconnected\n")
+                    .as_bytes(),
+            )?;
+            break;
+        }
+        // Bytes that are not UTF-8 are answered like any unknown command, not fatal.
+        let text = String::from_utf8_lossy(&line);
+        match answer(shared, &text) {
             Some(reply) => out.write_all(format!("{reply}\n").as_bytes())?,
             None => {
                 out.write_all(b"Disconnected\n")?;
                 break;
             }
         }
+        after_line(shared);
     }
     Ok(())
 }

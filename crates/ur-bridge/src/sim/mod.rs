@@ -16,6 +16,8 @@
 
 mod controller;
 mod dashboard;
+#[doc(hidden)]
+pub mod fuzzing;
 mod motion;
 mod rtde;
 mod time_scale;
@@ -88,13 +90,30 @@ pub(crate) struct Shared {
     config: SimConfig,
     controller: Mutex<Controller>,
     stop: AtomicBool,
-    streams: Mutex<Vec<TcpStream>>,
+    /// A clone of each open client connection, by id, so that a kill can close it; removed
+    /// when its handler returns (clients that come and go must not pile up descriptors).
+    streams: Mutex<HashMap<u64, TcpStream>>,
     threads: Mutex<Vec<JoinHandle<()>>>,
     input_claims: Mutex<HashMap<String, u64>>,
     next_id: AtomicU64,
 }
 
 impl Shared {
+    /// Simulator state without sockets: the controller at the configured start pose and mode.
+    pub(crate) fn new(config: SimConfig) -> Self {
+        let controller =
+            Controller::new(config.model.clone(), config.initial_q, config.initial_mode);
+        Self {
+            config,
+            controller: Mutex::new(controller),
+            stop: AtomicBool::new(false),
+            streams: Mutex::new(HashMap::new()),
+            threads: Mutex::new(Vec::new()),
+            input_claims: Mutex::new(HashMap::new()),
+            next_id: AtomicU64::new(1),
+        }
+    }
+
     pub(crate) fn lock(&self) -> MutexGuard<'_, Controller> {
         self.controller.lock().unwrap_or_else(|e| e.into_inner())
     }
@@ -105,10 +124,10 @@ impl Shared {
 
     pub(crate) fn spawn(&self, f: impl FnOnce() + Send + 'static) {
         let handle = std::thread::spawn(f);
-        self.threads
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .push(handle);
+        let mut threads = self.threads.lock().unwrap_or_else(|e| e.into_inner());
+        // Finished connection threads are dropped here, so reconnecting clients leave nothing.
+        threads.retain(|t| !t.is_finished());
+        threads.push(handle);
     }
 
     /// Claims RTDE input variables for connection `id`; false where another connection holds one.
@@ -156,8 +175,6 @@ type Handler = fn(&Arc<Shared>, TcpStream, u64) -> std::io::Result<()>;
 impl UrSim {
     /// Binds the three ports and starts the control loop.
     pub fn start(config: SimConfig) -> std::io::Result<Self> {
-        let controller =
-            Controller::new(config.model.clone(), config.initial_q, config.initial_mode);
         let ports: [(u16, Handler); 3] = [
             (config.dashboard_port, |s, stream, _| {
                 dashboard::serve(s, stream)
@@ -169,15 +186,7 @@ impl UrSim {
             .iter()
             .map(|(port, _)| TcpListener::bind((config.address, *port)))
             .collect::<std::io::Result<Vec<_>>>()?;
-        let shared = Arc::new(Shared {
-            config,
-            controller: Mutex::new(controller),
-            stop: AtomicBool::new(false),
-            streams: Mutex::new(Vec::new()),
-            threads: Mutex::new(Vec::new()),
-            input_claims: Mutex::new(HashMap::new()),
-            next_id: AtomicU64::new(1),
-        });
+        let shared = Arc::new(Shared::new(config));
         let mut addrs = Vec::new();
         for (listener, (_, handler)) in listeners.into_iter().zip(ports) {
             addrs.push(listener.local_addr()?);
@@ -204,6 +213,20 @@ impl UrSim {
         self.shared.lock().q
     }
 
+    /// The controller's clock (RTDE `timestamp`), s since it started.
+    pub fn controller_time_s(&self) -> f64 {
+        self.shared.lock().time_s
+    }
+
+    /// How many client connections are open now, on all three ports.
+    pub fn connections(&self) -> usize {
+        self.shared
+            .streams
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .len()
+    }
+
     /// The script's `textmsg` lines and the safety events, oldest first.
     pub fn log(&self) -> Vec<String> {
         self.shared.lock().log.iter().cloned().collect()
@@ -223,9 +246,9 @@ impl UrSim {
             .streams
             .lock()
             .unwrap_or_else(|e| e.into_inner())
-            .drain(..)
+            .drain()
         {
-            let _ = s.shutdown(Shutdown::Both);
+            let _ = s.1.shutdown(Shutdown::Both);
         }
         // Wake the blocking accepts so their threads see the stop flag.
         for a in &self.addrs {
@@ -259,16 +282,20 @@ fn accept_loop(shared: &Arc<Shared>, listener: &TcpListener, handler: Handler) {
         let Ok(clone) = stream.try_clone() else {
             continue;
         };
+        let id = shared.next_id.fetch_add(1, Ordering::SeqCst);
         shared
             .streams
             .lock()
             .unwrap_or_else(|e| e.into_inner())
-            .push(clone);
-        let id = shared.next_id.fetch_add(1, Ordering::SeqCst);
+            .insert(id, clone);
         let s = shared.clone();
         // A client's I/O error ends its own connection only.
         shared.spawn(move || {
             let _ = handler(&s, stream, id);
+            s.streams
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .remove(&id);
         });
     }
 }
@@ -290,30 +317,53 @@ fn control_loop(shared: &Shared) {
     }
 }
 
+/// The most a script may hold before its closing `end` line (ur_rtde's control script is
+/// about 40 kB); more is dropped with the connection, so a client cannot grow memory unbounded.
+pub(crate) const MAX_SCRIPT_BYTES: usize = 1 << 20;
+
 /// Port 30003: collects `def …():` … `end` programs and hands each to the controller.
-fn serve_script(shared: &Arc<Shared>, mut stream: TcpStream) -> std::io::Result<()> {
-    let mut text = String::new();
+fn serve_script(shared: &Arc<Shared>, stream: TcpStream) -> std::io::Result<()> {
+    serve_script_io(shared, stream, |_| {})
+}
+
+/// The script intake over any byte source (a socket, or a fuzzer's bytes); `after_program`
+/// runs after each program was handed over.
+pub(crate) fn serve_script_io(
+    shared: &Shared,
+    mut input: impl Read,
+    mut after_program: impl FnMut(&Shared),
+) -> std::io::Result<()> {
+    let mut text: Vec<u8> = Vec::new();
     let mut buf = [0_u8; 16 * 1024];
     loop {
-        let n = stream.read(&mut buf)?;
+        let n = input.read(&mut buf)?;
         if n == 0 || shared.stopped() {
             return Ok(());
         }
-        text.push_str(&String::from_utf8_lossy(&buf[..n]));
+        text.extend_from_slice(&buf[..n]);
         // A program ends with an unindented `end` line.
         while let Some(end) = program_end(&text) {
-            let program: String = text.drain(..end).collect();
-            shared.lock().receive_script(&program);
+            let program: Vec<u8> = text.drain(..end).collect();
+            shared
+                .lock()
+                .receive_script(&String::from_utf8_lossy(&program));
+            after_program(shared);
+        }
+        if text.len() > MAX_SCRIPT_BYTES {
+            shared.lock().textmsg(format!(
+                "script intake: over {MAX_SCRIPT_BYTES} bytes without a closing `end` line: dropped"
+            ));
+            return Ok(());
         }
     }
 }
 
 /// The byte index just past the `end` line closing the first top-level `def`, if it arrived.
-fn program_end(text: &str) -> Option<usize> {
+fn program_end(text: &[u8]) -> Option<usize> {
     let mut pos = 0;
-    for line in text.split_inclusive('\n') {
+    for line in text.split_inclusive(|b| *b == b'\n') {
         pos += line.len();
-        if line.ends_with('\n') && line.trim_end() == "end" {
+        if line.ends_with(b"\n") && line.trim_ascii_end() == b"end" {
             return Some(pos);
         }
     }

@@ -2,7 +2,7 @@
 //! output and input recipes with the real variable types, start / pause, and data packages at
 //! the requested frequency.
 
-use std::io::Write;
+use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
@@ -12,12 +12,26 @@ use super::Shared;
 use super::variables::{input_type, output_type, output_value};
 use super::wire::{self, Value, VarType};
 
+/// How START delivers the output recipe.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Streaming {
+    /// A thread sends a data package every period until PAUSE or the connection ends.
+    Thread,
+    /// One data package at once, no thread: the in-memory (fuzzing) path, which must not
+    /// leave a thread behind.
+    Once,
+}
+
+/// The most input recipes a connection may set up: recipe ids are one byte, 0 means refused.
+const MAX_INPUT_RECIPES: usize = 255;
+
 /// What the client asked for on this connection.
 struct Session {
     id: u64,
     output: Option<(Vec<(String, VarType)>, f64)>,
     inputs: Vec<Vec<(String, VarType)>>,
     streaming: Option<Arc<AtomicBool>>,
+    mode: Streaming,
 }
 
 fn parse_names(bytes: &[u8]) -> Vec<String> {
@@ -29,7 +43,7 @@ fn parse_names(bytes: &[u8]) -> Vec<String> {
         .collect()
 }
 
-fn send(out: &Mutex<TcpStream>, kind: u8, payload: &[u8]) -> std::io::Result<()> {
+fn send<W: Write>(out: &Mutex<W>, kind: u8, payload: &[u8]) -> std::io::Result<()> {
     let mut s = out.lock().unwrap_or_else(|e| e.into_inner());
     wire::write_package(&mut *s, kind, payload)
 }
@@ -38,21 +52,45 @@ fn send(out: &Mutex<TcpStream>, kind: u8, payload: &[u8]) -> std::io::Result<()>
 pub(crate) fn serve(shared: &Arc<Shared>, stream: TcpStream, id: u64) -> std::io::Result<()> {
     stream.set_nodelay(true)?;
     let out = Arc::new(Mutex::new(stream.try_clone()?));
-    let mut reader = std::io::BufReader::new(stream);
+    let reader = std::io::BufReader::new(stream);
+    serve_io(shared, reader, &out, id, Streaming::Thread, |_| {})
+}
+
+/// RTDE over any byte stream (a socket, or a fuzzer's bytes): reads packages from `reader`
+/// until it ends, answers on `out`; `after_package` runs after each handled package.
+pub(crate) fn serve_io<W: Write + Send + 'static>(
+    shared: &Arc<Shared>,
+    mut reader: impl Read,
+    out: &Arc<Mutex<W>>,
+    id: u64,
+    mode: Streaming,
+    mut after_package: impl FnMut(&Shared),
+) -> std::io::Result<()> {
     let mut session = Session {
         id,
         output: None,
         inputs: Vec::new(),
         streaming: None,
+        mode,
     };
     let result = (|| -> std::io::Result<()> {
-        while let Some((kind, payload)) = wire::read_package(&mut reader)? {
+        loop {
+            let (kind, payload) = match wire::read_package(&mut reader) {
+                Ok(Some(package)) => package,
+                Ok(None) => return Ok(()),
+                // A header that cannot be framed: say why, then drop the connection (nothing
+                // after it can be framed either).
+                Err(e) if e.kind() == std::io::ErrorKind::InvalidData => {
+                    return text(out, &format!("{e}: closing the connection"));
+                }
+                Err(e) => return Err(e),
+            };
             if shared.stopped() {
-                break;
+                return Ok(());
             }
-            handle(shared, &out, &mut session, kind, &payload)?;
+            handle(shared, out, &mut session, kind, &payload)?;
+            after_package(shared);
         }
-        Ok(())
     })();
     if let Some(flag) = session.streaming.take() {
         flag.store(false, Ordering::SeqCst);
@@ -61,9 +99,9 @@ pub(crate) fn serve(shared: &Arc<Shared>, stream: TcpStream, id: u64) -> std::io
     result
 }
 
-fn handle(
+fn handle<W: Write + Send + 'static>(
     shared: &Arc<Shared>,
-    out: &Arc<Mutex<TcpStream>>,
+    out: &Arc<Mutex<W>>,
     session: &mut Session,
     kind: u8,
     payload: &[u8],
@@ -108,6 +146,9 @@ fn handle(
             send(out, kind, &reply)
         }
         wire::SETUP_INPUTS => {
+            if session.inputs.len() >= MAX_INPUT_RECIPES {
+                return send(out, kind, b"\0");
+            }
             let names = parse_names(payload);
             let claims = shared.claim_inputs(session.id, &names);
             let mut listed = Vec::with_capacity(names.len());
@@ -146,15 +187,19 @@ fn handle(
             // The reply goes out before the first data package: ur_rtde reads exactly one
             // package after START and takes it for the reply.
             send(out, kind, &[1])?;
-            if session.streaming.is_none() {
-                let flag = Arc::new(AtomicBool::new(true));
-                session.streaming = Some(flag.clone());
-                let (shared, out) = (shared.clone(), out.clone());
-                shared
-                    .clone()
-                    .spawn(move || stream_outputs(&shared, &out, &vars, freq, &flag));
+            match session.mode {
+                Streaming::Once => send_outputs(shared, out, &vars, &mut Vec::new()),
+                Streaming::Thread if session.streaming.is_none() => {
+                    let flag = Arc::new(AtomicBool::new(true));
+                    session.streaming = Some(flag.clone());
+                    let (shared, out) = (shared.clone(), out.clone());
+                    shared
+                        .clone()
+                        .spawn(move || stream_outputs(&shared, &out, &vars, freq, &flag));
+                    Ok(())
+                }
+                Streaming::Thread => Ok(()),
             }
-            Ok(())
         }
         wire::PAUSE => {
             if let Some(flag) = session.streaming.take() {
@@ -195,22 +240,41 @@ fn handle(
 }
 
 /// An RTDE text message (level 1 = error) back to the client.
-fn text(out: &Mutex<TcpStream>, message: &str) -> std::io::Result<()> {
-    let msg = message.as_bytes();
+fn text<W: Write>(out: &Mutex<W>, message: &str) -> std::io::Result<()> {
+    let msg = &message.as_bytes()[..message.len().min(255)];
     let source = b"RTDE";
     let mut p = Vec::with_capacity(msg.len() + source.len() + 3);
     p.push(u8::try_from(msg.len()).unwrap_or(u8::MAX));
-    p.extend_from_slice(&msg[..msg.len().min(255)]);
+    p.extend_from_slice(msg);
     p.push(source.len() as u8);
     p.extend_from_slice(source);
     p.push(1);
     send(out, wire::TEXT_MESSAGE, &p)
 }
 
-/// Sends the output recipe every `1/freq` s of simulated time while `flag` holds.
-fn stream_outputs(
+/// One data package of the output recipe, read from the controller now.
+fn send_outputs<W: Write>(
     shared: &Shared,
-    out: &Mutex<TcpStream>,
+    out: &Mutex<W>,
+    vars: &[(String, VarType)],
+    payload: &mut Vec<u8>,
+) -> std::io::Result<()> {
+    payload.clear();
+    payload.push(1); // output recipe id
+    {
+        let c = shared.lock();
+        for (name, ty) in vars {
+            output_value(&c, name, *ty).encode(payload);
+        }
+    }
+    send(out, wire::DATA_PACKAGE, payload)?;
+    out.lock().unwrap_or_else(|e| e.into_inner()).flush()
+}
+
+/// Sends the output recipe every `1/freq` s of simulated time while `flag` holds.
+fn stream_outputs<W: Write>(
+    shared: &Shared,
+    out: &Mutex<W>,
     vars: &[(String, VarType)],
     freq: f64,
     flag: &AtomicBool,
@@ -224,18 +288,9 @@ fn stream_outputs(
     let mut n: u32 = 0;
     let mut payload = Vec::with_capacity(1 + vars.iter().map(|(_, t)| t.size()).sum::<usize>());
     while flag.load(Ordering::SeqCst) && !shared.stopped() {
-        payload.clear();
-        payload.push(1); // output recipe id
-        {
-            let c = shared.lock();
-            for (name, ty) in vars {
-                output_value(&c, name, *ty).encode(&mut payload);
-            }
-        }
-        if send(out, wire::DATA_PACKAGE, &payload).is_err() {
+        if send_outputs(shared, out, vars, &mut payload).is_err() {
             break;
         }
-        let _ = out.lock().map(|mut s| s.flush());
         n = n.wrapping_add(1);
         // Paced against the start so the rate does not drift with the send time.
         let due = start + period * n;

@@ -4,21 +4,21 @@
 use std::io::{self, Read, Write};
 
 /// `RTDE_REQUEST_PROTOCOL_VERSION` ('V').
-pub(crate) const REQUEST_PROTOCOL_VERSION: u8 = 86;
+pub const REQUEST_PROTOCOL_VERSION: u8 = 86;
 /// `RTDE_GET_URCONTROL_VERSION` ('v').
-pub(crate) const GET_URCONTROL_VERSION: u8 = 118;
+pub const GET_URCONTROL_VERSION: u8 = 118;
 /// `RTDE_TEXT_MESSAGE` ('M').
 pub(crate) const TEXT_MESSAGE: u8 = 77;
 /// `RTDE_DATA_PACKAGE` ('U').
-pub(crate) const DATA_PACKAGE: u8 = 85;
+pub const DATA_PACKAGE: u8 = 85;
 /// `RTDE_CONTROL_PACKAGE_SETUP_OUTPUTS` ('O').
-pub(crate) const SETUP_OUTPUTS: u8 = 79;
+pub const SETUP_OUTPUTS: u8 = 79;
 /// `RTDE_CONTROL_PACKAGE_SETUP_INPUTS` ('I').
-pub(crate) const SETUP_INPUTS: u8 = 73;
+pub const SETUP_INPUTS: u8 = 73;
 /// `RTDE_CONTROL_PACKAGE_START` ('S').
-pub(crate) const START: u8 = 83;
+pub const START: u8 = 83;
 /// `RTDE_CONTROL_PACKAGE_PAUSE` ('P').
-pub(crate) const PAUSE: u8 = 80;
+pub const PAUSE: u8 = 80;
 
 /// An RTDE variable type, as named in recipe replies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -140,7 +140,7 @@ pub(crate) fn read_package(r: &mut impl Read) -> io::Result<Option<(u8, Vec<u8>)
 }
 
 /// Frames `payload` as a package of type `kind`.
-pub(crate) fn package(kind: u8, payload: &[u8]) -> io::Result<Vec<u8>> {
+pub fn package(kind: u8, payload: &[u8]) -> io::Result<Vec<u8>> {
     let size = u16::try_from(payload.len() + 3)
         .map_err(|_| io::Error::new(io::ErrorKind::InvalidInput, "package over 65535 bytes"))?;
     let mut out = Vec::with_capacity(payload.len() + 3);
