@@ -36,6 +36,10 @@
 //! - `demo tap-to-move`: seed 002 §IV-B on the simulated UR3, into `docs/arm-tap-to-move.md`.
 //! - `cell-doc [--seconds S] [--rounds R]`: the Zenoh cell measured on loopback, into
 //!   `docs/cell.md` ([`cell_doc`]).
+//! - `soak [--seeds N] [--seconds S]`: the grasp loop under random faults (`papers soak`),
+//!   into `docs/reliability.md`.
+//! - `fuzz --seed | TARGET… | --all [--seconds N]`: coverage-guided fuzzing with cargo-fuzz
+//!   ([`fuzz`]); `test` replays the committed corpora, it does not fuzz.
 
 pub mod architecture;
 pub mod bench;
@@ -47,6 +51,7 @@ pub mod demo;
 pub mod embedded;
 pub mod firmware;
 pub mod fixtures;
+pub mod fuzz;
 pub mod fuzzy_peers;
 pub mod msrv;
 pub mod package;

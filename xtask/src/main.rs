@@ -2,8 +2,8 @@
 
 use std::process::ExitCode;
 use xtask::{
-    bench, cell_doc, consumer, demo, firmware, fixtures, package, test, trade, train, venv,
-    workspace_root,
+    bench, cell_doc, consumer, demo, firmware, fixtures, fuzz, package, run, test, trade, train,
+    venv, workspace_root,
 };
 
 const USAGE: &str = "usage: cargo xtask <command>
@@ -40,7 +40,14 @@ commands:
                             (--screenshot: and its full-page picture, docs/demo-report.png)
   demo tap-to-move          seed 002 §IV-B on the simulated UR3 via ur_rtde, into docs/arm-tap-to-move.md
   cell-doc [--seconds S] [--rounds R]
-                            measure the Zenoh cell on loopback (hand-zenoh's cell_latency), into docs/cell.md";
+                            measure the Zenoh cell on loopback (hand-zenoh's cell_latency), into docs/cell.md
+  soak [--seeds N] [--seconds S]
+                            the grasp loop under random faults, S simulated s (default 3600) per
+                            seed 1..=N (default 2): the soak section of docs/reliability.md
+  fuzz --seed               write the fuzz targets' seed corpora (fuzz/seeds/) from fixtures, models, captures
+  fuzz TARGET... | --all [--seconds N]
+                            fuzz each target N s (default 1800) with libFuzzer (installs
+                            cargo-fuzz), minimise fuzz/corpus/TARGET, append the figures to fuzz/runs.tsv";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -59,6 +66,11 @@ fn main() -> ExitCode {
         Some("train") => train::run(&root, &args[1..]),
         Some("demo") => demo::run(&root, &args[1..]),
         Some("cell-doc") => cell_doc::run(&root, &args[1..]),
+        Some("fuzz") => fuzz::run(&root, &args[1..]),
+        // `papers soak` takes the same flags: --seeds N, --seconds S.
+        Some("soak") => {
+            run::PAPERS.run(&root, "soak", &[&["soak".to_owned()], &args[1..]].concat())
+        }
         Some("trade") if args.len() == 1 => trade::run(&root),
         Some("firmware") if args.len() == 1 => firmware::check(&root),
         Some("firmware") if args.len() == 2 && args[1] == "--write" => firmware::write(&root),

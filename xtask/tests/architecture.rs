@@ -82,6 +82,14 @@ fn lawful() -> Vec<Package> {
         package("paper-experiments", true, &[("hand-sim", "normal", false)]),
         package("handstack-benches", true, &[("hand-sim", "normal", false)]),
         package(
+            "handstack-fuzz",
+            true,
+            &[
+                ("handstack", "normal", false),
+                ("paper-experiments", "normal", false),
+            ],
+        ),
+        package(
             "handstack",
             false,
             &[

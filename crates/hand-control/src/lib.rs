@@ -36,6 +36,8 @@
 
 pub mod control_table;
 mod error;
+#[doc(hidden)]
+pub mod fuzzing;
 pub mod grasp_loop;
 pub mod protocol;
 mod servo_hand;

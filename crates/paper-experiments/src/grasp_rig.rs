@@ -41,6 +41,11 @@ pub const OSR: u16 = 1024;
 /// noise at OSR 1024.
 pub const CONTACT_DEAD_BAND_N: f64 = 5e-3;
 
+/// The hardware-error bit [`Injected::HardwareError`] latches: the MX-28's "Electrical Shock
+/// Error" (bit 4), which its Shutdown register turns into torque off, as an overload does.
+pub const INJECTED_HARDWARE_ERROR: u8 =
+    hand_control::control_table::hardware_error::ELECTRICAL_SHOCK;
+
 /// A fault injected during a time window.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Injected {
@@ -50,6 +55,28 @@ pub enum Injected {
     Crc,
     /// The fingertip's bus fails (the tactile source's error, not the servo's).
     TactileBus,
+    /// The servo executes but its next status packet is lost on the wire, every cycle.
+    DropStatus,
+    /// The next status packet's header is corrupted (unframeable), every cycle.
+    GarbleStatus,
+    /// The servo latches a hardware error ([`INJECTED_HARDWARE_ERROR`]) at the window's
+    /// start; only a reboot clears it.
+    HardwareError,
+    /// The fingertip's readings turn NaN (a broken sensor path upstream of the loop).
+    NanFrame,
+}
+
+impl Injected {
+    /// Every kind, in `docs/reliability.md`'s order.
+    pub const ALL: [Injected; 7] = [
+        Injected::DropStatus,
+        Injected::GarbleStatus,
+        Injected::Crc,
+        Injected::Silent,
+        Injected::HardwareError,
+        Injected::TactileBus,
+        Injected::NanFrame,
+    ];
 }
 
 /// One injection: `kind` on every cycle in `from_s..until_s`.
@@ -121,6 +148,8 @@ pub struct World {
     /// loop), and [`run_hold_for`] reports it.
     pub world_error: Option<RigError>,
     silent: bool,
+    /// Whether the hardware-error window already latched its error.
+    latched: bool,
 }
 
 impl World {
@@ -156,9 +185,24 @@ impl World {
             }
             self.silent = silent;
         }
-        if now == Some(Injected::Crc) {
-            self.bus.inject(SERVO_ID, Fault::CorruptNextCrc);
+        match now {
+            Some(Injected::Crc) => {
+                self.bus.inject(SERVO_ID, Fault::CorruptNextCrc);
+            }
+            Some(Injected::DropStatus) => {
+                self.bus.inject(SERVO_ID, Fault::DropNextStatus);
+            }
+            Some(Injected::GarbleStatus) => {
+                self.bus.inject(SERVO_ID, Fault::GarbleNextStatus);
+            }
+            Some(Injected::HardwareError) if !self.latched => {
+                self.bus.with_servo(SERVO_ID, |s| {
+                    s.raise_hardware_error(INJECTED_HARDWARE_ERROR)
+                });
+            }
+            _ => {}
         }
+        self.latched = now == Some(Injected::HardwareError);
     }
 
     /// Steps the bus to `t_ns` and presses the pad with every patch change on the way.
@@ -237,6 +281,7 @@ pub fn world(object: ObjectParams, seed: u64) -> Result<(Shared, ServoHand), Rig
         trace: Vec::new(),
         world_error: None,
         silent: false,
+        latched: false,
     };
     Ok((Rc::new(RefCell::new(world)), hand))
 }
@@ -250,13 +295,17 @@ impl TactileSource for Source {
     fn read_frame(&mut self) -> Result<PressureFrame<3>, SimError> {
         let mut w = self.0.borrow_mut();
         let t_s = w.clock.now_ns() as f64 * 1e-9;
-        if w.injected(t_s) == Some(Injected::TactileBus) {
-            return Err(SimError::Driver {
+        match w.injected(t_s) {
+            Some(Injected::TactileBus) => Err(SimError::Driver {
                 model: "fingertip",
                 detail: "injected SPI failure".into(),
-            });
+            }),
+            Some(Injected::NanFrame) => w.tip.read_frame().map(|mut f| {
+                f.pressure_pa[0] = f32::NAN;
+                f
+            }),
+            _ => w.tip.read_frame(),
         }
-        w.tip.read_frame()
     }
 }
 

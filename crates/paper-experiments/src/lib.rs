@@ -36,6 +36,7 @@ pub mod contact_location;
 pub mod force_eval;
 pub mod grasp_rig;
 pub mod jobs;
+pub mod soak;
 pub mod softness_eval;
 #[cfg(feature = "arm")]
 pub mod tap_run;

@@ -273,3 +273,25 @@ fn a_world_that_cannot_be_built_is_a_typed_error_not_a_panic() {
         .expect("refused");
     assert!(matches!(e, support::RigError::Sim(_)), "{e}");
 }
+
+/// Issue 24's soak, short: a minute of simulated grasping with a fault window every 2 s on
+/// average, of every kind, each seen as its typed error with the safe state in that cycle,
+/// and the loop grasping again after each (`cargo xtask soak` runs the hour per seed).
+#[test]
+fn a_short_seeded_soak_catches_every_fault_and_recovers() {
+    use paper_experiments::soak::{SoakConfig, soak, summary};
+    let r = soak(&SoakConfig::short(1, 60.0)).expect("the soak runs");
+    eprintln!("{}", summary(&r));
+    eprintln!(
+        "{}",
+        paper_experiments::soak::markdown(std::slice::from_ref(&r))
+    );
+    assert!(r.violations.is_empty(), "{:#?}", r.violations);
+    assert_eq!(r.cycles, 6_000);
+    assert_eq!(r.logged + r.log_dropped, r.cycles);
+    for k in &r.kinds {
+        assert!(k.windows >= 1, "{:?}: no window in a minute", k.kind);
+        assert_eq!(k.caught, k.windows, "{k:?}");
+        assert_eq!(k.worst_detect_cycles, 0, "{k:?}");
+    }
+}

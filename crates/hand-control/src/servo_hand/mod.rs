@@ -6,6 +6,7 @@ mod goal_packets;
 mod status;
 
 pub use goal_packets::GoalPackets;
+pub use status::{DecodedAnswer, decode_replies};
 
 use std::time::Duration;
 

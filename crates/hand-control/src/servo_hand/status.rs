@@ -167,55 +167,14 @@ impl Link {
         let mut buf = [0u8; READ_CHUNK];
         let mut stray = None;
         loop {
-            while let Some(frame) = next_frame(&mut self.rx) {
-                let (from, result, used) = match frame {
-                    Ok(Framed {
-                        id,
-                        instruction,
-                        params,
-                        total,
-                    }) => {
-                        let body = self.rx.get(8..8 + params).unwrap_or_default();
-                        (id, check(count, id, instruction, body), total)
-                    }
-                    Err(FrameError::Crc {
-                        id, sent, computed, ..
-                    }) => (
-                        id,
-                        Err(Error::Crc {
-                            id: Some(id),
-                            message: sent,
-                            computed,
-                        }),
-                        0,
-                    ),
-                    Err(FrameError::BadLength) => continue,
-                };
-                self.packets.received += 1;
-                // A corrupted ID byte: charge the error to the first servo still waiting.
-                let slot = expect
-                    .iter()
-                    .zip(&self.slots)
-                    .position(|(&i, s)| i == from && matches!(s, Slot::Waiting))
-                    .or_else(|| self.slots.iter().position(|s| matches!(s, Slot::Waiting)));
-                match (slot, result) {
-                    (Some(k), Ok((alert, data))) => {
-                        // `check` made `data` exactly `count` bytes long.
-                        if let Some(d) = self.data.get_mut(k * n..(k + 1) * n) {
-                            d.copy_from_slice(data);
-                        }
-                        self.slots[k] = Slot::Answered { id: from, alert };
-                    }
-                    (Some(k), Err(e)) => self.slots[k] = Slot::Failed(e),
-                    (None, _) => {
-                        stray.get_or_insert_with(|| Error::Protocol {
-                            id: Some(from),
-                            detail: "a status packet nobody asked for".into(),
-                        });
-                    }
-                }
-                self.rx.drain(..used);
-            }
+            self.packets.received += take_answers(
+                &mut self.rx,
+                count,
+                expect,
+                &mut self.slots,
+                &mut self.data,
+                &mut stray,
+            );
             if !self.slots.iter().any(|s| matches!(s, Slot::Waiting)) || Instant::now() >= deadline
             {
                 break;
@@ -230,22 +189,128 @@ impl Link {
                 Err(e) => return Err(Error::Io(e)),
             }
         }
-        for (slot, &id) in self.slots.iter_mut().zip(expect) {
-            match slot {
-                Slot::Answered { .. } => {}
-                Slot::Waiting => return Err(Error::Timeout { id: Some(id) }),
-                Slot::Failed(_) => {
-                    if let Slot::Failed(e) = std::mem::replace(slot, Slot::Waiting) {
-                        return Err(e);
-                    }
+        outcome(&mut self.slots, expect, stray)
+    }
+}
+
+/// Frames every whole status packet in `rx` into the first waiting slot of its servo in
+/// `expect` (or, for a corrupted ID, the first waiting slot), `count` data bytes per slot in
+/// `data`; a packet nobody waits for becomes `stray`. Returns the packets framed.
+fn take_answers(
+    rx: &mut Vec<u8>,
+    count: u16,
+    expect: &[u8],
+    slots: &mut [Slot],
+    data: &mut [u8],
+    stray: &mut Option<Error>,
+) -> u64 {
+    let n = usize::from(count);
+    let mut framed = 0;
+    while let Some(frame) = next_frame(rx) {
+        let (from, result, used) = match frame {
+            Ok(Framed {
+                id,
+                instruction,
+                params,
+                total,
+            }) => {
+                let body = rx.get(8..8 + params).unwrap_or_default();
+                (id, check(count, id, instruction, body), total)
+            }
+            Err(FrameError::Crc {
+                id, sent, computed, ..
+            }) => (
+                id,
+                Err(Error::Crc {
+                    id: Some(id),
+                    message: sent,
+                    computed,
+                }),
+                0,
+            ),
+            Err(FrameError::BadLength) => continue,
+        };
+        framed += 1;
+        let slot = expect
+            .iter()
+            .zip(slots.iter())
+            .position(|(&i, s)| i == from && matches!(s, Slot::Waiting))
+            .or_else(|| slots.iter().position(|s| matches!(s, Slot::Waiting)));
+        match (slot, result) {
+            (Some(k), Ok((alert, answer))) => {
+                // `check` made `answer` exactly `count` bytes long.
+                if let Some(d) = data.get_mut(k * n..(k + 1) * n) {
+                    d.copy_from_slice(answer);
+                }
+                slots[k] = Slot::Answered { id: from, alert };
+            }
+            (Some(k), Err(e)) => slots[k] = Slot::Failed(e),
+            (None, _) => {
+                stray.get_or_insert_with(|| Error::Protocol {
+                    id: Some(from),
+                    detail: "a status packet nobody asked for".into(),
+                });
+            }
+        }
+        rx.drain(..used);
+    }
+    framed
+}
+
+/// The exchange's result once reading stopped: the first failure in `expect` order (a slot
+/// still waiting is that servo's timeout), else a stray packet's error.
+fn outcome(slots: &mut [Slot], expect: &[u8], stray: Option<Error>) -> Result<(), Error> {
+    for (slot, &id) in slots.iter_mut().zip(expect) {
+        match slot {
+            Slot::Answered { .. } => {}
+            Slot::Waiting => return Err(Error::Timeout { id: Some(id) }),
+            Slot::Failed(_) => {
+                if let Slot::Failed(e) = std::mem::replace(slot, Slot::Waiting) {
+                    return Err(e);
                 }
             }
         }
-        match stray {
-            Some(e) => Err(e),
-            None => Ok(()),
-        }
     }
+    match stray {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// One servo's answer in [`decode_replies`]: its ID, the alert bit and its data.
+pub type DecodedAnswer = (u8, bool, Vec<u8>);
+
+/// What the driver makes of `input` arriving, in `chunks` of at most that many bytes, as the
+/// replies to an instruction that expects status packets from `expect` with `count` data bytes
+/// each: the same framing, matching and checks as a real exchange, without a port. For the
+/// fuzzer and its corpus replay.
+///
+/// # Errors
+/// The error the exchange would return.
+pub fn decode_replies(
+    input: &[u8],
+    chunk: usize,
+    expect: &[u8],
+    count: u16,
+) -> Result<Vec<DecodedAnswer>, Error> {
+    let n = usize::from(count);
+    let mut slots: Vec<Slot> = expect.iter().map(|_| Slot::Waiting).collect();
+    let mut data = vec![0; expect.len() * n];
+    let mut rx = Vec::new();
+    let mut stray = None;
+    for c in input.chunks(chunk.max(1)) {
+        rx.extend_from_slice(c);
+        take_answers(&mut rx, count, expect, &mut slots, &mut data, &mut stray);
+    }
+    outcome(&mut slots, expect, stray)?;
+    Ok(slots
+        .iter()
+        .enumerate()
+        .filter_map(|(k, s)| match *s {
+            Slot::Answered { id, alert } => Some((id, alert, data[k * n..(k + 1) * n].to_vec())),
+            _ => None,
+        })
+        .collect())
 }
 
 /// Checks a status packet: a status, no error code, `count` data bytes; its alert bit and data.

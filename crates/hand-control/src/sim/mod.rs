@@ -133,6 +133,9 @@ pub enum Fault {
     DropNextStatus,
     /// Send the next status packet with a corrupted CRC.
     CorruptNextCrc,
+    /// Send the next status packet with its length field corrupted (line noise on the
+    /// header): the receiver cannot frame it where it is.
+    GarbleNextStatus,
     /// Stop answering (and executing) until [`SimBus::clear_faults`].
     Mute,
 }
@@ -141,6 +144,7 @@ pub enum Fault {
 struct FaultState {
     drop_next: bool,
     corrupt_next: bool,
+    garble_next: bool,
     mute: bool,
 }
 
@@ -155,6 +159,21 @@ struct World {
 }
 
 impl World {
+    fn new(config: &SimConfig) -> Self {
+        Self {
+            servos: config
+                .ids
+                .iter()
+                .map(|&id| SimServo::new(id, config.initial_position_rad, config.params))
+                .collect(),
+            faults: vec![FaultState::default(); config.ids.len()],
+            now: Duration::ZERO,
+            physics_now: Duration::ZERO,
+            step: config.step.max(Duration::from_micros(1)),
+            baud: config.baud,
+        }
+    }
+
     fn index(&self, id: u8) -> Option<usize> {
         self.servos.iter().position(|s| s.id() == id)
     }
@@ -194,6 +213,7 @@ impl World {
             return;
         }
         let corrupt = std::mem::take(&mut f.corrupt_next);
+        let garble = std::mem::take(&mut f.garble_next);
         let s = &self.servos[i];
         let alert = if s.hardware_error() != 0 { 0x80 } else { 0 };
         let (err, data) = match result {
@@ -208,6 +228,10 @@ impl World {
         if corrupt {
             let n = out.len();
             out[n - 1] ^= 0x5A;
+        }
+        if garble {
+            // LEN_H: the frame now claims more bytes than follow it.
+            out[start + 6] ^= 0x80;
         }
         let dt = s.return_delay() + self.wire(out.len() - start);
         self.advance(dt);
@@ -228,6 +252,47 @@ impl World {
     /// Unicast targets of a packet: the servos with that ID that are not muted.
     fn target(&self, id: u8) -> Option<usize> {
         self.index(id).filter(|&i| !self.faults[i].mute)
+    }
+
+    /// What the bus does with one frame the parser found: a clock packet advances time (by at
+    /// most `max_clock_step`) and reports its sequence number to `ack`; a good packet is
+    /// executed; a frame with a bad CRC gets its servo's CRC-error status. Returns the bytes to
+    /// send back. The simulator thread and the fuzz entry point ([`fuzzing`]) share it.
+    fn on_frame(
+        &mut self,
+        frame: Result<Packet, FrameError>,
+        max_clock_step: Duration,
+        ack: impl FnOnce(u32),
+    ) -> Vec<u8> {
+        match frame {
+            Ok(p)
+                if p.id == CLOCK_ID
+                    && p.instruction == CLOCK_INSTRUCTION
+                    && p.params.len() == 12 =>
+            {
+                let mut ns = [0u8; 8];
+                ns.copy_from_slice(&p.params[..8]);
+                self.advance(Duration::from_nanos(u64::from_le_bytes(ns)).min(max_clock_step));
+                ack(u32::from_le_bytes([
+                    p.params[8],
+                    p.params[9],
+                    p.params[10],
+                    p.params[11],
+                ]));
+                Vec::new()
+            }
+            Ok(p) => self.handle(&p),
+            Err(FrameError::Crc {
+                id, instruction, ..
+            }) => {
+                let mut out = Vec::new();
+                if let Some(i) = self.target(id).filter(|&i| self.answers(i, instruction)) {
+                    self.status(&mut out, i, Err(InstructionError::Crc));
+                }
+                out
+            }
+            Err(FrameError::BadLength) => Vec::new(),
+        }
     }
 
     /// Executes one packet; returns the bytes to send back.
@@ -412,18 +477,7 @@ impl SimBus {
             use std::os::fd::AsRawFd;
             std::fs::read_link(format!("/proc/self/fd/{}", client.as_raw_fd()))?
         };
-        let world = Arc::new(Mutex::new(World {
-            servos: config
-                .ids
-                .iter()
-                .map(|&id| SimServo::new(id, config.initial_position_rad, config.params))
-                .collect(),
-            faults: vec![FaultState::default(); config.ids.len()],
-            now: Duration::ZERO,
-            physics_now: Duration::ZERO,
-            step: config.step.max(Duration::from_micros(1)),
-            baud: config.baud,
-        }));
+        let world = Arc::new(Mutex::new(World::new(&config)));
         let stop = Arc::new(AtomicBool::new(false));
         let (tx, acks) = channel();
         // The thread notices `stop` within one read timeout.
@@ -519,6 +573,7 @@ impl SimBus {
         match fault {
             Fault::DropNextStatus => f.drop_next = true,
             Fault::CorruptNextCrc => f.corrupt_next = true,
+            Fault::GarbleNextStatus => f.garble_next = true,
             Fault::Mute => f.mute = true,
         }
         true
@@ -540,6 +595,28 @@ impl Drop for SimBus {
             let _ = t.join();
         }
     }
+}
+
+/// The bytes a bus of `config`'s servos answers to `input`, fed in `chunks` of at most that
+/// many bytes through the simulator thread's own parse → execute path ([`World::on_frame`]),
+/// with clock packets capped at `max_clock_step` so that one packet cannot ask for years of
+/// physics. For the fuzzer and its corpus replay (`hand_control::fuzzing`).
+pub(crate) fn answer_bytes(
+    config: &SimConfig,
+    input: &[u8],
+    chunk: usize,
+    max_clock_step: Duration,
+) -> Vec<u8> {
+    let mut world = World::new(config);
+    let mut parser = Parser::default();
+    let mut out = Vec::new();
+    for c in input.chunks(chunk.max(1)) {
+        parser.push(c);
+        while let Some(frame) = parser.next_packet() {
+            out.extend(world.on_frame(frame, max_clock_step, |_| {}));
+        }
+    }
+    out
 }
 
 /// The simulator thread: read, parse, execute, answer, until `stop`.
@@ -582,32 +659,9 @@ fn serve(
             let mut w = world
                 .lock()
                 .unwrap_or_else(std::sync::PoisonError::into_inner);
-            let out = match frame {
-                Ok(p)
-                    if p.id == CLOCK_ID
-                        && p.instruction == CLOCK_INSTRUCTION
-                        && p.params.len() == 12 =>
-                {
-                    let mut ns = [0u8; 8];
-                    ns.copy_from_slice(&p.params[..8]);
-                    w.advance(Duration::from_nanos(u64::from_le_bytes(ns)));
-                    let seq =
-                        u32::from_le_bytes([p.params[8], p.params[9], p.params[10], p.params[11]]);
-                    let _ = acks.send(seq);
-                    Vec::new()
-                }
-                Ok(p) => w.handle(&p),
-                Err(FrameError::Crc {
-                    id, instruction, ..
-                }) => {
-                    let mut out = Vec::new();
-                    if let Some(i) = w.target(id).filter(|&i| w.answers(i, instruction)) {
-                        w.status(&mut out, i, Err(InstructionError::Crc));
-                    }
-                    out
-                }
-                Err(FrameError::BadLength) => Vec::new(),
-            };
+            let out = w.on_frame(frame, Duration::MAX, |seq| {
+                let _ = acks.send(seq);
+            });
             drop(w);
             if !out.is_empty() && device.write_all(&out).is_err() {
                 return;

@@ -8,7 +8,10 @@
 //! - `train MODEL [--epochs N] [--only X] [--dry-run]`: trains a committed model family and
 //!   writes its weights and metrics ([`paper_experiments::train`]);
 //! - `trade`: the speed / accuracy trade into `docs/trade.md` and `docs/trade/`
-//!   ([`paper_experiments::trade`]).
+//!   ([`paper_experiments::trade`]);
+//! - `soak [--seeds N] [--seconds S]`: the grasp loop under random faults, S simulated seconds
+//!   (default an hour) per seed 1…N, two seeds at a time; the soak section of
+//!   `docs/reliability.md` ([`paper_experiments::soak`]).
 
 mod docs;
 mod fixtures;
@@ -32,7 +35,11 @@ commands (run by `cargo xtask`; ROOT is the workspace root):
                             contact-cnn; writes nothing); --only: protocol rows starting with X
                             (contact-cnn) or optimiser 0 / 1 (softness); --dry-run: write nothing
   trade                     measure cost against accuracy for every knob; write docs/trade.md
-                            and docs/trade/";
+                            and docs/trade/
+  soak [--seeds N] [--seconds S]
+                            the grasp loop under random faults for S simulated seconds (default
+                            3600) per seed 1..=N (default 2); write the soak section of
+                            docs/reliability.md";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -53,6 +60,8 @@ struct CommandLine {
     out: Option<PathBuf>,
     timings: docs::Timings,
     train: paper_experiments::train::TrainOptions,
+    seeds: Option<u64>,
+    seconds: Option<f64>,
 }
 
 impl CommandLine {
@@ -70,6 +79,14 @@ impl CommandLine {
                 }
                 "--only" => line.train.only = Some(value()?.clone()),
                 "--dry-run" => line.train.dry_run = true,
+                "--seeds" => {
+                    let n = value()?;
+                    line.seeds = Some(n.parse().with_context(|| format!("--seeds {n}"))?);
+                }
+                "--seconds" => {
+                    let n = value()?;
+                    line.seconds = Some(n.parse().with_context(|| format!("--seconds {n}"))?);
+                }
                 "--timing" => {
                     let (id, mean) = value()?.split_once('=').context("--timing takes ID=MEAN")?;
                     line.timings.insert(id.to_owned(), mean.to_owned());
@@ -97,6 +114,11 @@ fn run(args: &[String]) -> Result<()> {
         }
         [command, model] if command == "train" => train(root()?, model, &line.train),
         [command] if command == "trade" => trade(root()?),
+        [command] if command == "soak" => soak(
+            root()?,
+            line.seeds.unwrap_or(2),
+            line.seconds.unwrap_or(3600.0),
+        ),
         _ => bail!("unknown command\n\n{USAGE}"),
     }
 }
@@ -117,6 +139,59 @@ fn trade(root: &Path) -> Result<()> {
         println!("wrote {file}");
     }
     println!("trade run: {:.1} s", trade.wall_s);
+    Ok(())
+}
+
+/// Soaks seeds 1..=`seeds` for `seconds` each, two at a time, and writes the soak section of
+/// `docs/reliability.md`. Fails on any violation (after writing it down).
+fn soak(root: &Path, seeds: u64, seconds: f64) -> Result<()> {
+    use paper_experiments::soak::{SoakConfig, markdown, soak, summary};
+    let configs: Vec<SoakConfig> = (1..=seeds)
+        .map(|seed| SoakConfig {
+            seconds,
+            ..SoakConfig::hour(seed)
+        })
+        .collect();
+    let mut reports = Vec::new();
+    for pair in configs.chunks(2) {
+        let done: Vec<_> = std::thread::scope(|s| {
+            let handles: Vec<_> = pair.iter().map(|c| s.spawn(move || soak(c))).collect();
+            handles.into_iter().map(|h| h.join()).collect()
+        });
+        for r in done {
+            let r = r.map_err(|_| anyhow::anyhow!("a soak panicked"))??;
+            println!("{}", summary(&r));
+            for v in &r.violations {
+                println!("  violation: {v}");
+            }
+            reports.push(r);
+        }
+    }
+    let c = &configs[0];
+    let mut section = format!(
+        "`cargo xtask soak` (`papers soak --seeds {seeds} --seconds {seconds}`): per seed, {seconds} s simulated at 100 Hz; a fault window every {} s on average (½…1½ ×), 1…{} cycles long, kind drawn uniformly; the driver's reply allowance {} ms; automatic recovery (100 ms cool-down before a reboot).\n\n",
+        c.mean_gap_s,
+        c.max_window_cycles,
+        c.reply_latency.as_millis()
+    );
+    for r in &reports {
+        section.push_str(&format!("- {}\n", summary(r)));
+    }
+    section.push('\n');
+    section.push_str(&markdown(&reports));
+    let path = root.join("docs/reliability.md");
+    let doc = std::fs::read_to_string(&path).with_context(|| path.display().to_string())?;
+    let (begin, end) = ("<!-- soak: papers soak writes this -->\n", "<!-- /soak -->");
+    let (Some(a), Some(b)) = (doc.find(begin), doc.find(end)) else {
+        bail!("{} has no soak markers", path.display());
+    };
+    let doc = format!("{}{begin}{section}{}", &doc[..a], &doc[b..]);
+    std::fs::write(&path, doc)?;
+    println!("wrote {}", path.display());
+    let broken: usize = reports.iter().map(|r| r.violations.len()).sum();
+    if broken > 0 {
+        bail!("{broken} violations");
+    }
     Ok(())
 }
 

@@ -1,0 +1,302 @@
+//! `cargo xtask fuzz`: coverage-guided fuzzing of `crates/handstack-fuzz`'s targets with
+//! libFuzzer through cargo-fuzz (`fuzz/`, its own workspace).
+//!
+//! - `fuzz --seed`: writes the seed corpora (`fuzz/seeds/TARGET/`) from the fixtures, the
+//!   trained models and captures of the simulators.
+//! - `fuzz TARGET|--all [--seconds N]`: fuzzes each target N seconds (default 1800), growing
+//!   `fuzz/corpus/TARGET/` from the seeds, then minimises that corpus (`cargo fuzz cmin`) and
+//!   appends the run's figures (executions, edges, features, corpus, findings) to
+//!   `fuzz/runs.tsv`. A crash stops the run; its input is under `fuzz/artifacts/TARGET/`, and
+//!   after the fix it is committed to `fuzz/regressions/TARGET/`, which the replay test
+//!   (`cargo xtask test`) runs for good.
+//!
+//! It installs cargo-fuzz (crates.io, pinned below) if it is missing and says so. The builds
+//! use the workspace's stable toolchain with `RUSTC_BOOTSTRAP=1` for libFuzzer's `-Z`
+//! sanitizer flags, not a nightly: dfdx 0.13 (tactile-nets' training) switches on its nightly
+//! features when it sees a nightly rustc, and those no longer compile on today's nightly.
+
+use anyhow::{Context, Result, bail};
+use std::io::{BufRead, BufReader, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+use crate::msrv::ensure_toolchain;
+use crate::run::{cargo, step};
+
+/// The cargo-fuzz release xtask installs.
+pub const CARGO_FUZZ_VERSION: &str = "0.13.2";
+/// The toolchain the fuzz builds use (see the module docs for why not a nightly).
+const TOOLCHAIN: &str = "stable";
+/// A run's length when `--seconds` is not given: issue 24's 30 minutes a target.
+pub const DEFAULT_SECONDS: u64 = 1800;
+/// Longest input libFuzzer makes: the largest seed (a model file) fits.
+const MAX_LEN: usize = 1 << 18;
+
+/// The targets: `fuzz/fuzz_targets/NAME.rs`.
+pub fn targets(root: &Path) -> Result<Vec<String>> {
+    let dir = root.join("fuzz/fuzz_targets");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .with_context(|| format!("reading {}", dir.display()))?
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            (p.extension()? == "rs").then(|| p.file_stem()?.to_str().map(str::to_owned))?
+        })
+        .collect();
+    names.sort();
+    Ok(names)
+}
+
+/// `cargo xtask fuzz ARGS`.
+pub fn run(root: &Path, args: &[String]) -> Result<()> {
+    if args == ["--seed"] {
+        return step(
+            "fuzz seeds (fuzz/seeds/)",
+            cargo(root)
+                .args([
+                    "run",
+                    "--quiet",
+                    "--profile",
+                    "test",
+                    "-p",
+                    "handstack-fuzz",
+                ])
+                .args(["--bin", "fuzz-seeds", "--"])
+                .arg(root),
+        );
+    }
+    let known = targets(root)?;
+    let mut seconds = DEFAULT_SECONDS;
+    let mut chosen = Vec::new();
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--seconds" => {
+                seconds = it
+                    .next()
+                    .and_then(|s| s.parse().ok())
+                    .context("--seconds takes a whole number")?;
+            }
+            "--all" => chosen.extend(known.iter().cloned()),
+            t if known.iter().any(|k| k == t) => chosen.push(t.to_owned()),
+            other => bail!(
+                "unknown fuzz target or flag `{other}`; targets: {}",
+                known.join(", ")
+            ),
+        }
+    }
+    if chosen.is_empty() {
+        bail!(
+            "usage: cargo xtask fuzz --seed | TARGET… | --all [--seconds N]; targets: {}",
+            known.join(", ")
+        );
+    }
+    ensure_tools()?;
+    // Every chosen target runs; the findings are listed at the end.
+    let mut found = Vec::new();
+    for t in &chosen {
+        if let Err(e) = fuzz_one(root, t, seconds) {
+            eprintln!("xtask: {e:#}");
+            found.push(t.as_str());
+        }
+    }
+    if !found.is_empty() {
+        bail!("fuzzing found something in: {}", found.join(", "));
+    }
+    Ok(())
+}
+
+/// `rustup run stable cargo …` in `fuzz/` with `RUSTC_BOOTSTRAP=1`, with nothing of the
+/// `cargo xtask` process leaking in.
+fn fuzz_cargo(root: &Path) -> Command {
+    let mut cmd = Command::new("rustup");
+    cmd.current_dir(root.join("fuzz"))
+        .args(["run", TOOLCHAIN, "cargo"])
+        .env("RUSTC_BOOTSTRAP", "1")
+        .env_remove("RUSTC")
+        .env_remove("RUSTUP_TOOLCHAIN")
+        .env_remove("CARGO");
+    cmd
+}
+
+/// Installs cargo-fuzz where missing.
+fn ensure_tools() -> Result<()> {
+    ensure_toolchain(TOOLCHAIN)?;
+    let has_fuzz = Command::new("cargo")
+        .args(["fuzz", "--version"])
+        .output()
+        .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).contains(CARGO_FUZZ_VERSION));
+    if !has_fuzz {
+        println!(
+            "xtask: installing cargo-fuzz {CARGO_FUZZ_VERSION} (crates.io) for cargo xtask fuzz"
+        );
+        step(
+            "cargo install cargo-fuzz",
+            Command::new("cargo").args([
+                "install",
+                "cargo-fuzz",
+                "--locked",
+                "--version",
+                CARGO_FUZZ_VERSION,
+            ]),
+        )?;
+    }
+    Ok(())
+}
+
+/// What one libFuzzer run printed at its end.
+#[derive(Debug, Default, Clone, PartialEq, Eq)]
+pub struct RunStats {
+    /// Inputs executed.
+    pub executions: u64,
+    /// Edges covered (`cov:`).
+    pub edges: u64,
+    /// Features (`ft:`).
+    pub features: u64,
+    /// The corpus size at the end (`corp:`).
+    pub corpus: u64,
+    /// Whether it stopped on a crash, a leak, a timeout or out of memory.
+    pub finding: Option<String>,
+}
+
+/// Reads libFuzzer's output: the last status line's counters, `-print_final_stats` and the
+/// kind of finding, if any.
+pub fn parse_stats(output: &str) -> RunStats {
+    let mut s = RunStats::default();
+    let number = |line: &str, key: &str| -> Option<u64> {
+        let rest = &line[line.find(key)? + key.len()..];
+        rest.split_whitespace()
+            .next()?
+            .split('/')
+            .next()?
+            .parse()
+            .ok()
+    };
+    for line in output.lines() {
+        if line.starts_with('#') {
+            s.edges = number(line, "cov:").unwrap_or(s.edges);
+            s.features = number(line, "ft:").unwrap_or(s.features);
+            s.corpus = number(line, "corp:").unwrap_or(s.corpus);
+        }
+        if let Some(n) = number(line, "stat::number_of_executed_units:") {
+            s.executions = n;
+        }
+        for kind in [
+            "deadly signal",
+            "Timeout",
+            "out-of-memory",
+            "LeakSanitizer",
+            "panicked at",
+        ] {
+            if s.finding.is_none() && line.contains(kind) {
+                s.finding = Some(line.trim().to_owned());
+            }
+        }
+    }
+    s
+}
+
+fn fuzz_one(root: &Path, target: &str, seconds: u64) -> Result<()> {
+    let corpus = root.join("fuzz/corpus").join(target);
+    let seeds = root.join("fuzz/seeds").join(target);
+    std::fs::create_dir_all(&corpus)?;
+    println!("==> fuzz {target} for {seconds} s");
+    let mut child = fuzz_cargo(root)
+        .args(["fuzz", "run", target])
+        .arg(&corpus)
+        .arg(&seeds)
+        .arg("--")
+        .arg(format!("-max_total_time={seconds}"))
+        .arg(format!("-max_len={MAX_LEN}"))
+        .args(["-print_final_stats=1", "-timeout=10", "-rss_limit_mb=4096"])
+        .stderr(Stdio::piped())
+        .spawn()
+        .context("starting cargo fuzz run")?;
+    let mut output = String::new();
+    if let Some(err) = child.stderr.take() {
+        for line in BufReader::new(err).lines() {
+            let line = line?;
+            // libFuzzer's status lines come often: show the pulses and the end.
+            if !line.contains("\tNEW ") && !line.contains("\tREDUCE ") {
+                eprintln!("{line}");
+            }
+            output.push_str(&line);
+            output.push('\n');
+        }
+    }
+    let status = child.wait()?;
+    let stats = parse_stats(&output);
+    if stats.finding.is_none() && status.success() {
+        step(
+            &format!("cargo fuzz cmin {target}"),
+            fuzz_cargo(root).args(["fuzz", "cmin", target]).arg(&corpus),
+        )?;
+    }
+    let files = std::fs::read_dir(&corpus)?.count();
+    record(root, target, seconds, &stats, files)?;
+    println!(
+        "    {target}: {} executions, {} edges, {} features, corpus {files} after cmin, finding: {}",
+        stats.executions,
+        stats.edges,
+        stats.features,
+        stats.finding.as_deref().unwrap_or("none")
+    );
+    if !status.success() || stats.finding.is_some() {
+        bail!(
+            "fuzz {target} found something: its input is in {} ({status})",
+            root.join("fuzz/artifacts").join(target).display()
+        );
+    }
+    Ok(())
+}
+
+/// Appends one run to `fuzz/runs.tsv`.
+fn record(root: &Path, target: &str, seconds: u64, s: &RunStats, files: usize) -> Result<()> {
+    let path: PathBuf = root.join("fuzz/runs.tsv");
+    let new = !path.exists();
+    let mut f = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&path)?;
+    if new {
+        writeln!(
+            f,
+            "date\tcommit\ttarget\tseconds\texecutions\tedges\tfeatures\tcorpus_after_cmin\tfinding"
+        )?;
+    }
+    let date = humantime::format_rfc3339_seconds(std::time::SystemTime::now());
+    let commit = Command::new("git")
+        .current_dir(root)
+        .args(["rev-parse", "--short", "HEAD"])
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_owned())
+        .unwrap_or_default();
+    writeln!(
+        f,
+        "{date}\t{commit}\t{target}\t{seconds}\t{}\t{}\t{}\t{files}\t{}",
+        s.executions,
+        s.edges,
+        s.features,
+        s.finding.as_deref().unwrap_or("none").replace('\t', " ")
+    )?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_libfuzzers_end_of_run() {
+        let out = "INFO: Seed: 1\n#2\tINITED cov: 120 ft: 130 corp: 9/2Kb exec/s: 0 rss: 40Mb\n\
+                   #4096\tpulse  cov: 351 ft: 902 corp: 77/9Kb lim: 43 exec/s: 2048 rss: 60Mb\n\
+                   Done 5000 runs in 2 second(s)\nstat::number_of_executed_units: 5000\n";
+        let s = parse_stats(out);
+        assert_eq!(
+            (s.executions, s.edges, s.features, s.corpus),
+            (5000, 351, 902, 77)
+        );
+        assert_eq!(s.finding, None);
+        let crash = "thread '<unnamed>' panicked at src/x.rs:1:1:\nboom\n==1== ERROR: libFuzzer: deadly signal\n";
+        assert!(parse_stats(crash).finding.unwrap().contains("panicked at"));
+    }
+}
