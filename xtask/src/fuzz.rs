@@ -6,7 +6,8 @@
 //! - `fuzz TARGET|--all [--seconds N]`: fuzzes each target N seconds (default 1800), growing
 //!   `fuzz/corpus/TARGET/` from the seeds, then minimises that corpus (`cargo fuzz cmin`) and
 //!   appends the run's figures (executions, edges, features, corpus, findings) to
-//!   `fuzz/runs.tsv`. A crash stops the run; its input is under `fuzz/artifacts/TARGET/`, and
+//!   `fuzz/runs.tsv`, and rewrites the fuzzing section of `docs/reliability.md` from that file
+//!   (`fuzz --doc`: only that). A crash stops the target's run; its input is under `fuzz/artifacts/TARGET/`, and
 //!   after the fix it is committed to `fuzz/regressions/TARGET/`, which the replay test
 //!   (`cargo xtask test`) runs for good.
 //!
@@ -48,6 +49,9 @@ pub fn targets(root: &Path) -> Result<Vec<String>> {
 
 /// `cargo xtask fuzz ARGS`.
 pub fn run(root: &Path, args: &[String]) -> Result<()> {
+    if args == ["--doc"] {
+        return write_doc(root);
+    }
     if args == ["--seed"] {
         return step(
             "fuzz seeds (fuzz/seeds/)",
@@ -99,9 +103,67 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
             found.push(t.as_str());
         }
     }
+    write_doc(root)?;
     if !found.is_empty() {
         bail!("fuzzing found something in: {}", found.join(", "));
     }
+    Ok(())
+}
+
+/// The fuzzing section of `docs/reliability.md`, from `fuzz/runs.tsv`: per target, the time
+/// fuzzed in all, and its latest run's figures.
+pub fn doc_section(runs_tsv: &str) -> String {
+    let rows: Vec<Vec<&str>> = runs_tsv
+        .lines()
+        .skip(1)
+        .map(|l| l.split('\t').collect())
+        .filter(|r: &Vec<&str>| r.len() >= 9)
+        .collect();
+    let mut targets: Vec<&str> = rows.iter().map(|r| r[2]).collect();
+    targets.sort_unstable();
+    targets.dedup();
+    let mut out = String::from(
+        "| target | fuzzed in all | runs | latest run | its executions | exec/s | edges | features | corpus after cmin | finding |\n|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for t in targets {
+        let mine: Vec<&Vec<&str>> = rows.iter().filter(|r| r[2] == t).collect();
+        let total: u64 = mine.iter().filter_map(|r| r[3].parse::<u64>().ok()).sum();
+        let Some(last) = mine.last() else { continue };
+        let secs: f64 = last[3].parse().unwrap_or(0.0);
+        let execs: f64 = last[4].parse().unwrap_or(0.0);
+        out.push_str(&format!(
+            "| `{t}` | {:.1} min | {} | {} at {} ({} s) | {} | {:.0} | {} | {} | {} | {} |\n",
+            total as f64 / 60.0,
+            mine.len(),
+            &last[0][..last[0].len().min(10)],
+            last[1],
+            last[3],
+            last[4],
+            if secs > 0.0 { execs / secs } else { 0.0 },
+            last[5],
+            last[6],
+            last[7],
+            last[8],
+        ));
+    }
+    out
+}
+
+/// Rewrites the fuzzing section of `docs/reliability.md` from `fuzz/runs.tsv`.
+fn write_doc(root: &Path) -> Result<()> {
+    let runs = std::fs::read_to_string(root.join("fuzz/runs.tsv")).unwrap_or_default();
+    let path = root.join("docs/reliability.md");
+    let doc = std::fs::read_to_string(&path).with_context(|| path.display().to_string())?;
+    let (begin, end) = (
+        "<!-- fuzz: cargo xtask fuzz writes this from fuzz/runs.tsv -->\n",
+        "<!-- /fuzz -->",
+    );
+    let (Some(a), Some(b)) = (doc.find(begin), doc.find(end)) else {
+        bail!("{} has no fuzz markers", path.display());
+    };
+    let doc = format!("{}{begin}{}{}", &doc[..a], doc_section(&runs), &doc[b..]);
+    std::fs::write(&path, doc)?;
+    println!("wrote {}", path.display());
     Ok(())
 }
 
@@ -284,6 +346,15 @@ fn record(root: &Path, target: &str, seconds: u64, s: &RunStats, files: usize) -
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_doc_section_sums_each_targets_runs_and_shows_the_latest() {
+        let tsv = "date\tcommit\ttarget\tseconds\texecutions\tedges\tfeatures\tcorpus_after_cmin\tfinding\n\
+                   2026-11-26T13:00:00Z\tabc\tcdr\t60\t600\t10\t20\t5\tnone\n\
+                   2026-11-26T14:00:00Z\tdef\tcdr\t120\t2400\t12\t25\t6\tnone\n";
+        let s = doc_section(tsv);
+        assert!(s.contains("| `cdr` | 3.0 min | 2 | 2026-11-26 at def (120 s) | 2400 | 20 | 12 | 25 | 6 | none |"), "{s}");
+    }
 
     #[test]
     fn reads_libfuzzers_end_of_run() {

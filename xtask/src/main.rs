@@ -47,7 +47,8 @@ commands:
   fuzz --seed               write the fuzz targets' seed corpora (fuzz/seeds/) from fixtures, models, captures
   fuzz TARGET... | --all [--seconds N]
                             fuzz each target N s (default 1800) with libFuzzer (installs
-                            cargo-fuzz), minimise fuzz/corpus/TARGET, append the figures to fuzz/runs.tsv";
+                            cargo-fuzz), minimise fuzz/corpus/TARGET, append the figures to fuzz/runs.tsv
+                            and rewrite the fuzzing section of docs/reliability.md (--doc: that alone)";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -312,6 +312,10 @@ fn fis_mf<T: Real>(value: &str, line: usize) -> Result<Term<T>, FileError> {
     Ok(Term { name, mf })
 }
 
+/// The largest term index a rule may name (far more terms than any variable has; it keeps the
+/// cast to `usize` exact).
+const MAX_TERM_INDEX: f64 = 65_536.0;
+
 /// `i1 i2 …, o1 … (weight) : connection` with 1-based term indices, 0 absent, negative NOT.
 fn fis_rule<T: Real>(
     text: &str,
@@ -342,11 +346,22 @@ fn fis_rule<T: Real>(
         _ => return Err(bad("connection is 1 (AND) or 2 (OR)")),
     };
     let mut antecedent: Option<Expr> = None;
+    // A term index is a whole number ±1, ±2, …; 0.3 or NaN would have cast to 0 and
+    // wrapped below it.
+    let term_of = |k: f64| -> Result<usize, FileError> {
+        if k.is_finite() && k.fract() == 0.0 && k.abs() >= 1.0 && k.abs() <= MAX_TERM_INDEX {
+            Ok(k.abs() as usize - 1)
+        } else {
+            Err(bad(&format!(
+                "term index {k} is not a whole number 1, 2, … (or its negative)"
+            )))
+        }
+    };
     for (input, &k) in ante.iter().enumerate() {
         if k == 0.0 {
             continue;
         }
-        let term = k.abs() as usize - 1;
+        let term = term_of(k)?;
         let hedges = if k < 0.0 { Hedges::NOT } else { Hedges::NONE };
         let e = Expr::hedged(input, term, hedges);
         antecedent = Some(match antecedent {
@@ -359,11 +374,13 @@ fn fis_rule<T: Real>(
         .iter()
         .enumerate()
         .filter(|(_, k)| **k != 0.0)
-        .map(|(output, &k)| Consequent {
-            negated: k < 0.0,
-            ..Consequent::new(output, k.abs() as usize - 1)
+        .map(|(output, &k)| {
+            Ok(Consequent {
+                negated: k < 0.0,
+                ..Consequent::new(output, term_of(k)?)
+            })
         })
-        .collect();
+        .collect::<Result<_, FileError>>()?;
     let antecedent = antecedent.ok_or_else(|| bad("no input is used"))?;
     Ok(Rule {
         antecedent,
@@ -535,5 +552,31 @@ fn flatten(e: &Expr, row: &mut [i64], conn: Option<bool>) -> Option<Option<bool>
             flatten(b, row, Some(is_or))
         }
         Expr::Any { .. } => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by `cargo xtask fuzz fis` (fuzz/regressions/fis/term-index-0.3): a fractional or
+    /// NaN term index cast to 0 and wrapped below it (a panic in debug builds).
+    #[test]
+    fn a_term_index_that_is_not_a_whole_number_is_a_syntax_error() {
+        let head = "[System]\nName='t'\nType='mamdani'\nNumInputs=1\nNumOutputs=1\n\
+                    NumRules=1\nAndMethod='min'\nOrMethod='max'\nImpMethod='min'\n\
+                    AggMethod='max'\nDefuzzMethod='centroid'\n\n\
+                    [Input1]\nName='x'\nRange=[0 1]\nNumMFs=1\nMF1='a':'trimf',[0 0.5 1]\n\n\
+                    [Output1]\nName='y'\nRange=[0 1]\nNumMFs=1\nMF1='b':'trimf',[0 0.5 1]\n\n";
+        assert!(from_fis::<f64>(&format!("{head}[Rules]\n1, 1 (1) : 1\n")).is_ok());
+        for bad in ["0.3", "NaN", "-0.5", "1e300"] {
+            let text = format!("{head}[Rules]\n1, {bad} (1) : 1\n");
+            match from_fis::<f64>(&text) {
+                Err(FileError::Syntax { message, .. }) => {
+                    assert!(message.contains("term index"), "{bad}: {message}");
+                }
+                other => panic!("{bad}: {other:?}"),
+            }
+        }
     }
 }

@@ -280,7 +280,10 @@ pub fn soak(c: &SoakConfig) -> Result<SoakReport, RigError> {
                         st.worst_to_safe_wall_us = st.worst_to_safe_wall_us.max(wall_us);
                     }
                 }
-                None => say(format!("a {kind:?} fault at {t_s:.2} s outside any window")),
+                None => say(format!(
+                    "a {kind:?} fault at {t_s:.2} s outside any window: {:?}",
+                    fresh.first().map(|e| &e.fault)
+                )),
             }
         }
         if s.mode == Mode::Halted {

@@ -93,6 +93,18 @@ fn on_real_ports(octet: u8) -> UrSim {
     .expect("bind the simulator")
 }
 
+/// A simulator on 127.0.0.`octet` at ports the system picks (for raw clients, not ur_rtde).
+fn on_any_ports(octet: u8) -> UrSim {
+    UrSim::start(SimConfig {
+        address: Ipv4Addr::new(127, 0, 0, octet),
+        dashboard_port: 0,
+        script_port: 0,
+        rtde_port: 0,
+        ..SimConfig::default()
+    })
+    .expect("bind the simulator")
+}
+
 /// A fresh ur_rtde client connects, reads the state and moves: the simulator is still up.
 fn fresh_client_works(sim: &UrSim, octet: u8) {
     wait_for("every abusive connection to close", || {
@@ -362,14 +374,7 @@ fn at_rest(sim: &UrSim) -> bool {
 fn a_client_vanishing_mid_move_without_a_watchdog_leaves_the_move_to_finish() {
     // As on a real controller: nothing in ur_rtde's script notices a client that went, so the
     // running move ends at its target and the arm rests there.
-    let sim = UrSim::start(SimConfig {
-        address: Ipv4Addr::new(127, 0, 0, 27),
-        dashboard_port: 0,
-        script_port: 0,
-        rtde_port: 0,
-        ..SimConfig::default()
-    })
-    .expect("bind");
+    let sim = on_any_ports(27);
     let target = *RegionToGrid::ur3_default().unwrap().pose(0).unwrap();
     let mut client = RawControl::connect(&sim);
     client.start_move(&sim, &target, 0.25);
@@ -390,14 +395,7 @@ fn a_client_vanishing_mid_move_without_a_watchdog_leaves_the_move_to_finish() {
 #[test]
 fn a_client_vanishing_mid_move_with_a_watchdog_stops_the_arm() {
     const WATCHDOG_HZ: f64 = 2.0;
-    let sim = UrSim::start(SimConfig {
-        address: Ipv4Addr::new(127, 0, 0, 28),
-        dashboard_port: 0,
-        script_port: 0,
-        rtde_port: 0,
-        ..SimConfig::default()
-    })
-    .expect("bind");
+    let sim = on_any_ports(28);
     let target = *RegionToGrid::ur3_default().unwrap().pose(0).unwrap();
     let mut client = RawControl::connect(&sim);
     client.command(
