@@ -274,9 +274,15 @@ fn fuzz_one(root: &Path, target: &str, seconds: u64) -> Result<()> {
         .spawn()
         .context("starting cargo fuzz run")?;
     let mut output = String::new();
+    // Fuzzing time from libFuzzer's first line (after any build) to its end: a run that stops
+    // on a finding is shorter than asked.
+    let mut started = None;
     if let Some(err) = child.stderr.take() {
         for line in BufReader::new(err).lines() {
             let line = line?;
+            if started.is_none() && line.starts_with("INFO: Seed:") {
+                started = Some(std::time::Instant::now());
+            }
             // libFuzzer's status lines come often: show the pulses and the end.
             if !line.contains("\tNEW ") && !line.contains("\tREDUCE ") {
                 eprintln!("{line}");
@@ -286,6 +292,7 @@ fn fuzz_one(root: &Path, target: &str, seconds: u64) -> Result<()> {
         }
     }
     let status = child.wait()?;
+    let fuzzed_s = started.map_or(0, |t| t.elapsed().as_secs().min(seconds));
     let stats = parse_stats(&output);
     if stats.finding.is_none() && status.success() {
         step(
@@ -294,7 +301,7 @@ fn fuzz_one(root: &Path, target: &str, seconds: u64) -> Result<()> {
         )?;
     }
     let files = std::fs::read_dir(&corpus)?.count();
-    record(root, target, seconds, &stats, files)?;
+    record(root, target, fuzzed_s, &stats, files)?;
     println!(
         "    {target}: {} executions, {} edges, {} features, corpus {files} after cmin, finding: {}",
         stats.executions,
@@ -311,7 +318,7 @@ fn fuzz_one(root: &Path, target: &str, seconds: u64) -> Result<()> {
     Ok(())
 }
 
-/// Appends one run to `fuzz/runs.tsv`.
+/// Appends one run to `fuzz/runs.tsv`: `seconds` is the time it fuzzed.
 fn record(root: &Path, target: &str, seconds: u64, s: &RunStats, files: usize) -> Result<()> {
     let path: PathBuf = root.join("fuzz/runs.tsv");
     let new = !path.exists();

@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use arbitrary::{Arbitrary, Unstructured};
 use hand_control::fuzzing::{decode_replies, sim_answers};
-use hand_control::protocol::{MAX_LEN, Parser, encode, instruction_id};
+use hand_control::protocol::{MAX_ID, MAX_LEN, Parser, encode, instruction_id};
 use hand_control::sim::SimConfig;
 
 /// The servo IDs of the simulated bus and of the replies the driver expects.
@@ -94,7 +94,8 @@ pub fn status(data: &[u8]) {
 /// The simulated bus (MX-28s with [`IDS`]) answering a client.
 ///
 /// Oracle: whatever it is sent, everything the bus sends back frames as good status packets
-/// from its own servos.
+/// from a servo ID (0…252: a client may rename a servo through its ID register, as on an
+/// MX-28).
 pub fn sim(data: &[u8]) {
     let data = crate::bounded(data);
     let [mode, rest @ ..] = data else {
@@ -119,11 +120,39 @@ pub fn sim(data: &[u8]) {
     while let Some(frame) = parser.next_packet() {
         let p = frame.unwrap_or_else(|e| panic!("the simulated bus sent a bad frame: {e:?}"));
         assert_eq!(p.instruction, instruction_id::STATUS, "{p:?}");
-        assert!(IDS.contains(&p.id), "{p:?}");
+        assert!(p.id <= MAX_ID, "{p:?}");
     }
     assert_eq!(
         parser.pending(),
         0,
         "a partial frame from the simulated bus"
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by `cargo xtask fuzz dxl_sim` (fuzz/regressions/dxl_sim/renamed-servo): a status
+    /// from ID 0, which the first oracle took for a stranger. The input writes 0 to a servo's
+    /// ID register (address 7), as a client may.
+    #[test]
+    fn a_servo_renamed_through_its_id_register_answers_under_its_new_id() {
+        let data = include_bytes!("../../../fuzz/regressions/dxl_sim/renamed-servo");
+        let input = Frames::arbitrary_take_rest(Unstructured::new(&data[1..])).expect("frames");
+        let renames = input.frames.iter().any(|f| {
+            f.instruction == instruction_id::WRITE
+                && f.params.get(..2)
+                    == Some(
+                        &hand_control::control_table::MX_28
+                            .register("ID")
+                            .expect("ID")
+                            .address
+                            .to_le_bytes()[..],
+                    )
+                && f.params.get(2) == Some(&0)
+        });
+        assert!(renames, "{input:#?}");
+        sim(data);
+    }
 }
