@@ -222,7 +222,8 @@ pub fn soak(c: &SoakConfig) -> Result<SoakReport, RigError> {
     let mut next = 0;
     let mut cycle = 0u64;
     let end_us = (c.seconds * 1e6) as u64;
-    let mut events_seen = 0usize;
+    // Events the loop has reported in all (kept + dropped): its event log is bounded too.
+    let mut events_seen = 0u64;
     loop {
         let wall = Instant::now();
         let s = *l.cycle();
@@ -245,11 +246,14 @@ pub fn soak(c: &SoakConfig) -> Result<SoakReport, RigError> {
             });
             next += 1;
         }
-        // The loop's new events (the log of events is bounded too: only the newest count).
+        // The loop's new events, counted over its life: the event log drops its older half
+        // when full, so its length alone cannot say what is new.
         let events = l.events();
-        let new_events = events.len().saturating_sub(events_seen.min(events.len()));
+        let total = l.events_dropped() + events.len() as u64;
+        let new_events =
+            usize::try_from(total - events_seen).map_or(events.len(), |n| n.min(events.len()));
         let fresh = &events[events.len() - new_events..];
-        events_seen = events.len();
+        events_seen = total;
         if let Some(kind) = s.fault {
             match open.as_mut() {
                 Some(w) => {
