@@ -1,6 +1,7 @@
 //! The `hand-traits` values as ROS 2 messages and back: a tool pose (rotation vector, as UR
 //! controllers give it) as a `geometry_msgs/Pose` (unit quaternion), an IMU frame as
-//! `sensor_msgs/Imu`, a contact as `handstack_msgs/Contact`.
+//! `sensor_msgs/Imu`, a contact as `handstack_msgs/Contact`, a force estimate as
+//! `geometry_msgs/WrenchStamped`.
 //!
 //! ```
 //! use hand_traits::Pose;
@@ -13,11 +14,11 @@
 //! ```
 
 use crate::msg::builtin_interfaces::Time;
-use crate::msg::geometry_msgs::{self as geo, Point, Quaternion, Vector3};
+use crate::msg::geometry_msgs::{self as geo, Point, Quaternion, Vector3, Wrench, WrenchStamped};
 use crate::msg::handstack_msgs;
 use crate::msg::sensor_msgs::Imu;
 use crate::msg::std_msgs::Header;
-use hand_traits::{Contact, ImuFrame, Pose};
+use hand_traits::{Contact, ForceEstimate, ImuFrame, Pose};
 
 /// A header stamped `t_ns` (ns since the Unix epoch) in frame `frame_id`.
 pub fn header(t_ns: i64, frame_id: &str) -> Header {
@@ -107,5 +108,20 @@ pub fn contact_to_msg(c: &Contact) -> handstack_msgs::Contact {
         region: c.region,
         regions: c.regions,
         confidence: c.confidence,
+    }
+}
+
+/// A force estimate as a wrench: the load along the pad's normal (`z`, positive into the pad);
+/// shear and torque are not measured and stay zero.
+pub fn force_to_msg(f: ForceEstimate, header: Header) -> WrenchStamped {
+    WrenchStamped {
+        header,
+        wrench: Wrench {
+            force: Vector3 {
+                z: f64::from(f.force_n),
+                ..Vector3::default()
+            },
+            torque: Vector3::default(),
+        },
     }
 }

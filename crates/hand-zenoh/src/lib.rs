@@ -8,6 +8,7 @@
 //!   writes `TypeHashNotSupported` for ROS 2 Humble;
 //! - [`keys`], [`attachment`]: rmw_zenoh's key expressions, liveliness tokens, GIDs and the
 //!   sequence number / timestamp / GID attachment;
+//! - [`force`]: a force estimator's output as the device's `force` topic;
 //! - [`node`]: nodes, publishers, subscriptions, services and clients over a Zenoh session
 //!   ([`config`]: peer of a router on `tcp/127.0.0.1:7447`, multicast scouting off, TCP only).
 //!
@@ -20,6 +21,7 @@ pub mod cdr;
 pub mod config;
 pub mod convert;
 mod error;
+pub mod force;
 pub mod keys;
 pub mod msg;
 pub mod node;

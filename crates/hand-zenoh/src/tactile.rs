@@ -1,7 +1,9 @@
 //! A tactile device as a node, laid out after TakkTile's ROS driver: under the device's
 //! namespace, `tactile/raw` (each frame as read), `tactile/touch` (tared: the zero of each
 //! sensor subtracted), `tactile/sensor_info` (about once a second) and the service
-//! `tactile/tare` (`std_srvs/Trigger`: the latest raw frame becomes the zero).
+//! `tactile/tare` (`std_srvs/Trigger`: the latest raw frame becomes the zero). With a force
+//! estimator ([`TactileNode::with_force`]) also `force` (`geometry_msgs/WrenchStamped`, see
+//! [`crate::force`]) from each tared frame.
 //!
 //! ```no_run
 //! use hand_traits::{PressureFrame, TactileSource};
@@ -22,10 +24,11 @@
 //! ```
 
 use crate::NodeError;
+use crate::force::{ForceTopic, rise_hpa};
 use crate::msg::handstack_msgs::{PressureFrame, SensorInfo};
 use crate::msg::std_srvs::{Trigger, TriggerResponse};
 use crate::node::{Node, Publisher, ServiceServer, now_ns};
-use hand_traits::TactileSource;
+use hand_traits::{ForceEstimator, TactileSource};
 use std::sync::{Arc, Mutex, PoisonError};
 
 /// What the node says about its device.
@@ -62,6 +65,16 @@ pub enum TactileError<E: core::fmt::Debug> {
 struct Zero {
     latest: Option<Vec<f32>>,
     tare: Vec<f32>,
+    /// The zero was taken (by the service or the start-up tare), so `touch` is tared.
+    set: bool,
+}
+
+/// The start-up tare of a node with a force estimator: the mean of its first frames.
+#[derive(Debug)]
+struct StartupTare {
+    frames: u32,
+    sum: Vec<f64>,
+    seen: u32,
 }
 
 /// A tactile source published as a node.
@@ -74,6 +87,8 @@ pub struct TactileNode<S> {
     zero: Arc<Mutex<Zero>>,
     tare: ServiceServer,
     frames: u64,
+    force: Option<ForceTopic>,
+    startup: Option<StartupTare>,
 }
 
 impl<S, const N: usize> TactileNode<S>
@@ -85,6 +100,7 @@ where
         let zero = Arc::new(Mutex::new(Zero {
             latest: None,
             tare: vec![0.0; N],
+            set: false,
         }));
         let shared = Arc::clone(&zero);
         let tare = node.service::<Trigger, _>("tactile/tare", move |_| {
@@ -93,6 +109,7 @@ where
                 Some(latest) => {
                     let text = format!("tared at {latest:?} Pa");
                     z.tare = latest;
+                    z.set = true;
                     TriggerResponse {
                         success: true,
                         message: text,
@@ -113,7 +130,32 @@ where
             zero,
             tare,
             frames: 0,
+            force: None,
+            startup: None,
         })
+    }
+
+    /// Also publishes `force` from `estimator` on each frame once the node has a zero: the
+    /// tare service's, or before anyone calls it, the mean of the first `tare_frames` frames
+    /// (0: only the service's), which then tares `touch` too. No force is published before a
+    /// zero: the estimator reads rises over the unloaded pad, not absolute pressures.
+    pub fn with_force<F>(
+        mut self,
+        node: &Node,
+        estimator: F,
+        tare_frames: u32,
+    ) -> Result<Self, NodeError>
+    where
+        F: ForceEstimator<Input = [f32]> + Send + 'static,
+        F::Error: core::fmt::Debug,
+    {
+        self.force = Some(ForceTopic::new(node, estimator)?);
+        self.startup = (tare_frames > 0).then(|| StartupTare {
+            frames: tare_frames,
+            sum: vec![0.0; N],
+            seen: 0,
+        });
+        Ok(self)
     }
 
     /// Reads one frame and publishes it raw and tared; every `rate_hz` frames (and on the
@@ -129,10 +171,27 @@ where
             return Err(TactileError::NotFinite { sensor, value });
         }
         let header = crate::convert::header(now_ns(), &self.info.frame_id);
-        let tare = {
+        let (tare, tared) = {
             let mut z = self.zero.lock().unwrap_or_else(PoisonError::into_inner);
             z.latest = Some(frame.pressure_pa.to_vec());
-            z.tare.clone()
+            if z.set {
+                self.startup = None;
+            } else if let Some(s) = &mut self.startup {
+                for (sum, &p) in s.sum.iter_mut().zip(&frame.pressure_pa) {
+                    *sum += f64::from(p);
+                }
+                s.seen += 1;
+                if s.seen == s.frames {
+                    z.tare = s
+                        .sum
+                        .iter()
+                        .map(|v| (v / f64::from(s.frames)) as f32)
+                        .collect();
+                    z.set = true;
+                    self.startup = None;
+                }
+            }
+            (z.tare.clone(), z.set)
         };
         let mut msg = PressureFrame {
             header: header.clone(),
@@ -143,6 +202,9 @@ where
             *p -= t;
         }
         self.touch.publish(&msg)?;
+        if let (Some(force), true) = (&mut self.force, tared) {
+            force.publish(header.clone(), &rise_hpa(&frame.pressure_pa, &tare))?;
+        }
         let every = self.info.rate_hz.max(1.0) as u64;
         if self.frames % every == 0 {
             self.sensor_info.publish(&SensorInfo {
@@ -160,6 +222,11 @@ where
     /// The `tactile/raw` publisher (its key and GID).
     pub fn raw(&self) -> &Publisher<PressureFrame> {
         &self.raw
+    }
+
+    /// The `force` topic, when the node has a force estimator.
+    pub fn force(&self) -> Option<&ForceTopic> {
+        self.force.as_ref()
     }
 
     /// Tare requests answered so far.

@@ -1,7 +1,8 @@
 //! What a node does with bad input and a broken cell: malformed payloads, attachments and
 //! service requests are counted and dropped; a node that goes is seen going by its liveliness
 //! token; a router restart loses nothing silently (every sequence number is received or counted
-//! lost); and nothing opens a UDP socket. All on 127.0.0.1, multicast scouting off.
+//! lost); a force estimator's refusals are counted, not published; and nothing opens a UDP
+//! socket. All on 127.0.0.1, multicast scouting off.
 
 mod common;
 
@@ -202,4 +203,113 @@ fn no_udp_socket_is_opened() {
     assert!(sub.recv_timeout(WAIT).unwrap().is_some());
     assert!(std::path::Path::new("/proc/net/udp").exists());
     assert_eq!(hand_zenoh::config::udp_sockets(None), Vec::<String>::new());
+}
+
+/// Seed 000's fingertip with a load that comes and goes: three frames at rest, then the frames
+/// `loads_pa` above rest, one per step.
+struct Loaded {
+    rest_pa: [f32; 3],
+    loads_pa: Vec<[f32; 3]>,
+    read: usize,
+}
+
+impl hand_traits::TactileSource for Loaded {
+    type Frame = hand_traits::PressureFrame<3>;
+    type Error = core::convert::Infallible;
+    fn read_frame(&mut self) -> Result<Self::Frame, Self::Error> {
+        let load = self
+            .read
+            .checked_sub(3)
+            .map_or([0.0; 3], |i| self.loads_pa[i]);
+        self.read += 1;
+        Ok(hand_traits::PressureFrame {
+            t_us: 0,
+            pressure_pa: std::array::from_fn(|k| self.rest_pa[k] + load[k]),
+        })
+    }
+}
+
+/// 1 N per hPa of summed rise; refuses more than 50 hPa (an estimator's typed error).
+struct Linear;
+
+impl hand_traits::ForceEstimator for Linear {
+    type Input = [f32];
+    type Error = &'static str;
+    fn estimate_force(
+        &mut self,
+        rise_hpa: &[f32],
+    ) -> Result<hand_traits::ForceEstimate, Self::Error> {
+        let sum: f32 = rise_hpa.iter().sum();
+        if sum > 50.0 {
+            return Err("beyond the rated range");
+        }
+        Ok(hand_traits::ForceEstimate { force_n: sum })
+    }
+}
+
+#[test]
+fn a_force_estimate_is_published_once_tared_and_a_refusal_is_counted() {
+    use hand_zenoh::msg::geometry_msgs::WrenchStamped;
+    use hand_zenoh::tactile::{TactileInfo, TactileNode};
+    let endpoint = free_endpoint();
+    let _router = Router::open(&endpoint).unwrap();
+    let a = node(&endpoint, "/hand0", "tactile");
+    let b = node(&endpoint, "/hand0", "reader");
+    let source = Loaded {
+        rest_pa: [119_125.0, 119_902.0, 101_804.0],
+        // 6 hPa in all; 60 hPa (refused); 0.5 hPa.
+        loads_pa: vec![
+            [100.0, 200.0, 300.0],
+            [2000.0, 2000.0, 2000.0],
+            [50.0, 0.0, 0.0],
+        ],
+        read: 0,
+    };
+    let info = TactileInfo {
+        chip: "MS5611".into(),
+        rate_hz: 100.0,
+        frame_id: "hand0/fingertip0".into(),
+    };
+    let mut tactile = TactileNode::new(&a, source, info)
+        .unwrap()
+        .with_force(&a, Linear, 3)
+        .unwrap();
+    let mut sub = b.subscription::<WrenchStamped>("/hand0/force", 16).unwrap();
+    assert!(
+        b.wait_for(EntityKind::Publisher, "/hand0/force", WAIT)
+            .unwrap()
+    );
+    assert!(
+        tactile
+            .force()
+            .unwrap()
+            .publisher()
+            .wait_matched(WAIT)
+            .unwrap()
+    );
+    for _ in 0..6 {
+        tactile.step().unwrap();
+    }
+    // Nothing before the start-up tare's third frame; that frame itself is the zero (0 N).
+    let mut got = Vec::new();
+    while got.len() < 3 {
+        let m = sub.recv_timeout(WAIT).unwrap().expect("a force message");
+        got.push(m.message);
+    }
+    let z: Vec<f64> = got.iter().map(|m| m.wrench.force.z).collect();
+    assert_eq!(got[0].header.frame_id, "hand0/fingertip0");
+    assert!(z[0].abs() < 1e-6, "{z:?}");
+    assert!((z[1] - 6.0).abs() < 1e-3, "{z:?}");
+    // The refused 60 hPa frame published nothing: the next message is the 0.5 hPa frame.
+    assert!((z[2] - 0.5).abs() < 1e-3, "{z:?}");
+    let force = tactile.force().unwrap();
+    assert_eq!(force.refused(), 1);
+    assert_eq!(force.last_refusal(), Some("\"beyond the rated range\""));
+    for m in &got {
+        let w = &m.wrench;
+        assert_eq!(
+            [w.force.x, w.force.y, w.torque.x, w.torque.y, w.torque.z],
+            [0.0; 5]
+        );
+    }
 }

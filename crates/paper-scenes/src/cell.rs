@@ -102,7 +102,11 @@ pub fn run_node(
                 rate_hz: FINGERTIP_RATE_HZ * sim_speed as f32,
                 frame_id,
             };
-            Ok(format!("{} frames", tactile::run(&node, tip, info, stop)?))
+            let force = scene.force_model();
+            Ok(format!(
+                "{} frames",
+                tactile::run(&node, tip, info, force, stop)?
+            ))
         }
         Part::Hand => {
             // The first object of the scene's Table 5 grasp, in its Table 5 torque band.
@@ -136,6 +140,7 @@ pub fn run_node(
             let config = HandNodeConfig {
                 rate_hz: 1e6 / stack.config.period_us as f64 * sim_speed,
                 frame_id,
+                force: scene.force_model(),
             };
             let node = Node::open(args.options())?;
             let report = hand::run(

@@ -181,6 +181,7 @@ fn a_pad_node_killed_mid_run_is_seen_going_and_the_arm_is_stopped() {
 #[test]
 fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
     use hand_zenoh::keys::EntityKind;
+    use hand_zenoh::msg::geometry_msgs::WrenchStamped;
     use hand_zenoh::msg::handstack_msgs::{GraspState, GripperCommand};
     use hand_zenoh::msg::std_srvs::{Trigger, TriggerRequest};
     use handstack::cell::{NodeArgs, Part};
@@ -191,11 +192,15 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
     let _router = Router::open(&endpoint).unwrap();
     let stop = Stop::new();
     // The Table 5 world (its first object, the cube) behind the real driver and Protocol 2.0,
-    // paced at 5 × real time; the world is single-threaded, so it is made in the node's thread.
+    // paced at 5 × real time, with the built-in force DNN; the world is single-threaded, so it
+    // is made in the node's thread.
     let hand = {
         let (endpoint, stop) = (endpoint.clone(), stop.clone());
         std::thread::spawn(move || {
-            let scene = PaperScene::load(&root().join("fixtures/scenes/grasp-table5.toml"))?;
+            let path = root().join("fixtures/scenes/grasp-table5.toml");
+            let text = std::fs::read_to_string(&path).expect("the scene")
+                + "\n[estimators.force]\nmodel = \"sim\"\n";
+            let scene = PaperScene::parse("grasp-table5-with-force.toml", &text)?;
             let progress = handstack::progress::Quiet;
             let cx = paper_scenes::runs::RunContext::new(&progress);
             let args = NodeArgs {
@@ -214,11 +219,15 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
     for (kind, name) in [
         (EntityKind::Service, "/hand0/grasp/start"),
         (EntityKind::Subscription, "/hand0/gripper/command"),
+        (EntityKind::Publisher, "/hand0/force"),
     ] {
         assert!(commander.wait_for(kind, name, wait).unwrap(), "{name}");
     }
     let mut state = commander
         .subscription::<GraspState>("/hand0/grasp/state", 4096)
+        .unwrap();
+    let mut force = commander
+        .subscription::<WrenchStamped>("/hand0/force", 4096)
         .unwrap();
     let mut command = commander
         .publisher::<GripperCommand>("/hand0/gripper/command")
@@ -262,6 +271,25 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
     }
     stop.set();
     let report = hand.join().unwrap().expect("the hand node");
+    // `force` from the loop's frames once it had tared: near zero on the open fingertip, then
+    // the grasp's load (the cube's Table 5 grip rises the pad by tens of gf at least).
+    let mut z = Vec::new();
+    while let Some(m) = force.recv_timeout(Duration::from_millis(200)).unwrap() {
+        assert_eq!(m.message.header.frame_id, "hand0");
+        z.push(m.message.wrench.force.z);
+    }
+    assert!(z.len() > 10 && z.iter().all(|f| f.is_finite()), "{z:?}");
+    let (first, peak) = (z[0], z.iter().copied().fold(f64::MIN, f64::max));
+    assert!(
+        first.abs() < 0.2,
+        "tared, the open fingertip reads {first} N"
+    );
+    assert!(
+        peak > first + 0.2,
+        "the grasp never loaded the pad: {first} → {peak} N"
+    );
+    assert!(report.contains(&format!("forces: {},", z.len())), "{report}");
+    assert!(report.contains("forces_refused: 0"), "{report}");
     assert!(report.contains("safe_stops: 1"), "{report}");
     assert!(report.contains("commands: 1, refused: 1"), "{report}");
     assert!(report.contains("starts: 1"), "{report}");

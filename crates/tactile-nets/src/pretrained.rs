@@ -151,11 +151,34 @@ pub enum ForceModel {
 }
 
 impl ForceModel {
-    /// Its file name below `models/force_dnn/`, without extension.
+    /// Every built-in force DNN.
+    pub const ALL: [ForceModel; 2] = [ForceModel::Sim, ForceModel::Table1];
+
+    /// Its file name below `models/force_dnn/`, without extension, and its name in a scene
+    /// file.
     pub fn name(self) -> &'static str {
         match self {
             ForceModel::Sim => "sim",
             ForceModel::Table1 => "table1",
+        }
+    }
+
+    /// The model [`name`](Self::name)d `name`.
+    ///
+    /// ```
+    /// use tactile_nets::pretrained::ForceModel;
+    /// assert_eq!(ForceModel::from_name("table1"), Some(ForceModel::Table1));
+    /// assert_eq!(ForceModel::from_name("huge"), None);
+    /// ```
+    pub fn from_name(name: &str) -> Option<ForceModel> {
+        ForceModel::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// Its `'static` network ([`FORCE_DNN_SIM`] or [`FORCE_DNN_TABLE1`]), no allocation.
+    pub fn dnn(self) -> StaticForceDnn {
+        match self {
+            ForceModel::Sim => FORCE_DNN_SIM,
+            ForceModel::Table1 => FORCE_DNN_TABLE1,
         }
     }
 }

@@ -351,6 +351,12 @@ where
         &self.config
     }
 
+    /// Each sensor's zero from the loop's tare, Pa (`None` while taring): what a per-sensor
+    /// estimator beside the loop (seed 000's force DNN) reads its rises against.
+    pub fn zero_pa(&self) -> Option<[f64; N]> {
+        self.estimator.zero_pa()
+    }
+
     /// The mode after the last cycle.
     pub fn mode(&self) -> Mode {
         self.mode

@@ -3,7 +3,9 @@
 //! loop's frame), `grasp/state` (`handstack_msgs/GraspState`) and `gripper/joint_states`;
 //! `gripper/command` (`handstack_msgs/GripperCommand`) in: its position becomes the loop's goal
 //! (the effort stays the controller's); services `grasp/start` (start cycling: tare, then
-//! grasp) and `grasp/stop` (the hand's safe action, then idle).
+//! grasp) and `grasp/stop` (the hand's safe action, then idle). With a force DNN
+//! ([`HandNodeConfig::force`]) also `force` (`geometry_msgs/WrenchStamped`) each cycle once the
+//! loop has tared, from the loop's frame and zero.
 //!
 //! Safe state: when the last node publishing commands leaves the graph while the loop runs (its
 //! command stream stops: a crash, a kill, a lost link), the hand goes to its configured safe
@@ -12,9 +14,11 @@
 use super::commanders::Commanders;
 use super::error::CellError;
 use super::pace::{Pacer, Stop};
+use crate::scene::parts::ForceModel;
 use hand_control::grasp_loop::{GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator};
 use hand_traits::{Effort, PressureFrame, TactileSource};
 use hand_zenoh::convert::header;
+use hand_zenoh::force::{ForceTopic, rise_hpa};
 use hand_zenoh::msg::handstack_msgs::{self as hs, GraspState, GripperCommand};
 use hand_zenoh::msg::sensor_msgs::JointState;
 use hand_zenoh::msg::std_srvs::{Trigger, TriggerResponse};
@@ -29,6 +33,8 @@ pub struct HandNodeConfig {
     pub rate_hz: f64,
     /// The frame id of its messages (`hand0`).
     pub frame_id: String,
+    /// The built-in force DNN `force` is published from (`None`: no `force` topic).
+    pub force: Option<ForceModel>,
 }
 
 /// What the hand node did.
@@ -47,6 +53,10 @@ pub struct HandNodeReport {
     /// Safe actions because the command stream's publisher left mid-grasp (or the node
     /// stopped while the loop ran).
     pub safe_stops: u64,
+    /// Force estimates published on `force`.
+    pub forces: u64,
+    /// Frames the force DNN refused (counted, not published).
+    pub forces_refused: u64,
 }
 
 const IDLE: u8 = 0;
@@ -86,6 +96,10 @@ where
     let mut raw = node.publisher::<hs::PressureFrame>("tactile/raw")?;
     let mut state = node.publisher::<GraspState>("grasp/state")?;
     let mut joints = node.publisher::<JointState>("gripper/joint_states")?;
+    let mut force = match node_config.force {
+        Some(model) => Some(ForceTopic::new(node, model.dnn())?),
+        None => None,
+    };
     let mut commands = node.subscription::<GripperCommand>("gripper/command", 16)?;
     let asked = Arc::new(AtomicU8::new(IDLE));
     let service = |what: u8, text: &'static str| {
@@ -156,6 +170,14 @@ where
                     header: h.clone(),
                     pressure_pa: f.pressure_pa.to_vec(),
                 })?;
+                if let (Some(topic), Some(zero)) = (&mut force, grasp.zero_pa()) {
+                    let zero = zero.map(|z| z as f32);
+                    if topic.publish(h.clone(), &rise_hpa(&f.pressure_pa, &zero))? {
+                        report.forces += 1;
+                    } else {
+                        report.forces_refused += 1;
+                    }
+                }
             }
             let gs = sample.state;
             state.publish(&GraspState {

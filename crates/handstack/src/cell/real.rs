@@ -47,7 +47,7 @@ pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, C
                 rate_hz: FINGERTIP_RATE_HZ,
                 frame_id,
             };
-            let frames = tactile::run(&node, tip, info, stop)?;
+            let frames = tactile::run(&node, tip, info, scene.force_model(), stop)?;
             Ok(format!("{frames} frames"))
         }
         Part::Hand => {
@@ -62,6 +62,7 @@ pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, C
             let hand_config = HandNodeConfig {
                 rate_hz: 1e6 / config.period_us as f64,
                 frame_id,
+                force: scene.force_model(),
             };
             let report = hand::run(
                 &node,

@@ -134,6 +134,15 @@ impl<X: ExperimentTable> SceneOf<X> {
             .map(|c| c.get_ref().locators.get_ref().clone())
             .unwrap_or_default()
     }
+
+    /// The force DNN `[estimators.force]` names (none without that table).
+    pub fn force_model(&self) -> Option<parts::ForceModel> {
+        self.file
+            .estimators
+            .force
+            .as_ref()
+            .map(|f| f.get_ref().model)
+    }
 }
 
 /// The text of the scene file at `path`.

@@ -76,14 +76,23 @@ pub struct Estimators {
     pub softness: Option<Spanned<Softness>>,
 }
 
-/// Which committed force DNN.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ForceModel {
-    /// Trained on the 13 Table 1 rows.
-    Table1,
-    /// Trained on the simulated weight series (runs 0 and 1).
-    Sim,
+/// Which committed force DNN: the models built into tactile-nets, named in a scene file as
+/// `sim` or `table1`.
+pub use tactile_nets::pretrained::ForceModel;
+
+/// `model = "…"`: one of [`ForceModel::ALL`] by its name.
+fn force_model<'de, D: serde::Deserializer<'de>>(d: D) -> Result<ForceModel, D::Error> {
+    let name = String::deserialize(d)?;
+    ForceModel::from_name(&name).ok_or_else(|| {
+        let names: Vec<String> = ForceModel::ALL
+            .iter()
+            .map(|m| format!("`{}`", m.name()))
+            .collect();
+        serde::de::Error::custom(format!(
+            "unknown variant `{name}`, expected {}",
+            names.join(" or ")
+        ))
+    })
 }
 
 /// The force / weight DNN.
@@ -91,6 +100,7 @@ pub enum ForceModel {
 #[serde(deny_unknown_fields)]
 pub struct Force {
     /// The committed model the stack's live readings go through (`sim` or `table1`).
+    #[serde(deserialize_with = "force_model")]
     pub model: ForceModel,
 }
 

@@ -1,0 +1,107 @@
+//! A force estimate as a topic: `force` (`geometry_msgs/WrenchStamped`) under the device's
+//! namespace, from any [`ForceEstimator`] over the tared pressure rises of a fingertip (hPa,
+//! as seed 000's force DNN reads them).
+//!
+//! The wrench is the load pressing on the pad along its normal, the fingertip frame's `z`
+//! (positive into the pad, as Table 1's weight); a barometric fingertip measures neither
+//! shear nor torque, so those stay zero.
+//!
+//! ```no_run
+//! use hand_traits::{ForceEstimate, ForceEstimator};
+//! use hand_zenoh::force::ForceTopic;
+//! use hand_zenoh::node::{Node, NodeOptions};
+//!
+//! /// 1 N per hPa of summed rise.
+//! struct Linear;
+//! impl ForceEstimator for Linear {
+//!     type Input = [f32];
+//!     type Error = core::convert::Infallible;
+//!     fn estimate_force(&mut self, rise_hpa: &[f32]) -> Result<ForceEstimate, Self::Error> {
+//!         Ok(ForceEstimate { force_n: rise_hpa.iter().sum() })
+//!     }
+//! }
+//!
+//! let node = Node::open(NodeOptions::new("/hand0", "force"))?;
+//! let mut force = ForceTopic::new(&node, Linear)?;
+//! let header = hand_zenoh::convert::header(0, "hand0");
+//! assert!(force.publish(header, &[0.7, 0.5, 0.6])?); // /hand0/force, z = 1.8 N
+//! # Ok::<(), hand_zenoh::NodeError>(())
+//! ```
+
+use crate::NodeError;
+use crate::convert::force_to_msg;
+use crate::msg::geometry_msgs::WrenchStamped;
+use crate::msg::std_msgs::Header;
+use crate::node::{Node, Publisher};
+use hand_traits::{ForceEstimate, ForceEstimator};
+
+/// The estimator behind a [`ForceTopic`], its error as text (it is counted, not propagated:
+/// a frame the estimator refuses must not stop the node's other topics).
+type Estimate = Box<dyn FnMut(&[f32]) -> Result<ForceEstimate, String> + Send>;
+
+/// The `force` topic of a device and the estimator that feeds it.
+pub struct ForceTopic {
+    publisher: Publisher<WrenchStamped>,
+    estimate: Estimate,
+    refused: u64,
+    last_refusal: Option<String>,
+}
+
+impl ForceTopic {
+    /// Declares `force` on `node`, published from `estimator`.
+    pub fn new<F>(node: &Node, mut estimator: F) -> Result<Self, NodeError>
+    where
+        F: ForceEstimator<Input = [f32]> + Send + 'static,
+        F::Error: core::fmt::Debug,
+    {
+        Ok(ForceTopic {
+            publisher: node.publisher("force")?,
+            estimate: Box::new(move |rise| {
+                estimator.estimate_force(rise).map_err(|e| format!("{e:?}"))
+            }),
+            refused: 0,
+            last_refusal: None,
+        })
+    }
+
+    /// Estimates the force from `rise_hpa` (each sensor's rise over its zero, hPa) and
+    /// publishes it stamped with `header`. `Ok(false)`: the estimator refused the input or
+    /// gave a force that is not finite, which is counted ([`ForceTopic::refused`]) and not
+    /// published.
+    pub fn publish(&mut self, header: Header, rise_hpa: &[f32]) -> Result<bool, NodeError> {
+        match (self.estimate)(rise_hpa) {
+            Ok(f) if f.force_n.is_finite() => {
+                self.publisher.publish(&force_to_msg(f, header))?;
+                Ok(true)
+            }
+            Ok(f) => Ok(self.refuse(format!("a force of {} N", f.force_n))),
+            Err(e) => Ok(self.refuse(e)),
+        }
+    }
+
+    fn refuse(&mut self, why: String) -> bool {
+        self.refused += 1;
+        self.last_refusal = Some(why);
+        false
+    }
+
+    /// Inputs the estimator refused (or answered with a force that is not finite).
+    pub fn refused(&self) -> u64 {
+        self.refused
+    }
+
+    /// Why the latest refused input was refused.
+    pub fn last_refusal(&self) -> Option<&str> {
+        self.last_refusal.as_deref()
+    }
+
+    /// The `force` publisher (its key and GID).
+    pub fn publisher(&self) -> &Publisher<WrenchStamped> {
+        &self.publisher
+    }
+}
+
+/// Each sensor's rise over `zero_pa`, in hPa (the unit seed 000's force DNN reads).
+pub fn rise_hpa<const N: usize>(pressure_pa: &[f32; N], zero_pa: &[f32]) -> [f32; N] {
+    core::array::from_fn(|k| (pressure_pa[k] - zero_pa.get(k).copied().unwrap_or(0.0)) / 100.0)
+}
