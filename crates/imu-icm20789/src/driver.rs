@@ -48,6 +48,41 @@ pub struct BaroSample {
     pub temperature_c: f32,
 }
 
+/// One frame of the whole chip: an IMU burst read while a barometer conversion ran, and that
+/// conversion's result ([`Icm20789::read_frame`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChipFrame {
+    /// Accelerometer, gyroscope and die temperature.
+    pub imu: ImuSample,
+    /// Pressure and barometer temperature.
+    pub baro: BaroSample,
+}
+
+/// Frames per second seed 002 reads its tap pad at (§III-C: 30 Hz, Low Noise mode).
+pub const TAP_PAD_RATE_HZ: f64 = 30.0;
+
+/// The IMU settings a tactile pad is read with ([`Icm20789::configure_imu`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ImuSettings {
+    /// Accelerometer full scale.
+    pub accel_scale: AccelScale,
+    /// Gyroscope full scale.
+    pub gyro_scale: GyroScale,
+    /// Gyroscope low-pass filter.
+    pub gyro_dlpf: GyroDlpf,
+}
+
+impl ImuSettings {
+    /// The tap pad's (seed 002 names none; ours): ±2 g and ±250 °/s, the finest scales, since a
+    /// 0.2–1.6 mm tap moves the pad by far less than either; a 41 Hz gyro low-pass, above the
+    /// 30 Hz frame rate's 15 Hz Nyquist band and well below the 1 kHz output rate.
+    pub const TAP_PAD: ImuSettings = ImuSettings {
+        accel_scale: AccelScale::G2,
+        gyro_scale: GyroScale::Dps250,
+        gyro_dlpf: GyroDlpf::Hz41,
+    };
+}
+
 /// CONFIG, GYRO_CONFIG, ACCEL_CONFIG, ACCEL_CONFIG2 (0x1A…0x1D) as last written, so that a
 /// setting change is one write, not a read-modify-write. All zero after DEVICE_RESET.
 type Shadow = [u8; 4];
@@ -347,6 +382,28 @@ impl<I2C: I2cBus> Icm20789<I2C> {
     ) -> Result<BaroSample, Error<I2C::Error>> {
         let calibration = self.calibration.ok_or(Error::BaroNotInitialised)?;
         self.read_pressure_with(conversion, &calibration).await
+    }
+
+    /// Applies `settings` (full scales and the gyro low-pass): three register writes.
+    pub async fn configure_imu(&mut self, settings: &ImuSettings) -> Result<(), Error<I2C::Error>> {
+        self.set_accel_scale(settings.accel_scale).await?;
+        self.set_gyro_scale(settings.gyro_scale).await?;
+        self.set_gyro_dlpf(settings.gyro_dlpf).await
+    }
+
+    /// One frame of the whole chip, as seed 002's pad is read: start a pressure conversion
+    /// in `mode` (pressure first), read the IMU burst while it runs, wait the conversion's
+    /// worst-case time, read the pressure. Needs [`Self::init_barometer`] first.
+    pub async fn read_frame<D: Delay>(
+        &mut self,
+        mode: BaroMode,
+        delay: &mut D,
+    ) -> Result<ChipFrame, Error<I2C::Error>> {
+        let conversion = self.start_pressure(mode, FrameOrder::PressureFirst).await?;
+        let imu = self.read_imu().await?;
+        delay.delay_us(conversion.wait_us()).await;
+        let baro = self.read_pressure(conversion).await?;
+        Ok(ChipFrame { imu, baro })
     }
 
     /// Start, wait the worst-case conversion time, read: one blocking pressure measurement.

@@ -74,7 +74,7 @@ pub use baro::otp::Calibration;
 pub use crc8::crc8;
 #[cfg(feature = "async")]
 pub use driver::Icm20789Async;
-pub use driver::{BaroConversion, BaroSample, Icm20789};
+pub use driver::{BaroConversion, BaroSample, ChipFrame, Icm20789, ImuSettings, TAP_PAD_RATE_HZ};
 pub use error::{ConversionError, Error};
 pub use imu::config::{AccelDlpf, AccelScale, GyroDlpf, GyroScale};
 pub use imu::{ImuAddress, ImuSample, RawImu};

@@ -8,6 +8,7 @@ use crate::devices;
 use crate::runs::RunContext;
 use crate::scene::PaperScene;
 use crate::scene::experiments::WindowPlacement;
+use hand_traits::{ContactLocator as _, ImuFrame};
 use hand_zenoh::node::Node;
 use hand_zenoh::tactile::TactileInfo;
 use handstack::Outcome;
@@ -73,14 +74,11 @@ pub fn run_node(
                 max_frames: None,
             };
             let node = Node::open(args.options())?;
-            let report = pad::run(
-                &node,
-                &mut source,
-                &mut cnn,
-                tap_run::cnn_window,
-                &config,
-                stop,
-            )?;
+            let mut locate = |w: &[ImuFrame]| {
+                cnn.locate(&tap_run::cnn_window(w))
+                    .map_err(|e| failed("contact locator", e))
+            };
+            let report = pad::run(&node, &mut source, Some(&mut locate), &config, stop)?;
             Ok(format!("{report:?}"))
         }
         Part::Arm => {

@@ -288,7 +288,10 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
         peak > first + 0.2,
         "the grasp never loaded the pad: {first} → {peak} N"
     );
-    assert!(report.contains(&format!("forces: {},", z.len())), "{report}");
+    assert!(
+        report.contains(&format!("forces: {},", z.len())),
+        "{report}"
+    );
     assert!(report.contains("forces_refused: 0"), "{report}");
     assert!(report.contains("safe_stops: 1"), "{report}");
     assert!(report.contains("commands: 1, refused: 1"), "{report}");

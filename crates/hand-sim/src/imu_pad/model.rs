@@ -11,7 +11,7 @@ use crate::seed;
 use hand_traits::sim::SimDelay;
 use hand_traits::{ImuFrame, TactileSource};
 use imu_icm20789::sim::ChipModel;
-use imu_icm20789::{AccelScale, BaroMode, FrameOrder, GyroDlpf, GyroScale, Icm20789};
+use imu_icm20789::{BaroMode, Icm20789, ImuSettings};
 use rand::Rng;
 
 /// The ICM-20789 pad of seed 002: taps on a 3 × 24 grid, read through the chip model.
@@ -53,7 +53,7 @@ fn driver_error(e: impl core::fmt::Debug) -> SimError {
 impl ImuPad {
     /// Builds the pad of `config` in a scene seeded with `scene_seed`: realises every tap
     /// (stream `"imu_pad"`), makes the chip model, and initialises it through the driver
-    /// (IMU reset, ±2 g, ±250 °/s, 41 Hz DLPF at 1 kHz; barometer ID and OTP).
+    /// (IMU reset, [`ImuSettings::TAP_PAD`]; barometer ID and OTP).
     pub fn new(config: &ImuPadConfig, scene_seed: u64) -> Result<ImuPad, SimError> {
         config.validate()?;
         let curve = config.mechanics.curve()?;
@@ -72,12 +72,8 @@ impl ImuPad {
         let mut driver = Icm20789::new_with_i2c(chip);
         driver.init(&mut delay).map_err(driver_error)?;
         driver
-            .set_accel_scale(AccelScale::G2)
+            .configure_imu(&ImuSettings::TAP_PAD)
             .map_err(driver_error)?;
-        driver
-            .set_gyro_scale(GyroScale::Dps250)
-            .map_err(driver_error)?;
-        driver.set_gyro_dlpf(GyroDlpf::Hz41).map_err(driver_error)?;
         driver.init_barometer(&mut delay).map_err(driver_error)?;
         let period_ns = (1e9 / config.sample_rate_hz).round() as u64;
         let now = delay.clock().now_ns();
@@ -132,27 +128,20 @@ impl ImuPad {
         self.delay.clock().advance_to_ns(t_ns);
     }
 
-    /// One frame at sample time `t_ns`, as the paper's Arduino read it: start a Low Noise
-    /// conversion, read the IMU burst while it runs, wait, read the pressure.
+    /// One frame at sample time `t_ns`, read as the driver reads a pad
+    /// ([`Icm20789::read_frame`]: the IMU burst during a Low Noise conversion, as the paper's
+    /// Arduino read it).
     fn sample(&mut self, t_ns: u64) -> Result<ImuFrame, SimError> {
         self.wait_until(t_ns);
-        let conversion = self
+        let f = self
             .driver
-            .start_pressure(self.mode, FrameOrder::PressureFirst)
-            .map_err(driver_error)?;
-        let imu = self.driver.read_imu().map_err(driver_error)?;
-        self.delay
-            .clock()
-            .advance_ns(u64::from(conversion.wait_us()) * 1_000);
-        let baro = self
-            .driver
-            .read_pressure(conversion)
+            .read_frame(self.mode, &mut self.delay)
             .map_err(driver_error)?;
         Ok(ImuFrame {
             t_us: t_ns / 1_000,
-            accel_mps2: imu.accel_mps2,
-            gyro_rps: imu.gyro_rps,
-            pressure_pa: Some(baro.pressure_pa),
+            accel_mps2: f.imu.accel_mps2,
+            gyro_rps: f.imu.gyro_rps,
+            pressure_pa: Some(f.baro.pressure_pa),
         })
     }
 

@@ -1,15 +1,15 @@
 //! An ICM-20789 pad as a node (`/pad0`): `imu` (`sensor_msgs/Imu`, every frame),
 //! `tactile/raw` (the barometer, every frame) and `tactile/contact` (one `ContactArray` per
-//! tap: the pressure trigger of seed 002 §IV-B, the window around it, the contact locator).
+//! tap: the pressure trigger of seed 002 §IV-B, the window around it, the contact locator, when
+//! the node has one).
 
 use super::error::CellError;
 use super::pace::{Pacer, Stop};
-use hand_traits::{ContactLocator, ImuFrame, TactileSource};
+use hand_traits::{Contact, ImuFrame, TactileSource};
 use hand_zenoh::convert::{contact_to_msg, header, imu_to_msg};
 use hand_zenoh::msg::handstack_msgs::{ContactArray, PressureFrame};
 use hand_zenoh::msg::sensor_msgs::Imu;
 use hand_zenoh::node::{Node, now_ns};
-use std::borrow::Borrow;
 use ur_bridge::tap_to_move::{TapToMoveConfig, TapTrigger};
 
 /// How the pad node runs.
@@ -34,25 +34,28 @@ pub struct PadNodeReport {
     pub contacts: u64,
 }
 
+/// Locates the tap in a window of frames: the contact locator behind the pad node.
+pub type Locate<'a> = &'a mut dyn FnMut(&[ImuFrame]) -> Result<Contact, CellError>;
+
 /// Runs the pad node on `node` until `stop` (or `max_frames`): reads `source` at the configured
-/// rate, publishes each frame, and locates each tap with `locator` on `to_input(window)`.
-pub fn run<S, L, F, B>(
+/// rate and publishes each frame; with `locate`, also cuts the window around each tap's trigger
+/// and publishes where `locate` puts it (without, no `tactile/contact` topic).
+pub fn run<S>(
     node: &Node,
     source: &mut S,
-    locator: &mut L,
-    mut to_input: F,
+    mut locate: Option<Locate<'_>>,
     config: &PadNodeConfig,
     stop: &Stop,
 ) -> Result<PadNodeReport, CellError>
 where
     S: TactileSource<Frame = ImuFrame>,
-    L: ContactLocator,
-    F: FnMut(&[ImuFrame]) -> B,
-    B: Borrow<L::Input>,
 {
     let mut imu = node.publisher::<Imu>("imu")?;
     let mut raw = node.publisher::<PressureFrame>("tactile/raw")?;
-    let mut contact = node.publisher::<ContactArray>("tactile/contact")?;
+    let mut contact = match locate {
+        Some(_) => Some(node.publisher::<ContactArray>("tactile/contact")?),
+        None => None,
+    };
     let mut trigger = TapTrigger::new(config.trigger);
     let mut pacer = Pacer::new(config.rate_hz);
     let mut report = PadNodeReport::default();
@@ -69,16 +72,15 @@ where
             })?;
         }
         report.frames += 1;
-        if let Some((window, _trigger_t_us)) = trigger.push(frame) {
-            let input = to_input(window);
-            let c = locator
-                .locate(input.borrow())
-                .map_err(|e| CellError::device("contact locator", e))?;
-            contact.publish(&ContactArray {
-                header: h,
-                contacts: vec![contact_to_msg(&c)],
-            })?;
-            report.contacts += 1;
+        if let (Some(locate), Some(contact)) = (&mut locate, &mut contact) {
+            if let Some((window, _trigger_t_us)) = trigger.push(frame) {
+                let c = locate(window)?;
+                contact.publish(&ContactArray {
+                    header: h,
+                    contacts: vec![contact_to_msg(&c)],
+                })?;
+                report.contacts += 1;
+            }
         }
         pacer.wait();
     }

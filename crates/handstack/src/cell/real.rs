@@ -6,6 +6,7 @@ use super::error::CellError;
 use super::file::Part;
 use super::hand::{self, HandNodeConfig};
 use super::pace::Stop;
+use super::pad::{self, PadNodeConfig};
 use super::{NodeArgs, tactile};
 use crate::scene::Scene;
 use crate::stack::platform::LinuxPlatform;
@@ -13,6 +14,7 @@ use crate::stack::platform::Platform as _;
 use hand_control::grasp_loop::LoopConfig;
 use hand_zenoh::node::Node;
 use hand_zenoh::tactile::TactileInfo;
+use ur_bridge::tap_to_move::TapToMoveConfig;
 
 /// The fingertip's frame rate as a node (seed 000 reads its fingertips at 100 Hz).
 pub const FINGERTIP_RATE_HZ: f32 = 100.0;
@@ -75,9 +77,33 @@ pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, C
             )?;
             Ok(format!("{report:?}"))
         }
-        Part::Pad => Err(CellError::Device {
-            device: "sensors.imu_pad",
-            reason: "a real pad is opened and identified, but is not yet a frame source".into(),
-        }),
+        Part::Pad => {
+            let pad = scene
+                .file
+                .sensors
+                .imu_pad
+                .as_ref()
+                .map(|p| p.get_ref())
+                .ok_or_else(|| CellError::Device {
+                    device: "sensors.imu_pad",
+                    reason: "the scene has no [sensors.imu_pad]".into(),
+                })?;
+            let bus = pad.i2c_bus.as_ref().ok_or_else(|| CellError::Device {
+                device: "sensors.imu_pad",
+                reason: "the scene's [sensors.imu_pad] names no i2c_bus".into(),
+            })?;
+            let mut source =
+                crate::stack::pad::open(&LinuxPlatform::new(), bus.get_ref(), pad.pressure_mode)?;
+            let node = Node::open(args.options())?;
+            let config = PadNodeConfig {
+                rate_hz: imu_icm20789::TAP_PAD_RATE_HZ,
+                frame_id,
+                trigger: TapToMoveConfig::default(),
+                max_frames: None,
+            };
+            // No locator: the contact CNN (tactile-nets with `std`) is not in this binary.
+            let report = pad::run(&node, &mut source, None, &config, stop)?;
+            Ok(format!("{report:?}"))
+        }
     }
 }

@@ -20,12 +20,10 @@ pub fn check_real_devices<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Res
     if s.real_fingertip() {
         drop(fingertip::open(scene, platform)?);
     }
-    if let Some(bus) = s
-        .imu_pad
-        .as_ref()
-        .and_then(|p| p.get_ref().i2c_bus.as_ref())
-    {
-        drop(pad::open(platform, bus.get_ref())?);
+    if let Some(pad) = s.imu_pad.as_ref().map(|p| p.get_ref()) {
+        if let Some(bus) = &pad.i2c_bus {
+            drop(pad::open(platform, bus.get_ref(), pad.pressure_mode)?);
+        }
     }
     if let Some(h) = &scene.file.hand {
         if let Some(port) = &h.get_ref().serial_port {

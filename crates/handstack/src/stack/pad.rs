@@ -1,13 +1,27 @@
 //! A real ICM-20789 pad on an I2C bus of the run's [`Platform`]: opened and identified
 //! (WHO_AM_I, barometer OTP) when a scene names `i2c_bus`, so a wrong bus or a missing chip is a
-//! typed error before any experiment starts.
+//! typed error before any experiment starts; then read as seed 002's pad is, one frame (IMU
+//! burst during a barometer conversion) per call.
 
 use super::platform::{I2cBus, Platform};
 use crate::error::RunError;
-use imu_icm20789::Icm20789;
+use embedded_hal::delay::DelayNs;
+use hand_control::grasp_loop::LoopClock;
+use hand_traits::{ImuFrame, TactileSource};
+use imu_icm20789::{BaroMode, Icm20789, ImuSettings};
 
-/// Opens `bus` on `platform` and initialises the ICM-20789's IMU and barometer on it.
-pub fn open(platform: &dyn Platform, bus: &str) -> Result<Icm20789<I2cBus>, RunError> {
+/// The ICM-20789 on the platform's bus, configured as the tap pad
+/// ([`ImuSettings::TAP_PAD`]); frames stamped by the platform's clock.
+pub struct RealPad {
+    chip: Icm20789<I2cBus>,
+    mode: BaroMode,
+    delay: Box<dyn DelayNs + Send>,
+    clock: Box<dyn LoopClock + Send>,
+}
+
+/// Opens `bus` on `platform`, initialises the ICM-20789's IMU (with the tap pad's settings) and
+/// barometer on it; its frames' pressures are converted in `mode`.
+pub fn open(platform: &dyn Platform, bus: &str, mode: BaroMode) -> Result<RealPad, RunError> {
     let fail = |reason: String| RunError::Open {
         device: "sensors.imu_pad",
         path: bus.to_owned(),
@@ -18,7 +32,38 @@ pub fn open(platform: &dyn Platform, bus: &str) -> Result<Icm20789<I2cBus>, RunE
     let mut chip = Icm20789::new_with_i2c(dev);
     chip.init(&mut &mut *delay)
         .map_err(|e| fail(format!("ICM-20789: {e:?}")))?;
+    chip.configure_imu(&ImuSettings::TAP_PAD)
+        .map_err(|e| fail(format!("ICM-20789 settings: {e:?}")))?;
     chip.init_barometer(&mut &mut *delay)
         .map_err(|e| fail(format!("ICM-20789 barometer: {e:?}")))?;
-    Ok(chip)
+    Ok(RealPad {
+        chip,
+        mode,
+        delay,
+        clock: platform.clock(),
+    })
+}
+
+impl TactileSource for RealPad {
+    type Frame = ImuFrame;
+    type Error = RunError;
+
+    /// One frame ([`Icm20789::read_frame`]); a bus error or a CRC mismatch is a typed
+    /// [`RunError::Device`] and the next call reads afresh.
+    fn read_frame(&mut self) -> Result<ImuFrame, RunError> {
+        let t_us = self.clock.now_us();
+        let f = self
+            .chip
+            .read_frame(self.mode, &mut &mut *self.delay)
+            .map_err(|e| RunError::Device {
+                device: "sensors.imu_pad",
+                reason: format!("{e:?}"),
+            })?;
+        Ok(ImuFrame {
+            t_us,
+            accel_mps2: f.imu.accel_mps2,
+            gyro_rps: f.imu.gyro_rps,
+            pressure_pa: Some(f.baro.pressure_pa),
+        })
+    }
 }

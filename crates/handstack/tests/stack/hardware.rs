@@ -2,8 +2,8 @@
 //! bus simulator) reads its pressure frames from the fingertip buses it names (here a
 //! substitute platform's: MS5611 chip models, nothing else behind them) and fails before any
 //! servo command when they are missing or cannot be opened; a scene whose `host` is a started
-//! UR controller simulator connects to it; a missing I2C bus, serial port or host is a typed
-//! "cannot open …" error naming the path.
+//! UR controller simulator connects to it; a pad on a named bus is read through the driver; a
+//! missing I2C bus, serial port or host is a typed "cannot open …" error naming the path.
 
 use baro_drivers::sim::{Conditions, Ms5611Sim};
 use embedded_hal::delay::DelayNs;
@@ -35,7 +35,8 @@ fn grasp_scene(path: &str, sensors: &str, hold_s: f64) -> String {
 /// A substitute platform: its I2C buses `sub-0` … `sub-2` each hold an MS5611 chip model (no
 /// noise) at 1000 mbar that is pressed by `k + 1` mbar from `PRESS_NS` on, all on one simulated
 /// clock that is also the platform's delay and loop clock. It counts the conversions its chips
-/// run, so a test sees the frames came from here.
+/// run, so a test sees the frames came from here. Its bus `pad` holds an ICM-20789 chip model
+/// (no noise) reading [`PAD_TRUTH`].
 struct Substitute {
     clock: hand_traits::sim::SimClock,
     conversions: Arc<AtomicUsize>,
@@ -44,8 +45,21 @@ struct Substitute {
 /// When the substitute pad is pressed, ns (after the loop's 10 tare cycles).
 const PRESS_NS: u64 = 300_000_000;
 
+/// What the substitute pad's chip measures: 1 g on z, a slow turn about x, 1000 hPa.
+const PAD_TRUTH: ([f32; 3], [f32; 3], f64) = ([0.0, 0.0, 9.806_65], [0.1, 0.0, 0.0], 100_000.0);
+
 impl Platform for Substitute {
     fn open_i2c(&self, path: &str) -> Result<I2cBus, String> {
+        if path == "pad" {
+            let (accel, gyro, pa) = PAD_TRUTH;
+            let chip = imu_icm20789::sim::ChipModel::new(
+                imu_icm20789::sim::Truth::constant(accel, gyro, pa),
+                1,
+            )
+            .with_clock(self.clock.clone())
+            .with_noise(imu_icm20789::sim::SimNoise::NONE);
+            return Ok(I2cBus::new(chip));
+        }
         let k = ["sub-0", "sub-1", "sub-2"]
             .iter()
             .position(|p| *p == path)
@@ -197,12 +211,46 @@ fn a_missing_i2c_bus_is_a_cannot_open_error() {
     let pad = handstack::stack::pad::open(
         &handstack::stack::platform::LinuxPlatform::new(),
         "/dev/i2c-99",
+        imu_icm20789::BaroMode::LowNoise,
     )
     .map(drop)
     .expect_err("no such bus");
     assert!(
         matches!(pad, RunError::Open { device: "sensors.imu_pad", ref path, .. } if path == "/dev/i2c-99"),
         "{pad}"
+    );
+}
+
+#[test]
+fn a_real_pad_is_read_through_the_driver_from_the_bus_it_names() {
+    use hand_traits::TactileSource;
+    let clock = hand_traits::sim::SimClock::new();
+    let platform = Substitute {
+        clock: clock.clone(),
+        conversions: Arc::default(),
+    };
+    let mut pad = handstack::stack::pad::open(&platform, "pad", imu_icm20789::BaroMode::LowNoise)
+        .expect("the substitute pad");
+    let (accel, gyro, pa) = PAD_TRUTH;
+    let mut last_t = None;
+    for _ in 0..5 {
+        let f = pad.read_frame().expect("a frame");
+        // ±2 g: 16 384 counts per g; ±250 °/s: 131 counts per °/s (datasheet Tables 1–2).
+        for k in 0..3 {
+            assert!((f.accel_mps2[k] - accel[k]).abs() < 2e-3, "{f:?}");
+            assert!((f.gyro_rps[k] - gyro[k]).abs() < 2e-4, "{f:?}");
+        }
+        let p = f.pressure_pa.expect("a pressure each frame");
+        assert!((f64::from(p) - pa).abs() < 1.0, "{f:?}");
+        // Each frame waits out a Low Noise conversion on the platform's clock.
+        assert!(last_t.is_none_or(|t| f.t_us > t), "{f:?}");
+        last_t = Some(f.t_us);
+    }
+    let conversion_ns = u64::from(imu_icm20789::BaroMode::LowNoise.conversion_time_max_us()) * 1000;
+    assert!(
+        clock.now_ns() >= 5 * conversion_ns,
+        "5 conversions in {} ns",
+        clock.now_ns()
     );
 }
 

@@ -43,7 +43,7 @@ pub struct ChipModel {
     imu_address: u8,
     imu: ImuModel,
     baro: BaroModel,
-    env: Box<dyn Environment>,
+    env: Box<dyn Environment + Send>,
     noise: NoiseSource,
     sim_noise: SimNoise,
     bus: BusAccount,
@@ -59,8 +59,9 @@ impl core::fmt::Debug for ChipModel {
 }
 
 impl ChipModel {
-    /// A chip at 0x68 measuring `env`, with default noise seeded by `seed`.
-    pub fn new(env: impl Environment + 'static, seed: u64) -> Self {
+    /// A chip at 0x68 measuring `env`, with default noise seeded by `seed`. `env` is `Send`, so
+    /// the chip can stand behind any bus a thread owns (a platform's boxed I2C bus).
+    pub fn new(env: impl Environment + Send + 'static, seed: u64) -> Self {
         ChipModel {
             imu_address: ImuAddress::Ad0Low.addr(),
             imu: ImuModel::new(reg::WHO_AM_I_ICM20789),
