@@ -9,6 +9,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::kinematics::Joints;
+use crate::rtde_frame;
 use crate::status::ArmStatus;
 use crate::{UrError, Venv};
 
@@ -162,6 +163,67 @@ fn refuses(host: &str, port: u16) -> bool {
     tried > 0
 }
 
+/// ur_rtde's `DashboardClient::connect` deadline for the server's greeting (its default).
+const DASHBOARD_GREETING_TIMEOUT: Duration = Duration::from_secs(2);
+/// Longest wait for the controller to answer our RTDE protocol-version request.
+const RTDE_HANDSHAKE_TIMEOUT: Duration = Duration::from_secs(2);
+/// The RTDE port and the protocol version ur_rtde asks for.
+const RTDE_PORT: u16 = 30004;
+const RTDE_PROTOCOL_VERSION: u16 = 2;
+
+/// Asks the controller's RTDE server for protocol version 2 ourselves, each step bounded by
+/// [`RTDE_HANDSHAKE_TIMEOUT`], before ur_rtde connects: ur_rtde's own handshake waits without
+/// limit on a server that accepts the connection and never answers (measured here: its
+/// `RTDEReceiveInterface` and `RTDEControlInterface` were still blocked after 40 s).
+fn check_rtde_answers(host: &str) -> Result<(), UrError> {
+    let connect = |message: String| UrError::Connect {
+        host: host.to_owned(),
+        message: format!("RTDE (port {RTDE_PORT}): {message}"),
+    };
+    let addr = (host, RTDE_PORT)
+        .to_socket_addrs()
+        .map_err(|e| connect(e.to_string()))?
+        .next()
+        .ok_or_else(|| connect("the host has no address".into()))?;
+    let mut stream =
+        TcpStream::connect_timeout(&addr, RTDE_HANDSHAKE_TIMEOUT).map_err(|e| match e.kind() {
+            std::io::ErrorKind::ConnectionRefused => UrError::ConnectionRefused {
+                host: host.to_owned(),
+                port: RTDE_PORT,
+            },
+            _ => connect(e.to_string()),
+        })?;
+    let io = |e: std::io::Error| match e.kind() {
+        std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut => UrError::Timeout {
+            after: RTDE_HANDSHAKE_TIMEOUT,
+            what: "the controller's RTDE handshake (port 30004)",
+        },
+        _ => connect(e.to_string()),
+    };
+    stream
+        .set_read_timeout(Some(RTDE_HANDSHAKE_TIMEOUT))
+        .and_then(|()| stream.set_write_timeout(Some(RTDE_HANDSHAKE_TIMEOUT)))
+        .map_err(io)?;
+    rtde_frame::write_package(
+        &mut stream,
+        rtde_frame::REQUEST_PROTOCOL_VERSION,
+        &RTDE_PROTOCOL_VERSION.to_be_bytes(),
+    )
+    .map_err(io)?;
+    match rtde_frame::read_package(&mut stream).map_err(io)? {
+        Some((rtde_frame::REQUEST_PROTOCOL_VERSION, reply)) if reply.first() == Some(&1) => Ok(()),
+        Some((rtde_frame::REQUEST_PROTOCOL_VERSION, _)) => Err(UrError::BadReply {
+            call: "RTDE protocol version",
+            detail: format!("the controller refused version {RTDE_PROTOCOL_VERSION}"),
+        }),
+        Some((kind, _)) => Err(UrError::BadReply {
+            call: "RTDE protocol version",
+            detail: format!("a package of type {kind} in reply"),
+        }),
+        None => Err(connect("closed before answering".into())),
+    }
+}
+
 fn six(v: Vec<f64>, call: &'static str) -> Result<[f64; 6], UrError> {
     <[f64; 6]>::try_from(v).map_err(|v| UrError::BadReply {
         call,
@@ -206,11 +268,22 @@ impl UrArm {
                 .and_then(|c| c.call1((host,)))
                 .map_err(|e| map_py(py, e, "DashboardClient", host))?;
             dashboard.call_method0("connect").map_err(|e| {
-                refine_connect_error(map_py(py, e, "dashboard connect", host), host, &[29999])
+                match map_py(py, e, "dashboard connect", host) {
+                    // ur_rtde's own 2 s deadline for the server's greeting ran out.
+                    UrError::Controller(m) if m.to_lowercase().contains("operation canceled") => {
+                        UrError::Timeout {
+                            after: DASHBOARD_GREETING_TIMEOUT,
+                            what: "the dashboard server's greeting (port 29999)",
+                        }
+                    }
+                    e => refine_connect_error(e, host, &[29999]),
+                }
             })?;
             if config.power_up {
                 power_up(py, &dashboard, &config)?;
             }
+            // Without the GIL: the check may wait its whole timeout.
+            py.detach(|| check_rtde_answers(host))?;
             let receive = rtde_receive
                 .getattr("RTDEReceiveInterface")
                 .and_then(|c| c.call1((host, freq)))

@@ -14,6 +14,7 @@ mod error;
 mod grid;
 pub mod kinematics;
 mod python;
+mod rtde_frame;
 #[cfg(feature = "sim")]
 pub mod sim;
 pub mod status;

@@ -1,10 +1,8 @@
 //! RTDE wire format (Universal Robots' RTDE guide, protocol version 2): package types, the
 //! variable types and their big-endian encodings.
 
-use std::io::{self, Read, Write};
-
-/// `RTDE_REQUEST_PROTOCOL_VERSION` ('V').
-pub const REQUEST_PROTOCOL_VERSION: u8 = 86;
+pub use crate::rtde_frame::{REQUEST_PROTOCOL_VERSION, package};
+pub(crate) use crate::rtde_frame::{read_package, write_package};
 /// `RTDE_GET_URCONTROL_VERSION` ('v').
 pub const GET_URCONTROL_VERSION: u8 = 118;
 /// `RTDE_TEXT_MESSAGE` ('M').
@@ -117,42 +115,6 @@ impl Value {
             VarType::Vector6Int32 => Value::Vector6Int32(core::array::from_fn(n)),
         }
     }
-}
-
-/// Reads one package: (type, payload). `Ok(None)` at a clean end of stream.
-pub(crate) fn read_package(r: &mut impl Read) -> io::Result<Option<(u8, Vec<u8>)>> {
-    let mut header = [0_u8; 3];
-    match r.read_exact(&mut header) {
-        Ok(()) => {}
-        Err(e) if e.kind() == io::ErrorKind::UnexpectedEof => return Ok(None),
-        Err(e) => return Err(e),
-    }
-    let size = usize::from(u16::from_be_bytes([header[0], header[1]]));
-    if size < 3 {
-        return Err(io::Error::new(
-            io::ErrorKind::InvalidData,
-            format!("package size {size} < header"),
-        ));
-    }
-    let mut payload = vec![0; size - 3];
-    r.read_exact(&mut payload)?;
-    Ok(Some((header[2], payload)))
-}
-
-/// Frames `payload` as a package of type `kind`.
-pub fn package(kind: u8, payload: &[u8]) -> io::Result<Vec<u8>> {
-    let size = u16::try_from(payload.len() + 3)
-        .map_err(|_| io::Error::new(io::ErrorKind::InvalidInput, "package over 65535 bytes"))?;
-    let mut out = Vec::with_capacity(payload.len() + 3);
-    out.extend_from_slice(&size.to_be_bytes());
-    out.push(kind);
-    out.extend_from_slice(payload);
-    Ok(out)
-}
-
-/// Writes one package.
-pub(crate) fn write_package(w: &mut impl Write, kind: u8, payload: &[u8]) -> io::Result<()> {
-    w.write_all(&package(kind, payload)?)
 }
 
 #[cfg(test)]

@@ -1,7 +1,8 @@
 //! The simulator under load and abuse: many rapidly reconnecting clients, clients that vanish
 //! mid-move, garbage on every port. Raw TCP clients (bounded: a timeout on every read and
 //! write, a fixed number of connections), then a fresh `UrArm` to show the simulator is
-//! still up. Loopback addresses 127.0.0.23–24 and 27–28 (off the other tests').
+//! still up; a controller that accepts connections and never answers is a typed timeout, not a
+//! hang. Loopback addresses 127.0.0.23–24, 27–28 and 31–32 (off the other tests').
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{Ipv4Addr, Shutdown, SocketAddr, TcpStream};
@@ -429,4 +430,69 @@ fn a_client_vanishing_mid_move_with_a_watchdog_stops_the_arm() {
     assert!(silent_s <= 1.0 / WATCHDOG_HZ + 0.008 + 1e-9, "{line}");
     assert!(line.ends_with("program stopped"), "{line}");
     assert!(tcp(&sim).distance_m(&target) > 0.1, "{:?}", tcp(&sim));
+}
+
+/// A controller at 127.0.0.`octet` that accepts on 29999, 30003 and 30004 and never answers,
+/// except that the dashboard greets when `greet`. Its threads hold every connection until the
+/// test process ends (bounded: 8 accepts a port).
+fn silent_controller(octet: u8, greet: bool) {
+    for port in [29999, 30003, 30004] {
+        let listener = std::net::TcpListener::bind((Ipv4Addr::new(127, 0, 0, octet), port))
+            .expect("bind the silent controller");
+        std::thread::spawn(move || {
+            let mut held = Vec::new();
+            for stream in listener.incoming().take(8).flatten() {
+                if greet && port == 29999 {
+                    let _ = (&stream).write_all(b"Connected: Universal Robots Dashboard Server\n");
+                }
+                held.push(stream);
+            }
+            std::thread::sleep(Duration::from_secs(600));
+        });
+    }
+}
+
+/// `UrArm::connect` to 127.0.0.`octet` on another thread; its result, or a panic after 30 s
+/// (a hang fails the test instead of stalling the suite).
+fn connect_bounded(octet: u8) -> (Result<UrArm, ur_bridge::UrError>, Duration) {
+    let (tx, rx) = std::sync::mpsc::channel();
+    let start = Instant::now();
+    std::thread::spawn(move || {
+        let _ = tx.send(UrArm::connect(UrConfig::new(format!("127.0.0.{octet}"))));
+    });
+    let result = rx
+        .recv_timeout(Duration::from_secs(30))
+        .expect("UrArm::connect hung past 30 s against a silent controller");
+    (result, start.elapsed())
+}
+
+#[test]
+fn a_controller_that_accepts_and_never_answers_is_a_timeout_not_a_hang() {
+    // Nothing answers: ur_rtde's dashboard client gives up on the greeting after its 2 s.
+    silent_controller(31, false);
+    let (result, took) = connect_bounded(31);
+    match result {
+        Err(ur_bridge::UrError::Timeout { what, .. }) => {
+            assert!(what.contains("dashboard"), "{what}")
+        }
+        other => panic!(
+            "expected a dashboard timeout, got {:?}",
+            other.map(|_| "an arm")
+        ),
+    }
+    assert!(took < Duration::from_secs(10), "{took:?}");
+    // The dashboard greets, RTDE accepts and never answers: ur_rtde alone waits forever
+    // there; the bridge's own bounded handshake says so in 2 s.
+    silent_controller(32, true);
+    let (result, took) = connect_bounded(32);
+    match result {
+        Err(e @ ur_bridge::UrError::Timeout { .. }) => {
+            assert!(e.to_string().contains("RTDE handshake (port 30004)"), "{e}")
+        }
+        other => panic!(
+            "expected an RTDE timeout, got {:?}",
+            other.map(|_| "an arm")
+        ),
+    }
+    assert!(took < Duration::from_secs(10), "{took:?}");
 }
