@@ -1,8 +1,8 @@
 //! `handstack`: run a tactile hand stack from a scene file on its real devices
 //! (`handstack run SCENE... [--json]`), or only check scene files (`handstack check SCENE...`).
-//! With feature `cell`: one part of a scene as a ROS 2 node on Zenoh (`handstack node SCENE
-//! --part P --namespace NS`), and a cell of such nodes with a coordinator (`handstack cell
-//! CELL.toml`).
+//! With feature `cell`: a scene's stack as ROS 2 nodes on Zenoh (`handstack node SCENE`, or one
+//! part: `--part P [--namespace NS]`), and a cell of such nodes with a coordinator (`handstack
+//! cell CELL.toml`).
 
 use clap::{Parser, Subcommand};
 use handstack::progress::Bars;
@@ -36,8 +36,8 @@ enum Command {
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
     },
-    /// Run one part of a scene (pad, arm or fingertip) on its real device as a ROS 2 node on
-    /// Zenoh (rmw_zenoh's conventions), until stdin closes.
+    /// Run a scene's stack (or one part: pad, arm, fingertip or hand) on its real devices as
+    /// ROS 2 nodes on Zenoh (rmw_zenoh's conventions), until stdin closes.
     #[cfg(feature = "cell")]
     Node(handstack::cell::cli::NodeCommand),
     /// Start a Zenoh router, the nodes a cell file names (each its own process) and the
@@ -51,10 +51,13 @@ fn main() -> ExitCode {
         Command::Run { scenes, json } => run(&scenes, json),
         Command::Check { scenes } => check(&scenes),
         #[cfg(feature = "cell")]
-        Command::Node(cmd) => cmd.main(|args, stop| {
-            let scene = Scene::load(&cmd.scene)?;
-            handstack::cell::real::run_node(&scene, args, stop)
-        }),
+        Command::Node(cmd) => cmd.main(
+            || Ok(handstack::cell::scene_parts(&Scene::load(&cmd.scene)?)),
+            |args, stop| {
+                let scene = Scene::load(&cmd.scene)?;
+                handstack::cell::real::run_node(&scene, args, stop)
+            },
+        ),
         #[cfg(feature = "cell")]
         Command::Cell(cmd) => cmd.main(|path, run| {
             let name = path.file_stem().unwrap_or_default().to_string_lossy();

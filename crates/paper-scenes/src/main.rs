@@ -30,8 +30,8 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         report: Option<PathBuf>,
     },
-    /// Run one part of a scene (pad, arm or fingertip) on its simulated device as a ROS 2 node
-    /// on Zenoh, until stdin closes.
+    /// Run a scene's stack (or one part: pad, arm, fingertip or hand) on its simulated devices
+    /// as ROS 2 nodes on Zenoh, until stdin closes.
     #[cfg(feature = "cell")]
     Node {
         #[command(flatten)]
@@ -54,12 +54,18 @@ fn main() -> ExitCode {
             report,
         } => run(&scenes, json, report.as_deref()),
         #[cfg(feature = "cell")]
-        Command::Node { node, sim_speed } => node.main(|args, stop| {
-            let scene = paper_scenes::scene::PaperScene::load(&node.scene)?;
-            let progress = handstack::progress::Quiet;
-            let cx = RunContext::new(&progress);
-            paper_scenes::cell::run_node(&scene, args, sim_speed, &cx, stop)
-        }),
+        Command::Node { node, sim_speed } => node.main(
+            || {
+                let scene = paper_scenes::scene::PaperScene::load(&node.scene)?;
+                Ok(handstack::cell::scene_parts(&scene))
+            },
+            |args, stop| {
+                let scene = paper_scenes::scene::PaperScene::load(&node.scene)?;
+                let progress = handstack::progress::Quiet;
+                let cx = RunContext::new(&progress);
+                paper_scenes::cell::run_node(&scene, args, sim_speed, &cx, stop)
+            },
+        ),
         #[cfg(feature = "cell")]
         Command::Cell(cmd) => cmd.main(paper_scenes::cell::outcome),
     }

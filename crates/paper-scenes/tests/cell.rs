@@ -3,7 +3,8 @@
 //! The nine taps are located as the in-process tap-to-move locates the same taps (same pad
 //! seed and schedule, same CNN, same window), every move arrives, nothing is lost; and a pad
 //! node killed mid-run is seen going within a stated bound and ends the run with the arm told
-//! to stop. Needs `$HANDSTACK_PYTHON` (ur-rtde). Everything on 127.0.0.x.
+//! to stop; a scene's whole stack runs as one `node` process. Needs `$HANDSTACK_PYTHON`
+//! (ur-rtde). Everything on 127.0.0.x.
 #![cfg(feature = "cell")]
 
 mod common;
@@ -296,4 +297,70 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
     assert!(report.contains("safe_stops: 1"), "{report}");
     assert!(report.contains("commands: 1, refused: 1"), "{report}");
     assert!(report.contains("starts: 1"), "{report}");
+}
+
+#[test]
+fn a_scenes_whole_stack_runs_as_one_node_process() {
+    use hand_zenoh::keys::EntityKind;
+    use std::io::Read as _;
+    use std::process::{Command, Stdio};
+    use std::time::Duration;
+    if !python_ok() {
+        return;
+    }
+    let _one = ONE_CELL.lock().unwrap_or_else(|e| e.into_inner());
+    let wait = Duration::from_secs(30);
+    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
+    let _router = Router::open(&endpoint).unwrap();
+    // The full hand, no --part: its hand (with the fingertip and the force DNN), its pad and
+    // its arm, each a node in its default namespace.
+    let mut child = Command::new(program())
+        .arg("node")
+        .arg(root().join("fixtures/scenes/full-hand.toml"))
+        .args(["--connect", &endpoint])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("paper-scenes node");
+    let mut stderr = child.stderr.take().unwrap();
+    let log = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = stderr.read_to_string(&mut s);
+        s
+    });
+    let mut options = NodeOptions::new("/cell", "watcher");
+    options.session = SessionConfig::peer(&endpoint);
+    let watcher = Node::open(options).unwrap();
+    for (kind, name) in [
+        (EntityKind::Service, "/hand0/grasp/start"),
+        (EntityKind::Publisher, "/hand0/force"),
+        (EntityKind::Publisher, "/pad0/imu"),
+        (EntityKind::Publisher, "/pad0/tactile/contact"),
+        (EntityKind::Publisher, "/arm0/joint_states"),
+    ] {
+        let seen = watcher.wait_for(kind, name, wait).unwrap();
+        if !seen {
+            let _ = child.kill();
+            panic!("{name} never appeared; node log:\n{}", log.join().unwrap());
+        }
+    }
+    // Closing stdin stops every part; the process ends on its own, successfully.
+    drop(child.stdin.take());
+    let deadline = Instant::now() + wait;
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if Instant::now() > deadline {
+            let _ = child.kill();
+            panic!("the node process did not end after stdin closed");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let log = log.join().unwrap();
+    assert!(status.success(), "{status}: {log}");
+    for part in ["/hand0 hand: ", "/pad0 pad: ", "/arm0 arm: "] {
+        assert!(log.contains(part), "no {part:?} in {log}");
+    }
 }

@@ -10,17 +10,18 @@ use crate::Outcome;
 use crate::progress::{Bars, Progress as _};
 use std::path::{Path, PathBuf};
 
-/// `node SCENE --part P --namespace NS [--connect E] [--domain N] [--humble]`.
+/// `node SCENE [--part P [--namespace NS]] [--connect E] [--domain N] [--humble]`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct NodeCommand {
-    /// The scene file whose part the node runs.
+    /// The scene file whose stack (or part) the node runs.
     pub scene: PathBuf,
-    /// The part: pad, arm, fingertip or hand.
+    /// One part: pad, arm, fingertip or hand. Without it, every part of the scene, each a node
+    /// in its default namespace (`/hand0`, `/pad0`, `/arm0`), in this one process.
     #[arg(long)]
-    pub part: Part,
-    /// The node's namespace (`/arm0`).
-    #[arg(long)]
-    pub namespace: String,
+    pub part: Option<Part>,
+    /// The part's namespace (default: the part's, e.g. `/arm0`).
+    #[arg(long, requires = "part")]
+    pub namespace: Option<String>,
     /// The Zenoh router to connect to.
     #[arg(long, default_value = "tcp/127.0.0.1:7447")]
     pub connect: String,
@@ -33,34 +34,80 @@ pub struct NodeCommand {
 }
 
 impl NodeCommand {
-    /// The node's joining options.
-    pub fn args(&self) -> NodeArgs {
+    /// The joining options of `part`'s node.
+    pub fn args(&self, part: Part) -> NodeArgs {
         NodeArgs {
-            part: self.part,
-            namespace: self.namespace.clone(),
+            part,
+            namespace: self
+                .namespace
+                .clone()
+                .unwrap_or_else(|| part.default_namespace().to_owned()),
             connect: self.connect.clone(),
             domain_id: self.domain,
             humble: self.humble,
         }
     }
 
-    /// Runs the node with `run` until stdin closes; prints what it did on stderr.
+    /// Runs the named part, or every part `scene_parts` gives, each with `run` on its own
+    /// thread until stdin closes; prints what each did on stderr. A part that fails stops the
+    /// others (each ends in its safe state) and the exit status says so.
     pub fn main(
         &self,
-        run: impl FnOnce(&NodeArgs, &Stop) -> Result<String, CellError>,
+        scene_parts: impl FnOnce() -> Result<Vec<Part>, CellError>,
+        run: impl Fn(&NodeArgs, &Stop) -> Result<String, CellError> + Sync,
     ) -> std::process::ExitCode {
         let stop = Stop::new();
         stop.on_stdin_eof();
-        let args = self.args();
-        match run(&args, &stop) {
-            Ok(done) => {
-                eprintln!("{} {}: {done}", args.namespace, args.part.as_str());
-                std::process::ExitCode::SUCCESS
+        let parts = match self.part {
+            Some(p) => vec![p],
+            None => match scene_parts() {
+                Ok(parts) if !parts.is_empty() => parts,
+                Ok(_) => {
+                    eprintln!("error: {}: no part to run as a node", self.scene.display());
+                    return std::process::ExitCode::FAILURE;
+                }
+                Err(e) => {
+                    eprintln!("error: {}: {e}", self.scene.display());
+                    return std::process::ExitCode::FAILURE;
+                }
+            },
+        };
+        let failed = std::thread::scope(|scope| {
+            let handles: Vec<_> = parts
+                .iter()
+                .map(|&part| {
+                    let (args, stop, run) = (self.args(part), &stop, &run);
+                    scope.spawn(move || {
+                        let result = run(&args, stop);
+                        if result.is_err() {
+                            stop.set();
+                        }
+                        (args, result)
+                    })
+                })
+                .collect();
+            let mut failed = false;
+            for h in handles {
+                match h.join() {
+                    Ok((args, Ok(done))) => {
+                        eprintln!("{} {}: {done}", args.namespace, args.part.as_str())
+                    }
+                    Ok((args, Err(e))) => {
+                        eprintln!("error: {} {}: {e}", args.namespace, args.part.as_str());
+                        failed = true;
+                    }
+                    Err(_) => {
+                        stop.set();
+                        failed = true;
+                    }
+                }
             }
-            Err(e) => {
-                eprintln!("error: {} {}: {e}", args.namespace, args.part.as_str());
-                std::process::ExitCode::FAILURE
-            }
+            failed
+        });
+        if failed {
+            std::process::ExitCode::FAILURE
+        } else {
+            std::process::ExitCode::SUCCESS
         }
     }
 }

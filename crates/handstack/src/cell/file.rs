@@ -54,6 +54,16 @@ impl Part {
         }
     }
 
+    /// The namespace its node takes when none is given: `/hand0` for the hand and its
+    /// fingertip, `/pad0`, `/arm0`.
+    pub fn default_namespace(self) -> &'static str {
+        match self {
+            Part::Pad => "/pad0",
+            Part::Arm => "/arm0",
+            Part::Fingertip | Part::Hand => "/hand0",
+        }
+    }
+
     /// Its name on the command line.
     pub fn as_str(self) -> &'static str {
         match self {

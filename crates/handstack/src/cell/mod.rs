@@ -4,6 +4,7 @@
 //! pad node → contact → coordinator → arm node.
 //!
 //! ```text
+//! handstack node my-hand.toml                                  # its stack: /hand0, /pad0, /arm0
 //! handstack node my-arm.toml --part arm --namespace /arm0      # peer of tcp/127.0.0.1:7447
 //! handstack cell my-cell.toml                                   # router + nodes + coordinator
 //! ```
@@ -13,6 +14,7 @@
 //!
 //! - [`file`](mod@file): the cell file (`router`, `[[node]]`, `[coordinator.tap_to_move]`);
 //! - [`tactile`], [`pad`], [`arm`], [`hand`]: one node per part, each until its [`Stop`];
+//!   [`scene_parts`]: the parts a scene's stack runs;
 //! - [`coordinator`]: the tap-to-move across the cell;
 //! - [`launch`]: the router, the node processes and the coordinator of a cell file.
 
@@ -34,6 +36,7 @@ pub use error::CellError;
 pub use file::{CellFile, NodeEntry, Part};
 pub use pace::{Pacer, Stop};
 
+use crate::scene::SceneOf;
 use hand_zenoh::HashMode;
 use hand_zenoh::config::SessionConfig;
 use hand_zenoh::node::NodeOptions;
@@ -65,5 +68,44 @@ impl NodeArgs {
             HashMode::Rihs01
         };
         o
+    }
+}
+
+/// The parts of `scene` a node runs when no part is named: its hand (servos and fingertip) or,
+/// without one, its fingertip; its pad; its arm. (A `handstack` scene names the hardware of
+/// every part it has, so each of these can be opened.)
+pub fn scene_parts<X>(scene: &SceneOf<X>) -> Vec<Part> {
+    let f = &scene.file;
+    let mut parts = Vec::new();
+    if f.hand.is_some() {
+        parts.push(Part::Hand);
+    } else if f.sensors.fingertip.is_some() {
+        parts.push(Part::Fingertip);
+    }
+    if f.sensors.imu_pad.is_some() {
+        parts.push(Part::Pad);
+    }
+    if f.arm.is_some() {
+        parts.push(Part::Arm);
+    }
+    parts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Part, scene_parts};
+    use crate::scene::Scene;
+
+    #[test]
+    fn a_scenes_parts_are_the_devices_it_names() {
+        let tip = "title = \"t\"\n[sensors.fingertip]\nosr = 1024\n\
+                   i2c_buses = [\"/dev/i2c-1\", \"/dev/i2c-2\", \"/dev/i2c-3\"]\n";
+        let rest = "[arm]\nmodel = \"ur3\"\nhost = \"192.168.0.10\"\n\
+                    [experiment.readout]\nframes = 10\n";
+        let scene = Scene::parse("t.toml", &format!("{tip}{rest}")).unwrap();
+        assert_eq!(scene_parts(&scene), [Part::Fingertip, Part::Arm]);
+        let pad = "[sensors.imu_pad]\ni2c_bus = \"/dev/i2c-4\"\n";
+        let scene = Scene::parse("t.toml", &format!("{tip}{pad}{rest}")).unwrap();
+        assert_eq!(scene_parts(&scene), [Part::Fingertip, Part::Pad, Part::Arm]);
     }
 }
