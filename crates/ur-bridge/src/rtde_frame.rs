@@ -5,7 +5,7 @@
 use std::io::{self, Read, Write};
 
 /// `RTDE_REQUEST_PROTOCOL_VERSION` ('V').
-pub const REQUEST_PROTOCOL_VERSION: u8 = 86;
+pub(crate) const REQUEST_PROTOCOL_VERSION: u8 = 86;
 
 /// Reads one package: (type, payload). `Ok(None)` at a clean end of stream.
 pub(crate) fn read_package(r: &mut impl Read) -> io::Result<Option<(u8, Vec<u8>)>> {
@@ -28,7 +28,7 @@ pub(crate) fn read_package(r: &mut impl Read) -> io::Result<Option<(u8, Vec<u8>)
 }
 
 /// Frames `payload` as a package of type `kind`.
-pub fn package(kind: u8, payload: &[u8]) -> io::Result<Vec<u8>> {
+pub(crate) fn package(kind: u8, payload: &[u8]) -> io::Result<Vec<u8>> {
     let size = u16::try_from(payload.len() + 3)
         .map_err(|_| io::Error::new(io::ErrorKind::InvalidInput, "package over 65535 bytes"))?;
     let mut out = Vec::with_capacity(payload.len() + 3);
