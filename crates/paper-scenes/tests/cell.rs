@@ -1,5 +1,6 @@
 //! `fixtures/cells/tap-to-move.toml` across processes (feature `cell`): a Zenoh router in this
-//! process, the pad and the UR3 nodes as `paper-scenes node` processes, the coordinator here.
+//! process, the pad and the UR3 nodes as `paper-scenes node` processes (the program the cell
+//! file names, started as `handstack cell` starts it), the coordinator here.
 //! The nine taps are located as the in-process tap-to-move locates the same taps (same pad
 //! seed and schedule, same CNN, same window), every move arrives, nothing is lost; and a pad
 //! node killed mid-run is seen going within a stated bound and ends the run with the arm told
@@ -84,7 +85,10 @@ fn tap_to_move_across_processes_locates_as_in_process() {
     }
     let _one = ONE_CELL.lock().unwrap_or_else(|e| e.into_inner());
     let path = cell_file("across");
-    let run = launch::run(&path, &program(), &Stop::new(), |_| {}).expect("the cell run");
+    // As `handstack cell` runs it from beside paper-scenes (target/debug): the cell file's
+    // nodes name their program, `paper-scenes`, found beside the running one.
+    let handstack = program().with_file_name("handstack");
+    let run = launch::run(&path, &handstack, &Stop::new(), |_| {}).expect("the cell run");
     let r = &run.report;
     assert_eq!(r.rows.len(), 9, "{r:?}");
     assert_eq!(r.lost_contacts, 0);

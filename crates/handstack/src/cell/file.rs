@@ -101,6 +101,30 @@ pub struct NodeEntry {
     /// Simulated devices only: read them this many times faster than real time.
     #[serde(default)]
     pub sim_speed: Option<f64>,
+    /// The program whose `node` command runs it (default: the program running the cell). A
+    /// bare name is looked for beside that program, then on `PATH`; a path is relative to the
+    /// cell file. So `handstack cell` can start nodes of another program, such as a
+    /// reproduction's simulated devices (`program = "paper-scenes"`).
+    #[serde(default)]
+    pub program: Option<PathBuf>,
+}
+
+impl NodeEntry {
+    /// The program that runs this node when the cell runs under `default`.
+    pub fn program_under(&self, default: &Path) -> PathBuf {
+        match &self.program {
+            None => default.to_owned(),
+            Some(p) if p.components().count() > 1 => p.clone(),
+            Some(name) => {
+                let beside = default.with_file_name(name);
+                if beside.is_file() {
+                    beside
+                } else {
+                    name.clone()
+                }
+            }
+        }
+    }
 }
 
 /// The tap-to-move coordination.
@@ -157,6 +181,11 @@ impl CellFile {
         let dir = path.parent().unwrap_or(Path::new("."));
         for n in &mut cell.nodes {
             n.scene = dir.join(&n.scene);
+            if let Some(p) = &mut n.program {
+                if p.components().count() > 1 {
+                    *p = dir.join(&*p);
+                }
+            }
         }
         Ok(cell)
     }

@@ -1,6 +1,7 @@
 //! `cell CELL.toml`: a router (a Zenoh session in router mode in this process; `zenohd` need
-//! not be installed), each `[[node]]` as a separate process (`<this program> node SCENE --part
-//! P --namespace NS --connect ROUTER`), and the coordinator as a node of this process. The node
+//! not be installed), each `[[node]]` as a separate process (`<its program, else this one> node
+//! SCENE --part P --namespace NS --connect ROUTER`), and the coordinator as a node of this
+//! process. The node
 //! processes are stopped by closing their stdin (then killed if they have not ended within
 //! 5 s) when the run ends, however it ends.
 
@@ -78,12 +79,13 @@ impl Drop for Nodes {
     }
 }
 
-/// Starts the node processes of `cell` with `program` (the binary that has the `node`
-/// command for these scenes).
+/// Starts the node processes of `cell`, each with its own `program` or else with `program`
+/// (a binary with the `node` command for these scenes).
 pub fn start_nodes(cell: &CellFile, program: &Path) -> Result<Nodes, CellError> {
     let mut nodes = Nodes::default();
     for n in &cell.nodes {
-        let mut cmd = Command::new(program);
+        let program = n.program_under(program);
+        let mut cmd = Command::new(&program);
         cmd.arg("node")
             .arg(&n.scene)
             .args(["--part", n.part.as_str()])
