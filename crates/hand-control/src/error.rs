@@ -187,6 +187,16 @@ pub enum Error {
         /// What was wrong.
         detail: String,
     },
+    /// An instruction longer than the bus's write buffer; nothing was sent.
+    #[error(
+        "instruction of {required} bytes does not fit the {capacity}-byte write buffer; nothing was sent"
+    )]
+    InstructionTooLong {
+        /// Bytes the instruction needs.
+        required: usize,
+        /// Bytes the buffer holds.
+        capacity: usize,
+    },
     /// The serial port failed.
     #[error("serial port: {0}")]
     Io(#[from] std::io::Error),
@@ -198,9 +208,9 @@ impl Error {
         use dynamixel2::WriteError as W;
         match e {
             W::DiscardBuffer(io) | W::Write(io) => Error::Io(io),
-            W::BufferTooSmall(b) => Error::Protocol {
-                id: None,
-                detail: format!("{b:?}"),
+            W::BufferTooSmall(b) => Error::InstructionTooLong {
+                required: b.required_size,
+                capacity: b.total_size,
             },
         }
     }
@@ -209,6 +219,21 @@ impl Error {
 #[cfg(test)]
 mod tests {
     use super::Error;
+
+    /// A write that cannot fit is said as such, not as a bad status packet.
+    #[test]
+    fn an_instruction_too_long_for_the_buffer_is_not_a_protocol_error() {
+        let e = Error::from_write(dynamixel2::WriteError::BufferTooSmall(
+            dynamixel2::BufferTooSmallError {
+                required_size: 300,
+                total_size: 256,
+            },
+        ));
+        assert_eq!(
+            e.to_string(),
+            "instruction of 300 bytes does not fit the 256-byte write buffer; nothing was sent"
+        );
+    }
 
     /// The texts a user reads name the servo by its number, never as `Some(1)`.
     #[test]
