@@ -174,8 +174,6 @@ where
                     let zero = zero.map(|z| z as f32);
                     if topic.publish(h.clone(), &rise_hpa(&f.pressure_pa, &zero))? {
                         report.forces += 1;
-                    } else {
-                        report.forces_refused += 1;
                     }
                 }
             }
@@ -207,5 +205,7 @@ where
         let _ = safe(&mut grasp);
         report.safe_stops += 1;
     }
+    // The topic counts what its estimator refused.
+    report.forces_refused = force.as_ref().map_or(0, ForceTopic::refused);
     result.map(|()| report)
 }
