@@ -336,37 +336,98 @@ pub fn row_label(variant: Variant, grouping: Grouping, protocol: Protocol, case:
     )
 }
 
-/// Metrics row label of a committed model's re-evaluation.
+/// Metrics row label of the committed all-depth model of `variant`.
 pub fn committed_label(variant: Variant) -> String {
-    format!("committed/{}", variant.name())
+    Committed::all_depths(variant).label()
 }
 
-/// The committed models: each variant trained on trial 0 of the all-depth case, leak-free
-/// grouping — the split a test re-creates to check the weights against the metrics.
-pub fn committed_job(variant: Variant) -> Job {
-    Job {
-        variant,
-        case: Case::All,
-        protocol: Protocol::Trials,
-        grouping: Grouping::Taps,
-        run: 0,
+/// A committed model: `variant` trained on trial 0 of `case`, leak-free grouping — the split a
+/// test re-creates to check the weights against the metrics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Committed {
+    /// Which network.
+    pub variant: Variant,
+    /// Which taps it learnt from (its trial 0's training share).
+    pub case: Case,
+}
+
+impl Committed {
+    /// `variant` trained on every depth (Table I's "All cases").
+    pub const fn all_depths(variant: Variant) -> Committed {
+        Committed {
+            variant,
+            case: Case::All,
+        }
+    }
+
+    /// The protocol job that trains it.
+    pub fn job(self) -> Job {
+        Job {
+            variant: self.variant,
+            case: self.case,
+            protocol: Protocol::Trials,
+            grouping: Grouping::Taps,
+            run: 0,
+        }
+    }
+
+    /// Its file name inside [`MODEL_DIR`]: `paper.safetensors` for all depths,
+    /// `paper-1.2mm.safetensors` for one.
+    pub fn file(self) -> String {
+        match self.case {
+            Case::All => format!("{}.safetensors", self.variant.name()),
+            Case::Depth(_) => format!("{}-{}.safetensors", self.variant.name(), self.case.name()),
+        }
+    }
+
+    /// Its metrics row label: `committed/paper`, `committed/paper/1.2mm`.
+    pub fn label(self) -> String {
+        match self.case {
+            Case::All => format!("committed/{}", self.variant.name()),
+            Case::Depth(_) => format!("committed/{}/{}", self.variant.name(), self.case.name()),
+        }
     }
 }
 
-/// File name of a committed model inside [`MODEL_DIR`].
-pub fn model_file(variant: Variant) -> String {
-    format!("{}.safetensors", variant.name())
+/// The real-time test's contact depth (seed 002 §IV-B), µm.
+pub const REALTIME_DEPTH_UM: u32 = 1200;
+
+/// The model of the real-time tap runs: the paper net trained on the taps of
+/// [`REALTIME_DEPTH_UM`], as the paper's real-time test (seed 002 §V: "Contact location
+/// recognition in real-time was performed using a robot arm and the CNN trained with data from
+/// 1.2 mm contact depth"). Chosen by that sentence, before any tap run had used it.
+pub const REALTIME: Committed = Committed {
+    variant: Variant::Paper,
+    case: Case::Depth(REALTIME_DEPTH_UM),
+};
+
+/// Every committed model: each variant on all depths, and [`REALTIME`].
+pub const COMMITTED: [Committed; 4] = [
+    Committed::all_depths(Variant::Paper),
+    Committed::all_depths(Variant::Small),
+    Committed::all_depths(Variant::Wide),
+    REALTIME,
+];
+
+/// The committed all-depth model of `variant`.
+pub fn committed_job(variant: Variant) -> Job {
+    Committed::all_depths(variant).job()
 }
 
-/// Re-evaluates the committed model of `variant` below the workspace root `root` on its
-/// held-out split: (accuracy, confusion counts).
+/// File name of the committed all-depth model of `variant` inside [`MODEL_DIR`].
+pub fn model_file(variant: Variant) -> String {
+    Committed::all_depths(variant).file()
+}
+
+/// Re-evaluates the committed model `which` below the workspace root `root` on its held-out
+/// split: (accuracy, confusion counts).
 pub fn evaluate_committed(
     root: &Path,
     taps: &Dataset,
-    variant: Variant,
+    which: Committed,
 ) -> Result<(f64, [[u32; REGIONS]; REGIONS]), NetError> {
-    let job = committed_job(variant);
-    let model = ContactCnn::load(&root.join(MODEL_DIR).join(model_file(variant)))?;
+    let job = which.job();
+    let model = ContactCnn::load(&root.join(MODEL_DIR).join(which.file()))?;
     let data = augment(taps, &job.case.taps(taps), NOISY_COPIES, SNR_DB, SEED);
     let (_, test) = split(&data, job.protocol, job.grouping, job.run, SEED);
     Ok((
@@ -377,7 +438,7 @@ pub fn evaluate_committed(
 
 /// The committed-model rows: accuracy and the confusion counts (`c{truth}{predicted}`).
 pub fn committed_row(
-    variant: Variant,
+    which: Committed,
     accuracy: f64,
     confusion: &[[u32; REGIONS]; REGIONS],
 ) -> MetricsRow {
@@ -388,7 +449,7 @@ pub fn committed_row(
         }
     }
     MetricsRow {
-        label: committed_label(variant),
+        label: which.label(),
         values,
     }
 }
@@ -417,8 +478,8 @@ pub fn metrics_file(rows: Vec<MetricsRow>, seed: u64) -> MetricsFile {
                       (accuracy, confusion counts c{truth}{predicted})."
             .into(),
         split: "grouping `samples`: augmented windows split one by one (paper); `taps`: a tap \
-                and its noisy copies on one side (leak-free); committed models: all depths, \
-                taps grouping, trial 0"
+                and its noisy copies on one side (leak-free); committed models: all depths \
+                (and the paper net at 1.2 mm, the real-time test's depth), taps grouping, trial 0"
             .into(),
         seed,
         rows,

@@ -362,24 +362,25 @@ pub fn contact_cnn(
     let dir = root.join(cnn_eval::MODEL_DIR);
     std::fs::create_dir_all(&dir)?;
     let mut written = Vec::new();
-    for variant in Variant::ALL {
-        let job = cnn_eval::committed_job(variant);
+    for which in cnn_eval::COMMITTED {
+        let job = which.job();
         let Some((_, d)) = data.iter().find(|(c, _)| *c == job.case) else {
             continue;
         };
         let t = Instant::now();
         let (_, model) = cnn_eval::run_job(job, d, seed, &|_| {})?;
         let secs = t.elapsed().as_secs_f64();
-        let path = dir.join(cnn_eval::model_file(variant));
+        let path = dir.join(which.file());
         model.save(&path)?;
         // The row comes from the saved file, exactly as the drift test will re-create it.
-        let (acc, conf) = cnn_eval::evaluate_committed(root, &taps, variant)?;
+        let (acc, conf) = cnn_eval::evaluate_committed(root, &taps, which)?;
         println!(
-            "committed {:<6} all depths, leak-free trial 0: {:.2} %  (trained in {secs:.1} s)",
-            variant.name(),
+            "{:<24} {}, leak-free trial 0: {:.2} %  (trained in {secs:.1} s)",
+            which.label(),
+            which.case.name(),
             100.0 * acc,
         );
-        rows.push(cnn_eval::committed_row(variant, acc, &conf));
+        rows.push(cnn_eval::committed_row(which, acc, &conf));
         written.push(path);
     }
     written.push(cnn_eval::save_metrics(

@@ -8,6 +8,7 @@
 use std::borrow::Borrow;
 use std::net::Ipv4Addr;
 use std::ops::RangeInclusive;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use hand_sim::imu_pad::{ImuPad, ImuPadConfig, TapSpec, TapWindow, WINDOW_SAMPLES, WINDOW_SIGNALS};
@@ -17,6 +18,8 @@ use rand_chacha::ChaCha8Rng;
 use ur_bridge::sim::{SimConfig, TimeScale, UrSim};
 use ur_bridge::tap_to_move::{TapToMove, TapToMoveConfig};
 use ur_bridge::{RegionToGrid, UrArm, UrConfig, UrError};
+
+use crate::cnn_eval::{self, Committed};
 
 /// The 4 × 38 window of §IV-A: acc x, acc y (m/s²), gyro x, gyro y (rad/s).
 pub type Window = [[f32; WINDOW_SAMPLES]; WINDOW_SIGNALS];
@@ -29,8 +32,15 @@ pub type Window = [[f32; WINDOW_SAMPLES]; WINDOW_SIGNALS];
 /// would shift every later tap's window onto the next tap. A property of the pad's pressure
 /// coupling, not of the locator.
 pub const TRIGGER_ROWS: [RangeInclusive<u8>; 3] = [7..=8, 9..=16, 17..=21];
-/// Tap depth: the real-time CNN's training depth (§IV-B), mm.
-pub const DEPTH_MM: f64 = 1.2;
+/// Tap depth: the real-time test's depth (§IV-B), mm.
+pub const DEPTH_MM: f64 = cnn_eval::REALTIME_DEPTH_UM as f64 / 1000.0;
+/// The contact CNN the tap runs locate with: [`cnn_eval::REALTIME`].
+pub const LOCATOR: Committed = cnn_eval::REALTIME;
+
+/// Path of [`LOCATOR`]'s weights below the workspace root `root`.
+pub fn locator_path(root: &Path) -> PathBuf {
+    root.join(cnn_eval::MODEL_DIR).join(LOCATOR.file())
+}
 /// The pad's scene seed.
 pub const PAD_SEED: u64 = 10;
 /// Taps per region of the committed run and the scene (issue 21: at least 10, so that one tap

@@ -17,10 +17,9 @@ use handstack::cell::hand::{self, HandNodeConfig};
 use handstack::cell::launch::CellRun;
 use handstack::cell::pad::{self, PadNodeConfig};
 use handstack::cell::{CellError, CellFile, NodeArgs, Part, Stop, tactile};
-use paper_experiments::cnn_eval::{MODEL_DIR, model_file};
 use paper_experiments::tap_run::{self, TAPS_PER_REGION};
 use std::path::Path;
-use tactile_nets::contact_cnn::{ContactCnn, Variant};
+use tactile_nets::contact_cnn::ContactCnn;
 use ur_bridge::tap_to_move::TapToMoveConfig;
 
 /// The fingertip node's rate (seed 000 reads its fingertips at 100 Hz).
@@ -61,7 +60,7 @@ pub fn run_node(
             let (per_region, window) = tap_plan(scene);
             let mut source = devices::pad::open(scene, tap_run::schedule(scene.seed(), per_region))
                 .map_err(|e| failed("pad", e))?;
-            let model = cx.root.join(MODEL_DIR).join(model_file(Variant::Paper));
+            let model = tap_run::locator_path(&cx.root);
             let mut cnn = ContactCnn::load(&model).map_err(|e| failed("contact CNN", e))?;
             let rate = scene.sim.imu_pad.clone().unwrap_or_default().sample_rate_hz;
             let config = PadNodeConfig {

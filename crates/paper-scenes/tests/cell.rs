@@ -16,13 +16,12 @@ use hand_zenoh::node::{Node, NodeOptions, Router};
 use handstack::cell::coordinator::{self, TapToMoveCell};
 use handstack::cell::launch::{self, start_nodes};
 use handstack::cell::{CellError, CellFile, Stop};
-use paper_experiments::cnn_eval::{MODEL_DIR, model_file};
 use paper_experiments::tap_run;
 use paper_scenes::scene::PaperScene;
 use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::Instant;
-use tactile_nets::contact_cnn::{ContactCnn, Variant};
+use tactile_nets::contact_cnn::ContactCnn;
 use ur_bridge::RegionToGrid;
 
 /// The arm node processes each start their simulator on 127.0.0.60: one cell at a time.
@@ -65,7 +64,7 @@ fn in_process_located(n: usize) -> Vec<u16> {
     let schedule = tap_run::schedule(scene.seed(), tap_run::TAPS_PER_REGION);
     let pad = paper_scenes::devices::pad::open(&scene, schedule[..n].to_vec()).unwrap();
     let mut arm = paper_scenes::devices::arm::open(&scene).unwrap();
-    let model = root().join(MODEL_DIR).join(model_file(Variant::Paper));
+    let model = tap_run::locator_path(&root());
     let mut cnn = ContactCnn::load(&model).unwrap();
     let rows = tap_run::run_on(
         &mut arm.arm,

@@ -4,16 +4,15 @@
 
 use paper_experiments::tap_run as run;
 
-use paper_experiments::cnn_eval::{MODEL_DIR, model_file};
 use std::path::Path;
 use std::time::Instant;
-use tactile_nets::contact_cnn::{ContactCnn, Variant};
+use tactile_nets::contact_cnn::ContactCnn;
 use ur_bridge::sim::TimeScale;
 use ur_bridge::tap_to_move::TapToMoveConfig;
 
 fn main() -> Result<(), String> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let path = root.join(MODEL_DIR).join(model_file(Variant::Paper));
+    let path = run::locator_path(&root);
     let mut cnn = ContactCnn::load(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let name = format!(
         "the committed contact CNN (`{}`)",

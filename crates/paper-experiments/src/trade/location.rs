@@ -168,8 +168,9 @@ pub struct CommittedCnn {
 pub fn cnn_accuracy(root: &Path, taps: &imu_pad::Dataset) -> Result<Vec<CommittedCnn>, TradeError> {
     let mut out = Vec::new();
     for variant in Variant::ALL {
-        let (acc, _) = cnn_eval::evaluate_committed(root, taps, variant)
-            .map_err(|e| TradeError::input("committed contact CNN", e))?;
+        let (acc, _) =
+            cnn_eval::evaluate_committed(root, taps, cnn_eval::Committed::all_depths(variant))
+                .map_err(|e| TradeError::input("committed contact CNN", e))?;
         let path = root
             .join(cnn_eval::MODEL_DIR)
             .join(cnn_eval::model_file(variant));

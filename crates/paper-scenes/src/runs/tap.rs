@@ -11,14 +11,13 @@ use crate::scene::PaperScene;
 use crate::scene::experiments::{Tap, WindowPlacement};
 use handstack::RunError;
 use handstack::{Line, Plot};
-use paper_experiments::cnn_eval::{MODEL_DIR, model_file};
 use paper_experiments::tap_run::{self, DEPTH_MM, Row};
-use tactile_nets::contact_cnn::{ContactCnn, Variant};
+use tactile_nets::contact_cnn::ContactCnn;
 use ur_bridge::tap_to_move::TapToMoveConfig;
 
 /// Runs the tap-to-UR3 experiment of `scene`.
 pub fn run(scene: &PaperScene, exp: &Tap, cx: &RunContext<'_>) -> Result<Part, crate::Error> {
-    let path = cx.root.join(MODEL_DIR).join(model_file(Variant::Paper));
+    let path = tap_run::locator_path(&cx.root);
     let mut cnn = ContactCnn::load(&path)?;
     let mut arm = crate::devices::arm::open(scene)?;
     let per_region = *exp.taps_per_region.get_ref();
