@@ -24,7 +24,7 @@ use aot_locate::{DetectorConfig, Geometry};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
-use tactile_nets::contact_mlp::{ContactMlp, Head};
+use tactile_nets::contact_mlp::ContactMlp;
 
 /// The document the report sections belong to.
 pub const DOC: &str = "docs/contact-location.md";
@@ -38,53 +38,7 @@ pub const AOT_TARGET_PCT: f64 = 90.0;
 /// MLP target on 24 areas, percent (issue 7).
 pub const MLP_TARGET_PCT: f64 = 95.0;
 
-/// Which committed contact MLP of an OSR (a scene file names it in snake case).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Mlp {
-    /// The configuration chosen on the validation split of the lattice's repeat 0.
-    #[default]
-    Chosen,
-    /// The paper's recipe, cell-set head.
-    CellSet,
-    /// The paper's recipe, eq. 4 average-area regression.
-    AverageArea,
-}
-
-impl Mlp {
-    /// Every committed model, in report order.
-    pub const ALL: [Mlp; 3] = [Mlp::Chosen, Mlp::CellSet, Mlp::AverageArea];
-
-    /// Its name in the report.
-    pub fn name(self) -> &'static str {
-        match self {
-            Mlp::Chosen => "validation-chosen",
-            Mlp::CellSet => "paper recipe, cell-set head",
-            Mlp::AverageArea => "paper recipe, eq. 4 regression",
-        }
-    }
-
-    /// Its weights file inside [`contact_eval::MODEL_DIR`] and its metrics row label, at `osr`.
-    pub fn file_and_label(self, osr: u16) -> (String, String) {
-        match self {
-            Mlp::Chosen => (
-                contact_eval::chosen_file(osr),
-                contact_eval::chosen_label(osr),
-            ),
-            Mlp::CellSet | Mlp::AverageArea => {
-                let head = if self == Mlp::CellSet {
-                    Head::CellSet
-                } else {
-                    Head::AverageArea
-                };
-                (
-                    contact_eval::model_file(osr, head),
-                    contact_eval::row_label(osr, head),
-                )
-            }
-        }
-    }
-}
+pub use crate::contact_eval::Mlp;
 
 /// Which held-out set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -294,7 +248,7 @@ pub fn targets_section(cl: &ContactLocation) -> String {
             },
         );
     }
-    for mlp in [Mlp::Chosen, Mlp::CellSet, Mlp::AverageArea] {
+    for mlp in Mlp::ALL {
         let name = mlp.name();
         for (set, set_name) in [
             (Set::Lattice, "lattice repeat 1"),
@@ -332,28 +286,32 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
          labels hold without ties: the 3 × 3 area under the shifted centroid, and for the MLP \
          the touched cell of the 216 single-cell taps (a shift under half a cell keeps a \
          single cell's centroid on it). Held out from everything: the ranging scorer is fitted \
-         and the MLPs are trained on the lattice set's repeat 0 only.\n\n\
-         | OSR | eq. 3, P = held rise | eq. 3, P = absolute held | ranging (fitted) | MLP chosen, single-cell | MLP chosen, every tap (cell under the centroid) | MLP paper recipe (cell-set / eq. 4), single-cell |\n\
-         |---|---|---|---|---|---|---|\n",
+         and the MLPs are trained on the lattice set's repeat 0; the off-lattice MLP also on \
+         six jittered draws of other seeds, and its configuration was chosen on a seventh \
+         (`contact_eval::OFF_LATTICE_TRAIN_SEEDS`, `offlattice_selection.json`).\n\n\
+         | OSR | eq. 3, P = held rise | eq. 3, P = absolute held | ranging (fitted) | MLP off-lattice, single-cell | MLP off-lattice, every tap (cell under the centroid) | MLP chosen, single-cell | MLP chosen, every tap | MLP paper recipe (cell-set / eq. 4), single-cell |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
     );
     for osr in cl.osrs() {
         let aot = |rule| cl.aot(Set::Jittered, rule, osr);
         let every = cl.mlp_centroid_cell(Set::Jittered, Mlp::Chosen, osr);
         let _ = writeln!(
             s,
-            "| {osr} | {} | {} | {} | {} | {every} | {} / {} |",
+            "| {osr} | {} | {} | {} | {} | {} | {} | {every} | {} / {} |",
             aot(Rule::Eq3Rise),
             aot(Rule::Eq3Absolute),
             aot(Rule::Ranging),
+            cl.mlp_area(Set::Jittered, Mlp::OffLattice, osr),
+            cl.mlp_centroid_cell(Set::Jittered, Mlp::OffLattice, osr),
             cl.mlp_area(Set::Jittered, Mlp::Chosen, osr),
             cl.mlp_area(Set::Jittered, Mlp::CellSet, osr),
             cl.mlp_area(Set::Jittered, Mlp::AverageArea, osr),
         );
     }
     s += "\nOn the lattice set, per OSR, the three views of the AoT label (either area for a \
-          border tap / strict `floor` / interior taps only) and the chosen MLP:\n\n\
-          | OSR | ranging: either / strict / interior | eq. 3 (rise): either / strict / interior | MLP chosen, single-cell |\n\
-          |---|---|---|---|\n";
+          border tap / strict `floor` / interior taps only) and the MLPs:\n\n\
+          | OSR | ranging: either / strict / interior | eq. 3 (rise): either / strict / interior | MLP chosen, single-cell | MLP off-lattice, single-cell |\n\
+          |---|---|---|---|---|\n";
     for osr in cl.osrs() {
         let views = |rule| {
             let l = &cl.lattice;
@@ -372,10 +330,11 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
         };
         let _ = writeln!(
             s,
-            "| {osr} | {} | {} | {} |",
+            "| {osr} | {} | {} | {} | {} |",
             views(Rule::Ranging),
             views(Rule::Eq3Rise),
             cl.mlp_area(Set::Lattice, Mlp::Chosen, osr),
+            cl.mlp_area(Set::Lattice, Mlp::OffLattice, osr),
         );
     }
     s

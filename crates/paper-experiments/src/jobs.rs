@@ -18,6 +18,7 @@ use std::sync::Mutex;
 use std::time::Instant;
 use tactile_nets::NetError;
 use tactile_nets::contact_cnn::Variant;
+use tactile_nets::metrics::MetricsFile;
 use tactile_nets::softness_features::Features;
 use tactile_nets::train::TrainConfig;
 
@@ -30,6 +31,9 @@ pub enum JobError {
     /// Training, evaluating or writing failed.
     #[error(transparent)]
     Net(#[from] NetError),
+    /// A simulated training set could not be generated.
+    #[error("simulated training taps: {0}")]
+    Sim(#[from] hand_sim::SimError),
 }
 
 /// Writing a file failed: a [`JobError::Net`], as the models' own writing reports it.
@@ -51,6 +55,7 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, J
     let seed = contact_eval::SEED;
     let start = Instant::now();
     let mut selection = None;
+    let mut off_selection = None;
     let trained = match epochs {
         None => {
             let (chosen, results) = contact_eval::select(&records, SELECTION_OSR, seed, true)?;
@@ -64,7 +69,11 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, J
             }
             println!("chosen: {}", chosen.label());
             selection = Some(contact_eval::selection_file(&results, chosen, seed));
-            contact_eval::train_all(&records, Some(chosen), seed, true)?
+            let mut trained = contact_eval::train_all(&records, Some(chosen), seed, true)?;
+            let (off, search) = off_lattice(&records, seed)?;
+            trained.extend(off);
+            off_selection = Some(search);
+            trained
         }
         Some(n) => contact_eval::train_all_with(&records, None, seed, true, |c| c.epochs = n)?,
     };
@@ -87,13 +96,51 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, J
     if epochs.is_none() {
         let dir = root.join(contact_eval::MODEL_DIR);
         written = contact_eval::save_all(&dir, &trained, seed)?;
-        if let Some(selection) = selection {
-            let path = dir.join(SELECTION_FILE);
-            std::fs::write(&path, selection.to_json()?)?;
-            written.push(path);
+        for (file, selection) in [
+            (SELECTION_FILE, selection),
+            (contact_eval::OFF_LATTICE_SELECTION_FILE, off_selection),
+        ] {
+            if let Some(selection) = selection {
+                let path = dir.join(file);
+                std::fs::write(&path, selection.to_json()?)?;
+                written.push(path);
+            }
         }
     }
     Ok(written)
+}
+
+/// The records of hand-sim's jittered draw of `seed` (every OSR).
+fn jittered_draw(seed: u64) -> Result<Vec<fingertip::TapRecord>, JobError> {
+    let (taps, series) = hand_sim::fingertip::dataset::jittered_taps(seed)?;
+    Ok(fingertip::parse(&taps, &series)?.records())
+}
+
+/// The off-lattice model ([`contact_eval::Mlp::OffLattice`]): its search at
+/// [`SELECTION_OSR`] on the validation draw, then one model per OSR.
+fn off_lattice(
+    lattice: &[fingertip::TapRecord],
+    seed: u64,
+) -> Result<(Vec<contact_eval::Trained>, MetricsFile), JobError> {
+    let mut draws = Vec::new();
+    for s in contact_eval::OFF_LATTICE_TRAIN_SEEDS {
+        draws.extend(jittered_draw(s)?);
+    }
+    let validation = jittered_draw(contact_eval::OFF_LATTICE_VALIDATION_SEED)?;
+    let (chosen, results) =
+        contact_eval::select_off_lattice(lattice, &draws, &validation, SELECTION_OSR, seed, true)?;
+    for (c, e) in &results {
+        println!(
+            "off-lattice validation osr {SELECTION_OSR} {:<28} single-cell {:>6.2} %  every tap {:>6.2} %",
+            c.label(),
+            100.0 * e.area_accuracy(),
+            100.0 * e.centroid_cell_accuracy()
+        );
+    }
+    println!("off-lattice chosen: {}", chosen.label());
+    let search = contact_eval::off_lattice_selection_file(&results, chosen, seed);
+    let trained = contact_eval::train_off_lattice(lattice, &draws, chosen, seed, true)?;
+    Ok((trained, search))
 }
 
 /// Trains the force / weight DNN (the Table 1 fit on `table1` = Table 1's `(weight gf,

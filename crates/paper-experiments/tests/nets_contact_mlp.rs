@@ -96,11 +96,47 @@ fn committed_metrics_match_a_re_evaluation_of_the_committed_weights() -> Result<
     let fresh = contact_eval::metrics_file(&loaded, SEED);
     assert_eq!(
         committed.rows.len(),
-        15,
-        "5 OSRs x (2 paper-recipe heads + the chosen model)"
+        5 * contact_eval::Mlp::ALL.len(),
+        "5 OSRs x (2 paper-recipe heads, the chosen and the off-lattice model)"
     );
     let drift = committed.drift(&fresh, 1e-9);
     assert!(drift.is_empty(), "committed metrics drifted: {drift:#?}");
+    Ok(())
+}
+
+/// The off-lattice model learns the one cell under each centroid, and its training draws are
+/// not the held-out jittered set: a draw of the held-out seed would repeat its offsets.
+#[test]
+fn off_lattice_training_taps_are_labelled_by_their_centroid_cell_and_are_not_the_held_out_set()
+-> Result<(), Box<dyn std::error::Error>> {
+    let lattice = records();
+    let examples = contact_eval::off_lattice_examples(&lattice, &[], 256);
+    let (train, _) = contact_eval::split(&lattice, 256);
+    assert_eq!(examples.len(), train.len());
+    for (e, r) in examples.iter().zip(&train) {
+        let cell = r.tap.centroid_mm().and_then(contact_eval::cell_at);
+        assert_eq!(Some(e.mask), cell.map(|c| 1u32 << c), "{:?}", r.tap);
+    }
+    let held_out = fingertip::load_set(&root(), fingertip::TapSet::Jittered)?;
+    let mut seeds = contact_eval::OFF_LATTICE_TRAIN_SEEDS.to_vec();
+    seeds.push(contact_eval::OFF_LATTICE_VALIDATION_SEED);
+    seeds.sort_unstable();
+    seeds.dedup();
+    assert_eq!(seeds.len(), 7, "seven distinct draws");
+    let (taps, series) =
+        hand_sim::fingertip::dataset::jittered_taps(contact_eval::OFF_LATTICE_TRAIN_SEEDS[0])?;
+    let draw = fingertip::parse(&taps, &series)?;
+    assert_eq!(draw.taps().len(), held_out.taps().len());
+    let same = draw
+        .taps()
+        .iter()
+        .zip(held_out.taps())
+        .filter(|(a, b)| a.offset_mm == b.offset_mm)
+        .count();
+    assert!(
+        same < draw.taps().len() / 100,
+        "{same} taps share their offset"
+    );
     Ok(())
 }
 

@@ -24,12 +24,13 @@ pub enum Error {
     Fixture(#[from] paper_fixtures::FixtureError),
 }
 
-/// A training or evaluation job's error is its dataset's or its model's.
+/// A training or evaluation job's error is its dataset's, its model's or its simulation's.
 impl From<paper_experiments::jobs::JobError> for Error {
     fn from(e: paper_experiments::jobs::JobError) -> Error {
         match e {
             paper_experiments::jobs::JobError::Data(e) => Error::Data(e),
             paper_experiments::jobs::JobError::Net(e) => Error::Net(e),
+            paper_experiments::jobs::JobError::Sim(e) => Error::Sim(e),
         }
     }
 }

@@ -149,7 +149,7 @@ pub fn mlp_accuracy(root: &Path) -> Result<(Vec<Trained>, Vec<fingertip::TapReco
     let models = contact_eval::load_committed(root, &records)
         .map_err(|e| TradeError::input("committed contact MLPs", e))?
         .into_iter()
-        .filter(|t| t.chosen)
+        .filter(|t| t.kind == contact_eval::Mlp::Chosen)
         .collect();
     Ok((models, records))
 }

@@ -5,10 +5,9 @@
 
 use super::plot::{draw_legend, legend_mark, plot_err};
 use anyhow::{Context, Result};
-use paper_experiments::contact_eval::{METRICS_FILE, MODEL_DIR, chosen_label, row_label};
+use paper_experiments::contact_eval::{METRICS_FILE, MODEL_DIR, Mlp};
 use plotters::prelude::*;
 use std::path::Path;
-use tactile_nets::contact_mlp::Head;
 use tactile_nets::metrics::MetricsFile;
 
 /// The plot written next to `docs/contact-location.md`.
@@ -37,41 +36,15 @@ fn osrs(metrics: &MetricsFile) -> Vec<u16> {
     v
 }
 
-/// Which model of an OSR a metrics row belongs to.
-#[derive(Clone, Copy)]
-enum Model {
-    /// The paper's recipe with this head.
-    Paper(Head),
-    /// The configuration chosen on the validation split.
-    Chosen,
-}
+/// The models the plot draws (the off-lattice one decodes to one cell, so its cell errors
+/// measure its label, not its aim: it is in the table only).
+const PLOTTED: [Mlp; 3] = [Mlp::AverageArea, Mlp::CellSet, Mlp::Chosen];
+/// The table's models, in order.
+const TABLED: [Mlp; 4] = [Mlp::AverageArea, Mlp::CellSet, Mlp::Chosen, Mlp::OffLattice];
 
-impl Model {
-    const ALL: [Model; 3] = [
-        Model::Paper(Head::AverageArea),
-        Model::Paper(Head::CellSet),
-        Model::Chosen,
-    ];
-
-    fn label(self, osr: u16) -> String {
-        match self {
-            Model::Paper(head) => row_label(osr, head),
-            Model::Chosen => chosen_label(osr),
-        }
-    }
-
-    fn name(self) -> &'static str {
-        match self {
-            Model::Paper(Head::AverageArea) => "paper recipe, eq. 4 regression",
-            Model::Paper(Head::CellSet) => "paper recipe, cell-set head",
-            Model::Chosen => "validation-chosen",
-        }
-    }
-}
-
-fn value(metrics: &MetricsFile, osr: u16, model: Model, key: &str) -> f64 {
+fn value(metrics: &MetricsFile, osr: u16, model: Mlp, key: &str) -> f64 {
     metrics
-        .row(&model.label(osr))
+        .row(&model.file_and_label(osr).1)
         .and_then(|r| r.values.get(key).copied())
         .unwrap_or(f64::NAN)
 }
@@ -83,7 +56,7 @@ pub(crate) fn table(metrics: &MetricsFile) -> String {
          |---:|---|---:|---:|---:|---:|\n",
     );
     for osr in osrs(metrics) {
-        for m in Model::ALL {
+        for m in TABLED {
             let v = |k| value(metrics, osr, m, k);
             if v("taps").is_nan() {
                 continue;
@@ -118,25 +91,25 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
     };
     let series = [
         (
-            Model::Paper(Head::AverageArea),
+            Mlp::AverageArea,
             "area_accuracy",
             "24-area, paper recipe, eq. 4 regression",
             RED,
         ),
         (
-            Model::Paper(Head::CellSet),
+            Mlp::CellSet,
             "area_accuracy",
             "24-area, paper recipe, cell-set head",
             BLUE,
         ),
         (
-            Model::Chosen,
+            Mlp::Chosen,
             "area_accuracy",
             "24-area, validation-chosen",
             GREEN,
         ),
         (
-            Model::Chosen,
+            Mlp::Chosen,
             "exact_accuracy",
             "exact set, validation-chosen",
             CYAN,
@@ -175,7 +148,7 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
     draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
     let max_err = osrs
         .iter()
-        .flat_map(|&o| Model::ALL.map(|m| value(metrics, o, m, "mean_cell_error")))
+        .flat_map(|&o| PLOTTED.map(|m| value(metrics, o, m, "mean_cell_error")))
         .fold(1.0f64, f64::max);
     let mut chart = ChartBuilder::on(&right)
         .caption(
@@ -195,7 +168,7 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
         .x_label_formatter(&label_osr)
         .draw()
         .map_err(plot_err)?;
-    for (model, color) in Model::ALL.into_iter().zip([RED, BLUE, GREEN]) {
+    for (model, color) in PLOTTED.into_iter().zip([RED, BLUE, GREEN]) {
         let name = model.name();
         let pts: Vec<(f64, f64)> = osrs
             .iter()
