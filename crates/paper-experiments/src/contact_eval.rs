@@ -324,13 +324,34 @@ pub fn select(
 ) -> Result<(Candidate, Vec<(Candidate, Evaluation)>), NetError> {
     let (train, _) = split(records, osr);
     let (fit, val) = validation_split(&train);
+    search(
+        Candidate::grid(),
+        &examples(&fit),
+        &val,
+        osr,
+        seed,
+        progress,
+        Evaluation::exact_accuracy,
+    )
+}
+
+/// Trains every candidate on `fit`, evaluates it on `val`, and chooses the highest
+/// single-cell 24-area accuracy, then the highest `tie_break`; earlier candidates win ties.
+fn search(
+    grid: Vec<Candidate>,
+    fit: &[ContactExample],
+    val: &[&TapRecord],
+    osr: u16,
+    seed: u64,
+    progress: bool,
+    tie_break: fn(&Evaluation) -> f64,
+) -> Result<(Candidate, Vec<(Candidate, Evaluation)>), NetError> {
     let mut results = Vec::new();
-    for c in Candidate::grid() {
-        let (model, _) =
-            ContactMlp::train(&examples(&fit), c.head, &c.config(osr, seed, progress))?;
-        results.push((c, evaluate(&model, &val)?));
+    for c in grid {
+        let (model, _) = ContactMlp::train(fit, c.head, &c.config(osr, seed, progress))?;
+        results.push((c, evaluate(&model, val)?));
     }
-    let key = |e: &Evaluation| (e.area_accuracy(), e.exact_accuracy());
+    let key = |e: &Evaluation| (e.area_accuracy(), tie_break(e));
     let best = results
         .iter()
         .fold(None::<&(Candidate, Evaluation)>, |b, r| match b {
@@ -469,23 +490,16 @@ pub fn select_off_lattice(
     seed: u64,
     progress: bool,
 ) -> Result<(Candidate, Vec<(Candidate, Evaluation)>), NetError> {
-    let fit = off_lattice_examples(lattice, draws, osr);
     let val: Vec<&TapRecord> = validation.iter().filter(|r| r.tap.osr == osr).collect();
-    let mut results = Vec::new();
-    for c in off_lattice_grid() {
-        let (model, _) = ContactMlp::train(&fit, c.head, &c.config(osr, seed, progress))?;
-        results.push((c, evaluate(&model, &val)?));
-    }
-    let key = |e: &Evaluation| (e.area_accuracy(), e.centroid_cell_accuracy());
-    let best = results
-        .iter()
-        .fold(None::<&(Candidate, Evaluation)>, |b, r| match b {
-            Some(b) if key(&b.1) >= key(&r.1) => Some(b),
-            _ => Some(r),
-        })
-        .map(|r| r.0)
-        .ok_or_else(|| NetError::Training("empty candidate grid".into()))?;
-    Ok((best, results))
+    search(
+        off_lattice_grid(),
+        &off_lattice_examples(lattice, draws, osr),
+        &val,
+        osr,
+        seed,
+        progress,
+        Evaluation::centroid_cell_accuracy,
+    )
 }
 
 /// Trains the off-lattice model with `chosen` at every OSR of `lattice` on
