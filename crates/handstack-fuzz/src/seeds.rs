@@ -171,7 +171,14 @@ fn models(root: &Path) -> std::io::Result<Vec<Seed>> {
     {
         let kind = u8::try_from(kind).unwrap_or(0);
         let mut files = files_with(&models.join(dir), "safetensors", &[kind])?;
-        // One file per kind of network: the others share its layout.
+        // Up to two layouts per kind of network, one file each: a file as long as one already
+        // taken has its layout (the contact CNN's 1.2 mm net is the paper net's).
+        let mut sizes = Vec::new();
+        files.retain(|(_, b)| {
+            let new = !sizes.contains(&b.len());
+            sizes.push(b.len());
+            new
+        });
         files.truncate(2);
         out.extend(files.into_iter().map(|(n, b)| (format!("{dir}-{n}"), b)));
     }
