@@ -409,11 +409,6 @@ pub const COMMITTED: [Committed; 4] = [
     REALTIME,
 ];
 
-/// The committed all-depth model of `variant`.
-pub fn committed_job(variant: Variant) -> Job {
-    Committed::all_depths(variant).job()
-}
-
 /// File name of the committed all-depth model of `variant` inside [`MODEL_DIR`].
 pub fn model_file(variant: Variant) -> String {
     Committed::all_depths(variant).file()
