@@ -13,6 +13,15 @@ pub fn cargo(root: &Path) -> Command {
     cmd
 }
 
+/// Gives `cmd`, a cargo build of a manifest outside the workspace (a packaged crate being
+/// verified, the consumer crate), the workspace's `[profile.dev]` debug setting and no
+/// incremental cache: such a manifest does not read the workspace's profiles, and with cargo's
+/// defaults (full debug info, incremental) those builds wrote 3.8 GB and once filled CI's disk.
+pub fn workspace_dev_profile(cmd: &mut Command) -> &mut Command {
+    cmd.env("CARGO_PROFILE_DEV_DEBUG", "line-tables-only")
+        .env("CARGO_INCREMENTAL", "0")
+}
+
 /// Runs `cmd` as the step `name`, printing its name and wall time; fails if it fails.
 pub fn step(name: &str, cmd: &mut Command) -> Result<()> {
     println!("==> {name}");
