@@ -13,7 +13,7 @@ const GROUP: usize = 4;
 const _: () = assert!(CONV_COLS.is_multiple_of(GROUP));
 use crate::contact_cnn::{REGIONS, WINDOW, WINDOW_VALUES};
 use crate::error::NetError;
-use crate::frozen::{Freeze, Layer, Relu, SparseDense};
+use crate::frozen::{Freeze, SparseDense};
 use dfdx::nn::modules::Linear;
 use dfdx::prelude::{Cpu, ReLU};
 
@@ -33,7 +33,7 @@ pub struct FrozenCnn<const F: usize, const FLAT: usize, const H: usize> {
     conv_bias: [f32; F],
     // Both dense layers read ReLU outputs (the pooled map, the hidden layer): input-major, so
     // the zeros cost nothing.
-    head: (SparseDense<FLAT, H>, Relu, SparseDense<H, REGIONS>),
+    head: (SparseDense<FLAT, H>, SparseDense<H, REGIONS>),
 }
 
 impl<const F: usize, const FLAT: usize, const H: usize> FrozenCnn<F, FLAT, H> {
@@ -59,7 +59,6 @@ impl<const F: usize, const FLAT: usize, const H: usize> FrozenCnn<F, FLAT, H> {
             conv_bias: core::array::from_fn(|f| b[f]),
             head: (
                 SparseDense::from_dense(&dense),
-                Relu,
                 SparseDense::from_dense(&out),
             ),
         })
@@ -74,10 +73,17 @@ impl<const F: usize, const FLAT: usize, const H: usize> FrozenCnn<F, FLAT, H> {
             // 8-lane register instead of two SSE2 ones (same lane-wise mul and add, same bits).
             #[allow(unsafe_code)]
             let pooled = unsafe { pool_avx::<F, FLAT>(&self.conv, &self.conv_bias, z) };
-            return self.head.forward(Relu.forward(pooled));
+            return self.head(&pooled);
         }
         let pooled = pool::<F, FLAT>(&self.conv, &self.conv_bias, z);
-        self.head.forward(Relu.forward(pooled))
+        self.head(&pooled)
+    }
+
+    /// The dense head on the pooled map before its ReLU: each layer applies the ReLU before
+    /// it as it skips the zeros.
+    fn head(&self, pooled: &[f32; FLAT]) -> [f32; REGIONS] {
+        let (hidden, out) = &self.head;
+        out.forward_relu(&hidden.forward_relu(pooled))
     }
 }
 

@@ -157,18 +157,25 @@ impl<const I: usize, const O: usize> SparseDense<I, O> {
 }
 
 #[cfg(feature = "std")]
-impl<const I: usize, const O: usize> Layer<[f32; I]> for SparseDense<I, O> {
-    type Output = [f32; O];
+impl<const I: usize, const O: usize> SparseDense<I, O> {
+    /// `forward(Relu.forward(x))` in one pass: the ReLU's zeros are the inputs the layer
+    /// skips, so the activation costs no pass and no copy of its own (same bits: a NaN, which
+    /// the ReLU makes 0, is skipped as well).
+    pub fn forward_relu(&self, x: &[f32; I]) -> [f32; O] {
+        self.accumulate_kept(x, |v| v > 0.0)
+    }
 
-    fn forward(&self, x: [f32; I]) -> [f32; O] {
-        // The non-zero inputs, compacted without a branch (a zero is written, then overwritten).
+    /// `b + Σ x_j · W[:, j]` over the inputs `keep` keeps; the others count as zero.
+    #[inline(always)]
+    fn accumulate_kept(&self, x: &[f32; I], keep: impl Fn(f32) -> bool) -> [f32; O] {
+        // The kept inputs, compacted without a branch (a slot is written, then overwritten).
         let mut index = [0u16; I];
         let mut value = [0.0f32; I];
         let mut n = 0;
         for (j, &v) in x.iter().enumerate() {
             index[n] = j as u16;
             value[n] = v;
-            n += usize::from(v != 0.0);
+            n += usize::from(keep(v));
         }
         let (index, value) = (&index[..n], &value[..n]);
         let mut y = *self.bias;
@@ -186,6 +193,16 @@ impl<const I: usize, const O: usize> Layer<[f32; I]> for SparseDense<I, O> {
         }
         accumulate::<I, O, 1>(&self.weights, index, value, &mut y);
         y
+    }
+}
+
+#[cfg(feature = "std")]
+impl<const I: usize, const O: usize> Layer<[f32; I]> for SparseDense<I, O> {
+    type Output = [f32; O];
+
+    fn forward(&self, x: [f32; I]) -> [f32; O] {
+        // A NaN is kept, so it reaches every output as in `Dense`.
+        self.accumulate_kept(&x, |v| v != 0.0)
     }
 }
 
@@ -229,11 +246,11 @@ fn accumulate<const I: usize, const O: usize, const P: usize>(
                 }
             }
         }
-        for (o, a) in out
-            .iter_mut()
-            .zip(acc.iter().flat_map(|a| a.iter().take(width)))
-        {
-            *o += a;
+        // Block by block, so the adds vectorise (one flattened iterator over the blocks did not).
+        for (out, acc) in out.chunks_mut(width).zip(&acc) {
+            for (o, a) in out.iter_mut().zip(acc) {
+                *o += a;
+            }
         }
     }
 }
@@ -488,6 +505,17 @@ mod tests {
             assert!(want.iter().zip(got).all(|(a, b)| (a - b).abs() <= 1e-5));
             let (want, got) = (narrow.forward(x), narrow_sparse.forward(x));
             assert!(want.iter().zip(got).all(|(a, b)| (a - b).abs() <= 1e-5));
+            // The fused ReLU gives the bits of a ReLU and then the layer, negatives, -0.0 and
+            // NaN among the inputs.
+            let pre: [f32; 40] = core::array::from_fn(|j| match (round, j) {
+                (_, 3) => -0.0,
+                (2, 5) => f32::NAN,
+                _ => rng.random_range(-2.0f32..2.0),
+            });
+            assert_eq!(
+                sparse.forward_relu(&pre).map(f32::to_bits),
+                got_bits(&sparse, Relu.forward(pre))
+            );
             // The portable kernel gives the same bits as whichever `forward` chose.
             let index: Vec<u16> = (0..40u16).filter(|&j| x[usize::from(j)] != 0.0).collect();
             let value: Vec<f32> = index.iter().map(|&j| x[usize::from(j)]).collect();
