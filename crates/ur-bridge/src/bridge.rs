@@ -167,6 +167,10 @@ fn refuses(host: &str, port: u16) -> bool {
 const DASHBOARD_GREETING_TIMEOUT: Duration = Duration::from_secs(2);
 /// Longest wait for the controller to answer our RTDE protocol-version request.
 const RTDE_HANDSHAKE_TIMEOUT: Duration = Duration::from_secs(2);
+
+/// How long [`UrArm::connect`] waits for its receive link to report the control script
+/// running, once ur_rtde's control interface has started it.
+const PROGRAM_SEEN_TIMEOUT: Duration = Duration::from_secs(5);
 /// The RTDE port and the protocol version ur_rtde asks for.
 const RTDE_PORT: u16 = 30004;
 const RTDE_PROTOCOL_VERSION: u16 = 2;
@@ -248,9 +252,11 @@ fn vec_of(p: &Pose) -> Vec<f64> {
 
 impl UrArm {
     /// Connects: dashboard, then (optionally power-up), then `RTDEReceiveInterface` and
-    /// `RTDEControlInterface` (which uploads ur_rtde's control script on port 30003).
+    /// `RTDEControlInterface` (which uploads ur_rtde's control script on port 30003), and
+    /// returns once the receive link reports the script running, so [`UrArm::status`] agrees
+    /// with the arm just connected ([`UrError::Timeout`] after 5 s otherwise).
     pub fn connect(config: UrConfig) -> Result<Self, UrError> {
-        Python::attach(|py| {
+        let arm = Python::attach(|py| {
             config.venv.activate(py)?;
             let import = |name: &str| {
                 py.import(name)
@@ -301,13 +307,34 @@ impl UrArm {
                     let e = map_py(py, e, "RTDEControlInterface", host);
                     refine_connect_error(e, host, &[30004, 30003, 29999])
                 })?;
-            Ok(Self {
+            Ok::<_, UrError>(Self {
                 control: control.unbind(),
                 receive: receive.unbind(),
                 dashboard: dashboard.unbind(),
                 config,
             })
-        })
+        })?;
+        arm.wait_for_program_seen()?;
+        Ok(arm)
+    }
+
+    /// Waits until the receive link reports the control script playing. ur_rtde's control
+    /// interface returns once the script runs as *its* receive link saw it; ours is another
+    /// connection and can still hold an older package (seen under load: runtime state STOPPED
+    /// right after `connect`), so `status()` would contradict the arm just connected.
+    fn wait_for_program_seen(&self) -> Result<(), UrError> {
+        let start = std::time::Instant::now();
+        while !self.status()?.is_program_running() {
+            if start.elapsed() > PROGRAM_SEEN_TIMEOUT {
+                return Err(UrError::Timeout {
+                    after: PROGRAM_SEEN_TIMEOUT,
+                    what: "the receive link to report the control script running",
+                });
+            }
+            // One RTDE package is 2–8 ms (500 / 125 Hz): poll at a fraction of it.
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        Ok(())
     }
 
     /// The configuration this arm was connected with.
