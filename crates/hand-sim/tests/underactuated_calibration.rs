@@ -99,6 +99,36 @@ fn model_object_sizes_are_table_1() {
     }
 }
 
+/// A household draw (issue 21's extra training objects): training grasps numbered from 0, the
+/// overall classes in turn, each labelled by what its fingers measure, and none of its objects
+/// or grasp seeds among the dataset's (nor another draw's).
+#[test]
+fn a_household_draw_is_labelled_by_its_fingers_and_repeats_nothing() {
+    let draw = dataset::household_draw(1, "test/draw", 60).unwrap();
+    let other = dataset::household_draw(1, "test/other", 60).unwrap();
+    let specs = dataset::specs(1).unwrap();
+    for (i, g) in draw.iter().enumerate() {
+        assert_eq!((g.id, g.set, g.kind), (i, Set::Train, "household"));
+        assert_eq!(g.overall, Some(Softness::ALL[i % 3]));
+        assert_eq!(
+            g.label,
+            Some(dataset::sensor_class(g.object.local_moduli()).unwrap())
+        );
+        for s in specs.iter().chain(&other) {
+            assert_ne!(
+                g.object.local_moduli(),
+                s.object.local_moduli(),
+                "{}",
+                s.object_id
+            );
+            assert_ne!(g.seed, s.seed, "{}", s.object_id);
+        }
+    }
+    // The label can disagree with the overall class, as on the test draws.
+    assert!(draw.iter().any(|g| g.label != g.overall));
+    assert_eq!(draw, dataset::household_draw(1, "test/draw", 60).unwrap());
+}
+
 /// §3.1, §3.3, §4: the protocol's counts and the 14 s series of 4 forces + 4 angles.
 #[test]
 fn dataset_follows_the_papers_protocol() {

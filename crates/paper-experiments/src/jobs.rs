@@ -32,7 +32,7 @@ pub enum JobError {
     #[error(transparent)]
     Net(#[from] NetError),
     /// A simulated training set could not be generated.
-    #[error("simulated training taps: {0}")]
+    #[error("simulated training set: {0}")]
     Sim(#[from] hand_sim::SimError),
 }
 
@@ -220,10 +220,22 @@ pub fn softness(root: &Path, only: Option<usize>, dry_run: bool) -> Result<Vec<P
         }
     }
     bar.finish();
-    // Our variant: inputs chosen on the validation split of the training objects.
+    // Our variant: more household training objects, inputs chosen on validation objects of
+    // their own; both drawn now, from streams no committed set uses.
+    let draw = |name: &str, n: usize| -> Result<Vec<underactuated::Grasp>, JobError> {
+        let specs = hand_sim::underactuated::dataset::household_draw(underactuated::SEED, name, n)?;
+        Ok(underactuated::from_sim(
+            &hand_sim::underactuated::dataset::run_all(&specs)?,
+        )?)
+    };
+    let extra = draw(softness_eval::TRAIN_DRAW, softness_eval::EXTRA_TRAINING)?;
+    let held = draw(
+        softness_eval::VALIDATION_DRAW,
+        softness_eval::VALIDATION_OBJECTS,
+    )?;
     let mut validation = Vec::new();
     for features in Features::ALL {
-        let acc = softness_eval::validate_features(&grasps, features)?;
+        let acc = softness_eval::validate_features(&grasps, &extra, &held, features)?;
         println!("validation {:<16} {:>5.1} %", features.name(), 100.0 * acc);
         validation.push((features.name().to_owned(), acc));
     }
@@ -243,7 +255,7 @@ pub fn softness(root: &Path, only: Option<usize>, dry_run: bool) -> Result<Vec<P
         .ok_or_else(|| NetError::Training("no candidate feature set".into()))?;
     let mut ours = Vec::new();
     for seed in SEEDS {
-        let run = softness_eval::train_ours(&grasps, chosen, seed)?;
+        let run = softness_eval::train_ours(&grasps, &extra, chosen, seed)?;
         let e = &run.evaluation;
         println!(
             "ours {} seed {seed}: train {:>5.1} %  regular {:>5.1} %  irregular {:>5.1} % / 1000: {:>5.1} %  mse {:.4}  {:>6.2} s",

@@ -7,8 +7,8 @@
 //! learns where the soft side happened to sit in the training grasps. Sorting the four
 //! fingers' readings keeps what the fingers felt and drops who felt it.
 //!
-//! Two candidates, chosen between on a validation split of the training objects only
-//! (`paper_experiments::softness_eval::validate_features`, in the repository):
+//! Two candidates, chosen between on household validation objects drawn for the choice, never
+//! the test sets (`paper_experiments::softness_eval::validate_features`, in the repository):
 //! - [`Features::SortedSeries`]: every sample of the series, its four forces sorted and its
 //!   four angles sorted (ascending), classified by the mean output over the series like the
 //!   paper's input;

@@ -6,13 +6,15 @@
 //! per grasp with its series as a samples × 8 array.
 
 use hand_sim::records::{self, DatasetError, Row};
-use hand_sim::underactuated::dataset::{GraspRow, SampleRow};
+use hand_sim::underactuated::dataset::{self, GraspRow, SampleRow};
 use hand_traits::Softness;
 use ndarray::{Array2, ArrayView2};
 use std::path::{Path, PathBuf};
 
 pub use hand_sim::underactuated::dataset::Set as GraspSet;
 pub use tactile_nets::softness::{N_VARIABLES, VARIABLE_NAMES};
+/// The seed `cargo xtask fixtures` generates the dataset from (`hand_sim`'s named streams of it).
+pub const SEED: u64 = 1;
 /// Directory of the dataset below the workspace root.
 pub const DATASET_DIR: &str = "fixtures/datasets/underactuated";
 
@@ -92,6 +94,18 @@ pub fn load(root: &Path) -> Result<Vec<Grasp>, DatasetError> {
         series.push((path, Some(set), rows));
     }
     join(&grasps, records::read(&grasps)?, series)
+}
+
+/// Grasps hand-sim ran (e.g. a household draw made at training time) as [`load`] reads the
+/// committed ones: written to the dataset's CSV forms and parsed back, so they carry the
+/// fixtures' rounding. Their ids must run 0, 1, 2… in order.
+pub fn from_sim(grasps: &[dataset::Grasp]) -> Result<Vec<Grasp>, DatasetError> {
+    let series: Vec<String> = GraspSet::ALL
+        .iter()
+        .map(|&set| dataset::series_csv(grasps, set))
+        .collect();
+    let series: Vec<&str> = series.iter().map(String::as_str).collect();
+    parse(&dataset::grasps_csv(grasps), &series)
 }
 
 /// Parses `grasps.csv` and the series files' texts (named `grasps.csv`, `series0.csv`…),

@@ -253,12 +253,27 @@ impl Optimiser {
     }
 }
 
+/// Which committed softness models a scene runs (docs/learning.md §2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SoftnessModel {
+    /// The paper's recipe: its inputs and the protocol's 153 training grasps, LM or Adam.
+    #[default]
+    Paper,
+    /// Our variant: finger-order-invariant inputs and more household training objects, LM.
+    Ours,
+}
+
 /// Seed 001 §3.3–4: the underactuated hand's grasps of the 24 regular and 30 irregular test
 /// objects, classified soft / moderate / hard.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Softness {
-    /// The optimiser whose selected model (lowest training MSE over the committed seeds) runs.
+    /// Which committed models run: the paper's recipe (the default) or our variant.
+    #[serde(default)]
+    pub model: SoftnessModel,
+    /// The optimiser whose selected model (lowest training MSE over the committed seeds) runs;
+    /// our variant is trained with LM only.
     #[serde(default)]
     pub optimiser: Optimiser,
 }

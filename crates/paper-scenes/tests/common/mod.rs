@@ -28,10 +28,15 @@ pub fn run_scene(name: &str) -> Outcome {
 
 /// The committed metrics file of model `dir` (`crates/tactile-nets/models/DIR/metrics.json`).
 pub fn metrics(dir: &str) -> MetricsFile {
+    metrics_in(dir, "metrics.json")
+}
+
+/// The committed metrics file `file` of the models in `dir`.
+pub fn metrics_in(dir: &str, file: &str) -> MetricsFile {
     let path = root()
         .join("crates/tactile-nets/models")
         .join(dir)
-        .join("metrics.json");
+        .join(file);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     MetricsFile::from_json(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
