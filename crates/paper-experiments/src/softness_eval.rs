@@ -505,8 +505,8 @@ fn train_pooled(
 }
 
 /// Validation accuracy of `features`: trained with LM, seed [`VALIDATION_SEED`], on the
-/// training grasps and `extra` ([`training_set`]), tested on the `validation` objects; the test
-/// sets are never read.
+/// labelled training grasps of the dataset and of `extra`, tested on the `validation` objects;
+/// the test sets are never read.
 pub fn validate_features(
     grasps: &[Grasp],
     extra: &[Grasp],
@@ -553,8 +553,8 @@ pub fn evaluate_pooled(model: &Pooled, grasps: &[Grasp]) -> Result<Evaluation, N
 }
 
 /// Trains our variant with `features` and `seed` on every labelled training grasp of the
-/// dataset and of `extra` ([`training_set`]; LM, the committed settings) and evaluates it on
-/// the dataset (training MSE on the dataset's training grasps, as [`evaluate_pooled`]).
+/// dataset and of `extra` (LM, the committed settings) and evaluates it on the dataset
+/// (training MSE on the dataset's training grasps, as [`evaluate_pooled`]).
 pub fn train_ours(
     grasps: &[Grasp],
     extra: &[Grasp],
