@@ -4,9 +4,10 @@
 //! test objects and of the fresh draw of 1000 irregular ones (issue 21): the paper's recipe (the
 //! optimiser's models) or our variant (finger-order-invariant inputs, more household training
 //! objects), as the scene names; the one that runs is the selected seed (lowest training MSE,
-//! chosen on training data only), through `paper_experiments::softness_eval` as docs/learning.md. Irregular objects are scored against
-//! the class their fingers measure (the dataset's label, with the paper's 86.66 % as target) and,
-//! with no target, against their hidden overall class beside its Bayes ceiling.
+//! chosen on training data only), through `paper_experiments::softness_eval` as
+//! docs/learning.md. Irregular objects are scored against the class their fingers measure (the
+//! dataset's label, with the paper's 86.66 % as target) and, with no target, against their
+//! hidden overall class beside its Bayes ceiling.
 
 use super::figure::{Target, measured, paper, target};
 use super::{Part, RunContext};
