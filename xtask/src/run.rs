@@ -18,9 +18,12 @@ pub fn cargo(root: &Path) -> Command {
 /// incremental cache: such a manifest does not read the workspace's profiles, and with cargo's
 /// defaults (full debug info, incremental) those builds wrote 3.8 GB and once filled CI's disk.
 pub fn workspace_dev_profile(cmd: &mut Command) -> &mut Command {
-    cmd.env("CARGO_PROFILE_DEV_DEBUG", "line-tables-only")
+    cmd.env("CARGO_PROFILE_DEV_DEBUG", DEV_DEBUG)
         .env("CARGO_INCREMENTAL", "0")
 }
+
+/// The workspace's `[profile.dev] debug` (root `Cargo.toml`; a test holds the two together).
+const DEV_DEBUG: &str = "line-tables-only";
 
 /// Runs `cmd` as the step `name`, printing its name and wall time; fails if it fails.
 pub fn step(name: &str, cmd: &mut Command) -> Result<()> {
@@ -96,5 +99,21 @@ impl Binary {
     /// Runs `self ARGS --root ROOT` ([`Binary::command`]) as the step `name`.
     pub fn run<S: AsRef<OsStr>>(&self, root: &Path, name: &str, args: &[S]) -> Result<()> {
         step(name, &mut self.command(root, args))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// [`super::DEV_DEBUG`] is what the root `Cargo.toml` sets for `[profile.dev]`.
+    #[test]
+    fn the_dev_debug_setting_is_the_workspaces() {
+        let manifest = std::fs::read_to_string(crate::workspace_root().join("Cargo.toml")).unwrap();
+        let dev = manifest
+            .split("[profile.dev]")
+            .nth(1)
+            .and_then(|rest| rest.split("\n[").next())
+            .expect("a [profile.dev] section");
+        let want = format!("debug = \"{}\"", super::DEV_DEBUG);
+        assert!(dev.lines().any(|l| l.trim() == want), "{dev}");
     }
 }

@@ -167,13 +167,12 @@ fn refuses(host: &str, port: u16) -> bool {
 const DASHBOARD_GREETING_TIMEOUT: Duration = Duration::from_secs(2);
 /// Longest wait for the controller to answer our RTDE protocol-version request.
 const RTDE_HANDSHAKE_TIMEOUT: Duration = Duration::from_secs(2);
-
-/// How long [`UrArm::connect`] waits for its receive link to report the control script
-/// running, once ur_rtde's control interface has started it.
-const PROGRAM_SEEN_TIMEOUT: Duration = Duration::from_secs(5);
 /// The RTDE port and the protocol version ur_rtde asks for.
 const RTDE_PORT: u16 = 30004;
 const RTDE_PROTOCOL_VERSION: u16 = 2;
+/// How long [`UrArm::connect`] waits for its receive link to report the control script
+/// running, once ur_rtde's control interface has started it.
+const PROGRAM_SEEN_TIMEOUT: Duration = Duration::from_secs(5);
 
 /// Asks the controller's RTDE server for protocol version 2 ourselves, each step bounded by
 /// [`RTDE_HANDSHAKE_TIMEOUT`], before ur_rtde connects: ur_rtde's own handshake waits without
