@@ -60,6 +60,29 @@ impl AreaGrid {
         ]
     }
 
+    /// The inverse of [`grid_point_mm`](Self::grid_point_mm): the point `p_mm` (pad mm) in
+    /// 1-based (row, column) units of the 4 × 6 cells, cell centres at whole numbers. Points off
+    /// the pad map outside 0.5…4.5 × 0.5…6.5.
+    ///
+    /// ```
+    /// use aot_locate::AreaGrid;
+    /// let pad = AreaGrid::SIMULATED_PAD;
+    /// assert_eq!(pad.grid_point_of([-7.5, 4.5]), [1.0, 1.0]);
+    /// let [row, col] = pad.grid_point_of([0.6, -0.3]);
+    /// assert!((row - 2.6).abs() < 1e-6 && (col - 3.7).abs() < 1e-6);
+    /// assert_eq!(pad.grid_point_of(pad.grid_point_mm([2.5, 3.5])), [2.5, 3.5]);
+    /// ```
+    pub fn grid_point_of(&self, [x, y]: [f32; 2]) -> [f32; 2] {
+        let (pitch_x, pitch_y) = (
+            self.width_mm / f32::from(COLS),
+            self.height_mm / f32::from(ROWS),
+        );
+        [
+            (self.height_mm / 2.0 - y) / pitch_y + 0.5,
+            (x + self.width_mm / 2.0) / pitch_x + 0.5,
+        ]
+    }
+
     /// The centre of `cell`, pad mm.
     ///
     /// ```

@@ -9,8 +9,9 @@
 //! never on repeat 1. A fourth, [`Mlp::OffLattice`] (issue 21), learns the cell under each
 //! contact's centroid from repeat 0 and six seeded jittered draws of hand-sim
 //! ([`OFF_LATTICE_TRAIN_SEEDS`]); its configuration is chosen on a seventh draw
-//! ([`select_off_lattice`]). The committed jittered set (`jittered_taps.csv`) is none of them
-//! and stays held out.
+//! ([`select_off_lattice`]). A fifth, [`Mlp::OffLatticeCentroid`], learns the centroid itself
+//! from the same taps ([`Head::Centroid`], a regression), its configuration chosen on the same
+//! draw. The committed jittered set (`jittered_taps.csv`) is none of them and stays held out.
 //!
 //! # Metrics ([`Evaluation`])
 //! - `area_accuracy`: over the held-out single-cell taps, the fraction whose region (the cell
@@ -18,14 +19,15 @@
 //! - `exact_accuracy`: over all held-out taps, the fraction whose decoded cell set equals the
 //!   touched one;
 //! - `mean_cell_error`: over all held-out taps, mean `|predicted ∆ touched|` cells;
-//! - `mean_centroid_error`: over all held-out taps, mean distance between the predicted and
-//!   touched centroids, cells.
+//! - `mean_centroid_error`: over all held-out taps, mean distance between the predicted
+//!   centroid (the decoded contact's; the regressed point for [`Head::Centroid`]) and the
+//!   touched cells' centroid, cells.
 
 use crate::data::fingertip::{ContactExample, TapRecord};
 use aot_locate::CellSet;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use tactile_nets::contact_mlp::{ContactMlp, Head, features};
+use tactile_nets::contact_mlp::{ContactMlp, DROPOUT, Head, features};
 use tactile_nets::error::NetError;
 use tactile_nets::metrics::{MetricsFile, MetricsRow};
 use tactile_nets::train::{TrainConfig, TrainLog};
@@ -120,7 +122,7 @@ pub fn evaluate(model: &ContactMlp, records: &[&TapRecord]) -> Result<Evaluation
         e.centroid_cell_hits += usize::from(under == Some(usize::from(p.region)));
         e.exact_hits += usize::from(p.contact == truth);
         e.cell_error_sum += u64::from((p.contact ^ truth).count_ones());
-        e.centroid_error_sum += f64::from(centroid_distance(p.contact, truth).unwrap_or(0.0));
+        e.centroid_error_sum += f64::from(centroid_distance(p.centroid, truth).unwrap_or(0.0));
     }
     Ok(e)
 }
@@ -136,10 +138,10 @@ pub fn cell_at(p_mm: [f32; 2]) -> Option<usize> {
         .then(|| row as usize * cols as usize + col as usize)
 }
 
-/// Distance between two contacts' centroids, cells; `None` if either is empty.
-fn centroid_distance(a: u32, b: u32) -> Option<f32> {
-    let centroid = |m| CellSet::from_bits(m).and_then(CellSet::centroid);
-    let ([ra, ca], [rb, cb]) = (centroid(a)?, centroid(b)?);
+/// Distance between a predicted centroid (the decoded contact's, or the regressed point) and
+/// the touched cells' centroid, cells; `None` for an empty mask.
+fn centroid_distance([ra, ca]: [f32; 2], truth: u32) -> Option<f32> {
+    let [rb, cb] = CellSet::from_bits(truth).and_then(CellSet::centroid)?;
     Some(((ra - rb).powi(2) + (ca - cb).powi(2)).sqrt())
 }
 
@@ -211,11 +213,21 @@ pub enum Mlp {
     /// Trained off the lattice ([`train_off_lattice`]): the cell-set head taught the one cell
     /// under each contact's centroid, on the lattice's repeat 0 and seeded jittered draws.
     OffLattice,
+    /// Trained off the lattice on the same taps ([`train_off_lattice`]) with the centroid head
+    /// ([`Head::Centroid`]): it regresses where each contact is centred, and the region is the
+    /// cell under that point.
+    OffLatticeCentroid,
 }
 
 impl Mlp {
     /// Every committed model, in report order.
-    pub const ALL: [Mlp; 4] = [Mlp::Chosen, Mlp::OffLattice, Mlp::CellSet, Mlp::AverageArea];
+    pub const ALL: [Mlp; 5] = [
+        Mlp::Chosen,
+        Mlp::OffLatticeCentroid,
+        Mlp::OffLattice,
+        Mlp::CellSet,
+        Mlp::AverageArea,
+    ];
 
     /// Its name in the report.
     pub fn name(self) -> &'static str {
@@ -224,14 +236,17 @@ impl Mlp {
             Mlp::CellSet => "paper recipe, cell-set head",
             Mlp::AverageArea => "paper recipe, eq. 4 regression",
             Mlp::OffLattice => "trained off the lattice, centroid cell",
+            Mlp::OffLatticeCentroid => "trained off the lattice, centroid regression",
         }
     }
 
-    /// The paper-recipe model of `head`.
-    pub fn paper(head: Head) -> Mlp {
+    /// The paper-recipe model of `head` ([`Head::PAPER`]); `None` for the centroid head,
+    /// which is ours.
+    pub fn paper(head: Head) -> Option<Mlp> {
         match head {
-            Head::AverageArea => Mlp::AverageArea,
-            Head::CellSet => Mlp::CellSet,
+            Head::AverageArea => Some(Mlp::AverageArea),
+            Head::CellSet => Some(Mlp::CellSet),
+            Head::Centroid => None,
         }
     }
 
@@ -242,6 +257,10 @@ impl Mlp {
             Mlp::OffLattice => (
                 format!("osr{osr}-offlattice.safetensors"),
                 format!("osr{osr}/offlattice"),
+            ),
+            Mlp::OffLatticeCentroid => (
+                format!("osr{osr}-offlattice-centroid.safetensors"),
+                format!("osr{osr}/offlattice_centroid"),
             ),
             Mlp::CellSet | Mlp::AverageArea => {
                 let head = if self == Mlp::CellSet {
@@ -281,6 +300,8 @@ pub struct Candidate {
     pub l2: f64,
     /// Training epochs.
     pub epochs: usize,
+    /// Dropout after each hidden layer (the paper's 0.3, or 0).
+    pub dropout: f32,
 }
 
 impl Candidate {
@@ -291,16 +312,47 @@ impl Candidate {
         for head in [Head::CellSet, Head::AverageArea] {
             for l2 in [tactile_nets::contact_mlp::L2, 1e-4, 0.0] {
                 for epochs in [1500, 3000] {
-                    v.push(Candidate { head, l2, epochs });
+                    v.push(Candidate {
+                        head,
+                        l2,
+                        epochs,
+                        dropout: DROPOUT,
+                    });
                 }
             }
         }
         v
     }
 
-    /// Row label in [`SELECTION_FILE`].
+    /// Row label in [`SELECTION_FILE`]; the dropout is named when it is not the paper's.
     pub fn label(&self) -> String {
-        format!("{}/l2={}/epochs={}", self.head.name(), self.l2, self.epochs)
+        let dropout = if self.dropout == DROPOUT {
+            String::new()
+        } else {
+            format!("/dropout={}", self.dropout)
+        };
+        format!(
+            "{}/l2={}/epochs={}{dropout}",
+            self.head.name(),
+            self.l2,
+            self.epochs
+        )
+    }
+
+    /// Trains this candidate on `fit`.
+    pub fn train(
+        &self,
+        fit: &[ContactExample],
+        osr: u16,
+        seed: u64,
+        progress: bool,
+    ) -> Result<(ContactMlp, TrainLog), NetError> {
+        ContactMlp::train_with_dropout(
+            fit,
+            self.head,
+            self.dropout,
+            &self.config(osr, seed, progress),
+        )
     }
 
     /// [`recipe`] with this candidate's head, L2 and epochs.
@@ -348,7 +400,7 @@ fn search(
 ) -> Result<(Candidate, Vec<(Candidate, Evaluation)>), NetError> {
     let mut results = Vec::new();
     for c in grid {
-        let (model, _) = ContactMlp::train(fit, c.head, &c.config(osr, seed, progress))?;
+        let (model, _) = c.train(fit, osr, seed, progress)?;
         results.push((c, evaluate(&model, val)?));
     }
     let key = |e: &Evaluation| (e.area_accuracy(), tie_break(e));
@@ -380,31 +432,38 @@ pub fn selection_file(
     )
 }
 
-/// The off-lattice model's search ([`select_off_lattice`]) as a metrics file, one row per
-/// candidate.
+/// The search ([`select_off_lattice`]) of the off-lattice model `kind` as a metrics file, one
+/// row per candidate.
 pub fn off_lattice_selection_file(
+    kind: Mlp,
     results: &[(Candidate, Evaluation)],
     chosen: Candidate,
     seed: u64,
 ) -> MetricsFile {
+    let (model, label) = match kind {
+        Mlp::OffLatticeCentroid => ("Off-lattice centroid model", "its centroid"),
+        _ => ("Off-lattice model", "the cell under its centroid"),
+    };
     search_file(
         results,
         format!(
-            "Off-lattice model: validation search at OSR {SELECTION_OSR}: chosen {}; \
+            "{model}: validation search at OSR {SELECTION_OSR}: chosen {}; \
              `centroid_cell_hits` of `taps` is the figure on every tap",
             chosen.label()
         ),
         format!(
             "fit: the lattice's repeat {TRAIN_REPEAT} and hand-sim jittered draws of seeds \
-             {OFF_LATTICE_TRAIN_SEEDS:#x?}, each labelled by the cell under its centroid; \
+             {OFF_LATTICE_TRAIN_SEEDS:#x?}, each labelled by {label}; \
              validation: the jittered draw of seed {OFF_LATTICE_VALIDATION_SEED:#x}"
         ),
         seed,
     )
 }
 
-/// The off-lattice search file inside [`MODEL_DIR`].
+/// The off-lattice search file of [`Mlp::OffLattice`] inside [`MODEL_DIR`].
 pub const OFF_LATTICE_SELECTION_FILE: &str = "offlattice_selection.json";
+/// The off-lattice search file of [`Mlp::OffLatticeCentroid`] inside [`MODEL_DIR`].
+pub const OFF_LATTICE_CENTROID_SELECTION_FILE: &str = "offlattice_centroid_selection.json";
 
 fn search_file(
     results: &[(Candidate, Evaluation)],
@@ -448,8 +507,8 @@ pub const OFF_LATTICE_VALIDATION_SEED: u64 = 0x0FF1_A771_0000;
 pub fn centroid_cell_example(r: &TapRecord) -> Option<ContactExample> {
     let cell = cell_at(r.tap.centroid_mm()?)?;
     Some(ContactExample {
-        reading: r.reading,
         mask: 1 << cell,
+        ..r.example()
     })
 }
 
@@ -468,9 +527,9 @@ pub fn off_lattice_examples(
         .collect()
 }
 
-/// The off-lattice search: the cell-set head (its catalogue then holds the 24 single cells, so
-/// it decodes to the most likely cell) × L2 0.001 / 1e-4 / 0 × 1500 / 3000 epochs, the
-/// paper's setting first.
+/// The off-lattice search of [`Mlp::OffLattice`]: the cell-set head (its catalogue then holds
+/// the 24 single cells, so it decodes to the most likely cell) × L2 0.001 / 1e-4 / 0 ×
+/// 1500 / 3000 epochs, the paper's setting first.
 pub fn off_lattice_grid() -> Vec<Candidate> {
     Candidate::grid()
         .into_iter()
@@ -478,11 +537,28 @@ pub fn off_lattice_grid() -> Vec<Candidate> {
         .collect()
 }
 
-/// Every [`off_lattice_grid`] point trained on [`off_lattice_examples`] at `osr` and evaluated
-/// on the validation draw's taps at `osr`, and the chosen one: highest accuracy on its
-/// single-cell taps, then on the cell under the centroid of every tap; earlier points win
-/// ties. Neither the lattice's repeat 1 nor the held-out jittered set is read.
+/// The off-lattice search of [`Mlp::OffLatticeCentroid`]: the centroid head × dropout 0.3 (the
+/// paper's) / 0 × L2 0.001 / 1e-4 / 0 × 1500 / 3000 epochs, the paper's setting first.
+pub fn off_lattice_centroid_grid() -> Vec<Candidate> {
+    [DROPOUT, 0.0]
+        .into_iter()
+        .flat_map(|dropout| {
+            off_lattice_grid().into_iter().map(move |c| Candidate {
+                head: Head::Centroid,
+                dropout,
+                ..c
+            })
+        })
+        .collect()
+}
+
+/// Every point of `grid` ([`off_lattice_grid`], [`off_lattice_centroid_grid`]) trained on
+/// [`off_lattice_examples`] at `osr` and evaluated on the validation draw's taps at `osr`,
+/// and the chosen one: highest accuracy on its single-cell taps, then on the cell under the
+/// centroid of every tap; earlier points win ties. Neither the lattice's repeat 1 nor the
+/// held-out jittered set is read.
 pub fn select_off_lattice(
+    grid: Vec<Candidate>,
     lattice: &[TapRecord],
     draws: &[TapRecord],
     validation: &[TapRecord],
@@ -492,7 +568,7 @@ pub fn select_off_lattice(
 ) -> Result<(Candidate, Vec<(Candidate, Evaluation)>), NetError> {
     let val: Vec<&TapRecord> = validation.iter().filter(|r| r.tap.osr == osr).collect();
     search(
-        off_lattice_grid(),
+        grid,
         &off_lattice_examples(lattice, draws, osr),
         &val,
         osr,
@@ -502,10 +578,11 @@ pub fn select_off_lattice(
     )
 }
 
-/// Trains the off-lattice model with `chosen` at every OSR of `lattice` on
-/// [`off_lattice_examples`], and evaluates each on the lattice's held-out repeat (as every
-/// committed model's metrics row is).
+/// Trains the off-lattice model `kind` ([`Mlp::OffLattice`], [`Mlp::OffLatticeCentroid`])
+/// with `chosen` at every OSR of `lattice` on [`off_lattice_examples`], and evaluates each on
+/// the lattice's held-out repeat (as every committed model's metrics row is).
 pub fn train_off_lattice(
+    kind: Mlp,
     lattice: &[TapRecord],
     draws: &[TapRecord],
     chosen: Candidate,
@@ -516,15 +593,14 @@ pub fn train_off_lattice(
     for osr in osrs(lattice) {
         let (_, test) = split(lattice, osr);
         let fit = off_lattice_examples(lattice, draws, osr);
-        let (model, log) =
-            ContactMlp::train(&fit, chosen.head, &chosen.config(osr, seed, progress))?;
+        let (model, log) = chosen.train(&fit, osr, seed, progress)?;
         let evaluation = evaluate(&model, &test)?;
         out.push(Trained {
             osr,
             model,
             evaluation,
             log,
-            kind: Mlp::OffLattice,
+            kind,
         });
     }
     Ok(out)
@@ -578,13 +654,24 @@ pub fn train_all_with(
     let mut out = Vec::new();
     for osr in osrs(records) {
         let (train, test) = split(records, osr);
-        let runs = Head::ALL
-            .map(|head| (head, recipe(head, osr, seed, progress), Mlp::paper(head)))
+        let runs = Head::PAPER
             .into_iter()
-            .chain(chosen.map(|c| (c.head, c.config(osr, seed, progress), Mlp::Chosen)));
-        for (head, mut config, kind) in runs {
+            .filter_map(|head| {
+                let config = recipe(head, osr, seed, progress);
+                Some((head, config, DROPOUT, Mlp::paper(head)?))
+            })
+            .chain(chosen.map(|c| {
+                (
+                    c.head,
+                    c.config(osr, seed, progress),
+                    c.dropout,
+                    Mlp::Chosen,
+                )
+            }));
+        for (head, mut config, dropout, kind) in runs {
             adjust(&mut config);
-            let (model, log) = ContactMlp::train(&examples(&train), head, &config)?;
+            let (model, log) =
+                ContactMlp::train_with_dropout(&examples(&train), head, dropout, &config)?;
             let evaluation = evaluate(&model, &test)?;
             out.push(Trained {
                 osr,

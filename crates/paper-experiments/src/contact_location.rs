@@ -17,11 +17,13 @@
 //! either (Figures 10–11 show predictions, not a rate).
 
 use crate::aot_eval::{self, Rule, Tally};
+use crate::contact_bound::{self, Sampling, SetBound};
 use crate::contact_eval::{self, Evaluation};
 use crate::data::fingertip::{self, TapSet};
 use crate::jobs::JobError;
 use aot_locate::{DetectorConfig, Geometry};
 use std::collections::BTreeMap;
+use std::collections::btree_map::Entry;
 use std::fmt::Write as _;
 use std::path::Path;
 use tactile_nets::contact_mlp::ContactMlp;
@@ -58,6 +60,9 @@ pub struct ContactLocation {
     pub jittered: aot_eval::Report,
     /// Each committed MLP on each set, per OSR.
     pub mlp: BTreeMap<(Set, u16, Mlp), Evaluation>,
+    /// Per OSR, the Cramér–Rao bound over the jittered set's single-cell taps
+    /// ([`contact_bound`]): what an efficient locator that knew the law could reach.
+    pub bound: BTreeMap<u16, SetBound>,
 }
 
 impl ContactLocation {
@@ -76,6 +81,7 @@ impl ContactLocation {
             lattice: aot_eval::evaluate(&lattice, &geometry, config),
             jittered: aot_eval::evaluate_held_out(&lattice, &jittered, &geometry, config),
             mlp: BTreeMap::new(),
+            bound: jittered_bound(&jittered),
         };
         let lattice = lattice.records();
         let jittered = jittered.records();
@@ -286,21 +292,26 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
          labels hold without ties: the 3 × 3 area under the shifted centroid, and for the MLP \
          the touched cell of the 216 single-cell taps (a shift under half a cell keeps a \
          single cell's centroid on it). Held out from everything: the ranging scorer is fitted \
-         and the MLPs are trained on the lattice set's repeat 0; the off-lattice MLP also on \
-         six jittered draws of other seeds, and its configuration was chosen on a seventh \
-         (`contact_eval::OFF_LATTICE_TRAIN_SEEDS`, `offlattice_selection.json`).\n\n\
-         | OSR | eq. 3, P = held rise | eq. 3, P = absolute held | ranging (fitted) | MLP off-lattice, single-cell | MLP off-lattice, every tap (cell under the centroid) | MLP chosen, single-cell | MLP chosen, every tap | MLP paper recipe (cell-set / eq. 4), single-cell |\n\
-         |---|---|---|---|---|---|---|---|---|\n",
+         and the MLPs are trained on the lattice set's repeat 0; the two off-lattice MLPs also \
+         on six jittered draws of other seeds, and their configurations were chosen on a \
+         seventh (`contact_eval::OFF_LATTICE_TRAIN_SEEDS`, `offlattice_selection.json`, \
+         `offlattice_centroid_selection.json`). \"Single-cell\": the 216 single-cell taps, \
+         located on their cell; \"every tap\": all 612, located on the cell under the \
+         centroid.\n\n\
+         | OSR | eq. 3, P = held rise | eq. 3, P = absolute held | ranging (fitted) | MLP off-lattice, centroid regression: single-cell | …: every tap | MLP off-lattice, centroid cell: single-cell | …: every tap | MLP chosen, single-cell | MLP chosen, every tap | MLP paper recipe (cell-set / eq. 4), single-cell |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for osr in cl.osrs() {
         let aot = |rule| cl.aot(Set::Jittered, rule, osr);
         let every = cl.mlp_centroid_cell(Set::Jittered, Mlp::Chosen, osr);
         let _ = writeln!(
             s,
-            "| {osr} | {} | {} | {} | {} | {} | {} | {every} | {} / {} |",
+            "| {osr} | {} | {} | {} | {} | {} | {} | {} | {} | {every} | {} / {} |",
             aot(Rule::Eq3Rise),
             aot(Rule::Eq3Absolute),
             aot(Rule::Ranging),
+            cl.mlp_area(Set::Jittered, Mlp::OffLatticeCentroid, osr),
+            cl.mlp_centroid_cell(Set::Jittered, Mlp::OffLatticeCentroid, osr),
             cl.mlp_area(Set::Jittered, Mlp::OffLattice, osr),
             cl.mlp_centroid_cell(Set::Jittered, Mlp::OffLattice, osr),
             cl.mlp_area(Set::Jittered, Mlp::Chosen, osr),
@@ -310,8 +321,8 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
     }
     s += "\nOn the lattice set, per OSR, the three views of the AoT label (either area for a \
           border tap / strict `floor` / interior taps only) and the MLPs:\n\n\
-          | OSR | ranging: either / strict / interior | eq. 3 (rise): either / strict / interior | MLP chosen, single-cell | MLP off-lattice, single-cell |\n\
-          |---|---|---|---|---|\n";
+          | OSR | ranging: either / strict / interior | eq. 3 (rise): either / strict / interior | MLP chosen, single-cell | MLP off-lattice (centroid cell), single-cell | MLP off-lattice (centroid regression), single-cell |\n\
+          |---|---|---|---|---|---|\n";
     for osr in cl.osrs() {
         let views = |rule| {
             let l = &cl.lattice;
@@ -330,12 +341,68 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
         };
         let _ = writeln!(
             s,
-            "| {osr} | {} | {} | {} | {} |",
+            "| {osr} | {} | {} | {} | {} | {} |",
             views(Rule::Ranging),
             views(Rule::Eq3Rise),
             cl.mlp_area(Set::Lattice, Mlp::Chosen, osr),
             cl.mlp_area(Set::Lattice, Mlp::OffLattice, osr),
+            cl.mlp_area(Set::Lattice, Mlp::OffLatticeCentroid, osr),
+        );
+    }
+    s += "\nWhat the readings allow (`paper_experiments::contact_bound`): the Cramér–Rao bound of \
+          hand-sim's forward model for each jittered single-cell tap — its law, the MS5611's \
+          datasheet noise at the OSR, the series and held mean the dataset keeps, with shift, \
+          force, onset and the three baselines unknown — and the share of taps an efficient \
+          locator, Gaussian with that covariance, would place in the right one of the 24 \
+          cells. It grants the locator the law and that the contact is one cell, so it is a \
+          ceiling for what it assumes, not a figure a learned locator is owed; σ is the larger \
+          axis' standard deviation.\n\n\
+          | OSR | efficient locator, single-cell taps | σ median | σ largest | best MLP off the lattice, single-cell |\n\
+          |---|---|---|---|---|\n";
+    for (osr, b) in &cl.bound {
+        let best = [Mlp::OffLatticeCentroid, Mlp::OffLattice]
+            .map(|m| cl.mlp_area(Set::Jittered, m, *osr))
+            .into_iter()
+            .fold(Tally::default(), |a, t| {
+                if t.percent() > a.percent() { t } else { a }
+            });
+        let _ = writeln!(
+            s,
+            "| {osr} | {:.1} % of {} | {:.3} mm | {:.3} mm | {best} |",
+            100.0 * b.accuracy,
+            b.taps,
+            b.median_sigma_mm,
+            b.max_sigma_mm,
         );
     }
     s
+}
+
+/// Per OSR, [`contact_bound::set_bound`] over the single-cell taps of the jittered set, read
+/// as its own series were (the first tap's frame times at that OSR).
+fn jittered_bound(jittered: &fingertip::Dataset) -> BTreeMap<u16, SetBound> {
+    let mut taps: BTreeMap<u16, Vec<(usize, [f64; 2], f64)>> = BTreeMap::new();
+    let mut sampling: BTreeMap<u16, Sampling> = BTreeMap::new();
+    for (tap, series) in jittered.iter() {
+        let Some(osr) = baro_drivers::Osr::from_ratio(tap.osr) else {
+            continue;
+        };
+        if let Entry::Vacant(slot) = sampling.entry(tap.osr) {
+            if let Some(s) = Sampling::of_series(osr, &series.t_us.to_vec()) {
+                slot.insert(s);
+            }
+        }
+        if tap.mask.count_ones() == 1 {
+            let shift = tap.offset_mm.map(f64::from);
+            let force_n = f64::from(tap.force_kgf) * hand_sim::fingertip::KGF_N;
+            taps.entry(tap.osr).or_default().push((
+                tap.mask.trailing_zeros() as usize,
+                shift,
+                force_n,
+            ));
+        }
+    }
+    taps.into_iter()
+        .filter_map(|(osr, t)| Some((osr, contact_bound::set_bound(&t, sampling.get(&osr)?))))
+        .collect()
 }

@@ -7,7 +7,7 @@
 //! returns the files it wrote (empty for a quick run, which writes nothing).
 
 use crate::cnn_eval::{self, Augmented, Case, Grouping, Job, NOISY_COPIES, Protocol, SNR_DB};
-use crate::contact_eval::{self, SELECTION_FILE, SELECTION_OSR};
+use crate::contact_eval::{self, Mlp, SELECTION_FILE, SELECTION_OSR};
 use crate::data::{fingertip, imu_pad, underactuated, weights};
 use crate::force_eval;
 use crate::softness_eval::{self, OPTIMISERS, SEEDS};
@@ -55,7 +55,7 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, J
     let seed = contact_eval::SEED;
     let start = Instant::now();
     let mut selection = None;
-    let mut off_selection = None;
+    let mut off_selections = Vec::new();
     let trained = match epochs {
         None => {
             let (chosen, results) = contact_eval::select(&records, SELECTION_OSR, seed, true)?;
@@ -70,9 +70,27 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, J
             println!("chosen: {}", chosen.label());
             selection = Some(contact_eval::selection_file(&results, chosen, seed));
             let mut trained = contact_eval::train_all(&records, Some(chosen), seed, true)?;
-            let (off, search) = off_lattice(&records, seed)?;
-            trained.extend(off);
-            off_selection = Some(search);
+            let mut draws = Vec::new();
+            for s in contact_eval::OFF_LATTICE_TRAIN_SEEDS {
+                draws.extend(jittered_draw(s)?);
+            }
+            let validation = jittered_draw(contact_eval::OFF_LATTICE_VALIDATION_SEED)?;
+            for (kind, grid, file) in [
+                (
+                    Mlp::OffLattice,
+                    contact_eval::off_lattice_grid(),
+                    contact_eval::OFF_LATTICE_SELECTION_FILE,
+                ),
+                (
+                    Mlp::OffLatticeCentroid,
+                    contact_eval::off_lattice_centroid_grid(),
+                    contact_eval::OFF_LATTICE_CENTROID_SELECTION_FILE,
+                ),
+            ] {
+                let (off, search) = off_lattice(kind, grid, &records, &draws, &validation, seed)?;
+                trained.extend(off);
+                off_selections.push((file, search));
+            }
             trained
         }
         Some(n) => contact_eval::train_all_with(&records, None, seed, true, |c| c.epochs = n)?,
@@ -96,15 +114,14 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, J
     if epochs.is_none() {
         let dir = root.join(contact_eval::MODEL_DIR);
         written = contact_eval::save_all(&dir, &trained, seed)?;
-        for (file, selection) in [
-            (SELECTION_FILE, selection),
-            (contact_eval::OFF_LATTICE_SELECTION_FILE, off_selection),
-        ] {
-            if let Some(selection) = selection {
-                let path = dir.join(file);
-                std::fs::write(&path, selection.to_json()?)?;
-                written.push(path);
-            }
+        let searches = selection
+            .map(|s| (SELECTION_FILE, s))
+            .into_iter()
+            .chain(off_selections);
+        for (file, selection) in searches {
+            let path = dir.join(file);
+            std::fs::write(&path, selection.to_json()?)?;
+            written.push(path);
         }
     }
     Ok(written)
@@ -116,19 +133,26 @@ fn jittered_draw(seed: u64) -> Result<Vec<fingertip::TapRecord>, JobError> {
     Ok(fingertip::parse(&taps, &series)?.records())
 }
 
-/// The off-lattice model ([`contact_eval::Mlp::OffLattice`]): its search at
-/// [`SELECTION_OSR`] on the validation draw, then one model per OSR.
+/// The off-lattice model `kind` ([`Mlp::OffLattice`], [`Mlp::OffLatticeCentroid`]): its
+/// search over `grid` at [`SELECTION_OSR`] on the `validation` draw, then one model per OSR
+/// trained on the lattice's training repeat and the jittered training `draws`.
 fn off_lattice(
+    kind: Mlp,
+    grid: Vec<contact_eval::Candidate>,
     lattice: &[fingertip::TapRecord],
+    draws: &[fingertip::TapRecord],
+    validation: &[fingertip::TapRecord],
     seed: u64,
 ) -> Result<(Vec<contact_eval::Trained>, MetricsFile), JobError> {
-    let mut draws = Vec::new();
-    for s in contact_eval::OFF_LATTICE_TRAIN_SEEDS {
-        draws.extend(jittered_draw(s)?);
-    }
-    let validation = jittered_draw(contact_eval::OFF_LATTICE_VALIDATION_SEED)?;
-    let (chosen, results) =
-        contact_eval::select_off_lattice(lattice, &draws, &validation, SELECTION_OSR, seed, true)?;
+    let (chosen, results) = contact_eval::select_off_lattice(
+        grid,
+        lattice,
+        draws,
+        validation,
+        SELECTION_OSR,
+        seed,
+        true,
+    )?;
     for (c, e) in &results {
         println!(
             "off-lattice validation osr {SELECTION_OSR} {:<28} single-cell {:>6.2} %  every tap {:>6.2} %",
@@ -138,8 +162,8 @@ fn off_lattice(
         );
     }
     println!("off-lattice chosen: {}", chosen.label());
-    let search = contact_eval::off_lattice_selection_file(&results, chosen, seed);
-    let trained = contact_eval::train_off_lattice(lattice, &draws, chosen, seed, true)?;
+    let search = contact_eval::off_lattice_selection_file(kind, &results, chosen, seed);
+    let trained = contact_eval::train_off_lattice(kind, lattice, draws, chosen, seed, true)?;
     Ok((trained, search))
 }
 

@@ -11,6 +11,8 @@
 //! - [`aot_eval`]: Arrival-of-Time on the fingertip taps (seed 000 §3);
 //! - [`contact_location`]: every contact locator on both held-out tap sets against seed 000's
 //!   targets, under issue 21's labels (the docs, their drift test and the scene share it);
+//! - [`contact_bound`]: the Cramér–Rao bound of the fingertip's forward model, what an
+//!   efficient single-cell locator could reach on those sets;
 //! - [`jobs`]: the training jobs, and [`train`], the command over them (`papers train MODEL`,
 //!   which `cargo xtask train MODEL` runs);
 //! - [`trade`]: the speed / accuracy trade (`papers trade`, run by `cargo xtask trade`), with
@@ -31,6 +33,7 @@
 pub mod aot_eval;
 pub mod axis;
 pub mod cnn_eval;
+pub mod contact_bound;
 pub mod contact_eval;
 pub mod contact_location;
 pub mod force_eval;

@@ -97,7 +97,7 @@ fn committed_metrics_match_a_re_evaluation_of_the_committed_weights() -> Result<
     assert_eq!(
         committed.rows.len(),
         5 * contact_eval::Mlp::ALL.len(),
-        "5 OSRs x (2 paper-recipe heads, the chosen and the off-lattice model)"
+        "5 OSRs x (2 paper-recipe heads, the chosen and the two off-lattice models)"
     );
     let drift = committed.drift(&fresh, 1e-9);
     assert!(drift.is_empty(), "committed metrics drifted: {drift:#?}");
@@ -116,6 +116,14 @@ fn off_lattice_training_taps_are_labelled_by_their_centroid_cell_and_are_not_the
     for (e, r) in examples.iter().zip(&train) {
         let cell = r.tap.centroid_mm().and_then(contact_eval::cell_at);
         assert_eq!(Some(e.mask), cell.map(|c| 1u32 << c), "{:?}", r.tap);
+        // On the lattice, the centroid target is the touched cells' own centroid.
+        let own = aot_locate::CellSet::from_bits(r.tap.mask).and_then(|c| c.centroid());
+        let own = own.expect("a contact");
+        assert!(
+            (e.centroid[0] - own[0]).abs() < 1e-5 && (e.centroid[1] - own[1]).abs() < 1e-5,
+            "{:?} vs {own:?}",
+            e.centroid
+        );
     }
     let held_out = fingertip::load_set(&root(), fingertip::TapSet::Jittered)?;
     let mut seeds = contact_eval::OFF_LATTICE_TRAIN_SEEDS.to_vec();
@@ -127,6 +135,27 @@ fn off_lattice_training_taps_are_labelled_by_their_centroid_cell_and_are_not_the
         hand_sim::fingertip::dataset::jittered_taps(contact_eval::OFF_LATTICE_TRAIN_SEEDS[0])?;
     let draw = fingertip::parse(&taps, &series)?;
     assert_eq!(draw.taps().len(), held_out.taps().len());
+    // Off the lattice the centroid target carries the shift, in cells of 3 mm (x right is a
+    // higher column, y up a lower row).
+    let shifted = draw.records();
+    for (e, r) in contact_eval::off_lattice_examples(&[], &shifted, 256)
+        .iter()
+        .zip(shifted.iter().filter(|r| r.tap.osr == 256))
+    {
+        let own = aot_locate::CellSet::from_bits(r.tap.mask).and_then(|c| c.centroid());
+        let own = own.expect("a contact");
+        let [dx, dy] = r.tap.offset_mm;
+        assert!(
+            (e.centroid[0] - (own[0] - dy / 3.0)).abs() < 1e-4,
+            "{:?}",
+            r.tap
+        );
+        assert!(
+            (e.centroid[1] - (own[1] + dx / 3.0)).abs() < 1e-4,
+            "{:?}",
+            r.tap
+        );
+    }
     let same = draw
         .taps()
         .iter()

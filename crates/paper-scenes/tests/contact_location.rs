@@ -29,8 +29,8 @@ fn doc_row(osr: u16) -> Vec<(f64, f64)> {
 }
 
 /// The doc's jittered-set row for `osr`: every `(hits/n)` as a percentage, in column order
-/// (eq. 3 rise, eq. 3 absolute, ranging, MLP off-lattice single-cell, MLP off-lattice every
-/// tap, MLP chosen …).
+/// (eq. 3 rise, eq. 3 absolute, ranging, the off-lattice centroid-regression MLP's single-cell
+/// and every-tap figures, then the other MLPs').
 fn jittered_row(osr: u16) -> Vec<f64> {
     let doc = std::fs::read_to_string(root().join("docs/contact-location.md")).expect("doc");
     let section = &doc[doc
@@ -92,10 +92,10 @@ fn contact_scene_reproduces_the_committed_contact_figures() {
             "{fig}: {ours} vs the doc's {doc}"
         );
     }
-    // The MLP: the committed model the scene names (`off_lattice`) of this OSR on the held-out
-    // taps, as its metrics row says.
+    // The MLP: the committed model the scene names (`off_lattice_centroid`) of this OSR on the
+    // held-out taps, as its metrics row says.
     let m = metrics("contact_mlp");
-    let (_, label) = paper_experiments::contact_eval::Mlp::OffLattice.file_and_label(osr);
+    let (_, label) = paper_experiments::contact_eval::Mlp::OffLatticeCentroid.file_and_label(osr);
     for (fig, key, scale) in [
         ("mlp_area_accuracy_pct", "area_accuracy", 100.0),
         ("mlp_exact_accuracy_pct", "exact_accuracy", 100.0),

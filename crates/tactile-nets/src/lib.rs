@@ -35,9 +35,9 @@
 //! use hand_traits::ContactLocator;
 //!
 //! // Two taps: cell 0 (area 1.1) pressed hard near sensor 3, cell 5 (1.6) near sensor 1.
-//! let tap = |mask: u32, held_pa: [f32; 3], arrival_ms: [Option<f32>; 3]| ContactExample {
-//!     reading: TapReading { baseline_pa: [101_000.0; 3], held_pa, arrival_ms },
-//!     mask,
+//! let tap = |mask: u32, held_pa: [f32; 3], arrival_ms: [Option<f32>; 3]| {
+//!     let reading = TapReading { baseline_pa: [101_000.0; 3], held_pa, arrival_ms };
+//!     ContactExample::new(reading, mask)
 //! };
 //! let taps = [
 //!     tap(1, [102_000.0, 101_000.0, 104_000.0], [Some(9.0), None, Some(3.0)]),

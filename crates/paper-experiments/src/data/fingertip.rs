@@ -57,6 +57,13 @@ impl Tap {
         let [x, y] = aot_locate::AreaGrid::SIMULATED_PAD.grid_point_mm(centroid);
         Some([x + self.offset_mm[0], y + self.offset_mm[1]])
     }
+
+    /// The patch centroid in 1-based (row, column) cell units, cell centres at whole numbers:
+    /// [`Tap::centroid_mm`] on the 4 × 6 grid (the contact MLP's centroid target). `None` for
+    /// an empty mask.
+    pub fn centroid(&self) -> Option<[f32; 2]> {
+        Some(aot_locate::AreaGrid::SIMULATED_PAD.grid_point_of(self.centroid_mm()?))
+    }
 }
 
 /// A tap's frames from 30 ms before to 90 ms after contact onset, in time order.
@@ -142,11 +149,12 @@ pub struct TapRecord {
 }
 
 impl TapRecord {
-    /// The MLP's training example: the reading and the touched cells.
+    /// The MLP's training example: the reading, the touched cells and the (possibly shifted)
+    /// centroid.
     pub fn example(&self) -> ContactExample {
         ContactExample {
-            reading: self.reading,
-            mask: self.tap.mask,
+            centroid: self.tap.centroid().unwrap_or([0.0, 0.0]),
+            ..ContactExample::new(self.reading, self.tap.mask)
         }
     }
 }

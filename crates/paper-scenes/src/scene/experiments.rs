@@ -219,7 +219,8 @@ fn yes() -> bool {
     true
 }
 
-/// Which committed contact MLP of an OSR (`chosen`, `off_lattice`, `cell_set`, `average_area`).
+/// Which committed contact MLP of an OSR (`chosen`, `off_lattice_centroid`, `off_lattice`,
+/// `cell_set`, `average_area`).
 pub use paper_experiments::contact_location::Mlp as MlpChoice;
 
 /// Seed 000 §3–4: the held-out simulated taps (every Figure 7 shape × position × 5 / 7 / 9

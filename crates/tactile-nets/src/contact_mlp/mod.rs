@@ -22,10 +22,14 @@
 //! - [`Head::CellSet`]: 24 sigmoid outputs, one per cell (multi-label cross-entropy on the
 //!   tap's cell mask); decoded to the catalogue contact of highest likelihood under independent
 //!   cells.
+//! - [`Head::Centroid`] (ours, issue 21): two linear outputs regressing the contact's centroid
+//!   in cell units ([`ContactExample::centroid`], mean squared error), for contacts anywhere
+//!   on the pad rather than on its cell lattice; decoded to the one cell under the point.
 //!
 //! The catalogue is the set of distinct contacts (cell masks) in the training split, stored
-//! with the weights. Both heads report as region the cell nearest the decoded contact's
-//! centroid (ties: the lower row, then column), so `regions` = 24.
+//! with the weights. Every head reports as region the cell nearest the decoded contact's
+//! centroid, or under the regressed point (ties: the lower row, then column), so
+//! `regions` = 24.
 
 use crate::error::{RunError, check_output};
 use crate::frozen::{self, Identity, Layer, Relu, StaticDense};
@@ -70,14 +74,47 @@ impl TapReading {
     }
 }
 
-/// One training example: a reading and the cells that were touched.
+/// One training example: a reading, the cells that were touched and where the contact was
+/// centred.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactExample {
     /// What the sensors read.
     pub reading: TapReading,
     /// The touched cells (bit `i` = cell `i` of the 4 × 6 pad, [`aot_locate::CellSet`]'s bits);
-    /// the [`Head::AverageArea`] target is its eq. 4 label.
+    /// the [`Head::AverageArea`] target is its eq. 4 label, the [`Head::CellSet`] target the
+    /// mask itself.
     pub mask: u32,
+    /// The contact's centroid in 1-based (row, column) cell units, cell centres at whole
+    /// numbers ([`aot_locate::CellSet::centroid`]; [`aot_locate::AreaGrid::grid_point_of`]
+    /// converts pad millimetres): the [`Head::Centroid`] target. A contact pressed off its
+    /// cells' centres has it shifted.
+    pub centroid: [f32; 2],
+}
+
+impl ContactExample {
+    /// A contact centred on its cells: the centroid is the mask's (`[0, 0]` for an empty or
+    /// out-of-pad mask, which no head can place).
+    ///
+    /// ```
+    /// use tactile_nets::contact_mlp::{ContactExample, TapReading};
+    /// let reading = TapReading {
+    ///     baseline_pa: [101_000.0; 3],
+    ///     held_pa: [101_500.0; 3],
+    ///     arrival_ms: [Some(2.0); 3],
+    /// };
+    /// // Cells 0 and 1: areas 1.1 and 1.2, centred between them.
+    /// assert_eq!(ContactExample::new(reading, 0b11).centroid, [1.0, 1.5]);
+    /// ```
+    pub fn new(reading: TapReading, mask: u32) -> ContactExample {
+        let centroid = CellSet::from_bits(mask)
+            .and_then(CellSet::centroid)
+            .unwrap_or([0.0, 0.0]);
+        ContactExample {
+            reading,
+            mask,
+            centroid,
+        }
+    }
 }
 
 /// Eq. 4's label of a mask (0 for an empty or out-of-pad mask, as Table 2's no-contact row).
@@ -117,17 +154,23 @@ pub enum Head {
     AverageArea,
     /// 24 outputs: one logit per cell of the 4 × 6 pad, sigmoid cross-entropy.
     CellSet,
+    /// 2 outputs: the contact's centroid, (row, column) in cell units, mean squared error.
+    Centroid,
 }
 
 impl Head {
-    /// Both heads.
-    pub const ALL: [Head; 2] = [Head::AverageArea, Head::CellSet];
+    /// Every head.
+    pub const ALL: [Head; 3] = [Head::AverageArea, Head::CellSet, Head::Centroid];
+    /// The heads of seed 000's recipe: its eq. 4 regression, and the cell-set head that
+    /// decodes into the same catalogue.
+    pub const PAPER: [Head; 2] = [Head::AverageArea, Head::CellSet];
 
-    /// File and metrics name: `average_area` or `cell_set`.
+    /// File and metrics name: `average_area`, `cell_set` or `centroid`.
     pub fn name(self) -> &'static str {
         match self {
             Head::AverageArea => "average_area",
             Head::CellSet => "cell_set",
+            Head::Centroid => "centroid",
         }
     }
 
@@ -141,6 +184,7 @@ impl Head {
         match self {
             Head::AverageArea => 1,
             Head::CellSet => CELLS,
+            Head::Centroid => 2,
         }
     }
 }
@@ -148,13 +192,19 @@ impl Head {
 /// One localisation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Prediction {
-    /// The decoded contact: a cell mask from the catalogue.
+    /// The decoded contact: a cell mask from the catalogue; for [`Head::Centroid`] the one
+    /// cell under the regressed point.
     pub contact: u32,
     /// The cell nearest the contact's centroid, `0..24`.
     pub region: u16,
     /// `0.0..=1.0`: for [`Head::CellSet`] the contact's share of the likelihood over the
-    /// catalogue; for [`Head::AverageArea`] `1 − distance to its label / 0.05`, floored at 0.
+    /// catalogue; for [`Head::AverageArea`] `1 − distance to its label / 0.05`, floored at 0;
+    /// for [`Head::Centroid`] how far inside its cell the point lies: the distance to the
+    /// cell's nearest edge over half a cell (1 at the centre, 0 on an edge or off the pad).
     pub confidence: f32,
+    /// Where the contact is centred, 1-based (row, column) cell units: the decoded contact's
+    /// centroid, or for [`Head::Centroid`] the regressed point.
+    pub centroid: [f32; 2],
 }
 
 /// The raw input features of one reading ([`FEATURE_NAMES`]).
@@ -184,15 +234,35 @@ pub fn features(reading: &TapReading) -> [f32; N_FEATURES] {
     f
 }
 
-/// Cell nearest a mask's centroid (ties: the lower row, then column).
-fn region_of(mask: u32) -> u16 {
-    // CellSet's centroid is 1-based.
-    let [r, c] = CellSet::from_bits(mask)
+/// A mask's centroid, 1-based (row, column); the top-left cell's centre for an empty mask.
+fn centroid_of(mask: u32) -> [f32; 2] {
+    CellSet::from_bits(mask)
         .and_then(CellSet::centroid)
-        .map_or([0.0, 0.0], |[r, c]| [r - 1.0, c - 1.0]);
-    let snap = |x: f32, n: usize| ((x - 0.5).ceil().max(0.0) as usize).min(n - 1);
+        .unwrap_or([1.0, 1.0])
+}
+
+/// The cell (`0..24`, row-major) nearest the 1-based (row, column) point `p`: the one holding
+/// it, a point off the pad going to the nearest edge cell (ties on a border: the lower row,
+/// then column).
+fn region_at([r, c]: [f32; 2]) -> u16 {
+    // Casts saturate and NaN casts to 0, so any point gives a cell.
+    let snap = |x: f32, n: usize| (Float::ceil(x - 1.5).max(0.0) as usize).min(n - 1);
     let (rows, cols) = (usize::from(ROWS), usize::from(COLS));
     (snap(r, rows) * cols + snap(c, cols)) as u16
+}
+
+/// How far inside its cell ([`region_at`]) the point `p` lies: the distance to the cell's
+/// nearest edge over half a cell, in `0.0..=1.0` (0 off the pad).
+fn inside_cell([r, c]: [f32; 2]) -> f32 {
+    let depth = |x: f32, n: u8| {
+        let edge = 0.5 - Float::abs(x - Float::round(x));
+        if (0.5..=f32::from(n) + 0.5).contains(&x) {
+            edge
+        } else {
+            0.0
+        }
+    };
+    (2.0 * depth(r, ROWS).min(depth(c, COLS))).clamp(0.0, 1.0)
 }
 
 /// The catalogue contact whose eq. 4 label is nearest `y` and its confidence; the first of
@@ -252,29 +322,61 @@ fn decode_cells(logits: &[f32], catalogue: impl IntoIterator<Item = u32>) -> Opt
     (any && sum > 0.0).then_some((best.0, 1.0 / sum))
 }
 
-/// The prediction for the network outputs `out` (one label value, or [`CELLS`] cell logits)
-/// over `catalogue`.
+/// The prediction for the network outputs `out` (one label value, a centroid's two
+/// coordinates, or [`CELLS`] cell logits) over `catalogue`.
 fn decode(out: &[f32], catalogue: impl IntoIterator<Item = u32>) -> Result<Prediction, RunError> {
+    if let [r, c] = *out {
+        let region = region_at([r, c]);
+        return Ok(Prediction {
+            contact: 1 << region,
+            region,
+            confidence: inside_cell([r, c]),
+            centroid: [r, c],
+        });
+    }
     let (contact, confidence) = if out.len() == 1 {
         decode_label(out[0], catalogue)
     } else {
         decode_cells(out, catalogue)
     }
     .ok_or(RunError::EmptyCatalogue)?;
+    let centroid = centroid_of(contact);
     Ok(Prediction {
         contact,
-        region: region_of(contact),
+        region: region_at(centroid),
         confidence,
+        centroid,
     })
 }
 
-/// Raw features checked and standardised with the training `mean` and `scale`.
+/// The smallest rise [`Head::Centroid`]'s log scale takes, hPa: a smaller or negative rise (a
+/// sensor that felt nothing, read through its noise) counts as this.
+pub const LOG_RISE_FLOOR_HPA: f32 = 0.01;
+
+/// What `head`'s network is fed for the raw features `raw` ([`FEATURE_NAMES`]): the same
+/// values, except that [`Head::Centroid`] reads the three rises as natural logarithms of hPa
+/// (floored at [`LOG_RISE_FLOOR_HPA`]). Why: the pad spreads a load through a Gaussian kernel,
+/// so a log rise is quadratic in position and the difference of two is linear; a regression
+/// to fractions of a cell needs that precision where the raw rises span 0.1…60 hPa.
+pub fn head_inputs(head: Head, raw: [f32; N_FEATURES]) -> [f32; N_FEATURES] {
+    let mut x = raw;
+    if head == Head::Centroid {
+        for r in &mut x[..3] {
+            *r = Float::ln(r.max(LOG_RISE_FLOOR_HPA));
+        }
+    }
+    x
+}
+
+/// Raw features checked, fed as `head` reads them ([`head_inputs`]) and standardised with the
+/// training `mean` and `scale`.
 fn standardised(
+    head: Head,
     input: &[f32],
     mean: &[f32; N_FEATURES],
     scale: &[f32; N_FEATURES],
 ) -> Result<[f32; N_FEATURES], RunError> {
-    let z = standardise(&frozen::input(input)?, mean, scale);
+    let z = standardise(&head_inputs(head, frozen::input(input)?), mean, scale);
     // A finite input can still overflow the standardisation: report it as the overflow it is.
     check_output(&z)?;
     Ok(z)
@@ -330,7 +432,7 @@ impl StaticContactMlp {
     pub fn predict(&self, input: &[f32]) -> Result<Prediction, RunError> {
         let logits = self
             .net
-            .forward(standardised(input, self.mean, self.scale)?);
+            .forward(standardised(Head::CellSet, input, self.mean, self.scale)?);
         check_output(&logits)?;
         decode(&logits, self.catalogue())
     }
@@ -400,6 +502,47 @@ mod tests {
             };
             prop_assert!(m == dm || (score(m) - score(dm)).abs() < 1e-4, "{m:#x} vs {dm:#x}");
             prop_assert!((p - dp).abs() < 1e-4, "{p} vs {dp}");
+        }
+    }
+
+    #[test]
+    fn a_centroid_decodes_to_the_cell_under_it() {
+        let at = |r: f32, c: f32| decode(&[r, c], []).expect("no catalogue needed");
+        // Cell 2.3 (index 8) at its centre: fully inside.
+        let p = at(2.0, 3.0);
+        assert_eq!((p.region, p.contact, p.confidence), (8, 1 << 8, 1.0));
+        assert_eq!(p.centroid, [2.0, 3.0]);
+        // A quarter cell from its right edge: half as deep.
+        let p = at(2.0, 3.25);
+        assert_eq!(p.region, 8);
+        assert!((p.confidence - 0.5).abs() < 1e-6, "{p:?}");
+        // On a border: the lower row / column, and no depth.
+        assert_eq!(at(2.5, 3.0).region, 8);
+        assert_eq!(at(2.0, 3.5).region, 8);
+        assert_eq!(at(2.0, 3.5).confidence, 0.0);
+        // Off the pad: the nearest edge cell, no depth; NaN (which `check_output` stops before
+        // decoding) still gives a cell.
+        let p = at(-3.0, 9.0);
+        assert_eq!((p.region, p.confidence), (5, 0.0));
+        assert_eq!(at(7.0, 0.2).region, 18);
+        assert!(at(f32::NAN, 2.0).region < 24);
+        // Catalogue heads report their contact's centroid.
+        let mut z = [-9.0f32; CELLS];
+        z[0] = 9.0;
+        z[1] = 9.0;
+        assert_eq!(decode(&z, [1, 0b11]).expect("decodes").centroid, [1.0, 1.5]);
+    }
+
+    #[test]
+    fn the_centroid_head_reads_log_rises() {
+        let raw = [10.0, 0.0, -3.0, 0.5, 0.0, 0.5, 0.0, 12.0, 3.0];
+        let x = head_inputs(Head::Centroid, raw);
+        assert!((x[0] - 10.0f32.ln()).abs() < 1e-6);
+        assert_eq!(x[1], LOG_RISE_FLOOR_HPA.ln());
+        assert_eq!(x[2], LOG_RISE_FLOOR_HPA.ln());
+        assert_eq!(x[3..], raw[3..]);
+        for head in Head::PAPER {
+            assert_eq!(head_inputs(head, raw), raw);
         }
     }
 

@@ -2,7 +2,7 @@
 
 use super::{
     ContactExample, DROPOUT, FEATURE_NAMES, HIDDEN, Head, N_FEATURES, Prediction, average_area,
-    decode, features, standardised,
+    decode, features, head_inputs, standardised,
 };
 use crate::activations::sigmoid;
 use crate::error::{NetError, check_output};
@@ -28,12 +28,15 @@ type Fast<const O: usize> = <Net<O> as Freeze>::Frozen;
 enum Body {
     Area(Net<1>, Fast<1>),
     Cells(Net<CELLS>, Fast<CELLS>),
+    Centroid(Net<2>, Fast<2>),
 }
 
 /// A trained contact-area MLP.
 pub struct ContactMlp {
     head: Head,
     body: Body,
+    /// The dropout rate it was trained with (recorded in the weights file).
+    dropout: f32,
     mean: [f32; N_FEATURES],
     scale: [f32; N_FEATURES],
     catalogue: Vec<u32>,
@@ -47,10 +50,10 @@ fn catalogue_of(examples: &[ContactExample]) -> Vec<u32> {
     masks
 }
 
-fn build<const O: usize>(dev: &Cpu) -> Net<O> {
+fn build<const O: usize>(dev: &Cpu, dropout: f32) -> Net<O> {
     let mut net = dev.build_module::<Arch<O>, f32>();
-    net.0.2.p = DROPOUT;
-    net.1.2.p = DROPOUT;
+    net.0.2.p = dropout;
+    net.1.2.p = dropout;
     net
 }
 
@@ -62,10 +65,31 @@ impl ContactMlp {
         head: Head,
         config: &TrainConfig,
     ) -> Result<(ContactMlp, TrainLog), NetError> {
+        Self::train_with_dropout(examples, head, DROPOUT, config)
+    }
+
+    /// [`ContactMlp::train`] with another dropout rate than the paper's 30 % after each hidden
+    /// layer (0 for none: a regression to fractions of a cell is blurred by dropout's noise).
+    ///
+    /// Errors: no examples, or a `dropout` outside `0.0..1.0`.
+    pub fn train_with_dropout(
+        examples: &[ContactExample],
+        head: Head,
+        dropout: f32,
+        config: &TrainConfig,
+    ) -> Result<(ContactMlp, TrainLog), NetError> {
+        if !(0.0..1.0).contains(&dropout) {
+            return Err(NetError::Training(format!(
+                "dropout {dropout} is outside 0.0..1.0"
+            )));
+        }
         if examples.is_empty() {
             return Err(NetError::Training("no training taps".into()));
         }
-        let rows: Vec<[f32; N_FEATURES]> = examples.iter().map(|e| features(&e.reading)).collect();
+        let rows: Vec<[f32; N_FEATURES]> = examples
+            .iter()
+            .map(|e| head_inputs(head, features(&e.reading)))
+            .collect();
         let (mean, scale) = mean_and_scale(&rows);
         let mut samples = Samples::default();
         for (row, ex) in rows.iter().zip(examples) {
@@ -77,12 +101,13 @@ impl ContactMlp {
                         core::array::from_fn(|i| f32::from(u8::from(ex.mask & (1 << i) != 0)));
                     samples.push(&z, &bits);
                 }
+                Head::Centroid => samples.push(&z, &ex.centroid),
             }
         }
         let dev = Cpu::seed_from_u64(config.seed);
         let (body, log) = match head {
             Head::AverageArea => {
-                let mut net = build::<1>(&dev);
+                let mut net = build::<1>(&dev, dropout);
                 let log = fit::<_, N_FEATURES, 1>(&dev, &mut net, &samples, Loss::Mse, config)?;
                 {
                     let fast = net.freeze()?;
@@ -90,7 +115,7 @@ impl ContactMlp {
                 }
             }
             Head::CellSet => {
-                let mut net = build::<CELLS>(&dev);
+                let mut net = build::<CELLS>(&dev, dropout);
                 let loss = Loss::SigmoidCrossEntropy;
                 let log = fit::<_, N_FEATURES, CELLS>(&dev, &mut net, &samples, loss, config)?;
                 {
@@ -98,10 +123,17 @@ impl ContactMlp {
                     (Body::Cells(net, fast), log)
                 }
             }
+            Head::Centroid => {
+                let mut net = build::<2>(&dev, dropout);
+                let log = fit::<_, N_FEATURES, 2>(&dev, &mut net, &samples, Loss::Mse, config)?;
+                let fast = net.freeze()?;
+                (Body::Centroid(net, fast), log)
+            }
         };
         let model = ContactMlp {
             head,
             body,
+            dropout,
             mean,
             scale,
             catalogue: catalogue_of(examples),
@@ -119,7 +151,8 @@ impl ContactMlp {
         &self.catalogue
     }
 
-    /// The network's raw outputs for raw features (the label value, or 24 cell logits).
+    /// The network's raw outputs for raw features (the label value, the centroid's (row,
+    /// column), or 24 cell logits).
     ///
     /// Errors: [`NetError::Shape`] unless `input` has [`N_FEATURES`] values,
     /// [`NetError::NonFinite`] for a NaN or infinite value, [`NetError::NonFiniteOutput`] when
@@ -132,7 +165,7 @@ impl ContactMlp {
     /// [`ContactMlp::outputs`] in a fixed buffer (the first `n` slots hold the head's outputs):
     /// localisation runs inside control cycles, where it must not allocate.
     fn raw_outputs(&self, input: &[f32]) -> Result<([f32; CELLS], usize), NetError> {
-        let z = standardised(input, &self.mean, &self.scale)?;
+        let z = standardised(self.head, input, &self.mean, &self.scale)?;
         let mut out = [0.0f32; CELLS];
         let n = match &self.body {
             Body::Area(_, fast) => {
@@ -142,6 +175,10 @@ impl ContactMlp {
             Body::Cells(_, fast) => {
                 out = fast.forward(z);
                 CELLS
+            }
+            Body::Centroid(_, fast) => {
+                out[..2].copy_from_slice(&fast.forward(z));
+                2
             }
         };
         check_output(&out[..n])?;
@@ -170,6 +207,7 @@ impl ContactMlp {
         match &self.body {
             Body::Area(net, _) => f.add_module("net.", net)?,
             Body::Cells(net, _) => f.add_module("net.", net)?,
+            Body::Centroid(net, _) => f.add_module("net.", net)?,
         }
         f.insert("input.mean", &[N_FEATURES], &self.mean)?;
         f.insert("input.scale", &[N_FEATURES], &self.scale)?;
@@ -181,7 +219,7 @@ impl ContactMlp {
             "head": self.head.name(),
             "features": FEATURE_NAMES,
             "hidden": HIDDEN,
-            "dropout": DROPOUT,
+            "dropout": self.dropout,
         });
         f.set_metadata(meta.to_string());
         Ok(f)
@@ -198,16 +236,22 @@ impl ContactMlp {
         let dev = Cpu::seed_from_u64(0);
         let body = match head {
             Head::AverageArea => {
-                let mut net = build::<1>(&dev);
+                let mut net = build::<1>(&dev, DROPOUT);
                 file.load_module("net.", &mut net)?;
                 let fast = net.freeze()?;
                 Body::Area(net, fast)
             }
             Head::CellSet => {
-                let mut net = build::<CELLS>(&dev);
+                let mut net = build::<CELLS>(&dev, DROPOUT);
                 file.load_module("net.", &mut net)?;
                 let fast = net.freeze()?;
                 Body::Cells(net, fast)
+            }
+            Head::Centroid => {
+                let mut net = build::<2>(&dev, DROPOUT);
+                file.load_module("net.", &mut net)?;
+                let fast = net.freeze()?;
+                Body::Centroid(net, fast)
             }
         };
         let vec9 = |name: &str| -> Result<[f32; N_FEATURES], NetError> {
@@ -218,9 +262,15 @@ impl ContactMlp {
             .tensor("catalogue.masks")
             .ok_or_else(|| NetError::MissingTensor("catalogue.masks".into()))?;
         let catalogue = masks.data.iter().map(|&m| m as u32).collect();
+        // Files written before the rate was configurable were all trained with the paper's.
+        let dropout = meta
+            .get("dropout")
+            .and_then(|d| d.as_f64())
+            .map_or(DROPOUT, |d| d as f32);
         Ok(ContactMlp {
             head,
             body,
+            dropout,
             mean: vec9("input.mean")?,
             scale: vec9("input.scale")?,
             catalogue,
@@ -250,5 +300,71 @@ impl ContactLocator for ContactMlp {
             regions: CELLS as u16,
             confidence: p.confidence,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact_mlp::TapReading;
+    use crate::train::TrainConfig;
+
+    fn tap(held_pa: [f32; 3], arrival_ms: [Option<f32>; 3], centroid: [f32; 2]) -> ContactExample {
+        let reading = TapReading {
+            baseline_pa: [101_000.0; 3],
+            held_pa,
+            arrival_ms,
+        };
+        ContactExample {
+            centroid,
+            ..ContactExample::new(reading, 0)
+        }
+    }
+
+    fn config(epochs: usize) -> TrainConfig {
+        TrainConfig {
+            epochs,
+            batch_size: 2,
+            learning_rate: 1e-2,
+            l2: 0.0,
+            seed: 1,
+            progress: false,
+            label: String::new(),
+        }
+    }
+
+    #[test]
+    fn the_centroid_head_learns_points_and_keeps_its_dropout() -> Result<(), NetError> {
+        // Two contacts a cell and a half apart on row 1; the regression places each in its cell.
+        let taps = [
+            tap(
+                [102_000.0, 101_050.0, 104_000.0],
+                [Some(9.0), None, Some(3.0)],
+                [1.2, 1.3],
+            ),
+            tap(
+                [104_000.0, 101_050.0, 102_000.0],
+                [Some(3.0), None, Some(9.0)],
+                [1.1, 5.8],
+            ),
+        ];
+        let (mlp, _) = ContactMlp::train_with_dropout(&taps, Head::Centroid, 0.0, &config(300))?;
+        for (t, cell) in taps.iter().zip([0u16, 5]) {
+            let p = mlp.predict(&features(&t.reading))?;
+            assert_eq!(p.region, cell, "{p:?}");
+            assert_eq!(p.contact, 1 << cell);
+            let miss = (p.centroid[0] - t.centroid[0]).hypot(p.centroid[1] - t.centroid[1]);
+            assert!(miss < 0.1, "{p:?} vs {:?}", t.centroid);
+        }
+        let loaded = ContactMlp::from_file(&mlp.to_file()?)?;
+        assert_eq!(loaded.head(), Head::Centroid);
+        assert_eq!(loaded.dropout, 0.0);
+        let x = features(&taps[0].reading);
+        assert_eq!(loaded.outputs(&x)?, mlp.outputs(&x)?);
+        for bad in [-0.1, 1.0, f32::NAN] {
+            let r = ContactMlp::train_with_dropout(&taps, Head::Centroid, bad, &config(1));
+            assert!(matches!(r, Err(NetError::Training(_))), "{bad}");
+        }
+        Ok(())
     }
 }

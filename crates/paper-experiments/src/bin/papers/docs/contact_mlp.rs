@@ -36,11 +36,17 @@ fn osrs(metrics: &MetricsFile) -> Vec<u16> {
     v
 }
 
-/// The models the plot draws (the off-lattice one decodes to one cell, so its cell errors
-/// measure its label, not its aim: it is in the table only).
+/// The models the plot draws (the off-lattice ones decode to one cell, so their cell errors
+/// measure their label, not their aim: they are in the table only).
 const PLOTTED: [Mlp; 3] = [Mlp::AverageArea, Mlp::CellSet, Mlp::Chosen];
 /// The table's models, in order.
-const TABLED: [Mlp; 4] = [Mlp::AverageArea, Mlp::CellSet, Mlp::Chosen, Mlp::OffLattice];
+const TABLED: [Mlp; 5] = [
+    Mlp::AverageArea,
+    Mlp::CellSet,
+    Mlp::Chosen,
+    Mlp::OffLattice,
+    Mlp::OffLatticeCentroid,
+];
 
 fn value(metrics: &MetricsFile, osr: u16, model: Mlp, key: &str) -> f64 {
     metrics
