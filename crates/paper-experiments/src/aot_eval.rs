@@ -94,6 +94,31 @@ impl Tally {
             100.0 * f64::from(self.hits) / f64::from(self.n)
         }
     }
+
+    /// Both tallies' trials together (two held-out sets of the same draw).
+    pub fn pooled(self, other: Tally) -> Tally {
+        Tally {
+            hits: self.hits + other.hits,
+            n: self.n + other.n,
+        }
+    }
+
+    /// The Wilson score interval of the accuracy at 95 % (z = 1.96), percent; `(0, 100)` for
+    /// no trials. Unlike the normal approximation it stays inside 0–100 near a perfect score.
+    pub fn wilson95(&self) -> (f64, f64) {
+        if self.n == 0 {
+            return (0.0, 100.0);
+        }
+        let (z, n) = (1.96f64, f64::from(self.n));
+        let p = f64::from(self.hits) / n;
+        let centre = (p + z * z / (2.0 * n)) / (1.0 + z * z / n);
+        let half = z / (1.0 + z * z / n) * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt();
+        // Clamped: at 0 or n hits one bound is 0 or 1 up to rounding.
+        (
+            (100.0 * (centre - half)).max(0.0),
+            (100.0 * (centre + half)).min(100.0),
+        )
+    }
 }
 
 /// `84.8 % (173/204)`, as every table of the report prints a tally.
@@ -332,4 +357,32 @@ fn score(
 pub fn centroid_mm(mask: u32) -> Option<[f32; 2]> {
     let centroid = aot_locate::CellSet::from_bits(mask)?.centroid()?;
     Some(aot_locate::AreaGrid::SIMULATED_PAD.grid_point_mm(centroid))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Tally;
+
+    /// Newcombe (1998), "Two-sided confidence intervals for the single proportion", Stat. Med.
+    /// 17:857–872, Table II, method 3 (score interval without continuity correction).
+    #[test]
+    fn wilson_interval_matches_newcombe_table_ii() {
+        for (hits, n, lo, hi) in [
+            (81, 263, 25.53, 36.62),
+            (15, 148, 6.24, 16.05),
+            (0, 20, 0.0, 16.11),
+            (1, 29, 0.61, 17.18),
+        ] {
+            let (l, h) = Tally { hits, n }.wilson95();
+            assert!(
+                (l - lo).abs() < 0.006 && (h - hi).abs() < 0.006,
+                "{hits}/{n}: {l} {h}"
+            );
+        }
+        assert_eq!(Tally::default().wilson95(), (0.0, 100.0));
+        let (l, h) = Tally { hits: 20, n: 20 }.wilson95();
+        assert!(h == 100.0 && (l - 83.89).abs() < 0.006, "{l}");
+        let pooled = Tally { hits: 1, n: 2 }.pooled(Tally { hits: 3, n: 4 });
+        assert_eq!(pooled, Tally { hits: 4, n: 6 });
+    }
 }

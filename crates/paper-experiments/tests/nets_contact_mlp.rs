@@ -169,6 +169,47 @@ fn off_lattice_training_taps_are_labelled_by_their_centroid_cell_and_are_not_the
     Ok(())
 }
 
+/// The single-cell held-out set (issue 21's larger 24-area set): 14 shifted draws of the
+/// one-cell contact on every cell at every force, every shift within half a cell and off every
+/// border (so the touched cell is the one under the centroid), and its own offsets, not the
+/// jittered set's.
+#[test]
+fn the_single_cell_set_holds_1008_one_cell_taps_per_osr_off_every_border()
+-> Result<(), Box<dyn std::error::Error>> {
+    use hand_sim::fingertip::dataset::{SINGLE_CELL_DRAWS, TAP_FORCES_KGF, TAP_OSRS};
+    let set = fingertip::load_set(&root(), fingertip::TapSet::SingleCell)?;
+    let per_osr = 24 * TAP_FORCES_KGF.len() * SINGLE_CELL_DRAWS as usize;
+    assert_eq!(per_osr, 1008);
+    assert_eq!(set.taps().len(), TAP_OSRS.len() * per_osr);
+    let mut draws = std::collections::BTreeMap::new();
+    for r in set.records().iter().filter(|r| r.tap.osr == 256) {
+        assert_eq!(r.tap.mask.count_ones(), 1, "{:?}", r.tap);
+        assert!(r.tap.offset_mm.iter().all(|d| d.abs() < 1.5), "{:?}", r.tap);
+        let under = r.tap.centroid_mm().and_then(contact_eval::cell_at);
+        assert_eq!(under.map(|c| 1u32 << c), Some(r.tap.mask), "{:?}", r.tap);
+        *draws.entry((r.tap.mask, r.tap.force_kgf)).or_insert(0u32) += 1;
+    }
+    assert_eq!(draws.len(), 24 * TAP_FORCES_KGF.len());
+    assert!(draws.values().all(|&n| n == SINGLE_CELL_DRAWS), "{draws:?}");
+    let jittered = fingertip::load_set(&root(), fingertip::TapSet::Jittered)?;
+    let theirs: std::collections::BTreeSet<_> = jittered
+        .taps()
+        .iter()
+        .filter(|t| t.mask.count_ones() == 1)
+        .map(|t| (t.mask, t.offset_mm.map(f32::to_bits)))
+        .collect();
+    let shared = set
+        .taps()
+        .iter()
+        .filter(|t| theirs.contains(&(t.mask, t.offset_mm.map(f32::to_bits))))
+        .count();
+    assert!(
+        shared < set.taps().len() / 100,
+        "{shared} taps repeat a jittered offset"
+    );
+    Ok(())
+}
+
 proptest! {
     #[test]
     fn activations_are_finite_for_any_logit(

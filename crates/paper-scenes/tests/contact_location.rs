@@ -2,7 +2,7 @@
 //! metrics row at the scene's OSR, eq. 3 / ranging reproduce the hits the AoT table of
 //! docs/contact-location.md states for that OSR (the table `cargo run -p paper-experiments
 //! --example aot_eval -- --write` writes and its drift test checks), and every estimator's
-//! jittered-set figure is the one the doc's jittered table states (`cargo xtask train
+//! jittered-set (and the MLP's single-cell-set) figure is the one the doc's tables state (`cargo xtask train
 //! contact-mlp --docs-only`; `contact_location_drift` checks it).
 
 mod common;
@@ -28,14 +28,17 @@ fn doc_row(osr: u16) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// The doc's jittered-set row for `osr`: every `(hits/n)` as a percentage, in column order
-/// (eq. 3 rise, eq. 3 absolute, ranging, the off-lattice centroid-regression MLP's single-cell
-/// and every-tap figures, then the other MLPs').
-fn jittered_row(osr: u16) -> Vec<f64> {
+/// The row for `osr` of the first table after `marker` in the doc's jittered-set section:
+/// every `(hits/n)` as a percentage, in column order. The jittered table (marker: the
+/// heading) holds eq. 3 rise, eq. 3 absolute, ranging, the off-lattice centroid-regression
+/// MLP's single-cell and every-tap figures, then the other MLPs'; the single-cell set's table
+/// (marker "The single-cell set,") the centroid-regression MLP first.
+fn jittered_row(osr: u16, marker: &str) -> Vec<f64> {
     let doc = std::fs::read_to_string(root().join("docs/contact-location.md")).expect("doc");
     let section = &doc[doc
         .find("## Off the lattice: the jittered held-out set")
         .expect("jittered section")..];
+    let section = &section[section.find(marker).expect("marker")..];
     let line = section
         .lines()
         .find(|l| l.starts_with(&format!("| {osr} |")))
@@ -79,7 +82,7 @@ fn contact_scene_reproduces_the_committed_contact_figures() {
     ] {
         assert_eq!(o.figure(fig).expect("figure").met, None);
     }
-    let jittered = jittered_row(osr);
+    let jittered = jittered_row(osr, "## Off the lattice");
     for (fig, column) in [
         ("aot_eq3_jittered_accuracy_pct", 0),
         ("aot_ranging_jittered_accuracy_pct", 2),
@@ -92,6 +95,13 @@ fn contact_scene_reproduces_the_committed_contact_figures() {
             "{fig}: {ours} vs the doc's {doc}"
         );
     }
+    let single_cell = jittered_row(osr, "The single-cell set,")[0];
+    let ours = value(&o, "mlp_single_cell_area_accuracy_pct");
+    assert!((ours - single_cell).abs() < 1e-9, "{ours} vs {single_cell}");
+    // The pooled figure is the doc's pooled column (its first tally).
+    let pooled = jittered_row(osr, "The single-cell set,")[5];
+    let ours = value(&o, "mlp_off_lattice_pooled_area_accuracy_pct");
+    assert!((ours - pooled).abs() < 1e-9, "{ours} vs {pooled}");
     // The MLP: the committed model the scene names (`off_lattice_centroid`) of this OSR on the
     // held-out taps, as its metrics row says.
     let m = metrics("contact_mlp");

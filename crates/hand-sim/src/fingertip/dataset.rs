@@ -8,6 +8,8 @@
 //!   frame).
 //! - [`jittered_taps`]: a held-out set of the same contacts shifted off the lattice by seeded
 //!   offsets within ± half a cell (issue 21), in the same two schemas.
+//! - [`single_cell_taps`]: a larger held-out set of one-cell contacts shifted the same way,
+//!   for the 24-area figure (issue 21), in the same two schemas.
 //! - [`weights`]: seed 000 Table 1's experiment — 0 → 200 gf in 10 gf steps on the whole pad,
 //!   one step every 2 s, read at OSR 4096 — three seeded runs, one row per frame.
 //!
@@ -58,7 +60,7 @@ pub struct TapRow {
     pub aot_region: u8,
     /// Contact force, kgf.
     pub force_kgf: u32,
-    /// Repeat index (0 or 1; the draw, 0…2, in the jittered set).
+    /// Repeat index (0 or 1; the draw in the jittered (0…2) and single-cell (0…13) sets).
     pub repeat: u32,
     /// Shift of the contact off its cells along x (right), mm (0 on the lattice).
     pub dx_mm: Fixed<f64, 3>,
@@ -139,16 +141,47 @@ pub const JITTER_DRAWS: u32 = 3;
 /// back on a lattice point) is drawn again, so every tap has exactly one 3 × 3 area and one
 /// 4 × 6 cell under its centroid: the strict labels apply without ties. 612 taps per OSR.
 pub fn jittered_taps(seed: u64) -> Result<(String, String), SimError> {
+    let presses = jittered_presses(seed, "fingertip/jitter", &FIGURE7_SHAPES, JITTER_DRAWS);
+    render_taps(seed, "fingertip/jittered", JITTERED_PREAMBLE, &presses)
+}
+
+/// Draws of each cell and force in the single-cell set.
+pub const SINGLE_CELL_DRAWS: u32 = 14;
+
+/// A second held-out set off the lattice, for the 24-area figure alone: (`single_cell_taps.csv`,
+/// `single_cell_series.csv`), in the schemas of [`jittered_taps`].
+///
+/// The one-cell contact of Figure 7 on each of the 24 cells at 5 / 7 / 9 kgf,
+/// [`SINGLE_CELL_DRAWS`] times, shifted as [`jittered_taps`] shifts its contacts but from
+/// streams of their own, so no offset or noise draw repeats that set's: 1008 taps per OSR.
+/// The jittered set holds 216 single-cell taps, where one tap is 0.46 points; here one is
+/// 0.1 point (issue 21 asked for test sets large enough to trust).
+pub fn single_cell_taps(seed: u64) -> Result<(String, String), SimError> {
+    let one_cell: Vec<Shape> = FIGURE7_SHAPES
+        .into_iter()
+        .filter(|s| s.rows * s.cols == 1)
+        .collect();
+    let presses = jittered_presses(seed, "fingertip/single-cell", &one_cell, SINGLE_CELL_DRAWS);
+    render_taps(
+        seed,
+        "fingertip/single-cell/tap",
+        SINGLE_CELL_PREAMBLE,
+        &presses,
+    )
+}
+
+/// Every position of every shape of `shapes` at 5 / 7 / 9 kgf, `draws` times, each shifted by
+/// a seeded offset (stream `{stream}/{shape}/{position}/{force}/{draw}`) drawn uniformly in
+/// whole micrometres within ± 1499 µm per axis and drawn again while the centroid would lie
+/// on a border; the same offsets at every OSR of [`TAP_OSRS`].
+fn jittered_presses(seed: u64, stream: &str, shapes: &[Shape], draws: u32) -> Vec<Press> {
     use rand::Rng;
     let mut offsets = Vec::new();
-    for shape in FIGURE7_SHAPES {
+    for &shape in shapes {
         for (position, cells) in shape.placements().enumerate() {
             for force_kgf in TAP_FORCES_KGF {
-                for draw in 0..JITTER_DRAWS {
-                    let name = format!(
-                        "fingertip/jitter/{}/{position}/{force_kgf}/{draw}",
-                        shape.name
-                    );
+                for draw in 0..draws {
+                    let name = format!("{stream}/{}/{position}/{force_kgf}/{draw}", shape.name);
                     let mut rng = crate::seed::stream(seed, &name);
                     let centre = centroid_um(cells);
                     let offset = loop {
@@ -165,7 +198,7 @@ pub fn jittered_taps(seed: u64) -> Result<(String, String), SimError> {
             }
         }
     }
-    let presses: Vec<Press> = TAP_OSRS
+    TAP_OSRS
         .into_iter()
         .flat_map(|osr| {
             offsets
@@ -179,8 +212,7 @@ pub fn jittered_taps(seed: u64) -> Result<(String, String), SimError> {
                     offset_um,
                 })
         })
-        .collect();
-    render_taps(seed, "fingertip/jittered", JITTERED_PREAMBLE, &presses)
+        .collect()
 }
 
 /// The `#` lines of `jittered_taps.csv`.
@@ -188,6 +220,11 @@ pub const JITTERED_PREAMBLE: &str = "# hand-sim fingertip taps off the cell latt
      # x 3 seeded draws x OSR), each contact shifted by (dx_mm, dy_mm) within +-half a cell, never onto a\n\
      # border: repeat = draw. mask: the cells under the unshifted contact; aot_region: 3 x 3 region of the\n\
      # shifted centroid; average_area: eq. 4 label of the unshifted cells; held*_pa as in taps.csv.\n";
+
+/// The `#` lines of `single_cell_taps.csv`.
+pub const SINGLE_CELL_PREAMBLE: &str = "# hand-sim fingertip taps off the cell lattice, one-cell contacts only (each of the 24 cells x\n\
+     # 5/7/9 kgf x seeded draws x OSR), shifted as in jittered_taps.csv by (dx_mm, dy_mm) within +-half a\n\
+     # cell, never onto a border: repeat = draw. Columns as in jittered_taps.csv.\n";
 
 /// A patch centroid (the cells' mean centre plus the shift) in whole micrometres.
 fn centroid_um(cells: CellSet) -> [i64; 2] {

@@ -159,7 +159,7 @@ impl TapRecord {
     }
 }
 
-/// The two tap sets of the dataset.
+/// The three tap sets of the dataset.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TapSet {
     /// `taps.csv` / `series.csv`: every contact centred on its cells, two repeats (repeat 0
@@ -169,6 +169,10 @@ pub enum TapSet {
     /// contacts shifted off the lattice within ± half a cell, three draws each; held out
     /// entirely (issue 21).
     Jittered,
+    /// `single_cell_taps.csv` / `single_cell_series.csv.gz`: one-cell contacts only, shifted
+    /// the same way, 14 draws of each cell and force (1008 taps per OSR); held out entirely,
+    /// for the 24-area figure (issue 21).
+    SingleCell,
 }
 
 impl TapSet {
@@ -177,6 +181,7 @@ impl TapSet {
         match self {
             TapSet::Lattice => ("taps.csv", "series.csv"),
             TapSet::Jittered => ("jittered_taps.csv", "jittered_series.csv.gz"),
+            TapSet::SingleCell => ("single_cell_taps.csv", "single_cell_series.csv.gz"),
         }
     }
 }
