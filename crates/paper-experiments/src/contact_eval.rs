@@ -447,8 +447,10 @@ pub fn off_lattice_selection_file(
     search_file(
         results,
         format!(
-            "{model}: validation search at OSR {SELECTION_OSR}: chosen {}; \
-             `centroid_cell_hits` of `taps` is the figure on every tap",
+            "{model}: validation search at OSR {SELECTION_OSR}: chosen {}; ranked by \
+             `area_accuracy` (the draw's single-cell taps), ties broken by the share of every \
+             tap on the cell under its centroid, which `papers train contact-mlp` prints and \
+             this file does not keep",
             chosen.label()
         ),
         format!(

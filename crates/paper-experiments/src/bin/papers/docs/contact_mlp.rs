@@ -191,3 +191,26 @@ fn plot(metrics: &MetricsFile, path: &Path) -> Result<()> {
     root.present().map_err(plot_err)?;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// docs/contact-location.md quotes the table this job prints (it is pasted, not written
+    /// into a section: prose surrounds it), so a retrained model cannot leave it stale.
+    #[test]
+    fn the_doc_quotes_the_printed_table() -> Result<()> {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let metrics = MetricsFile::from_json(&std::fs::read_to_string(
+            root.join(MODEL_DIR).join(METRICS_FILE),
+        )?)?;
+        let doc = std::fs::read_to_string(root.join("docs/contact-location.md"))?;
+        let table = table(&metrics);
+        assert_eq!(table.lines().count(), 2 + 5 * TABLED.len(), "{table}");
+        assert!(
+            doc.contains(&table),
+            "docs/contact-location.md does not quote `papers docs contact-mlp`'s table:\n{table}"
+        );
+        Ok(())
+    }
+}
