@@ -158,11 +158,15 @@ pub fn osrs(records: &[TapRecord]) -> Vec<u16> {
     v
 }
 
+/// The taps of `records` read at `osr`.
+pub fn at_osr(records: &[TapRecord], osr: u16) -> Vec<&TapRecord> {
+    records.iter().filter(|r| r.tap.osr == osr).collect()
+}
+
 /// (training, held-out) taps read at `osr`: repeat [`TRAIN_REPEAT`] vs the rest.
 pub fn split(records: &[TapRecord], osr: u16) -> (Vec<&TapRecord>, Vec<&TapRecord>) {
-    records
-        .iter()
-        .filter(|r| r.tap.osr == osr)
+    at_osr(records, osr)
+        .into_iter()
         .partition(|r| r.tap.repeat == TRAIN_REPEAT)
 }
 
@@ -568,7 +572,7 @@ pub fn select_off_lattice(
     seed: u64,
     progress: bool,
 ) -> Result<(Candidate, Vec<(Candidate, Evaluation)>), NetError> {
-    let val: Vec<&TapRecord> = validation.iter().filter(|r| r.tap.osr == osr).collect();
+    let val = at_osr(validation, osr);
     search(
         grid,
         &off_lattice_examples(lattice, draws, osr),

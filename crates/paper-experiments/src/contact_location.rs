@@ -28,6 +28,7 @@ use crate::contact_eval::{self, Evaluation};
 use crate::data::fingertip::{self, TapSet};
 use crate::jobs::JobError;
 use aot_locate::{DetectorConfig, Geometry};
+use hand_sim::fingertip::dataset::{SINGLE_CELL_DRAWS, TAP_FORCES_KGF};
 use std::collections::BTreeMap;
 use std::collections::btree_map::Entry;
 use std::fmt::Write as _;
@@ -99,8 +100,10 @@ impl ContactLocation {
         let dir = root.join(contact_eval::MODEL_DIR);
         for osr in contact_eval::osrs(&lattice) {
             let (_, lattice_test) = contact_eval::split(&lattice, osr);
-            let (jittered_test, single_cell_test) =
-                (at_osr(&jittered, osr), at_osr(&single_cell, osr));
+            let (jittered_test, single_cell_test) = (
+                contact_eval::at_osr(&jittered, osr),
+                contact_eval::at_osr(&single_cell, osr),
+            );
             for mlp in Mlp::ALL {
                 let model = ContactMlp::load(&dir.join(mlp.file_and_label(osr).0))?;
                 for (set, records) in [
@@ -143,6 +146,13 @@ impl ContactLocation {
         self.mlp_tally(set, mlp, osr, |e| (e.area_hits, e.single_cell_taps))
     }
 
+    /// The MLP's 24-area figure over the single-cell taps of both off-lattice sets (the
+    /// jittered and the single-cell set: draws of the same law), the best estimate they give.
+    pub fn mlp_area_off_lattice(&self, mlp: Mlp, osr: u16) -> Tally {
+        self.mlp_area(Set::Jittered, mlp, osr)
+            .pooled(self.mlp_area(Set::SingleCell, mlp, osr))
+    }
+
     /// The taps of `set` that `mlp` at `osr` places on the cell under their centroid (the
     /// strict 24-area label of every tap; meaningful off the lattice).
     pub fn mlp_centroid_cell(&self, set: Set, mlp: Mlp, osr: u16) -> Tally {
@@ -179,11 +189,6 @@ impl ContactLocation {
             },
         )
     }
-}
-
-/// The records of `set` read at `osr`.
-fn at_osr(set: &[fingertip::TapRecord], osr: u16) -> Vec<&fingertip::TapRecord> {
-    set.iter().filter(|r| r.tap.osr == osr).collect()
 }
 
 fn met(t: Tally, target: f64) -> &'static str {
@@ -274,12 +279,13 @@ pub fn targets_section(cl: &ContactLocation) -> String {
             },
         );
     }
+    let single_cell_name = format!("single-cell set ({} per OSR)", single_cell_taps_per_osr());
     for mlp in Mlp::ALL {
         let name = mlp.name();
         for (set, set_name) in [
             (Set::Lattice, "lattice repeat 1"),
             (Set::Jittered, "jittered set"),
-            (Set::SingleCell, "single-cell set (1008 per OSR)"),
+            (Set::SingleCell, single_cell_name.as_str()),
         ] {
             target_row(
                 &mut s,
@@ -298,6 +304,11 @@ pub fn targets_section(cl: &ContactLocation) -> String {
         );
     }
     s
+}
+
+/// Taps per OSR in the single-cell set: every cell, force and draw.
+fn single_cell_taps_per_osr() -> usize {
+    aot_locate::CELLS * TAP_FORCES_KGF.len() * SINGLE_CELL_DRAWS as usize
 }
 
 /// The body of its [`JITTERED_HEADING`] section: every locator per OSR on the jittered set,
@@ -340,10 +351,12 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
             cl.mlp_area(Set::Jittered, Mlp::AverageArea, osr),
         );
     }
-    s += "\nThe single-cell set, `fixtures/datasets/fingertip/single_cell_taps.csv` and \
-          `single_cell_series.csv.gz` (`hand_sim::fingertip::dataset::single_cell_taps`): the \
-          one-cell contact on each of the 24 cells at 5 / 7 / 9 kgf, 14 seeded draws each, \
-          shifted as above from streams of its own — 1008 taps per OSR, where one tap is 0.1 \
+    let _ = write!(
+        s,
+        "\nThe single-cell set, `fixtures/datasets/fingertip/single_cell_taps.csv` and \
+         `single_cell_series.csv.gz` (`hand_sim::fingertip::dataset::single_cell_taps`): the \
+         one-cell contact on each of the 24 cells at 5 / 7 / 9 kgf, {SINGLE_CELL_DRAWS} seeded \
+         draws each, shifted as above from streams of its own — {} taps per OSR, where one tap is 0.1 \
           point (0.46 on the 216 above; the binomial standard error near 95 % is 0.7 point \
           against 1.5). Issue 21 asked for test sets large enough to trust; this one was added \
           after the jittered set had been read, is read by models all chosen before it \
@@ -351,14 +364,12 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
           of both off-lattice sets are draws of the same law, so the last column pools them for \
           the centroid-regression model, with the Wilson 95 % interval:\n\n\
           | OSR | off-lattice, centroid regression | off-lattice, centroid cell | chosen | paper recipe (cell-set / eq. 4) | centroid regression, both sets pooled (95 % interval) |\n\
-          |---|---|---|---|---|---|\n";
+          |---|---|---|---|---|---|\n",
+        single_cell_taps_per_osr(),
+    );
     for osr in cl.osrs() {
         let area = |mlp| cl.mlp_area(Set::SingleCell, mlp, osr);
-        let pooled = area(Mlp::OffLatticeCentroid).pooled(cl.mlp_area(
-            Set::Jittered,
-            Mlp::OffLatticeCentroid,
-            osr,
-        ));
+        let pooled = cl.mlp_area_off_lattice(Mlp::OffLatticeCentroid, osr);
         let (lo, hi) = pooled.wilson95();
         let _ = writeln!(
             s,

@@ -150,12 +150,10 @@ fn mlp_part(
             "single-cell set (one-cell taps off the lattice)",
             area(Set::SingleCell),
         ),
-        // Both off-lattice sets' single-cell taps are draws of the same law: pooled, the
-        // best estimate the two give.
         (
             "mlp_off_lattice_pooled_area_accuracy_pct",
             "single-cell taps of both off-lattice sets pooled",
-            area(Set::SingleCell).pooled(area(Set::Jittered)),
+            cl.mlp_area_off_lattice(mlp, osr),
         ),
     ] {
         part.figures.push(tally(
