@@ -28,7 +28,9 @@ use crate::contact_eval::{self, Evaluation};
 use crate::data::fingertip::{self, TapSet};
 use crate::jobs::JobError;
 use aot_locate::{DetectorConfig, Geometry};
-use hand_sim::fingertip::dataset::{SINGLE_CELL_DRAWS, TAP_FORCES_KGF};
+use hand_sim::fingertip::dataset::{
+    SINGLE_CELL_DRAWS, SINGLE_CELL_OSR256, SINGLE_CELL_OSR256_DRAWS, TAP_FORCES_KGF,
+};
 use std::collections::BTreeMap;
 use std::collections::btree_map::Entry;
 use std::fmt::Write as _;
@@ -58,6 +60,8 @@ pub enum Set {
     Jittered,
     /// The single-cell set (MLPs only).
     SingleCell,
+    /// The single-cell set at OSR 256 alone (MLPs only; no taps at the other OSRs).
+    SingleCellOsr256,
 }
 
 /// Every figure of the report, for the OSRs evaluated.
@@ -84,9 +88,11 @@ impl ContactLocation {
         let mut lattice = fingertip::load_set(root, TapSet::Lattice)?;
         let mut jittered = fingertip::load_set(root, TapSet::Jittered)?;
         let mut single_cell = fingertip::load_set(root, TapSet::SingleCell)?;
+        let mut single_cell_256 = fingertip::load_set(root, TapSet::SingleCellOsr256)?;
         lattice.retain(|t| keep(t.osr));
         jittered.retain(|t| keep(t.osr));
         single_cell.retain(|t| keep(t.osr));
+        single_cell_256.retain(|t| keep(t.osr));
         let (geometry, config) = (Geometry::simulated_pad(), DetectorConfig::DEFAULT);
         let mut out = ContactLocation {
             lattice: aot_eval::evaluate(&lattice, &geometry, config),
@@ -97,12 +103,14 @@ impl ContactLocation {
         let lattice = lattice.records();
         let jittered = jittered.records();
         let single_cell = single_cell.records();
+        let single_cell_256 = single_cell_256.records();
         let dir = root.join(contact_eval::MODEL_DIR);
         for osr in contact_eval::osrs(&lattice) {
             let (_, lattice_test) = contact_eval::split(&lattice, osr);
-            let (jittered_test, single_cell_test) = (
+            let (jittered_test, single_cell_test, single_cell_256_test) = (
                 contact_eval::at_osr(&jittered, osr),
                 contact_eval::at_osr(&single_cell, osr),
+                contact_eval::at_osr(&single_cell_256, osr),
             );
             for mlp in Mlp::ALL {
                 let model = ContactMlp::load(&dir.join(mlp.file_and_label(osr).0))?;
@@ -110,7 +118,11 @@ impl ContactLocation {
                     (Set::Lattice, &lattice_test),
                     (Set::Jittered, &jittered_test),
                     (Set::SingleCell, &single_cell_test),
+                    (Set::SingleCellOsr256, &single_cell_256_test),
                 ] {
+                    if records.is_empty() {
+                        continue;
+                    }
                     out.mlp
                         .insert((set, osr, mlp), contact_eval::evaluate(&model, records)?);
                 }
@@ -134,7 +146,7 @@ impl ContactLocation {
             Set::Lattice => &self.lattice.tolerant,
             Set::Jittered => &self.jittered.by_osr,
             // AoT's targets are on every Figure 7 shape: it is not run on the single-cell set.
-            Set::SingleCell => return Tally::default(),
+            Set::SingleCell | Set::SingleCellOsr256 => return Tally::default(),
         }
         .get(&(rule, osr))
         .copied()
@@ -146,11 +158,14 @@ impl ContactLocation {
         self.mlp_tally(set, mlp, osr, |e| (e.area_hits, e.single_cell_taps))
     }
 
-    /// The MLP's 24-area figure over the single-cell taps of both off-lattice sets (the
-    /// jittered and the single-cell set: draws of the same law), the best estimate they give.
+    /// The MLP's 24-area figure over the single-cell taps of every off-lattice set at `osr`
+    /// (the jittered set, the single-cell set, and at OSR 256 the OSR-256 set: draws of the
+    /// same law), the best estimate they give.
     pub fn mlp_area_off_lattice(&self, mlp: Mlp, osr: u16) -> Tally {
-        self.mlp_area(Set::Jittered, mlp, osr)
-            .pooled(self.mlp_area(Set::SingleCell, mlp, osr))
+        [Set::Jittered, Set::SingleCell, Set::SingleCellOsr256]
+            .map(|set| self.mlp_area(set, mlp, osr))
+            .into_iter()
+            .fold(Tally::default(), Tally::pooled)
     }
 
     /// The taps of `set` that `mlp` at `osr` places on the cell under their centroid (the
@@ -280,12 +295,17 @@ pub fn targets_section(cl: &ContactLocation) -> String {
         );
     }
     let single_cell_name = format!("single-cell set ({} per OSR)", single_cell_taps_per_osr());
+    let single_cell_256_name = format!(
+        "OSR-{SINGLE_CELL_OSR256} single-cell set ({} taps)",
+        single_cell_osr256_taps()
+    );
     for mlp in Mlp::ALL {
         let name = mlp.name();
         for (set, set_name) in [
             (Set::Lattice, "lattice repeat 1"),
             (Set::Jittered, "jittered set"),
             (Set::SingleCell, single_cell_name.as_str()),
+            (Set::SingleCellOsr256, single_cell_256_name.as_str()),
         ] {
             target_row(
                 &mut s,
@@ -311,6 +331,11 @@ fn single_cell_taps_per_osr() -> usize {
     aot_locate::CELLS * TAP_FORCES_KGF.len() * SINGLE_CELL_DRAWS as usize
 }
 
+/// Taps in the OSR-256 single-cell set: every cell, force and draw.
+fn single_cell_osr256_taps() -> usize {
+    aot_locate::CELLS * TAP_FORCES_KGF.len() * SINGLE_CELL_OSR256_DRAWS as usize
+}
+
 /// The body of its [`JITTERED_HEADING`] section: every locator per OSR on the jittered set,
 /// and the three views of the lattice label.
 pub fn jittered_section(cl: &ContactLocation) -> String {
@@ -325,8 +350,9 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
          the touched cell of the 216 single-cell taps (a shift under half a cell keeps a \
          single cell's centroid on it). Held out from everything: the ranging scorer is fitted \
          and the MLPs are trained on the lattice set's repeat 0; the two off-lattice MLPs also \
-         on six jittered draws of other seeds, and their configurations were chosen on a \
-         seventh (`contact_eval::OFF_LATTICE_TRAIN_SEEDS`, `offlattice_selection.json`, \
+         on six jittered draws of other seeds, and their configurations were chosen on \
+         seventeen more (`contact_eval::OFF_LATTICE_TRAIN_SEEDS`, \
+         `OFF_LATTICE_VALIDATION_SEEDS`, `offlattice_selection.json`, \
          `offlattice_centroid_selection.json`). \"Single-cell\": the 216 single-cell taps, \
          located on their cell; \"every tap\": all 612, located on the cell under the \
          centroid.\n\n\
@@ -361,9 +387,10 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
           against 1.5). Issue 21 asked for test sets large enough to trust; this one was added \
           after the jittered set had been read, is read by models all chosen before it \
           existed, and none was changed after it. MLP 24-area accuracy; the single-cell taps \
-          of both off-lattice sets are draws of the same law, so the last column pools them for \
-          the centroid-regression model, with the Wilson 95 % interval:\n\n\
-          | OSR | off-lattice, centroid regression | off-lattice, centroid cell | chosen | paper recipe (cell-set / eq. 4) | centroid regression, both sets pooled (95 % interval) |\n\
+          of the off-lattice sets are draws of the same law, so the last column pools them for \
+          the centroid-regression model (at OSR {SINGLE_CELL_OSR256} with the OSR-{SINGLE_CELL_OSR256} \
+          set below), with the Wilson 95 % interval:\n\n\
+          | OSR | off-lattice, centroid regression | off-lattice, centroid cell | chosen | paper recipe (cell-set / eq. 4) | centroid regression, off-lattice sets pooled (95 % interval) |\n\
           |---|---|---|---|---|---|\n",
         single_cell_taps_per_osr(),
     );
@@ -379,6 +406,37 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
             area(Mlp::Chosen),
             area(Mlp::CellSet),
             area(Mlp::AverageArea),
+        );
+    }
+    let _ = write!(
+        s,
+        "\nThe OSR-{SINGLE_CELL_OSR256} single-cell set, \
+         `fixtures/datasets/fingertip/single_cell_osr256_taps.csv` and \
+         `single_cell_osr256_series.csv.gz` \
+         (`hand_sim::fingertip::dataset::single_cell_osr256_taps`): drawn as the single-cell \
+         set, {SINGLE_CELL_OSR256_DRAWS} times per cell and force from streams of its own, at \
+         the scene's OSR only — {} taps, where one tap is {:.2} point. It was added at issue \
+         21's third stop, when the quadratic-base search (below) began, to judge whatever that \
+         search chose: the other two sets had been read by then. Each MLP once, with the \
+         Wilson 95 % interval, and every off-lattice single-cell tap at this OSR pooled:\n\n\
+         | model | OSR-{SINGLE_CELL_OSR256} set | 95 % interval | off-lattice sets pooled | 95 % interval |\n\
+         |---|---|---|---|---|\n",
+        single_cell_osr256_taps(),
+        100.0 / single_cell_osr256_taps() as f64,
+    );
+    for mlp in Mlp::ALL {
+        let t = cl.mlp_area(Set::SingleCellOsr256, mlp, SINGLE_CELL_OSR256);
+        let pooled = cl.mlp_area_off_lattice(mlp, SINGLE_CELL_OSR256);
+        let interval = |t: Tally| {
+            let (lo, hi) = t.wilson95();
+            format!("{lo:.1}–{hi:.1} %")
+        };
+        let _ = writeln!(
+            s,
+            "| {} | {t} | {} | {pooled} | {} |",
+            mlp.name(),
+            interval(t),
+            interval(pooled),
         );
     }
     s += "\nOn the lattice set, per OSR, the three views of the AoT label (either area for a \

@@ -74,7 +74,10 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, J
             for s in contact_eval::OFF_LATTICE_TRAIN_SEEDS {
                 draws.extend(jittered_draw(s)?);
             }
-            let validation = jittered_draw(contact_eval::OFF_LATTICE_VALIDATION_SEED)?;
+            let mut validation = Vec::new();
+            for s in contact_eval::OFF_LATTICE_VALIDATION_SEEDS {
+                validation.extend(jittered_draw(s)?);
+            }
             for (kind, grid, file) in [
                 (
                     Mlp::OffLattice,

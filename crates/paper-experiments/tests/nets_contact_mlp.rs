@@ -127,10 +127,10 @@ fn off_lattice_training_taps_are_labelled_by_their_centroid_cell_and_are_not_the
     }
     let held_out = fingertip::load_set(&root(), fingertip::TapSet::Jittered)?;
     let mut seeds = contact_eval::OFF_LATTICE_TRAIN_SEEDS.to_vec();
-    seeds.push(contact_eval::OFF_LATTICE_VALIDATION_SEED);
+    seeds.extend(contact_eval::OFF_LATTICE_VALIDATION_SEEDS);
     seeds.sort_unstable();
     seeds.dedup();
-    assert_eq!(seeds.len(), 7, "seven distinct draws");
+    assert_eq!(seeds.len(), 23, "23 distinct draws");
     let (taps, series) =
         hand_sim::fingertip::dataset::jittered_taps(contact_eval::OFF_LATTICE_TRAIN_SEEDS[0])?;
     let draw = fingertip::parse(&taps, &series)?;
@@ -169,44 +169,71 @@ fn off_lattice_training_taps_are_labelled_by_their_centroid_cell_and_are_not_the
     Ok(())
 }
 
-/// The single-cell held-out set (issue 21's larger 24-area set): 14 shifted draws of the
-/// one-cell contact on every cell at every force, every shift within half a cell and off every
-/// border (so the touched cell is the one under the centroid), and its own offsets, not the
-/// jittered set's.
-#[test]
-fn the_single_cell_set_holds_1008_one_cell_taps_per_osr_off_every_border()
--> Result<(), Box<dyn std::error::Error>> {
-    use hand_sim::fingertip::dataset::{SINGLE_CELL_DRAWS, TAP_FORCES_KGF, TAP_OSRS};
-    let set = fingertip::load_set(&root(), fingertip::TapSet::SingleCell)?;
-    let per_osr = 24 * TAP_FORCES_KGF.len() * SINGLE_CELL_DRAWS as usize;
-    assert_eq!(per_osr, 1008);
-    assert_eq!(set.taps().len(), TAP_OSRS.len() * per_osr);
-    let mut draws = std::collections::BTreeMap::new();
-    for r in set.records().iter().filter(|r| r.tap.osr == 256) {
+/// A one-cell held-out set: `draws` shifted draws of the one-cell contact on every cell at
+/// every force and each of `osrs`, every shift within half a cell and off every border (so
+/// the touched cell is the one under the centroid), and offsets of its own, not `others'`.
+fn check_one_cell_set(
+    set: fingertip::TapSet,
+    osrs: &[u16],
+    draws: u32,
+    others: &[fingertip::TapSet],
+) -> Result<usize, Box<dyn std::error::Error>> {
+    use hand_sim::fingertip::dataset::TAP_FORCES_KGF;
+    let data = fingertip::load_set(&root(), set)?;
+    let per_osr = 24 * TAP_FORCES_KGF.len() * draws as usize;
+    assert_eq!(data.taps().len(), osrs.len() * per_osr, "{set:?}");
+    let mut seen = std::collections::BTreeMap::new();
+    for r in data.records() {
+        assert!(osrs.contains(&r.tap.osr), "{:?}", r.tap);
         assert_eq!(r.tap.mask.count_ones(), 1, "{:?}", r.tap);
         assert!(r.tap.offset_mm.iter().all(|d| d.abs() < 1.5), "{:?}", r.tap);
         let under = r.tap.centroid_mm().and_then(contact_eval::cell_at);
         assert_eq!(under.map(|c| 1u32 << c), Some(r.tap.mask), "{:?}", r.tap);
-        *draws.entry((r.tap.mask, r.tap.force_kgf)).or_insert(0u32) += 1;
+        *seen
+            .entry((r.tap.osr, r.tap.mask, r.tap.force_kgf))
+            .or_insert(0u32) += 1;
     }
-    assert_eq!(draws.len(), 24 * TAP_FORCES_KGF.len());
-    assert!(draws.values().all(|&n| n == SINGLE_CELL_DRAWS), "{draws:?}");
-    let jittered = fingertip::load_set(&root(), fingertip::TapSet::Jittered)?;
-    let theirs: std::collections::BTreeSet<_> = jittered
-        .taps()
-        .iter()
-        .filter(|t| t.mask.count_ones() == 1)
-        .map(|t| (t.mask, t.offset_mm.map(f32::to_bits)))
-        .collect();
-    let shared = set
-        .taps()
-        .iter()
-        .filter(|t| theirs.contains(&(t.mask, t.offset_mm.map(f32::to_bits))))
-        .count();
-    assert!(
-        shared < set.taps().len() / 100,
-        "{shared} taps repeat a jittered offset"
-    );
+    assert_eq!(seen.len(), osrs.len() * 24 * TAP_FORCES_KGF.len());
+    assert!(seen.values().all(|&n| n == draws), "{seen:?}");
+    for &other in others {
+        let theirs: std::collections::BTreeSet<_> = fingertip::load_set(&root(), other)?
+            .taps()
+            .iter()
+            .filter(|t| t.mask.count_ones() == 1)
+            .map(|t| (t.mask, t.offset_mm.map(f32::to_bits)))
+            .collect();
+        let shared = data
+            .taps()
+            .iter()
+            .filter(|t| theirs.contains(&(t.mask, t.offset_mm.map(f32::to_bits))))
+            .count();
+        assert!(
+            shared < data.taps().len() / 100,
+            "{shared} taps of {set:?} repeat an offset of {other:?}"
+        );
+    }
+    Ok(per_osr)
+}
+
+/// The single-cell held-out set (issue 21's larger 24-area set): 14 draws per cell and force
+/// at every OSR, 1008 taps per OSR; and the OSR-256 set added to judge the quadratic-base
+/// search: 42 draws at OSR 256 only, 3024 taps. Neither repeats the other's or the jittered
+/// set's offsets.
+#[test]
+fn the_one_cell_sets_hold_their_taps_off_every_border() -> Result<(), Box<dyn std::error::Error>> {
+    use fingertip::TapSet::{Jittered, SingleCell, SingleCellOsr256};
+    use hand_sim::fingertip::dataset::{
+        SINGLE_CELL_DRAWS, SINGLE_CELL_OSR256, SINGLE_CELL_OSR256_DRAWS, TAP_OSRS,
+    };
+    let per_osr = check_one_cell_set(SingleCell, &TAP_OSRS, SINGLE_CELL_DRAWS, &[Jittered])?;
+    assert_eq!(per_osr, 1008);
+    let n = check_one_cell_set(
+        SingleCellOsr256,
+        &[SINGLE_CELL_OSR256],
+        SINGLE_CELL_OSR256_DRAWS,
+        &[Jittered, SingleCell],
+    )?;
+    assert_eq!(n, 3024);
     Ok(())
 }
 

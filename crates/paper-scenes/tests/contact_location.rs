@@ -34,6 +34,12 @@ fn doc_row(osr: u16) -> Vec<(f64, f64)> {
 /// MLP's single-cell and every-tap figures, then the other MLPs'; the single-cell set's table
 /// (marker "The single-cell set,") the centroid-regression MLP first.
 fn jittered_row(osr: u16, marker: &str) -> Vec<f64> {
+    doc_table_row(marker, &format!("| {osr} |"))
+}
+
+/// The row starting `row` of the first table after `marker` in the doc's jittered-set
+/// section: every `(hits/n)` as a percentage, in column order.
+fn doc_table_row(marker: &str, row: &str) -> Vec<f64> {
     let doc = std::fs::read_to_string(root().join("docs/contact-location.md")).expect("doc");
     let section = &doc[doc
         .find("## Off the lattice: the jittered held-out set")
@@ -41,8 +47,8 @@ fn jittered_row(osr: u16, marker: &str) -> Vec<f64> {
     let section = &section[section.find(marker).expect("marker")..];
     let line = section
         .lines()
-        .find(|l| l.starts_with(&format!("| {osr} |")))
-        .expect("a row for the OSR");
+        .find(|l| l.starts_with(row))
+        .expect("the row");
     line.split('(')
         .skip(1)
         .filter_map(|c| {
@@ -102,6 +108,14 @@ fn contact_scene_reproduces_the_committed_contact_figures() {
     let pooled = jittered_row(osr, "The single-cell set,")[5];
     let ours = value(&o, "mlp_off_lattice_pooled_area_accuracy_pct");
     assert!((ours - pooled).abs() < 1e-9, "{ours} vs {pooled}");
+    // At OSR 256 the OSR-256 set too: the doc's row of the scene's model, and the same pool.
+    let row = doc_table_row(
+        "The OSR-256 single-cell set,",
+        "| trained off the lattice, centroid regression |",
+    );
+    let ours = value(&o, "mlp_single_cell_osr256_area_accuracy_pct");
+    assert!((ours - row[0]).abs() < 1e-9, "{ours} vs {}", row[0]);
+    assert!((pooled - row[1]).abs() < 1e-9, "{pooled} vs {}", row[1]);
     // The MLP: the committed model the scene names (`off_lattice_centroid`) of this OSR on the
     // held-out taps, as its metrics row says.
     let m = metrics("contact_mlp");

@@ -159,7 +159,7 @@ impl TapRecord {
     }
 }
 
-/// The three tap sets of the dataset.
+/// The four tap sets of the dataset.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TapSet {
     /// `taps.csv` / `series.csv`: every contact centred on its cells, two repeats (repeat 0
@@ -173,6 +173,11 @@ pub enum TapSet {
     /// the same way, 14 draws of each cell and force (1008 taps per OSR); held out entirely,
     /// for the 24-area figure (issue 21).
     SingleCell,
+    /// `single_cell_osr256_taps.csv` / `single_cell_osr256_series.csv.gz`: one-cell contacts
+    /// shifted the same way, at the scene's OSR 256 only, 42 draws of each cell and force
+    /// (3024 taps); held out entirely, added to judge a model chosen after the other sets had
+    /// been read (issue 21).
+    SingleCellOsr256,
 }
 
 impl TapSet {
@@ -182,6 +187,10 @@ impl TapSet {
             TapSet::Lattice => ("taps.csv", "series.csv"),
             TapSet::Jittered => ("jittered_taps.csv", "jittered_series.csv.gz"),
             TapSet::SingleCell => ("single_cell_taps.csv", "single_cell_series.csv.gz"),
+            TapSet::SingleCellOsr256 => (
+                "single_cell_osr256_taps.csv",
+                "single_cell_osr256_series.csv.gz",
+            ),
         }
     }
 }

@@ -151,11 +151,20 @@ fn mlp_part(
             area(Set::SingleCell),
         ),
         (
+            "mlp_single_cell_osr256_area_accuracy_pct",
+            "OSR-256 single-cell set (at OSR 256 only)",
+            area(Set::SingleCellOsr256),
+        ),
+        (
             "mlp_off_lattice_pooled_area_accuracy_pct",
-            "single-cell taps of both off-lattice sets pooled",
+            "single-cell taps of every off-lattice set pooled",
             cl.mlp_area_off_lattice(mlp, osr),
         ),
     ] {
+        // The OSR-256 set has no taps at another OSR: no figure rather than 0 of 0.
+        if t.n == 0 {
+            continue;
+        }
         part.figures.push(tally(
             name,
             &format!("MLP: 24-area accuracy, {label}"),

@@ -25,6 +25,8 @@
 //! - [`Head::Centroid`] (ours, issue 21): two linear outputs regressing the contact's centroid
 //!   in cell units ([`ContactExample::centroid`], mean squared error), for contacts anywhere
 //!   on the pad rather than on its cell lattice; decoded to the one cell under the point.
+//!   Optionally on a [`QuadraticBase`] fitted in closed form first, the network learning
+//!   what the base leaves.
 //!
 //! The catalogue is the set of distinct contacts (cell masks) in the training split, stored
 //! with the weights. Every head reports as region the cell nearest the decoded contact's
@@ -38,8 +40,10 @@ use aot_locate::{CELLS, COLS, CellSet, ROWS};
 use hand_traits::{Contact, ContactLocator};
 use num_traits::Float;
 
+mod base;
 #[cfg(feature = "std")]
 mod model;
+pub use base::{BASE_TERMS, QuadraticBase, base_terms};
 #[cfg(feature = "std")]
 pub use model::ContactMlp;
 

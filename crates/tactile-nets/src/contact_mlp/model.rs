@@ -1,8 +1,8 @@
 //! The trainable contact MLP (feature `std`): dfdx network, training, weights files.
 
 use super::{
-    ContactExample, DROPOUT, FEATURE_NAMES, HIDDEN, Head, N_FEATURES, Prediction, average_area,
-    decode, features, head_inputs, standardised,
+    BASE_TERMS, ContactExample, DROPOUT, FEATURE_NAMES, HIDDEN, Head, N_FEATURES, Prediction,
+    QuadraticBase, average_area, decode, features, head_inputs, standardised,
 };
 use crate::activations::sigmoid;
 use crate::error::{NetError, check_output};
@@ -37,6 +37,9 @@ pub struct ContactMlp {
     body: Body,
     /// The dropout rate it was trained with (recorded in the weights file).
     dropout: f32,
+    /// [`Head::Centroid`]'s quadratic base, when it was trained on one: the network's output
+    /// is added to it.
+    base: Option<QuadraticBase>,
     mean: [f32; N_FEATURES],
     scale: [f32; N_FEATURES],
     catalogue: Vec<u32>,
@@ -78,6 +81,27 @@ impl ContactMlp {
         dropout: f32,
         config: &TrainConfig,
     ) -> Result<(ContactMlp, TrainLog), NetError> {
+        Self::train_with(examples, head, dropout, false, config)
+    }
+
+    /// [`ContactMlp::train_with_dropout`], and with `quadratic_base` a [`Head::Centroid`]
+    /// network learns what a [`QuadraticBase`] fitted first on the same taps leaves.
+    ///
+    /// Errors: as [`ContactMlp::train_with_dropout`]; a base asked of another head than
+    /// [`Head::Centroid`], or one whose fit fails.
+    pub fn train_with(
+        examples: &[ContactExample],
+        head: Head,
+        dropout: f32,
+        quadratic_base: bool,
+        config: &TrainConfig,
+    ) -> Result<(ContactMlp, TrainLog), NetError> {
+        if quadratic_base && head != Head::Centroid {
+            return Err(NetError::Training(format!(
+                "a quadratic base needs the centroid head, not {}",
+                head.name()
+            )));
+        }
         if !(0.0..1.0).contains(&dropout) {
             return Err(NetError::Training(format!(
                 "dropout {dropout} is outside 0.0..1.0"
@@ -91,9 +115,19 @@ impl ContactMlp {
             .map(|e| head_inputs(head, features(&e.reading)))
             .collect();
         let (mean, scale) = mean_and_scale(&rows);
+        let z_rows: Vec<[f32; N_FEATURES]> =
+            rows.iter().map(|r| standardise(r, &mean, &scale)).collect();
+        let base = if quadratic_base {
+            let targets: Vec<[f32; 2]> = examples.iter().map(|e| e.centroid).collect();
+            Some(QuadraticBase::fit(&z_rows, &targets).ok_or_else(|| {
+                NetError::Training("the quadratic base's least-squares fit failed".into())
+            })?)
+        } else {
+            None
+        };
         let mut samples = Samples::default();
-        for (row, ex) in rows.iter().zip(examples) {
-            let z = standardise(row, &mean, &scale);
+        for (z, ex) in z_rows.iter().zip(examples) {
+            let z = *z;
             match head {
                 Head::AverageArea => samples.push(&z, &[average_area(ex.mask)]),
                 Head::CellSet => {
@@ -101,7 +135,10 @@ impl ContactMlp {
                         core::array::from_fn(|i| f32::from(u8::from(ex.mask & (1 << i) != 0)));
                     samples.push(&z, &bits);
                 }
-                Head::Centroid => samples.push(&z, &ex.centroid),
+                Head::Centroid => {
+                    let from = base.map_or([0.0; 2], |b| b.at(&z));
+                    samples.push(&z, &[ex.centroid[0] - from[0], ex.centroid[1] - from[1]]);
+                }
             }
         }
         let dev = Cpu::seed_from_u64(config.seed);
@@ -134,6 +171,7 @@ impl ContactMlp {
             head,
             body,
             dropout,
+            base,
             mean,
             scale,
             catalogue: catalogue_of(examples),
@@ -146,13 +184,18 @@ impl ContactMlp {
         self.head
     }
 
+    /// [`Head::Centroid`]'s quadratic base, if it was trained on one.
+    pub fn quadratic_base(&self) -> Option<&QuadraticBase> {
+        self.base.as_ref()
+    }
+
     /// The contacts the decoder chooses from (cell masks).
     pub fn catalogue(&self) -> &[u32] {
         &self.catalogue
     }
 
     /// The network's raw outputs for raw features (the label value, the centroid's (row,
-    /// column), or 24 cell logits).
+    /// column) with the quadratic base added, or 24 cell logits).
     ///
     /// Errors: [`NetError::Shape`] unless `input` has [`N_FEATURES`] values,
     /// [`NetError::NonFinite`] for a NaN or infinite value, [`NetError::NonFiniteOutput`] when
@@ -177,7 +220,9 @@ impl ContactMlp {
                 CELLS
             }
             Body::Centroid(_, fast) => {
-                out[..2].copy_from_slice(&fast.forward(z));
+                let from = self.base.map_or([0.0; 2], |b| b.at(&z));
+                let net = fast.forward(z);
+                out[..2].copy_from_slice(&[from[0] + net[0], from[1] + net[1]]);
                 2
             }
         };
@@ -209,18 +254,26 @@ impl ContactMlp {
             Body::Cells(net, _) => f.add_module("net.", net)?,
             Body::Centroid(net, _) => f.add_module("net.", net)?,
         }
+        if let Some(b) = &self.base {
+            f.insert("base.quadratic", &[2, BASE_TERMS], b.coef.as_flattened())?;
+        }
         f.insert("input.mean", &[N_FEATURES], &self.mean)?;
         f.insert("input.scale", &[N_FEATURES], &self.scale)?;
         // Masks are below 2^24, so f32 holds them exactly.
         let masks: Vec<f32> = self.catalogue.iter().map(|&m| m as f32).collect();
         f.insert("catalogue.masks", &[masks.len()], &masks)?;
-        let meta = serde_json::json!({
+        let mut meta = serde_json::json!({
             "model": "contact_mlp",
             "head": self.head.name(),
             "features": FEATURE_NAMES,
             "hidden": HIDDEN,
             "dropout": self.dropout,
         });
+        // Named only when there is one: a file without a base keeps the bytes it had before
+        // bases existed.
+        if self.base.is_some() {
+            meta["base"] = "quadratic".into();
+        }
         f.set_metadata(meta.to_string());
         Ok(f)
     }
@@ -267,10 +320,31 @@ impl ContactMlp {
             .get("dropout")
             .and_then(|d| d.as_f64())
             .map_or(DROPOUT, |d| d as f32);
+        let base = match file.tensor("base.quadratic") {
+            None => None,
+            Some(_) if head != Head::Centroid => {
+                return Err(NetError::SafeTensors(format!(
+                    "a quadratic base with the {} head",
+                    head.name()
+                )));
+            }
+            Some(_) => {
+                let v = file.get("base.quadratic", &[2, BASE_TERMS])?;
+                if v.iter().any(|c| !c.is_finite()) {
+                    return Err(NetError::SafeTensors(
+                        "a non-finite quadratic-base coefficient".into(),
+                    ));
+                }
+                Some(QuadraticBase {
+                    coef: core::array::from_fn(|o| core::array::from_fn(|j| v[o * BASE_TERMS + j])),
+                })
+            }
+        };
         Ok(ContactMlp {
             head,
             body,
             dropout,
+            base,
             mean: vec9("input.mean")?,
             scale: vec9("input.scale")?,
             catalogue,
@@ -333,10 +407,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn the_centroid_head_learns_points_and_keeps_its_dropout() -> Result<(), NetError> {
-        // Two contacts a cell and a half apart on row 1; the regression places each in its cell.
-        let taps = [
+    /// Two contacts a cell and a half apart on row 1.
+    fn two_taps() -> [ContactExample; 2] {
+        [
             tap(
                 [102_000.0, 101_050.0, 104_000.0],
                 [Some(9.0), None, Some(3.0)],
@@ -347,8 +420,15 @@ mod tests {
                 [Some(3.0), None, Some(9.0)],
                 [1.1, 5.8],
             ),
-        ];
+        ]
+    }
+
+    #[test]
+    fn the_centroid_head_learns_points_and_keeps_its_dropout() -> Result<(), NetError> {
+        // The regression places each of the two taps in its cell.
+        let taps = two_taps();
         let (mlp, _) = ContactMlp::train_with_dropout(&taps, Head::Centroid, 0.0, &config(300))?;
+        assert!(mlp.quadratic_base().is_none());
         for (t, cell) in taps.iter().zip([0u16, 5]) {
             let p = mlp.predict(&features(&t.reading))?;
             assert_eq!(p.region, cell, "{p:?}");
@@ -365,6 +445,47 @@ mod tests {
             let r = ContactMlp::train_with_dropout(&taps, Head::Centroid, bad, &config(1));
             assert!(matches!(r, Err(NetError::Training(_))), "{bad}");
         }
+        Ok(())
+    }
+
+    #[test]
+    fn a_quadratic_base_is_trained_saved_and_checked() -> Result<(), NetError> {
+        let taps = two_taps();
+        // Two taps: the base alone already passes through both (minimum-norm fit), and the
+        // network, trained on what it leaves, must not undo that.
+        let (mlp, _) = ContactMlp::train_with(&taps, Head::Centroid, 0.0, true, &config(50))?;
+        assert!(mlp.quadratic_base().is_some());
+        for t in &taps {
+            let p = mlp.predict(&features(&t.reading))?;
+            let miss = (p.centroid[0] - t.centroid[0]).hypot(p.centroid[1] - t.centroid[1]);
+            assert!(miss < 0.1, "{p:?} vs {:?}", t.centroid);
+        }
+        let file = mlp.to_file()?;
+        let loaded = ContactMlp::from_file(&file)?;
+        assert_eq!(loaded.quadratic_base(), mlp.quadratic_base());
+        let x = features(&taps[1].reading);
+        assert_eq!(loaded.outputs(&x)?, mlp.outputs(&x)?);
+        // Only the centroid head takes a base, in training and in a file.
+        let r = ContactMlp::train_with(&taps, Head::CellSet, 0.0, true, &config(1));
+        assert!(matches!(r, Err(NetError::Training(_))));
+        let (cells, _) = ContactMlp::train_with(&taps, Head::CellSet, 0.0, false, &config(1))?;
+        let mut bad = cells.to_file()?;
+        bad.insert("base.quadratic", &[2, BASE_TERMS], &[0.0; 2 * BASE_TERMS])?;
+        assert!(matches!(
+            ContactMlp::from_file(&bad),
+            Err(NetError::SafeTensors(_))
+        ));
+        // A corrupt coefficient is refused at load, not met as a NaN location later.
+        let mut bad = file;
+        bad.insert(
+            "base.quadratic",
+            &[2, BASE_TERMS],
+            &[f32::NAN; 2 * BASE_TERMS],
+        )?;
+        assert!(matches!(
+            ContactMlp::from_file(&bad),
+            Err(NetError::SafeTensors(_))
+        ));
         Ok(())
     }
 }

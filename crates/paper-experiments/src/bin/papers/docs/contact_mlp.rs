@@ -1,11 +1,14 @@
 //! `papers docs contact-mlp`: from the contact-area MLP's committed `metrics.json`
 //! (`crates/tactile-nets/models/contact_mlp/`, written by `papers train contact-mlp`), draws
-//! `docs/contact-location/contact-mlp-osr.svg` and prints the markdown table of
-//! `docs/contact-location.md`.
+//! `docs/contact-location/contact-mlp-osr.svg` and prints the markdown tables of
+//! `docs/contact-location.md`: the held-out metrics, and the centroid model's validation search
+//! (`offlattice_centroid_selection.json`).
 
 use super::plot::{draw_legend, legend_mark, plot_err};
 use anyhow::{Context, Result};
-use paper_experiments::contact_eval::{METRICS_FILE, MODEL_DIR, Mlp};
+use paper_experiments::contact_eval::{
+    METRICS_FILE, MODEL_DIR, Mlp, OFF_LATTICE_CENTROID_SELECTION_FILE,
+};
 use plotters::prelude::*;
 use std::path::Path;
 use tactile_nets::metrics::MetricsFile;
@@ -13,15 +16,56 @@ use tactile_nets::metrics::MetricsFile;
 /// The plot written next to `docs/contact-location.md`.
 pub(crate) const PLOT: &str = "docs/contact-location/contact-mlp-osr.svg";
 
-/// Draws the plot and prints the table from the committed metrics.
+/// Draws the plot and prints the tables from the committed metrics and search.
 pub(crate) fn write(root: &Path) -> Result<()> {
-    let path = root.join(MODEL_DIR).join(METRICS_FILE);
-    let metrics = MetricsFile::from_json(
-        &std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?,
-    )?;
+    let metrics = read(root, METRICS_FILE)?;
     plot(&metrics, &root.join(PLOT))?;
-    println!("wrote {PLOT}\n\n{}", table(&metrics));
+    let search = read(root, OFF_LATTICE_CENTROID_SELECTION_FILE)?;
+    println!(
+        "wrote {PLOT}\n\n{}\n{}",
+        table(&metrics),
+        search_table(&search)?
+    );
     Ok(())
+}
+
+/// The committed metrics file `file` of [`MODEL_DIR`].
+fn read(root: &Path, file: &str) -> Result<MetricsFile> {
+    let path = root.join(MODEL_DIR).join(file);
+    Ok(MetricsFile::from_json(
+        &std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?,
+    )?)
+}
+
+/// The centroid model's search as a markdown table, one row per candidate in search order,
+/// the chosen one (which the file's description names) in bold.
+pub(crate) fn search_table(search: &MetricsFile) -> Result<String> {
+    let chosen = search
+        .description
+        .split_once("chosen ")
+        .and_then(|(_, rest)| rest.split(';').next())
+        .context("the search file's description names no chosen candidate")?;
+    let first = search.rows.first().context("an empty search")?;
+    let taps = first
+        .values
+        .get("single_cell_taps")
+        .copied()
+        .unwrap_or(f64::NAN);
+    // Only the single-cell figure: the file's centroid error is measured to the unshifted
+    // cells' centroid, which off the lattice is not where the tap was.
+    let mut s = format!(
+        "| candidate (validation draws, OSR 256) | single-cell taps placed (of {taps}) |\n\
+         |---|---:|\n"
+    );
+    for row in &search.rows {
+        let accuracy = 100.0 * row.values.get("area_accuracy").copied().unwrap_or(f64::NAN);
+        if row.label == chosen {
+            s += &format!("| **{} (chosen)** | **{accuracy:.2} %** |\n", row.label);
+        } else {
+            s += &format!("| {} | {accuracy:.2} % |\n", row.label);
+        }
+    }
+    Ok(s)
 }
 
 /// The OSRs in the metrics rows, ascending.
@@ -210,6 +254,15 @@ mod tests {
         assert!(
             doc.contains(&table),
             "docs/contact-location.md does not quote `papers docs contact-mlp`'s table:\n{table}"
+        );
+        // And the centroid model's search, every candidate, one of them chosen.
+        let search = search_table(&read(&root, OFF_LATTICE_CENTROID_SELECTION_FILE)?)?;
+        let grid = paper_experiments::contact_eval::off_lattice_centroid_grid();
+        assert_eq!(search.lines().count(), 2 + grid.len(), "{search}");
+        assert_eq!(search.matches("(chosen)").count(), 1, "{search}");
+        assert!(
+            doc.contains(&search),
+            "docs/contact-location.md does not quote the centroid search's table:\n{search}"
         );
         Ok(())
     }
