@@ -23,11 +23,18 @@ use std::process::{Command, ExitCode};
 const CALLS: usize = handstack_benches::workloads::RECORD;
 /// Calls before counting (caches, lazily built tables, the detector's first arrivals).
 const WARM_UP: usize = 100;
-/// A count more than 1 % above its baseline fails `--check`. Counts repeat exactly from run to
-/// run; unrelated edits moved them by ±1 instruction in 11 467 (0.01 %) in the probe that
-/// chose this harness; 1 % leaves room for a toolchain update while catching a planted slowdown
-/// such as one more pass over the contact MLP's catalogue (+7 % on `kernel/contact_mlp`).
+/// A count more than 1 % above its baseline fails `--check`. Unrelated edits moved counts by
+/// ±1 instruction in 11 467 (0.01 %) in the probe that chose this harness; 1 % leaves room for
+/// a toolchain update while catching a planted slowdown such as one more pass over the contact
+/// MLP's catalogue (+7 % on `kernel/contact_mlp`).
 const TOLERANCE: f64 = 0.01;
+/// Runs of a workload over [`TOLERANCE`] before `--check` calls it a regression; the lowest
+/// count stands. Why: a workload that allocates does not always count the same. The same
+/// binary counted `kernel/protocol2_decode` (a `Vec` of parameters allocated and freed per
+/// packet) at 689 or 697 instructions per call, 697 in 3 of 8 runs: glibc's malloc takes a
+/// path that depends on the heap the run started with. A real regression is in every run; the
+/// allocator's high path, in 3 of 8, is in all eight with odds of (3/8)^8 ≈ 0.04 %.
+const RUNS_OVER_TOLERANCE: usize = 8;
 /// The committed counts.
 const BASELINE: &str = "baselines/instructions.tsv";
 
@@ -188,8 +195,18 @@ fn main() -> ExitCode {
         "workload", "baseline", "now", "change"
     );
     for id in &ids {
-        let now = count(&exe, id, &out_dir);
         let base = baseline.get(*id).copied();
+        let mut now = count(&exe, id, &out_dir);
+        let mut runs = 1;
+        if mode == "check" {
+            while runs < RUNS_OVER_TOLERANCE && base.is_some_and(|b| now / b - 1.0 > TOLERANCE) {
+                now = now.min(count(&exe, id, &out_dir));
+                runs += 1;
+            }
+        }
+        if runs > 1 {
+            println!("{id}: over the tolerance at first; lowest of {runs} runs below");
+        }
         let change = base.map(|b| now / b - 1.0);
         println!(
             "{id:<34} {:>12} {now:>12.1} {:>8}",
