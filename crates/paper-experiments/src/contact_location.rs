@@ -120,9 +120,6 @@ impl ContactLocation {
                     (Set::SingleCell, &single_cell_test),
                     (Set::SingleCellOsr256, &single_cell_256_test),
                 ] {
-                    if records.is_empty() {
-                        continue;
-                    }
                     out.mlp
                         .insert((set, osr, mlp), contact_eval::evaluate(&model, records)?);
                 }
@@ -294,10 +291,13 @@ pub fn targets_section(cl: &ContactLocation) -> String {
             },
         );
     }
-    let single_cell_name = format!("single-cell set ({} per OSR)", single_cell_taps_per_osr());
+    let single_cell_name = format!(
+        "single-cell set ({} per OSR)",
+        one_cell_taps(SINGLE_CELL_DRAWS)
+    );
     let single_cell_256_name = format!(
         "OSR-{SINGLE_CELL_OSR256} single-cell set ({} taps)",
-        single_cell_osr256_taps()
+        one_cell_taps(SINGLE_CELL_OSR256_DRAWS)
     );
     for mlp in Mlp::ALL {
         let name = mlp.name();
@@ -326,14 +326,9 @@ pub fn targets_section(cl: &ContactLocation) -> String {
     s
 }
 
-/// Taps per OSR in the single-cell set: every cell, force and draw.
-fn single_cell_taps_per_osr() -> usize {
-    aot_locate::CELLS * TAP_FORCES_KGF.len() * SINGLE_CELL_DRAWS as usize
-}
-
-/// Taps in the OSR-256 single-cell set: every cell, force and draw.
-fn single_cell_osr256_taps() -> usize {
-    aot_locate::CELLS * TAP_FORCES_KGF.len() * SINGLE_CELL_OSR256_DRAWS as usize
+/// Taps per OSR in a one-cell set of `draws` draws: every cell and force, `draws` times.
+fn one_cell_taps(draws: u32) -> usize {
+    aot_locate::CELLS * TAP_FORCES_KGF.len() * draws as usize
 }
 
 /// The body of its [`JITTERED_HEADING`] section: every locator per OSR on the jittered set,
@@ -392,7 +387,7 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
           set below), with the Wilson 95 % interval:\n\n\
           | OSR | off-lattice, centroid regression | off-lattice, centroid cell | chosen | paper recipe (cell-set / eq. 4) | centroid regression, off-lattice sets pooled (95 % interval) |\n\
           |---|---|---|---|---|---|\n",
-        single_cell_taps_per_osr(),
+        one_cell_taps(SINGLE_CELL_DRAWS),
     );
     for osr in cl.osrs() {
         let area = |mlp| cl.mlp_area(Set::SingleCell, mlp, osr);
@@ -421,8 +416,8 @@ pub fn jittered_section(cl: &ContactLocation) -> String {
          Wilson 95 % interval, and every off-lattice single-cell tap at this OSR pooled:\n\n\
          | model | OSR-{SINGLE_CELL_OSR256} set | 95 % interval | off-lattice sets pooled | 95 % interval |\n\
          |---|---|---|---|---|\n",
-        single_cell_osr256_taps(),
-        100.0 / single_cell_osr256_taps() as f64,
+        one_cell_taps(SINGLE_CELL_OSR256_DRAWS),
+        100.0 / one_cell_taps(SINGLE_CELL_OSR256_DRAWS) as f64,
     );
     for mlp in Mlp::ALL {
         let t = cl.mlp_area(Set::SingleCellOsr256, mlp, SINGLE_CELL_OSR256);

@@ -70,14 +70,8 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, J
             println!("chosen: {}", chosen.label());
             selection = Some(contact_eval::selection_file(&results, chosen, seed));
             let mut trained = contact_eval::train_all(&records, Some(chosen), seed, true)?;
-            let mut draws = Vec::new();
-            for s in contact_eval::OFF_LATTICE_TRAIN_SEEDS {
-                draws.extend(jittered_draw(s)?);
-            }
-            let mut validation = Vec::new();
-            for s in contact_eval::OFF_LATTICE_VALIDATION_SEEDS {
-                validation.extend(jittered_draw(s)?);
-            }
+            let draws = jittered_draws(&contact_eval::OFF_LATTICE_TRAIN_SEEDS)?;
+            let validation = jittered_draws(&contact_eval::OFF_LATTICE_VALIDATION_SEEDS)?;
             for (kind, grid, file) in [
                 (
                     Mlp::OffLattice,
@@ -130,10 +124,14 @@ pub fn contact_mlp(root: &Path, epochs: Option<usize>) -> Result<Vec<PathBuf>, J
     Ok(written)
 }
 
-/// The records of hand-sim's jittered draw of `seed` (every OSR).
-fn jittered_draw(seed: u64) -> Result<Vec<fingertip::TapRecord>, JobError> {
-    let (taps, series) = hand_sim::fingertip::dataset::jittered_taps(seed)?;
-    Ok(fingertip::parse(&taps, &series)?.records())
+/// The records of hand-sim's jittered draws of `seeds` (every OSR), in order.
+fn jittered_draws(seeds: &[u64]) -> Result<Vec<fingertip::TapRecord>, JobError> {
+    let mut records = Vec::new();
+    for &seed in seeds {
+        let (taps, series) = hand_sim::fingertip::dataset::jittered_taps(seed)?;
+        records.extend(fingertip::parse(&taps, &series)?.records());
+    }
+    Ok(records)
 }
 
 /// The off-lattice model `kind` ([`Mlp::OffLattice`], [`Mlp::OffLatticeCentroid`]): its

@@ -53,6 +53,12 @@ fn catalogue_of(examples: &[ContactExample]) -> Vec<u32> {
     masks
 }
 
+/// Where `base` puts the centroid at the standardised inputs `z` (the origin without one):
+/// what the network is trained to add to, and adds to at inference.
+fn base_at(base: Option<&QuadraticBase>, z: &[f32; N_FEATURES]) -> [f32; 2] {
+    base.map_or([0.0; 2], |b| b.at(z))
+}
+
 fn build<const O: usize>(dev: &Cpu, dropout: f32) -> Net<O> {
     let mut net = dev.build_module::<Arch<O>, f32>();
     net.0.2.p = dropout;
@@ -136,7 +142,7 @@ impl ContactMlp {
                     samples.push(&z, &bits);
                 }
                 Head::Centroid => {
-                    let from = base.map_or([0.0; 2], |b| b.at(&z));
+                    let from = base_at(base.as_ref(), &z);
                     samples.push(&z, &[ex.centroid[0] - from[0], ex.centroid[1] - from[1]]);
                 }
             }
@@ -220,7 +226,7 @@ impl ContactMlp {
                 CELLS
             }
             Body::Centroid(_, fast) => {
-                let from = self.base.map_or([0.0; 2], |b| b.at(&z));
+                let from = base_at(self.base.as_ref(), &z);
                 let net = fast.forward(z);
                 out[..2].copy_from_slice(&[from[0] + net[0], from[1] + net[1]]);
                 2
