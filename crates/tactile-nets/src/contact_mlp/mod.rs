@@ -148,6 +148,31 @@ pub const HIDDEN: [usize; 2] = [64, 32];
 pub const DROPOUT: f32 = 0.3;
 /// L2 regularisation (seed 000 §4).
 pub const L2: f64 = 0.001;
+/// What a contact MLP is built as, beyond its training loop's [`crate::train::TrainConfig`]:
+/// what [`ContactMlp::train_with`] takes (feature `std`). The default is the paper's network.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// Dropout after each hidden layer, `0.0..1.0` (default the paper's [`DROPOUT`]).
+    pub dropout: f32,
+    /// [`Head::Centroid`] only: the network learns what a [`QuadraticBase`] leaves.
+    pub quadratic_base: bool,
+    /// [`Head::Centroid`] only: how many networks, each from its own seed, are trained and
+    /// averaged (1 to 64; default 1). Why: a regression to fractions of a cell moves with its
+    /// seed (±0.3 point of accuracy between seeds here), and the mean of a few is steadier
+    /// than any one; it costs one forward pass per member.
+    pub members: usize,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            dropout: DROPOUT,
+            quadratic_base: false,
+            members: 1,
+        }
+    }
+}
+
 /// Label distance at which the regression head's confidence reaches 0 (half a column step).
 pub const REGRESSION_CONFIDENCE_SPAN: f32 = 0.05;
 

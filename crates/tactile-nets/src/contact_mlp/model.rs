@@ -1,5 +1,6 @@
 //! The trainable contact MLP (feature `std`): dfdx network, training, weights files.
 
+use super::Options;
 use super::{
     BASE_TERMS, ContactExample, DROPOUT, FEATURE_NAMES, HIDDEN, Head, N_FEATURES, Prediction,
     QuadraticBase, average_area, decode, features, head_inputs, standardised,
@@ -24,11 +25,24 @@ type Net<const O: usize> = <Arch<O> as BuildOnDevice<Cpu, f32>>::Built;
 /// The allocation-free inference copy of a [`Net`].
 type Fast<const O: usize> = <Net<O> as Freeze>::Frozen;
 
-/// The trained network (saved) and its frozen copy (run).
+/// The trained network (saved) and its frozen copy (run); the centroid head's ensemble
+/// members (at least one) each as such a pair.
 enum Body {
     Area(Net<1>, Fast<1>),
     Cells(Net<CELLS>, Fast<CELLS>),
-    Centroid(Net<2>, Fast<2>),
+    Centroid(Vec<(Net<2>, Fast<2>)>),
+}
+
+/// The most members a weights file may name (a bound on what a corrupt file makes us build).
+const MAX_MEMBERS: usize = 64;
+
+/// Tensor-name prefix of ensemble member `i`: the first keeps a single network's names.
+fn member_prefix(i: usize) -> String {
+    if i == 0 {
+        "net.".to_owned()
+    } else {
+        format!("member{i}.net.")
+    }
 }
 
 /// A trained contact-area MLP.
@@ -87,25 +101,66 @@ impl ContactMlp {
         dropout: f32,
         config: &TrainConfig,
     ) -> Result<(ContactMlp, TrainLog), NetError> {
-        Self::train_with(examples, head, dropout, false, config)
+        let options = Options {
+            dropout,
+            ..Options::default()
+        };
+        Self::train_with(examples, head, &options, config)
     }
 
-    /// [`ContactMlp::train_with_dropout`], and with `quadratic_base` a [`Head::Centroid`]
-    /// network learns what a [`QuadraticBase`] fitted first on the same taps leaves.
+    /// [`ContactMlp::train`] with `options`: the dropout rate, and for [`Head::Centroid`] a
+    /// [`QuadraticBase`] fitted first on the same taps (the network learns what it leaves)
+    /// and the ensemble's size. Member `i` is trained as a single network would be with
+    /// `config.seed + i` (its initial weights and minibatch order), so member 0 is the model
+    /// `options.members = 1` gives. The log holds the members' mean loss per epoch.
     ///
-    /// Errors: as [`ContactMlp::train_with_dropout`]; a base asked of another head than
-    /// [`Head::Centroid`], or one whose fit fails.
+    /// ```
+    /// use tactile_nets::contact_mlp::{ContactExample, ContactMlp, Head, Options, TapReading};
+    /// use tactile_nets::train::TrainConfig;
+    /// let tap = |left: f32, right: f32, centroid| ContactExample {
+    ///     centroid,
+    ///     ..ContactExample::new(
+    ///         TapReading {
+    ///             baseline_pa: [101_000.0; 3],
+    ///             held_pa: [101_000.0 + left, 101_100.0, 101_000.0 + right],
+    ///             arrival_ms: [Some(2.0); 3],
+    ///         },
+    ///         0,
+    ///     )
+    /// };
+    /// let taps = [tap(3000.0, 500.0, [1.5, 1.5]), tap(500.0, 3000.0, [1.5, 5.5])];
+    /// let options = Options { dropout: 0.0, quadratic_base: false, members: 3 };
+    /// let config = TrainConfig {
+    ///     epochs: 20, batch_size: 2, learning_rate: 1e-2, l2: 0.0, seed: 1,
+    ///     progress: false, label: String::new(),
+    /// };
+    /// let (mlp, log) = ContactMlp::train_with(&taps, Head::Centroid, &options, &config)?;
+    /// assert_eq!((mlp.members(), log.epoch_loss.len()), (3, 20));
+    /// # Ok::<(), tactile_nets::NetError>(())
+    /// ```
+    ///
+    /// Errors: as [`ContactMlp::train_with_dropout`]; a base or more than one member asked of
+    /// another head than [`Head::Centroid`], no members, or a base whose fit fails.
     pub fn train_with(
         examples: &[ContactExample],
         head: Head,
-        dropout: f32,
-        quadratic_base: bool,
+        options: &Options,
         config: &TrainConfig,
     ) -> Result<(ContactMlp, TrainLog), NetError> {
-        if quadratic_base && head != Head::Centroid {
+        let Options {
+            dropout,
+            quadratic_base,
+            members,
+        } = *options;
+        if (quadratic_base || members > 1) && head != Head::Centroid {
             return Err(NetError::Training(format!(
-                "a quadratic base needs the centroid head, not {}",
+                "a quadratic base or an ensemble needs the centroid head, not {}",
                 head.name()
+            )));
+        }
+        if !(1..=MAX_MEMBERS).contains(&members) {
+            return Err(NetError::Training(format!(
+                "{members} ensemble members (1 to {MAX_MEMBERS})"
             )));
         }
         if !(0.0..1.0).contains(&dropout) {
@@ -167,10 +222,33 @@ impl ContactMlp {
                 }
             }
             Head::Centroid => {
-                let mut net = build::<2>(&dev, dropout);
-                let log = fit::<_, N_FEATURES, 2>(&dev, &mut net, &samples, Loss::Mse, config)?;
-                let fast = net.freeze()?;
-                (Body::Centroid(net, fast), log)
+                let mut nets = Vec::with_capacity(members);
+                let mut log = TrainLog::default();
+                for i in 0..members {
+                    let config = TrainConfig {
+                        seed: config.seed.wrapping_add(i as u64),
+                        ..config.clone()
+                    };
+                    let dev = Cpu::seed_from_u64(config.seed);
+                    let mut net = build::<2>(&dev, dropout);
+                    let l = fit::<_, N_FEATURES, 2>(&dev, &mut net, &samples, Loss::Mse, &config)?;
+                    if i == 0 {
+                        log = l;
+                    } else {
+                        for (sum, x) in log.epoch_loss.iter_mut().zip(l.epoch_loss) {
+                            *sum += x;
+                        }
+                    }
+                    let fast = net.freeze()?;
+                    nets.push((net, fast));
+                }
+                // The members' mean; one member's log stays as it was, bit for bit.
+                if members > 1 {
+                    for l in &mut log.epoch_loss {
+                        *l /= members as f32;
+                    }
+                }
+                (Body::Centroid(nets), log)
             }
         };
         let model = ContactMlp {
@@ -190,6 +268,14 @@ impl ContactMlp {
         self.head
     }
 
+    /// How many networks it averages: [`Head::Centroid`]'s ensemble size, 1 for the others.
+    pub fn members(&self) -> usize {
+        match &self.body {
+            Body::Centroid(nets) => nets.len(),
+            Body::Area(..) | Body::Cells(..) => 1,
+        }
+    }
+
     /// [`Head::Centroid`]'s quadratic base, if it was trained on one.
     pub fn quadratic_base(&self) -> Option<&QuadraticBase> {
         self.base.as_ref()
@@ -201,7 +287,7 @@ impl ContactMlp {
     }
 
     /// The network's raw outputs for raw features (the label value, the centroid's (row,
-    /// column) with the quadratic base added, or 24 cell logits).
+    /// column): the members' mean with the quadratic base added, or 24 cell logits).
     ///
     /// Errors: [`NetError::Shape`] unless `input` has [`N_FEATURES`] values,
     /// [`NetError::NonFinite`] for a NaN or infinite value, [`NetError::NonFiniteOutput`] when
@@ -225,10 +311,15 @@ impl ContactMlp {
                 out = fast.forward(z);
                 CELLS
             }
-            Body::Centroid(_, fast) => {
+            Body::Centroid(nets) => {
                 let from = base_at(self.base.as_ref(), &z);
-                let net = fast.forward(z);
-                out[..2].copy_from_slice(&[from[0] + net[0], from[1] + net[1]]);
+                let mut sum = [0.0f32; 2];
+                for (_, fast) in nets {
+                    let y = fast.forward(z);
+                    sum = [sum[0] + y[0], sum[1] + y[1]];
+                }
+                let k = nets.len() as f32;
+                out[..2].copy_from_slice(&[from[0] + sum[0] / k, from[1] + sum[1] / k]);
                 2
             }
         };
@@ -258,7 +349,11 @@ impl ContactMlp {
         match &self.body {
             Body::Area(net, _) => f.add_module("net.", net)?,
             Body::Cells(net, _) => f.add_module("net.", net)?,
-            Body::Centroid(net, _) => f.add_module("net.", net)?,
+            Body::Centroid(nets) => {
+                for (i, (net, _)) in nets.iter().enumerate() {
+                    f.add_module(&member_prefix(i), net)?;
+                }
+            }
         }
         if let Some(b) = &self.base {
             f.insert("base.quadratic", &[2, BASE_TERMS], b.coef.as_flattened())?;
@@ -280,6 +375,9 @@ impl ContactMlp {
         if self.base.is_some() {
             meta["base"] = "quadratic".into();
         }
+        if self.members() > 1 {
+            meta["members"] = self.members().into();
+        }
         f.set_metadata(meta.to_string());
         Ok(f)
     }
@@ -292,6 +390,22 @@ impl ContactMlp {
             .and_then(|h| h.as_str())
             .and_then(Head::from_name)
             .ok_or_else(|| NetError::SafeTensors("metadata names no contact-MLP head".into()))?;
+        let members = match meta.get("members") {
+            None => 1,
+            Some(m) => m
+                .as_u64()
+                .and_then(|m| usize::try_from(m).ok())
+                .filter(|m| (1..=MAX_MEMBERS).contains(m))
+                .ok_or_else(|| {
+                    NetError::SafeTensors(format!("{m} ensemble members (1 to {MAX_MEMBERS})"))
+                })?,
+        };
+        if members > 1 && head != Head::Centroid {
+            return Err(NetError::SafeTensors(format!(
+                "{members} ensemble members with the {} head",
+                head.name()
+            )));
+        }
         let dev = Cpu::seed_from_u64(0);
         let body = match head {
             Head::AverageArea => {
@@ -307,10 +421,14 @@ impl ContactMlp {
                 Body::Cells(net, fast)
             }
             Head::Centroid => {
-                let mut net = build::<2>(&dev, DROPOUT);
-                file.load_module("net.", &mut net)?;
-                let fast = net.freeze()?;
-                Body::Centroid(net, fast)
+                let mut nets = Vec::with_capacity(members);
+                for i in 0..members {
+                    let mut net = build::<2>(&dev, DROPOUT);
+                    file.load_module(&member_prefix(i), &mut net)?;
+                    let fast = net.freeze()?;
+                    nets.push((net, fast));
+                }
+                Body::Centroid(nets)
             }
         };
         let vec9 = |name: &str| -> Result<[f32; N_FEATURES], NetError> {
@@ -413,6 +531,15 @@ mod tests {
         }
     }
 
+    /// No dropout, a quadratic base, `members` networks.
+    fn based(members: usize) -> Options {
+        Options {
+            dropout: 0.0,
+            quadratic_base: true,
+            members,
+        }
+    }
+
     /// Two contacts a cell and a half apart on row 1.
     fn two_taps() -> [ContactExample; 2] {
         [
@@ -459,7 +586,7 @@ mod tests {
         let taps = two_taps();
         // Two taps: the base alone already passes through both (minimum-norm fit), and the
         // network, trained on what it leaves, must not undo that.
-        let (mlp, _) = ContactMlp::train_with(&taps, Head::Centroid, 0.0, true, &config(50))?;
+        let (mlp, _) = ContactMlp::train_with(&taps, Head::Centroid, &based(1), &config(50))?;
         assert!(mlp.quadratic_base().is_some());
         for t in &taps {
             let p = mlp.predict(&features(&t.reading))?;
@@ -472,9 +599,9 @@ mod tests {
         let x = features(&taps[1].reading);
         assert_eq!(loaded.outputs(&x)?, mlp.outputs(&x)?);
         // Only the centroid head takes a base, in training and in a file.
-        let r = ContactMlp::train_with(&taps, Head::CellSet, 0.0, true, &config(1));
+        let r = ContactMlp::train_with(&taps, Head::CellSet, &based(1), &config(1));
         assert!(matches!(r, Err(NetError::Training(_))));
-        let (cells, _) = ContactMlp::train_with(&taps, Head::CellSet, 0.0, false, &config(1))?;
+        let (cells, _) = ContactMlp::train_with_dropout(&taps, Head::CellSet, 0.0, &config(1))?;
         let mut bad = cells.to_file()?;
         bad.insert("base.quadratic", &[2, BASE_TERMS], &[0.0; 2 * BASE_TERMS])?;
         assert!(matches!(
@@ -492,6 +619,85 @@ mod tests {
             ContactMlp::from_file(&bad),
             Err(NetError::SafeTensors(_))
         ));
+        Ok(())
+    }
+
+    #[test]
+    fn an_ensemble_averages_its_members_and_round_trips() -> Result<(), NetError> {
+        let taps = two_taps();
+        let (one, one_log) = ContactMlp::train_with(&taps, Head::Centroid, &based(1), &config(20))?;
+        let (three, log) = ContactMlp::train_with(&taps, Head::Centroid, &based(3), &config(20))?;
+        assert_eq!((one.members(), three.members()), (1, 3));
+        // Member 0 is the single network, bit for bit; members 1 and 2 are trained with the
+        // next seeds, and the ensemble outputs the mean of the three on the shared base.
+        let file = three.to_file()?;
+        let prefixes: Vec<String> = (0..3).map(member_prefix).collect();
+        let x = features(&taps[0].reading);
+        let mut mean = [0.0f32; 2];
+        for (i, prefix) in prefixes.iter().enumerate() {
+            let mut single = one.to_file()?;
+            for name in file.names().filter(|n| n.starts_with(prefix.as_str())) {
+                let t = file
+                    .tensor(name)
+                    .ok_or_else(|| NetError::MissingTensor(name.into()))?;
+                single.insert(&format!("net.{}", &name[prefix.len()..]), &t.shape, &t.data)?;
+            }
+            let member = ContactMlp::from_file(&single)?;
+            if i == 0 {
+                assert_eq!(member.outputs(&x)?, one.outputs(&x)?);
+            }
+            let y = member.outputs(&x)?;
+            mean = [mean[0] + y[0] / 3.0, mean[1] + y[1] / 3.0];
+        }
+        let y = three.outputs(&x)?;
+        assert!(
+            (y[0] - mean[0]).abs() < 1e-4 && (y[1] - mean[1]).abs() < 1e-4,
+            "{y:?} {mean:?}"
+        );
+        assert_ne!(y, one.outputs(&x)?);
+        // The log is the members' mean: not the first member's alone.
+        assert_eq!(log.epoch_loss.len(), 20);
+        assert_ne!(log.epoch_loss, one_log.epoch_loss);
+        // Saved and loaded, it predicts the same; the single network's file names no members.
+        let loaded = ContactMlp::from_file(&file)?;
+        assert_eq!((loaded.members(), loaded.outputs(&x)?), (3, y));
+        assert!(file.metadata_json()?.get("members").is_some());
+        assert!(one.to_file()?.metadata_json()?.get("members").is_none());
+        // Refused: no members, members of another head, a member count a file cannot back.
+        for (head, members) in [
+            (Head::Centroid, 0),
+            (Head::CellSet, 2),
+            (Head::Centroid, 65),
+        ] {
+            let options = Options {
+                members,
+                ..based(1)
+            };
+            let options = Options {
+                quadratic_base: head == Head::Centroid,
+                ..options
+            };
+            let r = ContactMlp::train_with(&taps, head, &options, &config(1));
+            assert!(
+                matches!(r, Err(NetError::Training(_))),
+                "{head:?} {members}"
+            );
+        }
+        for members in ["0", "65", "\"3\"", "-1"] {
+            let mut bad = file.clone();
+            let meta = file
+                .metadata()
+                .replace("\"members\":3", &format!("\"members\":{members}"));
+            bad.set_metadata(meta);
+            assert!(
+                matches!(ContactMlp::from_file(&bad), Err(NetError::SafeTensors(_))),
+                "{members}"
+            );
+        }
+        // Four members named, three stored: the missing one is named.
+        let mut bad = file.clone();
+        bad.set_metadata(file.metadata().replace("\"members\":3", "\"members\":4"));
+        assert!(ContactMlp::from_file(&bad).is_err());
         Ok(())
     }
 }
