@@ -158,8 +158,9 @@ pub struct Options {
     pub quadratic_base: bool,
     /// [`Head::Centroid`] only: how many networks, each from its own seed, are trained and
     /// averaged (1 to 64; default 1). Why: a regression to fractions of a cell moves with its
-    /// seed (±0.3 point of accuracy between seeds here), and the mean of a few is steadier
-    /// than any one; it costs one forward pass per member.
+    /// seed, and the mean of a few is steadier than any one (on the simulated pad of
+    /// docs/contact-location.md, one network placed 95.3–95.8 % of the validation taps over
+    /// four seeds, five averaged 96.6 %); it costs one forward pass per member.
     pub members: usize,
 }
 
