@@ -223,7 +223,10 @@ impl ContactMlp {
             }
             Head::Centroid => {
                 let mut nets = Vec::with_capacity(members);
-                let mut log = TrainLog::default();
+                // The members' mean loss per epoch: summed, then divided (exact for one).
+                let mut log = TrainLog {
+                    epoch_loss: vec![0.0; config.epochs],
+                };
                 for i in 0..members {
                     let config = TrainConfig {
                         seed: config.seed.wrapping_add(i as u64),
@@ -232,21 +235,14 @@ impl ContactMlp {
                     let dev = Cpu::seed_from_u64(config.seed);
                     let mut net = build::<2>(&dev, dropout);
                     let l = fit::<_, N_FEATURES, 2>(&dev, &mut net, &samples, Loss::Mse, &config)?;
-                    if i == 0 {
-                        log = l;
-                    } else {
-                        for (sum, x) in log.epoch_loss.iter_mut().zip(l.epoch_loss) {
-                            *sum += x;
-                        }
+                    for (sum, x) in log.epoch_loss.iter_mut().zip(l.epoch_loss) {
+                        *sum += x;
                     }
                     let fast = net.freeze()?;
                     nets.push((net, fast));
                 }
-                // The members' mean; one member's log stays as it was, bit for bit.
-                if members > 1 {
-                    for l in &mut log.epoch_loss {
-                        *l /= members as f32;
-                    }
+                for l in &mut log.epoch_loss {
+                    *l /= members as f32;
                 }
                 (Body::Centroid(nets), log)
             }
