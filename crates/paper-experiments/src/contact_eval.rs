@@ -306,13 +306,9 @@ pub struct Candidate {
     pub l2: f64,
     /// Training epochs.
     pub epochs: usize,
-    /// Dropout after each hidden layer (the paper's 0.3, or 0).
-    pub dropout: f32,
-    /// [`Head::Centroid`] only: the network learns what a quadratic base
-    /// ([`tactile_nets::contact_mlp::QuadraticBase`]) leaves.
-    pub quadratic_base: bool,
-    /// [`Head::Centroid`] only: networks averaged ([`Options::members`]); 1 for one.
-    pub members: usize,
+    /// Dropout (the paper's 0.3, or 0), and for [`Head::Centroid`] a quadratic base and the
+    /// ensemble's size.
+    pub options: Options,
 }
 
 impl Candidate {
@@ -327,9 +323,7 @@ impl Candidate {
                         head,
                         l2,
                         epochs,
-                        dropout: DROPOUT,
-                        quadratic_base: false,
-                        members: 1,
+                        options: Options::default(),
                     });
                 }
             }
@@ -339,18 +333,23 @@ impl Candidate {
 
     /// Row label in [`SELECTION_FILE`]; the dropout is named when it is not the paper's.
     pub fn label(&self) -> String {
-        let dropout = if self.dropout == DROPOUT {
+        let Options {
+            dropout,
+            quadratic_base,
+            members,
+        } = self.options;
+        let dropout = if dropout == DROPOUT {
             String::new()
         } else {
-            format!("/dropout={}", self.dropout)
+            format!("/dropout={dropout}")
         };
-        let base = if self.quadratic_base {
+        let base = if quadratic_base {
             "/base=quadratic"
         } else {
             ""
         };
-        let members = if self.members > 1 {
-            format!("/members={}", self.members)
+        let members = if members > 1 {
+            format!("/members={members}")
         } else {
             String::new()
         };
@@ -370,12 +369,12 @@ impl Candidate {
         seed: u64,
         progress: bool,
     ) -> Result<(ContactMlp, TrainLog), NetError> {
-        let options = Options {
-            dropout: self.dropout,
-            quadratic_base: self.quadratic_base,
-            members: self.members,
-        };
-        ContactMlp::train_with(fit, self.head, &options, &self.config(osr, seed, progress))
+        ContactMlp::train_with(
+            fit,
+            self.head,
+            &self.options,
+            &self.config(osr, seed, progress),
+        )
     }
 
     /// [`recipe`] with this candidate's head, L2 and epochs.
@@ -596,8 +595,11 @@ pub fn off_lattice_centroid_grid() -> Vec<Candidate> {
         .flat_map(|(dropout, quadratic_base)| {
             off_lattice_grid().into_iter().map(move |c| Candidate {
                 head: Head::Centroid,
-                dropout,
-                quadratic_base,
+                options: Options {
+                    dropout,
+                    quadratic_base,
+                    members: 1,
+                },
                 ..c
             })
         })
@@ -606,9 +608,11 @@ pub fn off_lattice_centroid_grid() -> Vec<Candidate> {
         head: Head::Centroid,
         l2: 0.0,
         epochs: 3000,
-        dropout: 0.0,
-        quadratic_base: true,
-        members: CENTROID_ENSEMBLE_MEMBERS,
+        options: Options {
+            dropout: 0.0,
+            quadratic_base: true,
+            members: CENTROID_ENSEMBLE_MEMBERS,
+        },
     });
     grid
 }
@@ -731,7 +735,7 @@ pub fn train_all_with(
                 (
                     c.head,
                     c.config(osr, seed, progress),
-                    c.dropout,
+                    c.options.dropout,
                     Mlp::Chosen,
                 )
             }));
