@@ -1,4 +1,4 @@
-//! Debian's Chromium for the report render test (`crates/paper-scenes/tests/report_render.rs`)
+//! Debian's Chromium for the report render test (`crates/paper-scenes/tests/it/report_render.rs`)
 //! and the demo screenshot: found, or installed with apt-get when we are root.
 
 use crate::run::step;

@@ -36,8 +36,9 @@ pub enum BuildError {
         /// The repeated name.
         name: String,
     },
-    /// A rule names a variable or term that does not exist.
-    #[error("rule {rule}: unknown {what} `{name}`")]
+    /// A rule names a variable or term that does not exist. (Messages count rules from 1, as
+    /// a person does; the field from 0, as the engine's rule list.)
+    #[error("rule {}: unknown {what} `{name}`", rule + 1)]
     Unknown {
         /// The rule's index (0-based).
         rule: usize,
@@ -47,7 +48,7 @@ pub enum BuildError {
         name: String,
     },
     /// A rule has no consequent, or a weight outside `[0, 1]`.
-    #[error("rule {rule}: {reason}")]
+    #[error("rule {}: {reason}", rule + 1)]
     BadRule {
         /// The rule's index (0-based).
         rule: usize,
@@ -55,7 +56,7 @@ pub enum BuildError {
         reason: &'static str,
     },
     /// A rule's text could not be parsed.
-    #[error("rule {rule}, column {column}: expected {reason} in `{text}`")]
+    #[error("rule {}, column {column}: expected {reason} in `{text}`", rule + 1)]
     RuleSyntax {
         /// The rule's index (0-based).
         rule: usize,

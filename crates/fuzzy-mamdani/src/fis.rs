@@ -10,8 +10,8 @@ use std::vec::Vec;
 
 use crate::format::{FileError, at_line_start, numbers, syntax};
 use crate::{
-    Consequent, Defuzzifier, Engine, EngineBuilder, Expr, Hedges, InputVariable, Mf, OutOfRange,
-    OutputVariable, Real, Resolution, Rule, SNorm, TNorm, Term,
+    BuildError, Consequent, Defuzzifier, Engine, EngineBuilder, Expr, Hedges, InputVariable, Mf,
+    OutOfRange, OutputVariable, Real, Resolution, Rule, SNorm, TNorm, Term,
 };
 
 const MF_NAMES: [&str; 12] = [
@@ -137,6 +137,10 @@ fn read_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
     let (mut inputs, mut outputs): (Vec<InputVariable<T>>, Vec<OutputSection<T>>) =
         (Vec::new(), Vec::new());
     let mut rules = Vec::new();
+    // Each rule's line, and the counts the file declares (value, line): checked at the end.
+    let mut rule_lines = Vec::new();
+    let mut declared: Vec<(&'static str, usize, usize)> = Vec::new();
+    let mut mfs_declared: Vec<(usize, usize, (bool, usize))> = Vec::new();
     let mut block = Block::System;
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
@@ -166,6 +170,7 @@ fn read_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
         }
         if let Block::Rules = block {
             rules.push(fis_rule(content, line, &inputs, outputs.len())?);
+            rule_lines.push(line);
             continue;
         }
         let (key, value) = content
@@ -222,22 +227,40 @@ fn read_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
                         agg = pick(unquoted, &table, line)?;
                     }
                     "DefuzzMethod" => defuzz = defuzz_from(unquoted, line)?,
-                    _ => {} // Version, NumInputs, …: implied by the sections.
+                    "NumInputs" | "NumOutputs" | "NumRules" => {
+                        let what = match key {
+                            "NumInputs" => "NumInputs",
+                            "NumOutputs" => "NumOutputs",
+                            _ => "NumRules",
+                        };
+                        declared.push((what, count(unquoted, key, line)?, line));
+                    }
+                    _ => {} // Version, …
                 }
                 continue;
             }
         };
         match key {
             "Name" => *vname = unquoted.to_string(),
-            "Range" => match numbers(value.trim_matches(|c| c == '[' || c == ']'), line)?[..] {
-                [a, b] => (*vmin, *vmax) = (T::of(a), T::of(b)),
-                _ => return Err(syntax(line, "a range is `[min max]`")),
-            },
-            "NumMFs" => {}
+            "Range" => {
+                let inner = value
+                    .strip_prefix('[')
+                    .and_then(|v| v.strip_suffix(']'))
+                    .ok_or_else(|| syntax(line, "a range is `[min max]`, in brackets"))?;
+                match numbers(inner, line)?[..] {
+                    [a, b] => (*vmin, *vmax) = (T::of(a), T::of(b)),
+                    _ => return Err(syntax(line, "a range is `[min max]`")),
+                }
+            }
+            "NumMFs" => {
+                // Checked once the section's MFs are all read (they follow it).
+                mfs_declared.push((count(unquoted, key, line)?, line, block_index(&block)));
+            }
             k if k.starts_with("MF") => vterms.push(fis_mf(value, line)?),
             _ => return Err(syntax(line, format!("unexpected key `{key}`"))),
         }
     }
+    check_counts(&declared, &mfs_declared, &inputs, &outputs, rules.len())?;
     let mut b = EngineBuilder::new(name)
         .conjunction(and)
         .disjunction(or)
@@ -260,7 +283,97 @@ fn read_fis<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
     for r in rules {
         b = b.rule_struct(r);
     }
-    Ok(b.build()?)
+    b.build().map_err(|e| at_rule_line(e, &rule_lines))
+}
+
+/// A build error about rule `i` at the rule's own line, counted from 1; others as they are.
+fn at_rule_line(e: BuildError, rule_lines: &[usize]) -> FileError {
+    let line_of = |rule: usize| rule_lines.get(rule).copied().unwrap_or(0);
+    match e {
+        // A term index: the engine counts from 0, the file from 1.
+        BuildError::Unknown {
+            rule,
+            what: "term",
+            name,
+        } => match name.parse::<usize>() {
+            Ok(k) => syntax(
+                line_of(rule),
+                format!(
+                    "rule {}: term {} does not exist (terms are the variable's MF1, MF2, …)",
+                    rule + 1,
+                    k + 1
+                ),
+            ),
+            Err(_) => FileError::Unknown {
+                line: line_of(rule),
+                what: "term",
+                name,
+            },
+        },
+        BuildError::Unknown { rule, what, name } => FileError::Unknown {
+            line: line_of(rule),
+            what,
+            name,
+        },
+        BuildError::BadRule { rule, reason } => {
+            syntax(line_of(rule), format!("rule {}: {reason}", rule + 1))
+        }
+        e => FileError::Build(e),
+    }
+}
+
+/// A `NumInputs=`-style count: a whole number.
+fn count(value: &str, key: &str, line: usize) -> Result<usize, FileError> {
+    value
+        .parse()
+        .map_err(|_| syntax(line, format!("{key} is a whole number, not `{value}`")))
+}
+
+/// Which variable a section is, for the `NumMFs` check: (is an output, index).
+fn block_index(block: &Block) -> (bool, usize) {
+    match block {
+        Block::Output(k) => (true, *k),
+        Block::Input(k) => (false, *k),
+        _ => (false, usize::MAX),
+    }
+}
+
+/// The counts the file declares against what it holds: `NumInputs`, `NumOutputs`,
+/// `NumRules`, and each section's `NumMFs`.
+fn check_counts<T: Real>(
+    declared: &[(&'static str, usize, usize)],
+    mfs: &[(usize, usize, (bool, usize))],
+    inputs: &[InputVariable<T>],
+    outputs: &[OutputSection<T>],
+    rules: usize,
+) -> Result<(), FileError> {
+    for &(what, n, line) in declared {
+        let (has, of) = match what {
+            "NumInputs" => (inputs.len(), "[Input] sections"),
+            "NumOutputs" => (outputs.len(), "[Output] sections"),
+            _ => (rules, "rules under [Rules]"),
+        };
+        if n != has {
+            return Err(syntax(
+                line,
+                format!("{what}={n}, but the file has {has} {of}"),
+            ));
+        }
+    }
+    for &(n, line, (output, k)) in mfs {
+        let has = if output {
+            outputs.get(k).map_or(0, |o| o.3.len())
+        } else {
+            inputs.get(k).map_or(0, |v| v.terms.len())
+        };
+        if n != has {
+            return Err(syntax(
+                line,
+                format!("NumMFs={n}, but the section has {has} MFs"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn section_of(s: &str, line: usize) -> Result<Block, FileError> {
@@ -578,5 +691,51 @@ mod tests {
                 other => panic!("{bad}: {other:?}"),
             }
         }
+    }
+
+    const HEAD: &str = "[System]\nName='t'\nType='mamdani'\nNumInputs=1\nNumOutputs=1\n\
+                        NumRules=1\nAndMethod='min'\nOrMethod='max'\nImpMethod='min'\n\
+                        AggMethod='max'\nDefuzzMethod='centroid'\n\n\
+                        [Input1]\nName='x'\nRange=[0 1]\nNumMFs=1\nMF1='a':'trimf',[0 0.5 1]\n\n\
+                        [Output1]\nName='y'\nRange=[0 1]\nNumMFs=1\nMF1='b':'trimf',[0 0.5 1]\n\n\
+                        [Rules]\n1, 1 (1) : 1\n";
+
+    fn said(text: &str) -> String {
+        match from_fis::<f64>(text) {
+            Ok(_) => panic!("accepted:\n{text}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn a_rule_naming_a_term_the_variable_lacks_is_said_at_its_line_counted_from_one() {
+        assert!(from_fis::<f64>(HEAD).is_ok());
+        // Rule 1 (line 26) names output term 6 of a one-term output.
+        let e = said(&HEAD.replace("1, 1 (1) : 1", "1, 6 (1) : 1"));
+        assert_eq!(
+            e,
+            "line 26, column 1: rule 1: term 6 does not exist (terms are the variable's MF1, MF2, …)"
+        );
+    }
+
+    #[test]
+    fn a_malformed_range_and_counts_that_disagree_are_refused() {
+        let e = said(&HEAD.replacen("Range=[0 1]", "Range=[0 30", 1));
+        assert!(
+            e.starts_with("line 15, column 1: a range is `[min max]`"),
+            "{e}"
+        );
+        let e = said(&HEAD.replace("NumRules=1", "NumRules=3"));
+        assert_eq!(
+            e,
+            "line 6, column 1: NumRules=3, but the file has 1 rules under [Rules]"
+        );
+        let e = said(&HEAD.replace("NumInputs=1", "NumInputs=2"));
+        assert!(
+            e.contains("NumInputs=2, but the file has 1 [Input] sections"),
+            "{e}"
+        );
+        let e = said(&HEAD.replacen("NumMFs=1", "NumMFs=2", 1));
+        assert!(e.contains("NumMFs=2, but the section has 1 MFs"), "{e}");
     }
 }

@@ -61,7 +61,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let last = grasp.log().last().ok_or("no cycle ran")?;
     println!(
-        "mode {:?} after {} cycles, {} faults",
+        "mode {} after {} cycles, {} faults",
         grasp.mode(),
         grasp.log().len(),
         grasp.events().len()
@@ -74,7 +74,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     for event in grasp.events() {
-        println!("fault at cycle {}: {:?}", event.cycle, event.fault);
+        println!("fault at cycle {}: {}", event.cycle, event.fault);
+    }
+    // However the loop ends, the hand is left as the configuration says (release: open to
+    // where the loop found it, then torque off).
+    let end = grasp.end();
+    match (end.state, end.error) {
+        (Some(state), _) => println!("hand {state}"),
+        (None, Some(e)) => println!("hand: the end action did not reach it: {e}"),
+        (None, None) => println!("hand: the end action did not reach it"),
     }
     Ok(())
 }

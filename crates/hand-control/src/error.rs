@@ -63,6 +63,30 @@ impl InstructionError {
     }
 }
 
+/// What the servo said, in the e-Manual's words (Protocol 2.0, status packet error field).
+///
+/// ```
+/// use hand_control::InstructionError;
+/// assert_eq!(InstructionError::DataLimit.to_string(), "data limit error (0x06: a value over a limit register)");
+/// ```
+impl core::fmt::Display for InstructionError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let what = match self {
+            Self::ResultFail => "result fail (0x01: the instruction failed)",
+            Self::Instruction => "instruction error (0x02: undefined, or ACTION without REG_WRITE)",
+            Self::Crc => "CRC error (0x03: the servo saw a corrupted packet)",
+            Self::DataRange => "data range error (0x04: a value out of the register's range)",
+            Self::DataLength => "data length error (0x05: data shorter than the register)",
+            Self::DataLimit => "data limit error (0x06: a value over a limit register)",
+            Self::Access => {
+                "access error (0x07: read-only address, or EEPROM written with torque on)"
+            }
+            Self::Other(n) => return write!(f, "error code {n:#04x}"),
+        };
+        f.write_str(what)
+    }
+}
+
 /// Hardware Error Status bits mapped onto the actuator-independent [`Faults`].
 ///
 /// ```
@@ -129,7 +153,7 @@ pub enum Error {
         computed: u16,
     },
     /// The servo refused the instruction (status packet error byte).
-    #[error("servo {id}: instruction refused: {error:?}")]
+    #[error("servo {id}: instruction refused: {error}")]
     Status {
         /// The servo.
         id: u8,
@@ -137,7 +161,7 @@ pub enum Error {
         error: InstructionError,
     },
     /// The servo's Hardware Error Status is not zero (alert bit set).
-    #[error("servo {id}: hardware error status {bits:#04x} ({faults:?})")]
+    #[error("servo {id}: hardware error status {bits:#04x} ({faults})")]
     Hardware {
         /// The servo.
         id: u8,

@@ -236,9 +236,14 @@ fn dxl_sim_runs_the_readme_job_and_example_and_stops_cleanly_on_sigterm() {
 #[test]
 fn a_servo_the_simulator_does_not_run_is_a_usage_error() {
     for (args, says) in [
+        // Named as a scene file names it: known, but not simulated.
         (
-            &["--servo", "xm430-w350:1"][..],
-            "the simulator runs MX-28(2.0) only",
+            &["--servo", "xm430:1"][..],
+            "the simulator runs mx28 only; xm430 is a control table for the driver",
+        ),
+        (
+            &["--servo", "XM430-W350:1"][..],
+            "the simulator runs mx28 only",
         ),
         (&["--servo", "ax12:1"][..], "unknown model \"ax12\""),
         (&["--servo", "mx28:253"][..], "not a number in 0–252"),

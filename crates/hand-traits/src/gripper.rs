@@ -45,6 +45,41 @@ impl Faults {
     pub fn union(self, other: Faults) -> Faults {
         Faults(self.0 | other.0)
     }
+
+    /// Each flag with the words a person reads for it.
+    const NAMES: [(Faults, &'static str); 5] = [
+        (Faults::OVERLOAD, "overload"),
+        (Faults::OVERHEAT, "overheating"),
+        (Faults::VOLTAGE, "input voltage out of range"),
+        (Faults::ENCODER, "position sensor failure"),
+        (Faults::ELECTRICAL, "electrical shock"),
+    ];
+}
+
+/// The flags in words, joined by commas (`no fault` when empty).
+///
+/// ```
+/// # use hand_traits::Faults;
+/// assert_eq!(Faults::OVERLOAD.union(Faults::OVERHEAT).to_string(), "overload, overheating");
+/// assert_eq!(Faults::NONE.to_string(), "no fault");
+/// ```
+impl core::fmt::Display for Faults {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        if self.is_empty() {
+            return f.write_str("no fault");
+        }
+        let mut first = true;
+        for (flag, name) in Faults::NAMES {
+            if self.contains(flag) {
+                if !first {
+                    f.write_str(", ")?;
+                }
+                f.write_str(name)?;
+                first = false;
+            }
+        }
+        Ok(())
+    }
 }
 
 /// One command to a gripper: where to close to, and with how much effort at most.

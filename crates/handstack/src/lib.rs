@@ -20,7 +20,10 @@
 //! - [`stack`]: the real devices a scene names, their buses opened through a
 //!   [`Platform`](stack::platform::Platform) (Linux by default, or a substitute);
 //! - [`runs`]: the grasp hold and the fingertip readout, joined into the scene's [`Outcome`];
-//! - [`progress`]: where a run reports its stages.
+//! - [`progress`]: where a run reports its stages;
+//! - [`cli`]: the command line, for the `handstack` binary and any program with a platform of its
+//!   own;
+//! - [`stop`]: what ends a run early (SIGINT, SIGTERM, SIGHUP), through its one shutdown path.
 //!
 //! Nothing here reads a repository path or holds a simulator: the papers' simulated scenes,
 //! their report and the speed / accuracy trade are the reproduction's (`paper-scenes`,
@@ -28,15 +31,17 @@
 
 #[cfg(feature = "cell")]
 pub mod cell;
+pub mod cli;
 pub mod error;
 pub mod outcome;
 pub mod progress;
 pub mod runs;
 pub mod scene;
 pub mod stack;
+pub mod stop;
 pub mod summary;
 
-pub use error::RunError;
+pub use error::{Ending, RunError};
 pub use outcome::{Figure, Line, Outcome, Plot};
 
 /// Loads the scene file at `path` and runs it on its real devices.

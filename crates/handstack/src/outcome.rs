@@ -14,6 +14,10 @@ pub struct Outcome {
     pub figures: Vec<Figure>,
     /// The data for the report's plots, in report order.
     pub plots: Vec<Plot>,
+    /// What the run left its devices doing, one line each (`hand released (opened to 3.14
+    /// rad), then torque off`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
     /// Wall time of the run, seconds (not part of any assertion).
     pub wall_s: f64,
 }

@@ -19,7 +19,7 @@ fn num(v: f64) -> String {
 ///
 /// ```
 /// use handstack::{Figure, Outcome};
-/// let o = Outcome { scene: "s".into(), title: "t".into(), plots: vec![], wall_s: 0.5,
+/// let o = Outcome { scene: "s".into(), title: "t".into(), plots: vec![], notes: vec![], wall_s: 0.5,
 ///     figures: vec![Figure { name: "err".into(), label: "max error".into(), value: 0.25,
 ///         unit: "gf".into(), paper: Some(1.17), source: None, target: Some("≤ 0.5 gf".into()),
 ///         met: Some(true) }] };
@@ -86,6 +86,20 @@ pub struct Runs {
     pub outcomes: Vec<Outcome>,
     /// The scenes that failed: file and error text.
     pub failures: Vec<(String, String)>,
+    /// The exit status the first failure gives (0 when none failed).
+    pub exit_code: u8,
+}
+
+/// An error that says which exit status it ends a program with.
+pub trait ExitStatus {
+    /// The status, 1…255.
+    fn exit_code(&self) -> u8;
+}
+
+impl ExitStatus for crate::RunError {
+    fn exit_code(&self) -> u8 {
+        crate::RunError::exit_code(self)
+    }
 }
 
 /// The line a failed run prints: the error, after its file unless the error names the file
@@ -98,21 +112,32 @@ fn error_line(file: &str, error: &str) -> String {
 }
 
 /// Runs each of `scenes` with `run`, showing progress on `bars`: a summary table per outcome on
-/// stdout (unless `json`), each error on stderr; with `json`, the outcomes as JSON on stdout at
-/// the end. The `handstack` binary and the papers' `paper-scenes` both run their scenes so.
-pub fn run_each<E: core::fmt::Display>(
+/// stdout (unless `json`), followed by its notes (what the run left its devices doing), each
+/// error on stderr; with `json`, the outcomes as JSON on stdout at the end. Once `stop` is set
+/// (a signal), the scenes after the one it stopped are not run. The `handstack` binary and the
+/// papers' `paper-scenes` both run their scenes so.
+pub fn run_each<E: core::fmt::Display + ExitStatus>(
     scenes: &[std::path::PathBuf],
     json: bool,
     bars: &crate::progress::Bars,
+    stop: &crate::stop::Stop,
     run: impl Fn(&std::path::Path) -> Result<Outcome, E>,
 ) -> Runs {
     let mut runs = Runs::default();
     for path in scenes {
+        if stop.is_set() {
+            break;
+        }
         bars.prefix(path.display().to_string());
         match run(path) {
             Ok(o) => {
                 if !json {
-                    bars.suspend(|| println!("{}", table(&o)));
+                    bars.suspend(|| {
+                        println!("{}", table(&o));
+                        for note in &o.notes {
+                            println!("  {note}");
+                        }
+                    });
                 }
                 runs.outcomes.push(o);
             }
@@ -120,9 +145,16 @@ pub fn run_each<E: core::fmt::Display>(
                 let file = path.display().to_string();
                 let text = e.to_string();
                 bars.suspend(|| eprintln!("{}", error_line(&file, &text)));
+                if runs.failures.is_empty() {
+                    runs.exit_code = e.exit_code();
+                }
                 runs.failures.push((file, text));
             }
         }
+    }
+    if let Some(reason) = stop.reason() {
+        // A signal's status says so, whatever the stopped run returned.
+        runs.exit_code = reason.exit_code();
     }
     bars.finish();
     if json {
@@ -131,6 +163,7 @@ pub fn run_each<E: core::fmt::Display>(
             Err(e) => {
                 eprintln!("error: cannot write JSON: {e}");
                 runs.failures.push(("(all)".into(), e.to_string()));
+                runs.exit_code = runs.exit_code.max(crate::error::EXIT_NOT_STARTED);
             }
         }
     }

@@ -138,6 +138,8 @@ pub fn run_node(
                 rate_hz: 1e6 / stack.config.period_us as f64 * sim_speed,
                 frame_id,
                 force: scene.force_model(),
+                hand: "simulated servo bus".to_owned(),
+                recover: None,
             };
             let node = Node::open(args.options())?;
             let report = hand::run(
@@ -149,7 +151,7 @@ pub fn run_node(
                 &config,
                 stop,
             )?;
-            Ok(format!("{report:?} ({object})"))
+            Ok(format!("{report} ({object})"))
         }
     }
 }

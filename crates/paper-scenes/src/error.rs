@@ -48,3 +48,13 @@ pub(crate) fn device(device: &'static str, reason: impl Into<String>) -> Error {
         reason: reason.into(),
     })
 }
+
+/// A stack error keeps `handstack run`'s exit status; the reproduction's own errors give 1.
+impl handstack::summary::ExitStatus for Error {
+    fn exit_code(&self) -> u8 {
+        match self {
+            Error::Run(e) => e.exit_code(),
+            _ => 1,
+        }
+    }
+}

@@ -73,11 +73,12 @@ fn main() -> ExitCode {
 
 fn run(scenes: &[PathBuf], json: bool, report: Option<&Path>) -> ExitCode {
     let bars = Bars::new(!json);
-    let cx = RunContext::new(&bars);
-    let runs = handstack::summary::run_each(scenes, json, &bars, |path| {
+    let mut cx = RunContext::new(&bars);
+    cx.stack.stop = handstack::stop::signal_stop();
+    let runs = handstack::summary::run_each(scenes, json, &bars, &cx.stop, |path| {
         paper_scenes::run_file(path, &cx)
     });
-    let mut failed = !runs.failures.is_empty();
+    let mut code = runs.exit_code;
     if let Some(out) = report {
         let failures: Vec<_> = runs
             .failures
@@ -89,13 +90,9 @@ fn run(scenes: &[PathBuf], json: bool, report: Option<&Path>) -> ExitCode {
             Ok(()) => eprintln!("report: {}", out.display()),
             Err(e) => {
                 eprintln!("error: report: {e}");
-                failed = true;
+                code = code.max(1);
             }
         }
     }
-    if failed {
-        ExitCode::FAILURE
-    } else {
-        ExitCode::SUCCESS
-    }
+    ExitCode::from(code)
 }

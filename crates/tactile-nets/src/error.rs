@@ -85,6 +85,17 @@ pub enum NetError {
     /// A tensor the model needs is missing from a weights file.
     #[error("weights file has no tensor `{0}`")]
     MissingTensor(String),
+    /// No built-in model is trained for this oversampling ratio.
+    #[error(
+        "no built-in contact MLP for OSR {osr}; built in: OSR {}",
+        list(supported)
+    )]
+    UnsupportedOsr {
+        /// The ratio asked for.
+        osr: u16,
+        /// The ratios that have one.
+        supported: &'static [u16],
+    },
     /// A stored tensor has another shape or dtype than the model expects.
     #[error("tensor `{name}`: stored {stored}, model expects {expected}")]
     TensorMismatch {
@@ -174,4 +185,14 @@ pub fn check_output(output: &[f32]) -> Result<(), RunError> {
         Some(index) => Err(RunError::NonFiniteOutput { index }),
         None => Ok(()),
     }
+}
+
+/// `256, 512, 1024`.
+#[cfg(feature = "std")]
+fn list(values: &[u16]) -> String {
+    values
+        .iter()
+        .map(u16::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
 }

@@ -205,10 +205,24 @@ pub fn force_dnn(model: ForceModel) -> Result<ForceDnn, NetError> {
     built_in(&format!("force_dnn/{}", model.name()), ForceDnn::from_file)
 }
 
-/// The built-in contact MLP for `osr` as a full [`ContactMlp`]; [`NetError::MissingTensor`]
-/// naming the file for an OSR not in [`CONTACT_MLP_OSRS`].
+/// The built-in contact MLP for `osr` as a full [`ContactMlp`]; [`NetError::UnsupportedOsr`]
+/// listing [`CONTACT_MLP_OSRS`] for another OSR.
+///
+/// ```
+/// let e = tactile_nets::pretrained::contact_mlp(1000).err().expect("no model for OSR 1000");
+/// assert_eq!(
+///     e.to_string(),
+///     "no built-in contact MLP for OSR 1000; built in: OSR 256, 512, 1024, 2048, 4096"
+/// );
+/// ```
 #[cfg(feature = "std")]
 pub fn contact_mlp(osr: u16) -> Result<ContactMlp, NetError> {
+    if !CONTACT_MLP_OSRS.contains(&osr) {
+        return Err(NetError::UnsupportedOsr {
+            osr,
+            supported: &CONTACT_MLP_OSRS,
+        });
+    }
     built_in(
         &format!("contact_mlp/osr{osr}-chosen"),
         ContactMlp::from_file,

@@ -253,7 +253,9 @@ impl UrArm {
     /// Connects: dashboard, then (optionally power-up), then `RTDEReceiveInterface` and
     /// `RTDEControlInterface` (which uploads ur_rtde's control script on port 30003), and
     /// returns once the receive link reports the script running, so [`UrArm::status`] agrees
-    /// with the arm just connected ([`UrError::Timeout`] after 5 s otherwise).
+    /// with the arm just connected ([`UrError::Timeout`] after 5 s otherwise). A controller in
+    /// a protective stop (RTDE's safety status bits) is [`UrError::ProtectiveStop`], before any
+    /// script is sent.
     pub fn connect(config: UrConfig) -> Result<Self, UrError> {
         let arm = Python::attach(|py| {
             config.venv.activate(py)?;
@@ -299,6 +301,19 @@ impl UrArm {
                         &[30004],
                     )
                 })?;
+            // A protectively stopped controller refuses ur_rtde's control script ("Failed to
+            // start control script, before timeout of 5 seconds"): say what holds the arm, and
+            // how to unlock it, instead. The receive interface has its first package by now.
+            let bits = receive
+                .call_method0("getSafetyStatusBits")
+                .and_then(|b| b.extract::<f64>())
+                .map_err(|e| map_py(py, e, "getSafetyStatusBits", host))?
+                as u32;
+            if bits & crate::status::SAFETY_PROTECTIVE_STOPPED != 0 {
+                return Err(UrError::ProtectiveStop {
+                    safety_status_bits: bits,
+                });
+            }
             let control = rtde_control
                 .getattr("RTDEControlInterface")
                 .and_then(|c| c.call1((host, freq)))
@@ -416,11 +431,17 @@ impl UrArm {
         }
     }
 
+    /// Sends `call` through the control interface: [`UrError::ConnectionLost`] at once when the
+    /// link is down (ur_rtde would try to reconnect inside the call and block for its own
+    /// timeouts: a stop sent after the controller went away must not hang its sender).
     fn command(
         &self,
         call: &'static str,
         f: impl for<'py> FnOnce(&Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>>,
     ) -> Result<(), UrError> {
+        if !self.is_connected()? {
+            return Err(UrError::ConnectionLost);
+        }
         let accepted = self.with(call, |_, c, _| {
             let out = f(c)?;
             // stopL / stopJ return None; the move commands return a bool.

@@ -32,8 +32,13 @@ pub enum UrError {
         /// The port that refused (29999 dashboard, 30003 script, 30004 RTDE).
         port: u16,
     },
-    /// The controller went to a protective stop (a limit was hit, or the pose is unreachable).
-    #[error("protective stop (safety status bits {safety_status_bits:#06x})")]
+    /// The controller went to a protective stop (a limit was hit, or the pose is unreachable),
+    /// or was in one when the bridge connected.
+    #[error(
+        "the arm is in a protective stop (safety status bits {safety_status_bits:#06x}): \
+         remove its cause, then unlock it on the teach pendant or with the dashboard server's \
+         `unlock protective stop` (port 29999), no sooner than 5 s after the stop"
+    )]
     ProtectiveStop {
         /// RTDE `safety_status_bits` when the stop was seen.
         safety_status_bits: u32,

@@ -175,6 +175,23 @@ fn unreachable_pose_is_a_protective_stop() {
         ),
     }
     assert!(arm.status().unwrap().is_protective_stopped());
+    // A second client connecting now is told what holds the arm and how to unlock it (not
+    // ur_rtde's "Failed to start control script, before timeout of 5 seconds").
+    let mut config = UrConfig::new("127.0.0.14");
+    config.move_timeout = Duration::from_secs(20);
+    match UrArm::connect(config) {
+        Err(e @ UrError::ProtectiveStop { safety_status_bits }) => {
+            assert_ne!(safety_status_bits & 0b100, 0);
+            let text = e.to_string();
+            assert!(
+                text.starts_with("the arm is in a protective stop")
+                    && text.contains("`unlock protective stop` (port 29999)"),
+                "{text}"
+            );
+        }
+        Err(other) => panic!("expected a protective stop, got: {other}"),
+        Ok(_) => panic!("connected to a protectively stopped arm"),
+    }
     arm.recover_from_protective_stop().unwrap();
     let grid = RegionToGrid::ur3_default().unwrap();
     arm.move_linear(grid.pose(4).unwrap(), &fast_linear())
@@ -315,6 +332,11 @@ fn killed_controller_is_a_typed_error_without_hang() {
         "noticed in {:?}",
         t0.elapsed()
     );
+    // A stop sent now says the link is gone, at once (ur_rtde itself would try to reconnect).
+    let t1 = Instant::now();
+    let err = arm.stop_linear(1.0).unwrap_err();
+    assert!(matches!(err, UrError::ConnectionLost), "{err}");
+    assert!(t1.elapsed() < Duration::from_secs(1), "{:?}", t1.elapsed());
     let t1 = Instant::now();
     drop(arm);
     assert!(

@@ -2,14 +2,20 @@
 //! tests of code that drives a Dynamixel bus (the ROBOTIS SDK, this crate's `ServoHand`, …).
 //!
 //! Prints the pty's path (`/dev/pts/N`) on one line, then serves the servos in real time until
-//! SIGINT or SIGTERM, and exits 0.
+//! SIGINT or SIGTERM, and exits 0. With `--trace`, every instruction the servos execute follows
+//! on stdout, one line each: the time since the bus started (s), the instruction, the ID and
+//! the registers it names by their e-Manual names, e.g. `1.020000 sync_write Goal PWM 1=254
+//! 2=254` or `3.100000 sync_write Torque Enable 1=0 2=0`.
+//!
+//! Models are named as a handstack scene file names them (`mx28`, `xm430`, `rh_p12_rn`); the
+//! simulator runs the MX-28(2.0).
 
 use std::io::Write;
 use std::process::ExitCode;
 use std::str::FromStr;
 
 use clap::Parser;
-use hand_control::control_table::{ControlTable, MODELS};
+use hand_control::control_table::ControlTable;
 use hand_control::protocol::MAX_ID;
 use hand_control::sim::{Pace, SIMULATED_MODELS, SimBus, SimConfig};
 use signal_hook::consts::{SIGINT, SIGTERM};
@@ -26,6 +32,9 @@ struct Args {
     /// A servo on the bus, MODEL:ID (e.g. `mx28:1`); repeat for each servo. IDs 0–252.
     #[arg(long = "servo", value_name = "MODEL:ID", required = true)]
     servos: Vec<Servo>,
+    /// Print every instruction the servos execute on stdout, one line each, after the path.
+    #[arg(long)]
+    trace: bool,
 }
 
 /// One `--servo` (its model is one the simulator runs).
@@ -39,7 +48,7 @@ struct Servo {
 enum ServoError {
     #[error("{0:?} is not MODEL:ID")]
     Form(String),
-    #[error("unknown model {given:?}; the control tables: {known}")]
+    #[error("unknown model {given:?}; the models: {known}")]
     UnknownModel { given: String, known: String },
     #[error("the simulator runs {simulated} only; {model} is a control table for the driver")]
     NotSimulated {
@@ -50,8 +59,8 @@ enum ServoError {
     Id(String),
 }
 
-fn names(tables: &[&ControlTable]) -> String {
-    tables.iter().map(|t| t.name).collect::<Vec<_>>().join(", ")
+fn keys(tables: &[&ControlTable]) -> String {
+    tables.iter().map(|t| t.key).collect::<Vec<_>>().join(", ")
 }
 
 impl FromStr for Servo {
@@ -63,15 +72,15 @@ impl FromStr for Servo {
             .ok_or_else(|| ServoError::Form(s.to_owned()))?;
         let table = ControlTable::by_name(model).ok_or_else(|| ServoError::UnknownModel {
             given: model.to_owned(),
-            known: names(&MODELS),
+            known: ControlTable::keys(),
         })?;
         if !SIMULATED_MODELS
             .iter()
             .any(|t| t.model_number == table.model_number)
         {
             return Err(ServoError::NotSimulated {
-                model: table.name,
-                simulated: names(&SIMULATED_MODELS),
+                model: table.key,
+                simulated: keys(&SIMULATED_MODELS),
             });
         }
         let id = id
@@ -107,8 +116,9 @@ fn run(args: &Args) -> std::io::Result<()> {
     let mut signals = Signals::new([SIGINT, SIGTERM])?;
     let ids: Vec<u8> = args.servos.iter().map(|s| s.id).collect();
     // The client end stays open here: the pty lives as long as one end of each side is open.
-    let (bus, _client) = SimBus::spawn(SimConfig {
+    let (mut bus, _client) = SimBus::spawn(SimConfig {
         pace: Pace::WallClock,
+        trace: args.trace,
         ..SimConfig::with_ids(&ids)
     })?;
     let mut out = std::io::stdout().lock();
@@ -116,6 +126,18 @@ fn run(args: &Args) -> std::io::Result<()> {
     // A CI job or test waits for this line through a pipe: it must not sit in a buffer.
     out.flush()?;
     drop(out);
+    if let Some(trace) = bus.take_trace() {
+        // Each line as it comes (a test reads them while the client runs); the thread ends
+        // when the bus is dropped and its sender with it.
+        std::thread::spawn(move || {
+            let mut out = std::io::stdout();
+            for line in trace {
+                if writeln!(out, "{line}").and_then(|()| out.flush()).is_err() {
+                    return;
+                }
+            }
+        });
+    }
     let _ = signals.forever().next();
     // Stops the simulator thread (within its 20 ms read timeout) and closes the pty.
     drop(bus);

@@ -129,8 +129,10 @@ pub enum EffortUnit {
 /// A model's control table: its registers, the roles the driver needs, and unit conversions.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ControlTable {
-    /// Model name.
+    /// Model name, as ROBOTIS writes it (`MX-28(2.0)`).
     pub name: &'static str,
+    /// What a scene file or a command line calls it (`mx28`, `xm430`, `rh_p12_rn`).
+    pub key: &'static str,
     /// The value of the Model Number register (and of a PING reply).
     pub model_number: u16,
     /// Every register, in address order.
@@ -182,26 +184,37 @@ impl ControlTable {
             .find(|t| t.model_number == model_number)
     }
 
-    /// The table a person names: its name without the firmware suffix, in any case, with or
-    /// without the dashes (`mx28`, `MX-28`, `xm430-w350`, `rh_p12_rn`), among [`MODELS`].
+    /// The table a person names: its [`key`](Self::key) (`mx28`, `xm430`, `rh_p12_rn`, as
+    /// scene files and `dxl-sim` spell it), or its name without the firmware suffix, in any
+    /// case, with or without the dashes (`MX-28`, `xm430-w350`), among [`MODELS`].
     ///
     /// ```
-    /// use hand_control::control_table::{ControlTable, RH_P12_RN};
+    /// use hand_control::control_table::{ControlTable, RH_P12_RN, XM430_W350};
     /// assert_eq!(ControlTable::by_name("mx28").map(|t| t.name), Some("MX-28(2.0)"));
+    /// assert_eq!(ControlTable::by_name("xm430").map(|t| t.name), Some(XM430_W350.name));
+    /// assert_eq!(ControlTable::by_name("XM430-W350").map(|t| t.name), Some(XM430_W350.name));
     /// assert_eq!(ControlTable::by_name("rh_p12_rn").map(|t| t.name), Some(RH_P12_RN.name));
     /// assert!(ControlTable::by_name("ax12").is_none());
     /// ```
     pub fn by_name(name: &str) -> Option<&'static ControlTable> {
         // "MX-28(2.0)" → "mx28": the firmware suffix is not part of what people call it.
-        fn key(name: &str) -> String {
+        fn plain(name: &str) -> String {
             let base = name.split('(').next().unwrap_or(name);
             base.chars()
                 .filter(char::is_ascii_alphanumeric)
                 .map(|c| c.to_ascii_lowercase())
                 .collect()
         }
-        let wanted = key(name);
-        MODELS.iter().copied().find(|t| key(t.name) == wanted)
+        let wanted = plain(name);
+        MODELS
+            .iter()
+            .copied()
+            .find(|t| plain(t.key) == wanted || plain(t.name) == wanted)
+    }
+
+    /// The keys of [`MODELS`], for a message that lists them (`mx28, xm430, rh_p12_rn`).
+    pub fn keys() -> String {
+        MODELS.iter().map(|t| t.key).collect::<Vec<_>>().join(", ")
     }
 
     /// The register at exactly `address`.

@@ -131,6 +131,7 @@ pub(super) const REGISTERS: &[Register] = &[
 /// The MX-28 (Protocol 2.0 firmware) control table. Model number 30.
 pub const MX_28: ControlTable = ControlTable {
     name: "MX-28(2.0)",
+    key: "mx28",
     model_number: 30,
     registers: REGISTERS,
     size: table_size(REGISTERS),

@@ -92,6 +92,7 @@ pub(super) const REGISTERS: &[Register] = &[
 /// The RH-P12-RN control table. Model number 35073; grasps in current-based position mode (5).
 pub const RH_P12_RN: ControlTable = ControlTable {
     name: "RH-P12-RN",
+    key: "rh_p12_rn",
     model_number: 35073,
     registers: REGISTERS,
     size: table_size(REGISTERS),

@@ -134,6 +134,7 @@ pub(super) const REGISTERS: &[Register] = &[
 /// The XM430-W350 control table. Model number 1020; grasps in current-based position mode (5).
 pub const XM430_W350: ControlTable = ControlTable {
     name: "XM430-W350",
+    key: "xm430",
     model_number: 1020,
     registers: REGISTERS,
     size: table_size(REGISTERS),

@@ -2,6 +2,8 @@
 
 use hand_traits::{Effort, SafeAction};
 
+use super::end::EndAction;
+
 /// The torque-limit band a grasp may use, on the MX-28's 0…1023 scale (seed 000 §7).
 ///
 /// Table 5 gives one per object: below `min_raw` the object slips, above `max_raw` it is crushed
@@ -99,8 +101,13 @@ pub struct LoopConfig {
     pub goal_limits_rad: (f32, f32),
     /// The per-object torque band every effort is clamped into.
     pub band: TorqueBand,
-    /// What the actuator does on a fault.
+    /// What the actuator does on a fault, in the fault's cycle (the loop then stays safe).
     pub safe_action: SafeAction,
+    /// What the hand is left doing when the loop ends
+    /// ([`GraspLoop::end`](super::GraspLoop::end)).
+    pub end_action: EndAction,
+    /// Longest a [`EndAction::Release`] waits for the hand to open before torque off, µs.
+    pub release_timeout_us: u64,
     /// How the loop leaves its safe state.
     pub recovery: Recovery,
     /// |load| under which a latched hardware error counts as cleared, fraction of maximum.
@@ -114,8 +121,10 @@ pub struct LoopConfig {
 
 impl LoopConfig {
     /// 100 Hz, 500 Pa target (about the seed 000 fingertip's mean rise under a 5 N whole-pad grip), 50 Pa contact threshold, 2 Hz rate filter, 10 tare cycles,
-    /// goal 0.2 rad within 0…0.5 rad, the full band, hold last safe effort, manual recovery,
-    /// a log of 65 536 cycles (10.9 min at 100 Hz, ≈ 6 MB for a 3-sensor pad).
+    /// goal 0.2 rad within 0…0.5 rad, the full band, hold last safe effort on a fault, manual
+    /// recovery, release at the end (at most 3 s to open: an MX-28 at a third of its PWM opens
+    /// π rad in about 1.6 s), a log of 65 536 cycles (10.9 min at 100 Hz, ≈ 6 MB for a
+    /// 3-sensor pad).
     pub fn new() -> LoopConfig {
         LoopConfig {
             period_us: 10_000,
@@ -127,6 +136,8 @@ impl LoopConfig {
             goal_limits_rad: (0.0, 0.5),
             band: TorqueBand::FULL,
             safe_action: SafeAction::HoldLastSafeEffort,
+            end_action: EndAction::Release,
+            release_timeout_us: 3_000_000,
             recovery: Recovery::Manual,
             clear_load_fraction: 0.05,
             log_capacity: 65_536,

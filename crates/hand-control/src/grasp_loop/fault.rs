@@ -14,33 +14,54 @@ pub trait RebootableActuator: GripperActuator {
     fn enable_torque(&mut self) -> Result<(), Self::Error>;
 }
 
-/// One fault, with the part's own error inside.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+/// One fault, with the part's own error inside. It reads in words when the parts' errors do
+/// (`actuator state: servo 2: no answer (timeout)`).
+#[derive(Debug, Clone, PartialEq)]
 pub enum LoopFault<SE: core::fmt::Debug, PE: core::fmt::Debug, AE: core::fmt::Debug> {
     /// The tactile source failed to give a frame (bus NACK, CRC, timeout…).
-    #[error("tactile source: {0:?}")]
     Source(SE),
     /// The frame was unusable.
-    #[error("estimate: {0}")]
     Estimate(EstimateError),
     /// The policy could not choose an effort.
-    #[error("grasp policy: {0:?}")]
     Policy(PE),
     /// The actuator refused or lost a command (lost status packet, CRC error, range error…).
-    #[error("actuator command: {0:?}")]
     Command(AE),
     /// The actuator's state could not be read.
-    #[error("actuator state: {0:?}")]
     State(AE),
     /// The actuator reports hardware-error bits (overload, overheat, voltage…).
-    #[error("actuator hardware error {0:?}")]
     Hardware(Faults),
     /// Going to the safe state itself failed (it is retried every cycle).
-    #[error("safe stop: {0:?}")]
     SafeStop(AE),
     /// A recovery reboot or torque enable failed.
-    #[error("recovery: {0:?}")]
     Reboot(AE),
+}
+
+impl<SE, PE, AE> core::fmt::Display for LoopFault<SE, PE, AE>
+where
+    SE: core::fmt::Debug + core::fmt::Display,
+    PE: core::fmt::Debug + core::fmt::Display,
+    AE: core::fmt::Debug + core::fmt::Display,
+{
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            LoopFault::Source(e) => write!(f, "tactile source: {e}"),
+            LoopFault::Estimate(e) => write!(f, "estimate: {e}"),
+            LoopFault::Policy(e) => write!(f, "grasp policy: {e}"),
+            LoopFault::Command(e) => write!(f, "actuator command: {e}"),
+            LoopFault::State(e) => write!(f, "actuator state: {e}"),
+            LoopFault::Hardware(faults) => write!(f, "actuator hardware error: {faults}"),
+            LoopFault::SafeStop(e) => write!(f, "safe stop: {e}"),
+            LoopFault::Reboot(e) => write!(f, "recovery: {e}"),
+        }
+    }
+}
+
+impl<SE, PE, AE> std::error::Error for LoopFault<SE, PE, AE>
+where
+    SE: core::fmt::Debug + core::fmt::Display,
+    PE: core::fmt::Debug + core::fmt::Display,
+    AE: core::fmt::Debug + core::fmt::Display,
+{
 }
 
 /// The kind of a [`LoopFault`], without the payload: what the per-cycle log keeps.

@@ -19,6 +19,18 @@ pub enum Mode {
     Halted,
 }
 
+/// The mode's name (`Grasp`), as a log line or a status shows it.
+impl core::fmt::Display for Mode {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Mode::Tare => "Tare",
+            Mode::Grasp => "Grasp",
+            Mode::Safe => "Safe",
+            Mode::Halted => "Halted",
+        })
+    }
+}
+
 /// One cycle. Every field the cycle could not fill is `None`, so a faulted cycle is logged too.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample<const N: usize> {

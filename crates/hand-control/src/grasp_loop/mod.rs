@@ -3,6 +3,7 @@
 //!
 //! - [`estimate`]: tare, mean contact pressure, low-pass-filtered rate, contact flag;
 //! - [`config`]: rate, target, per-object [`TorqueBand`] (Table 5), safe action, [`Recovery`];
+//! - [`end`]: what the hand is left doing when the loop ends ([`EndAction`], [`GraspLoop::end`]);
 //! - [`clock`]: the [`LoopClock`] (wall or simulated) and the [`FixedRate`] scheduler;
 //! - [`fault`]: typed faults per part and the [`RebootableActuator`] trait;
 //! - [`log`]: one [`Sample`] per cycle, faulted or not, and [`settling`];
@@ -65,6 +66,7 @@
 
 pub mod clock;
 pub mod config;
+pub mod end;
 /// The contact estimate, `hand-traits`' (a fingertip's firmware estimates alike).
 pub mod estimate {
     pub use hand_traits::{ContactEstimate, EstimateError, PressureEstimator};
@@ -76,6 +78,7 @@ mod servo_hand;
 
 pub use clock::{FixedRate, LoopClock, StdClock};
 pub use config::{ConfigError, LoopConfig, Recovery, TorqueBand};
+pub use end::{EndAction, EndReport, EndState, RELEASE_TOLERANCE_RAD};
 pub use estimate::{ContactEstimate, EstimateError, PressureEstimator};
 pub use fault::{FaultEvent, FaultKind, LoopFault, RebootableActuator};
 pub use log::{Mode, SETTLE_TOL_RAW, SETTLE_WINDOW_US, Sample, Settling, settling};

@@ -47,6 +47,8 @@ where
     last_safe: Option<GripperCommand>,
     last_sent: Option<GripperCommand>,
     last_state: Option<GripperState>,
+    /// Where the hand was at its first state read: where a release opens it to.
+    open_rad: Option<f32>,
     safe_since_us: u64,
     safe_confirmed: bool,
     safe_stop_failing: bool,
@@ -102,6 +104,7 @@ where
             last_safe: None,
             last_sent: None,
             last_state: None,
+            open_rad: None,
             safe_since_us: 0,
             safe_confirmed: false,
             safe_stop_failing: false,
@@ -158,6 +161,7 @@ where
             Ok(st) => {
                 s.state = Some(st);
                 self.last_state = Some(st);
+                self.open_rad.get_or_insert(st.position_rad);
                 if !st.faults.is_empty() {
                     faults.push(LoopFault::Hardware(st.faults));
                 }
@@ -392,6 +396,23 @@ where
     /// Ticks skipped because a cycle overran.
     pub fn missed_ticks(&self) -> u64 {
         self.rate.missed_ticks()
+    }
+
+    /// Where the hand was when the loop first read it, rad: where
+    /// [`EndAction::Release`](super::EndAction::Release) opens it to (`None` before a read).
+    pub fn open_position_rad(&self) -> Option<f32> {
+        self.open_rad
+    }
+
+    /// Whether the actuator holds the loop's last command and a fault-free read confirmed it:
+    /// grasping, no fault since (an end that keeps the grip has nothing to send).
+    pub(super) fn holding_confirmed(&self) -> bool {
+        self.mode == Mode::Grasp && self.last_sent.is_some() && self.last_sent == self.last_safe
+    }
+
+    /// The actuator's state at its last fault-free read of a cycle.
+    pub fn last_state(&self) -> Option<GripperState> {
+        self.last_state
     }
 
     /// The effort last sent, if any.

@@ -43,6 +43,7 @@
 //! ```
 
 mod servo;
+mod trace;
 
 pub use servo::{
     Load, MX28_NO_LOAD_SPEED_RAD_S, MX28_STALL_CURRENT_A, MX28_STALL_TORQUE_NM, Plant, ServoParams,
@@ -109,6 +110,8 @@ pub struct SimConfig {
     pub initial_position_rad: f64,
     /// Whether simulated time also follows the wall clock.
     pub pace: Pace,
+    /// Keep a trace of every instruction executed, one line each ([`SimBus::take_trace`]).
+    pub trace: bool,
 }
 
 impl SimConfig {
@@ -122,6 +125,7 @@ impl SimConfig {
             step: Duration::from_micros(250),
             initial_position_rad: std::f64::consts::PI,
             pace: Pace::Bus,
+            trace: false,
         }
     }
 }
@@ -156,6 +160,8 @@ struct World {
     physics_now: Duration,
     step: Duration,
     baud: u32,
+    /// Where trace lines go, when the bus keeps a trace.
+    trace: Option<Sender<String>>,
 }
 
 impl World {
@@ -171,6 +177,7 @@ impl World {
             physics_now: Duration::ZERO,
             step: config.step.max(Duration::from_micros(1)),
             baud: config.baud,
+            trace: None,
         }
     }
 
@@ -299,6 +306,10 @@ impl World {
     fn handle(&mut self, p: &Packet) -> Vec<u8> {
         let mut out = Vec::new();
         self.advance(self.wire(p.wire_len));
+        if let Some(trace) = &self.trace {
+            // The receiver may be gone (nobody reads the trace): nothing to do then.
+            let _ = trace.send(trace::line(&MX_28, self.now, p));
+        }
         let broadcast = p.id == packet_id::BROADCAST;
         let u16_at = |b: &[u8], i: usize| u16::from_le_bytes([b[i], b[i + 1]]);
         let prm = &p.params;
@@ -455,6 +466,7 @@ pub struct SimBus {
     stop: Arc<AtomicBool>,
     thread: Option<JoinHandle<()>>,
     client_path: PathBuf,
+    trace: Option<Receiver<String>>,
 }
 
 impl std::fmt::Debug for SimBus {
@@ -477,7 +489,13 @@ impl SimBus {
             use std::os::fd::AsRawFd;
             std::fs::read_link(format!("/proc/self/fd/{}", client.as_raw_fd()))?
         };
-        let world = Arc::new(Mutex::new(World::new(&config)));
+        let mut world = World::new(&config);
+        let trace = config.trace.then(|| {
+            let (tx, rx) = channel();
+            world.trace = Some(tx);
+            rx
+        });
+        let world = Arc::new(Mutex::new(world));
         let stop = Arc::new(AtomicBool::new(false));
         let (tx, acks) = channel();
         // The thread notices `stop` within one read timeout.
@@ -498,9 +516,17 @@ impl SimBus {
                 stop,
                 thread: Some(thread),
                 client_path,
+                trace,
             },
             client,
         ))
+    }
+
+    /// The instruction trace ([`SimConfig::trace`]): one line per instruction executed, in
+    /// the order executed (see the `trace` lines' format in the `dxl-sim` binary's docs).
+    /// `None` without a trace, or once taken.
+    pub fn take_trace(&mut self) -> Option<Receiver<String>> {
+        self.trace.take()
     }
 
     /// The client end's device path (`/dev/pts/N`), for another process to open.

@@ -5,11 +5,13 @@
 //!
 //! Safe state: when the last node publishing goals leaves the graph while the arm moves (its
 //! liveliness token goes: a crash, a kill, a lost link), the arm is stopped (stopL) at once;
-//! so it is when the node itself stops.
+//! so it is when the node itself stops, however it stops. The link to the controller is
+//! checked every cycle: a controller that goes away ends the node, saying so.
 
 use super::commanders::Commanders;
 use super::error::CellError;
-use super::pace::{Pacer, Stop};
+use super::pace::Pacer;
+use crate::stop::Stop;
 use hand_traits::LinearMotion;
 use hand_zenoh::convert::{header, pose_from_msg, pose_to_msg};
 use hand_zenoh::msg::geometry_msgs::PoseStamped;
@@ -67,6 +69,16 @@ pub struct ArmNodeReport {
     pub safe_stops: u64,
 }
 
+impl core::fmt::Display for ArmNodeReport {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "{} goals, {} moves done, {} stops asked, {} safe stops",
+            self.goals, self.moves_done, self.stops, self.safe_stops
+        )
+    }
+}
+
 /// Runs the arm node on `node` until `stop`.
 pub fn run(
     node: &Node,
@@ -74,7 +86,11 @@ pub fn run(
     config: &ArmNodeConfig,
     stop: &Stop,
 ) -> Result<ArmNodeReport, CellError> {
-    let ur = |e| CellError::device("arm", e);
+    let host = arm.config().host.clone();
+    let ur = |e: ur_bridge::UrError| CellError::Device {
+        device: "arm",
+        reason: format!("controller at {host}: {e}"),
+    };
     let mut goals = node.subscription::<PoseStamped>("goal", 16)?;
     let mut joints = node.publisher::<JointState>("joint_states")?;
     let mut tcp = node.publisher::<PoseStamped>("tcp_pose")?;
@@ -97,61 +113,76 @@ pub fn run(
         position: vec![0.0; UR_JOINTS.len()],
         ..JointState::default()
     };
-    let result = loop {
-        // A stop request first: it is answered before the node looks at anything else.
-        if asked.swap(false, Ordering::Relaxed) {
-            current = None;
-            if let Err(e) = arm.stop_linear(config.stop_decel_m_per_s2) {
-                break Err(ur(e));
+    // The loop, in a closure so that every way out of it (`?` included) reaches the stop below.
+    let mut body = || -> Result<(), CellError> {
+        loop {
+            // A stop request first: it is answered before the node looks at anything else.
+            if asked.swap(false, Ordering::Relaxed) {
+                current = None;
+                arm.stop_linear(config.stop_decel_m_per_s2).map_err(ur)?;
+                report.stops += 1;
             }
-            report.stops += 1;
-        }
-        if stop.is_set() {
-            break Ok(());
-        }
-        if commanders.last_left()? && current.take().is_some() {
-            arm.stop_linear(config.stop_decel_m_per_s2).map_err(ur)?;
-            report.safe_stops += 1;
-        }
-        let mut latest = None;
-        while let Some(g) = goals.try_recv()? {
-            latest = Some(g.message);
-        }
-        if let Some(goal) = latest {
-            report.goals += 1;
-            match arm.start_move_linear(&pose_from_msg(&goal.pose), &config.motion) {
-                Ok(h) => current = Some(h),
-                Err(e) => break Err(ur(e)),
+            if stop.is_set() {
+                return Ok(());
             }
-        }
-        if let Some(h) = &current {
-            match arm.progress(h) {
-                Ok(p) if !p.running => {
+            // The link is watched every cycle: a controller gone (powered off, its process
+            // killed, the cable pulled) ends the node at once.
+            if !arm.is_connected().map_err(ur)? {
+                return Err(ur(ur_bridge::UrError::ConnectionLost));
+            }
+            if commanders.last_left()? && current.take().is_some() {
+                arm.stop_linear(config.stop_decel_m_per_s2).map_err(ur)?;
+                report.safe_stops += 1;
+            }
+            let mut latest = None;
+            while let Some(g) = goals.try_recv()? {
+                latest = Some(g.message);
+            }
+            if let Some(goal) = latest {
+                report.goals += 1;
+                current = Some(
+                    arm.start_move_linear(&pose_from_msg(&goal.pose), &config.motion)
+                        .map_err(ur)?,
+                );
+            }
+            if let Some(h) = &current {
+                if !arm.progress(h).map_err(ur)?.running {
                     current = None;
                     report.moves_done += 1;
                 }
-                Ok(_) => {}
-                Err(e) => break Err(ur(e)),
             }
+            let h = header(now_ns(), &config.frame_id);
+            let pose = arm.tool_pose().map_err(ur)?;
+            let q = arm.joint_positions().map_err(ur)?;
+            tcp.publish(&PoseStamped {
+                header: h.clone(),
+                pose: pose_to_msg(&pose),
+            })?;
+            joint_msg.header = h;
+            joint_msg.position.copy_from_slice(&q);
+            joints.publish(&joint_msg)?;
+            pacer.wait();
         }
-        let h = header(now_ns(), &config.frame_id);
-        let (pose, q) = match (arm.tool_pose(), arm.joint_positions()) {
-            (Ok(p), Ok(q)) => (p, q),
-            (Err(e), _) | (_, Err(e)) => break Err(ur(e)),
-        };
-        tcp.publish(&PoseStamped {
-            header: h.clone(),
-            pose: pose_to_msg(&pose),
-        })?;
-        joint_msg.header = h;
-        joint_msg.position.copy_from_slice(&q);
-        joints.publish(&joint_msg)?;
-        pacer.wait();
     };
-    if current.is_some() {
-        // Leaving mid-move (stopped, or a fault): the arm does not go on alone.
-        let _ = arm.stop_linear(config.stop_decel_m_per_s2);
-        report.safe_stops += 1;
+    let ended = body();
+    // However the node ended, an arm still moving is stopped (stopL), if it can be told.
+    let left = match current {
+        None => "arm not moving".to_owned(),
+        Some(_) => match arm.stop_linear(config.stop_decel_m_per_s2) {
+            Ok(()) => {
+                report.safe_stops += 1;
+                "arm stopped mid-move (stopL)".to_owned()
+            }
+            Err(e) => {
+                format!("the arm's stop (stopL) could not be sent ({e}): it may finish its move")
+            }
+        },
+    };
+    match ended {
+        Ok(()) => Ok(report),
+        Err(e) => Err(CellError::Left {
+            error: Box::new(e),
+            left,
+        }),
     }
-    result.map(|()| report)
 }

@@ -5,9 +5,9 @@ use super::NodeArgs;
 use super::error::CellError;
 use super::file::Part;
 use super::launch::{self, CellRun};
-use super::pace::Stop;
 use crate::Outcome;
 use crate::progress::{Bars, Progress as _};
+use crate::stop::{Stop, StopReason};
 use std::path::{Path, PathBuf};
 
 /// `node SCENE [--part P [--namespace NS]] [--connect E] [--domain N] [--humble]`.
@@ -49,14 +49,16 @@ impl NodeCommand {
     }
 
     /// Runs the named part, or every part `scene_parts` gives, each with `run` on its own
-    /// thread until stdin closes; prints what each did on stderr. A part that fails stops the
-    /// others (each ends in its safe state) and the exit status says so.
+    /// thread until stdin closes or a signal (SIGINT, SIGTERM, SIGHUP) stops it; prints what
+    /// each did on stderr. A part that fails stops the others (each ends through its end
+    /// action or stop) and the exit status says so: the failure's (as `handstack run`'s), else
+    /// 128 + the signal's number, else 0.
     pub fn main(
         &self,
         scene_parts: impl FnOnce() -> Result<Vec<Part>, CellError>,
         run: impl Fn(&NodeArgs, &Stop) -> Result<String, CellError> + Sync,
     ) -> std::process::ExitCode {
-        let stop = Stop::new();
+        let stop = crate::stop::signal_stop();
         stop.on_stdin_eof();
         let parts = match self.part {
             Some(p) => vec![p],
@@ -72,7 +74,7 @@ impl NodeCommand {
                 }
             },
         };
-        let failed = std::thread::scope(|scope| {
+        let failed: Option<u8> = std::thread::scope(|scope| {
             let handles: Vec<_> = parts
                 .iter()
                 .map(|&part| {
@@ -86,7 +88,7 @@ impl NodeCommand {
                     })
                 })
                 .collect();
-            let mut failed = false;
+            let mut failed = None;
             for h in handles {
                 match h.join() {
                     Ok((args, Ok(done))) => {
@@ -94,21 +96,22 @@ impl NodeCommand {
                     }
                     Ok((args, Err(e))) => {
                         eprintln!("error: {} {}: {e}", args.namespace, args.part.as_str());
-                        failed = true;
+                        failed = failed.or(Some(e.exit_code()));
                     }
                     Err(_) => {
                         stop.set();
-                        failed = true;
+                        failed = failed.or(Some(crate::error::EXIT_FAULT));
                     }
                 }
             }
             failed
         });
-        if failed {
-            std::process::ExitCode::FAILURE
-        } else {
-            std::process::ExitCode::SUCCESS
-        }
+        let code = match (failed, stop.reason()) {
+            (Some(code), _) => code,
+            (None, Some(r @ StopReason::Signal(_))) => r.exit_code(),
+            (None, _) => 0,
+        };
+        std::process::ExitCode::from(code)
     }
 }
 
@@ -135,8 +138,8 @@ impl CellCommand {
             }
         };
         let bars = Bars::new(!self.json);
-        let stop = Stop::new();
-        let runs = crate::summary::run_each(&self.cells, self.json, &bars, |path| {
+        let stop = crate::stop::signal_stop();
+        let runs = crate::summary::run_each(&self.cells, self.json, &bars, &stop, |path| {
             let taps = super::file::CellFile::load(path)?
                 .coordinator
                 .tap_to_move
@@ -145,10 +148,12 @@ impl CellCommand {
             let run = launch::run(path, &program, &stop, |_| bars.advance(1))?;
             Ok::<_, CellError>(outcome(path, &run))
         });
-        if runs.failures.is_empty() {
-            std::process::ExitCode::SUCCESS
-        } else {
-            std::process::ExitCode::FAILURE
-        }
+        std::process::ExitCode::from(runs.exit_code)
+    }
+}
+
+impl crate::summary::ExitStatus for CellError {
+    fn exit_code(&self) -> u8 {
+        CellError::exit_code(self)
     }
 }

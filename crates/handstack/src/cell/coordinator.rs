@@ -8,7 +8,7 @@
 //! message the loss was seen.
 
 use super::error::CellError;
-use super::pace::Stop;
+use crate::stop::Stop;
 use hand_traits::Pose;
 use hand_zenoh::convert::{header, pose_from_msg, pose_to_msg};
 use hand_zenoh::keys::{EntityKind, mangle};

@@ -24,9 +24,10 @@ pub enum CellError {
         /// What happened (not seen within N s; left after N taps, seen N ms after).
         what: String,
     },
-    /// A device could not be opened (what `handstack run` says of it).
+    /// What `handstack run` would say: a device that cannot be opened, a fault or a stop that
+    /// ended a loop (after the hand's end action).
     #[error(transparent)]
-    Open(Box<crate::RunError>),
+    Run(Box<crate::RunError>),
     /// The scene file is wrong.
     #[error(transparent)]
     Scene(Box<crate::scene::SceneError>),
@@ -37,6 +38,14 @@ pub enum CellError {
         path: String,
         /// What is wrong.
         reason: String,
+    },
+    /// A node ended on `error`, its device left as `left` says (`hand released …`).
+    #[error("{error}; {left}")]
+    Left {
+        /// What ended it.
+        error: Box<CellError>,
+        /// What its device was left doing.
+        left: String,
     },
     /// A node process could not be started or failed.
     #[error("node process `{node}`: {reason}")]
@@ -49,17 +58,29 @@ pub enum CellError {
 }
 
 impl CellError {
-    pub(crate) fn device(device: &'static str, e: impl core::fmt::Debug) -> CellError {
+    pub(crate) fn device(device: &'static str, e: impl core::fmt::Display) -> CellError {
         CellError::Device {
             device,
-            reason: format!("{e:?}"),
+            reason: e.to_string(),
+        }
+    }
+
+    /// The exit status a node or cell process ends with for this error: `handstack run`'s
+    /// for a device or a loop ([`RunError::exit_code`](crate::RunError::exit_code)), 3 for a
+    /// device that failed in a node, else 1.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            CellError::Run(e) => e.exit_code(),
+            CellError::Left { error, .. } => error.exit_code(),
+            CellError::Device { .. } => crate::error::EXIT_FAULT,
+            _ => crate::error::EXIT_NOT_STARTED,
         }
     }
 }
 
 impl From<crate::RunError> for CellError {
     fn from(e: crate::RunError) -> CellError {
-        CellError::Open(Box::new(e))
+        CellError::Run(Box::new(e))
     }
 }
 

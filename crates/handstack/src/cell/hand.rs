@@ -9,12 +9,18 @@
 //!
 //! Safe state: when the last node publishing commands leaves the graph while the loop runs (its
 //! command stream stops: a crash, a kill, a lost link), the hand goes to its configured safe
-//! action at once and the loop idles until started again; so it does when the node stops.
+//! action at once and the loop idles until started again. When the node ends — stopped (a
+//! signal, stdin closed), or at the first fault its scene does not recover from — the hand
+//! gets its end action (`[hand] on_end`: release by default), as in `handstack run`.
 
 use super::commanders::Commanders;
 use super::error::CellError;
-use super::pace::{Pacer, Stop};
+use super::pace::Pacer;
+use crate::error::{Ending, RunError};
+use crate::runs::grasp::{FaultWatch, left_text};
+use crate::scene::experiment::Recover;
 use crate::scene::parts::ForceModel;
+use crate::stop::Stop;
 use hand_control::grasp_loop::{GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator};
 use hand_traits::{Effort, PressureFrame, TactileSource};
 use hand_zenoh::convert::header;
@@ -35,10 +41,14 @@ pub struct HandNodeConfig {
     pub frame_id: String,
     /// The built-in force DNN `force` is published from (`None`: no `force` topic).
     pub force: Option<ForceModel>,
+    /// What the hand is called in messages (`servo bus /dev/ttyUSB0`).
+    pub hand: String,
+    /// The scene's recovery (`None`: the first fault ends the node).
+    pub recover: Option<Recover>,
 }
 
 /// What the hand node did.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct HandNodeReport {
     /// Loop cycles run.
     pub cycles: u64,
@@ -57,6 +67,27 @@ pub struct HandNodeReport {
     pub forces: u64,
     /// Frames the force DNN refused (counted, not published).
     pub forces_refused: u64,
+    /// What the end action left the hand doing, in words.
+    pub left: String,
+}
+
+impl core::fmt::Display for HandNodeReport {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "{} cycles; goals: {} taken, {} refused; {} starts, {} stops, {} safe stops; \
+             forces: {} published, {} frames refused; hand {}",
+            self.cycles,
+            self.commands,
+            self.refused,
+            self.starts,
+            self.stops,
+            self.safe_stops,
+            self.forces,
+            self.forces_refused,
+            self.left
+        )
+    }
 }
 
 const IDLE: u8 = 0;
@@ -85,9 +116,15 @@ pub fn run<S, A, C>(
 ) -> Result<HandNodeReport, CellError>
 where
     S: TactileSource<Frame = PressureFrame<3>>,
+    S::Error: core::fmt::Display,
     A: RebootableActuator,
+    A::Error: std::error::Error + 'static,
     C: LoopClock,
 {
+    let config = LoopConfig {
+        recovery: crate::runs::grasp::recovery(node_config.recover),
+        ..config
+    };
     let band = config.band;
     let safe_action = config.safe_action;
     let policy = fuzzy_mamdani::grasp_controller().with_torque_band(band.min_raw(), band.max_raw());
@@ -117,6 +154,7 @@ where
     let mut commanders = Commanders::watch(node, "gripper/command")?;
     let mut running = false;
     let mut report = HandNodeReport::default();
+    let mut faults = FaultWatch::new(node_config.recover, &node_config.hand);
     let mut pacer = Pacer::new(node_config.rate_hz);
     // One message, its name set once; each cycle updates its stamp and values.
     let mut joint_msg = JointState {
@@ -132,80 +170,98 @@ where
             .safe_stop(safe_action)
             .map_err(|e| CellError::device("hand", e))
     };
-    let result = loop {
-        match asked.swap(IDLE, Ordering::Relaxed) {
-            START if !running => {
-                running = true;
-                report.starts += 1;
+    // The loop, in a closure so that every way out of it (`?` included) reaches the end
+    // action below. `Ok(Some(what))`: a fault ended it.
+    let mut body = || -> Result<Option<String>, CellError> {
+        loop {
+            match asked.swap(IDLE, Ordering::Relaxed) {
+                START if !running => {
+                    running = true;
+                    report.starts += 1;
+                }
+                STOP if running => {
+                    running = false;
+                    report.stops += 1;
+                    safe(&mut grasp)?;
+                }
+                _ => {}
             }
-            STOP if running => {
+            if stop.is_set() {
+                return Ok(None);
+            }
+            if commanders.last_left()? && running {
                 running = false;
-                report.stops += 1;
-                if let Err(e) = safe(&mut grasp) {
-                    break Err(e);
+                report.safe_stops += 1;
+                safe(&mut grasp)?;
+            }
+            while let Some(c) = commands.try_recv()? {
+                match grasp.set_goal_rad(c.message.position_rad) {
+                    Ok(()) => report.commands += 1,
+                    Err(_) => report.refused += 1,
                 }
             }
-            _ => {}
-        }
-        if stop.is_set() {
-            break Ok(());
-        }
-        if commanders.last_left()? && running {
-            running = false;
-            report.safe_stops += 1;
-            safe(&mut grasp)?;
-        }
-        while let Some(c) = commands.try_recv()? {
-            match grasp.set_goal_rad(c.message.position_rad) {
-                Ok(()) => report.commands += 1,
-                Err(_) => report.refused += 1,
-            }
-        }
-        if running {
-            let sample = *grasp.cycle();
-            report.cycles += 1;
-            let h = header(now_ns(), &node_config.frame_id);
-            if let Some(f) = sample.frame {
-                raw.publish(&hs::PressureFrame {
-                    header: h.clone(),
-                    pressure_pa: f.pressure_pa.to_vec(),
-                })?;
-                if let (Some(topic), Some(zero)) = (&mut force, grasp.zero_pa()) {
-                    let zero = zero.map(|z| z as f32);
-                    if topic.publish(h.clone(), &rise_hpa(&f.pressure_pa, &zero))? {
-                        report.forces += 1;
+            if running {
+                let sample = *grasp.cycle();
+                report.cycles += 1;
+                if let Some(what) = faults.check(&grasp, &sample) {
+                    return Ok(Some(what));
+                }
+                let h = header(now_ns(), &node_config.frame_id);
+                if let Some(f) = sample.frame {
+                    raw.publish(&hs::PressureFrame {
+                        header: h.clone(),
+                        pressure_pa: f.pressure_pa.to_vec(),
+                    })?;
+                    if let (Some(topic), Some(zero)) = (&mut force, grasp.zero_pa()) {
+                        let zero = zero.map(|z| z as f32);
+                        if topic.publish(h.clone(), &rise_hpa(&f.pressure_pa, &zero))? {
+                            report.forces += 1;
+                        }
                     }
                 }
+                let gs = sample.state;
+                state.publish(&GraspState {
+                    header: h.clone(),
+                    mode: mode_code(sample.mode),
+                    pressure_pa: sample.estimate.map_or(f32::NAN, |e| e.pressure_pa),
+                    in_contact: sample.estimate.is_some_and(|e| e.in_contact),
+                    effort: sample
+                        .torque_raw
+                        .map_or(0.0, |r| Effort::from_torque_limit_raw(r).fraction()),
+                    position_rad: gs.map_or(f32::NAN, |s| s.position_rad),
+                    load_fraction: gs.map_or(f32::NAN, |s| s.load_fraction),
+                    faults: gs.map_or(0, |s| s.faults.bits()),
+                })?;
+                if let Some(s) = gs {
+                    joint_msg.header = h;
+                    joint_msg.position[0] = f64::from(s.position_rad);
+                    joint_msg.velocity[0] = f64::from(s.velocity_rad_per_s);
+                    joint_msg.effort[0] = f64::from(s.load_fraction);
+                    joints.publish(&joint_msg)?;
+                }
             }
-            let gs = sample.state;
-            state.publish(&GraspState {
-                header: h.clone(),
-                mode: mode_code(sample.mode),
-                pressure_pa: sample.estimate.map_or(f32::NAN, |e| e.pressure_pa),
-                in_contact: sample.estimate.is_some_and(|e| e.in_contact),
-                effort: sample
-                    .torque_raw
-                    .map_or(0.0, |r| Effort::from_torque_limit_raw(r).fraction()),
-                position_rad: gs.map_or(f32::NAN, |s| s.position_rad),
-                load_fraction: gs.map_or(f32::NAN, |s| s.load_fraction),
-                faults: gs.map_or(0, |s| s.faults.bits()),
-            })?;
-            if let Some(s) = gs {
-                joint_msg.header = h;
-                joint_msg.position[0] = f64::from(s.position_rad);
-                joint_msg.velocity[0] = f64::from(s.velocity_rad_per_s);
-                joint_msg.effort[0] = f64::from(s.load_fraction);
-                joints.publish(&joint_msg)?;
-            }
+            pacer.wait();
         }
-        pacer.wait();
     };
+    let ended = body();
     if running {
-        // Leaving mid-grasp (stopped, or a fault): the hand is left in its safe state.
-        let _ = safe(&mut grasp);
         report.safe_stops += 1;
     }
+    // The one shutdown path: however the loop ended, the hand gets its end action now.
+    let end = grasp.end();
+    let last_torque = grasp.log().iter().rev().find_map(|s| s.torque_raw);
+    report.left = left_text(&end, last_torque);
     // The topic counts what its estimator refused.
     report.forces_refused = force.as_ref().map_or(0, ForceTopic::refused);
-    result.map(|()| report)
+    match ended {
+        Ok(None) => Ok(report),
+        Ok(Some(what)) => Err(CellError::from(RunError::Ended {
+            ending: Ending::Fault,
+            what: format!("{what}; hand {}", report.left),
+        })),
+        Err(e) => Err(CellError::Left {
+            error: Box::new(e),
+            left: format!("hand {}", report.left),
+        }),
+    }
 }

@@ -8,7 +8,7 @@
 use super::coordinator::{self, CellReport, CellRow, TapToMoveCell};
 use super::error::CellError;
 use super::file::CellFile;
-use super::pace::Stop;
+use crate::stop::Stop;
 use hand_zenoh::config::SessionConfig;
 use hand_zenoh::node::{Node, NodeOptions, Router};
 use std::io::{BufRead as _, BufReader};

@@ -32,9 +32,10 @@ pub mod pad;
 pub mod real;
 pub mod tactile;
 
+pub use crate::stop::Stop;
 pub use error::CellError;
 pub use file::{CellFile, NodeEntry, Part};
-pub use pace::{Pacer, Stop};
+pub use pace::Pacer;
 
 use crate::scene::SceneOf;
 use hand_zenoh::HashMode;
@@ -94,14 +95,14 @@ pub fn scene_parts<X>(scene: &SceneOf<X>) -> Vec<Part> {
 #[cfg(test)]
 mod tests {
     use super::{Part, scene_parts};
-    use crate::scene::Scene;
+    use crate::scene::NodeScene as Scene;
 
     #[test]
     fn a_scenes_parts_are_the_devices_it_names() {
         let tip = "title = \"t\"\n[sensors.fingertip]\nosr = 1024\n\
                    i2c_buses = [\"/dev/i2c-1\", \"/dev/i2c-2\", \"/dev/i2c-3\"]\n";
-        let rest = "[arm]\nmodel = \"ur3\"\nhost = \"192.168.0.10\"\n\
-                    [experiment.readout]\nframes = 10\n";
+        // A node's scene: an arm, no experiment needed.
+        let rest = "[arm]\nmodel = \"ur3\"\nhost = \"192.168.0.10\"\n";
         let scene = Scene::parse("t.toml", &format!("{tip}{rest}")).unwrap();
         assert_eq!(scene_parts(&scene), [Part::Fingertip, Part::Arm]);
         let pad = "[sensors.imu_pad]\ni2c_bus = \"/dev/i2c-4\"\n";

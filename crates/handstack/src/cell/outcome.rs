@@ -24,6 +24,7 @@ pub fn outcome(name: &str, run: &CellRun) -> Outcome {
     Outcome {
         scene: name.to_owned(),
         title: run.cell.title.clone(),
+        notes: Vec::new(),
         figures: vec![
             figure(
                 "taps",

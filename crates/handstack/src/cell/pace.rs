@@ -1,7 +1,5 @@
-//! A node loop's period and its stop flag.
+//! A node loop's period.
 
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 /// Keeps a loop at a rate: each [`wait`](Pacer::wait) sleeps until the next tick (a tick missed
@@ -34,36 +32,5 @@ impl Pacer {
             Some(left) => std::thread::sleep(left),
             None => self.next = now,
         }
-    }
-}
-
-/// A shared stop flag: set by a signal, by stdin closing (a node under `cell`), or by a test.
-#[derive(Debug, Clone, Default)]
-pub struct Stop(Arc<AtomicBool>);
-
-impl Stop {
-    /// A flag not set.
-    pub fn new() -> Stop {
-        Stop::default()
-    }
-
-    /// Sets it.
-    pub fn set(&self) {
-        self.0.store(true, Ordering::Relaxed);
-    }
-
-    /// Whether it is set.
-    pub fn is_set(&self) -> bool {
-        self.0.load(Ordering::Relaxed)
-    }
-
-    /// Sets it when stdin reaches its end (the cell closes a node's stdin to stop it).
-    pub fn on_stdin_eof(&self) {
-        let stop = self.clone();
-        std::thread::spawn(move || {
-            let mut sink = Vec::new();
-            let _ = std::io::Read::read_to_end(&mut std::io::stdin(), &mut sink);
-            stop.set();
-        });
     }
 }

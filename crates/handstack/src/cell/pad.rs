@@ -4,7 +4,8 @@
 //! the node has one).
 
 use super::error::CellError;
-use super::pace::{Pacer, Stop};
+use super::pace::Pacer;
+use crate::stop::Stop;
 use hand_traits::{Contact, ImuFrame, TactileSource};
 use hand_zenoh::convert::{contact_to_msg, header, imu_to_msg};
 use hand_zenoh::msg::handstack_msgs::{ContactArray, PressureFrame};
@@ -34,6 +35,12 @@ pub struct PadNodeReport {
     pub contacts: u64,
 }
 
+impl core::fmt::Display for PadNodeReport {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "{} frames, {} contacts", self.frames, self.contacts)
+    }
+}
+
 /// Locates the tap in a window of frames: the contact locator behind the pad node.
 pub type Locate<'a> = &'a mut dyn FnMut(&[ImuFrame]) -> Result<Contact, CellError>;
 
@@ -49,6 +56,7 @@ pub fn run<S>(
 ) -> Result<PadNodeReport, CellError>
 where
     S: TactileSource<Frame = ImuFrame>,
+    S::Error: core::fmt::Display,
 {
     let mut imu = node.publisher::<Imu>("imu")?;
     let mut raw = node.publisher::<PressureFrame>("tactile/raw")?;

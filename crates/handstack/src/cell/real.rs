@@ -5,13 +5,11 @@ use super::arm::{self, ArmNodeConfig};
 use super::error::CellError;
 use super::file::Part;
 use super::hand::{self, HandNodeConfig};
-use super::pace::Stop;
 use super::pad::{self, PadNodeConfig};
 use super::{NodeArgs, tactile};
-use crate::scene::Scene;
-use crate::stack::platform::LinuxPlatform;
-use crate::stack::platform::Platform as _;
-use hand_control::grasp_loop::LoopConfig;
+use crate::scene::NodeScene;
+use crate::stack::platform::Platform;
+use crate::stop::Stop;
 use hand_zenoh::node::Node;
 use hand_zenoh::tactile::TactileInfo;
 use ur_bridge::tap_to_move::TapToMoveConfig;
@@ -20,7 +18,12 @@ use ur_bridge::tap_to_move::TapToMoveConfig;
 pub const FINGERTIP_RATE_HZ: f32 = 100.0;
 
 /// Runs `args.part` of `scene` on its real device as a node until `stop`; says what it did.
-pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, CellError> {
+pub fn run_node(
+    scene: &NodeScene,
+    args: &NodeArgs,
+    stop: &Stop,
+    platform: &dyn Platform,
+) -> Result<String, CellError> {
     let frame_id = args.namespace.trim_start_matches('/').to_owned();
     match args.part {
         Part::Arm => {
@@ -39,10 +42,10 @@ pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, C
                 frame_id: format!("{frame_id}_base"),
                 ..ArmNodeConfig::default()
             };
-            Ok(format!("{:?}", arm::run(&node, &mut ur, &config, stop)?))
+            Ok(arm::run(&node, &mut ur, &config, stop)?.to_string())
         }
         Part::Fingertip => {
-            let tip = crate::stack::fingertip::open(scene, &LinuxPlatform::new())?;
+            let tip = crate::stack::fingertip::open(scene, platform)?;
             let node = Node::open(args.options())?;
             let info = TactileInfo {
                 chip: "MS5611".into(),
@@ -53,18 +56,25 @@ pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, C
             Ok(format!("{frames} frames"))
         }
         Part::Hand => {
-            let platform = LinuxPlatform::new();
-            let tip = crate::stack::fingertip::open(scene, &platform)?;
-            let servo = crate::stack::hand::open_scene(scene)?;
-            let config = match scene.file.experiment.get_ref().grasp.as_ref() {
-                Some(g) => crate::runs::grasp::loop_config(g.get_ref())?,
-                None => LoopConfig::new(),
-            };
+            let (hand, port) = crate::stack::hand::scene_hand(scene)?;
+            let grasp = scene
+                .file
+                .experiment
+                .get_ref()
+                .0
+                .grasp
+                .as_ref()
+                .map(|g| g.get_ref());
+            let config = crate::runs::grasp::loop_config(grasp, hand)?;
+            let tip = crate::stack::fingertip::open(scene, platform)?;
+            let servo = crate::stack::hand::open(hand, port)?;
             let node = Node::open(args.options())?;
             let hand_config = HandNodeConfig {
                 rate_hz: 1e6 / config.period_us as f64,
                 frame_id,
                 force: scene.force_model(),
+                hand: crate::stack::hand::bus_label(port),
+                recover: grasp.and_then(|g| g.recover.as_ref().map(|r| *r.get_ref())),
             };
             let report = hand::run(
                 &node,
@@ -75,7 +85,7 @@ pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, C
                 &hand_config,
                 stop,
             )?;
-            Ok(format!("{report:?}"))
+            Ok(report.to_string())
         }
         Part::Pad => {
             let pad = scene
@@ -92,8 +102,7 @@ pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, C
                 device: "sensors.imu_pad",
                 reason: "the scene's [sensors.imu_pad] names no i2c_bus".into(),
             })?;
-            let mut source =
-                crate::stack::pad::open(&LinuxPlatform::new(), bus.get_ref(), pad.pressure_mode)?;
+            let mut source = crate::stack::pad::open(platform, bus.get_ref(), pad.pressure_mode)?;
             let node = Node::open(args.options())?;
             let config = PadNodeConfig {
                 rate_hz: imu_icm20789::TAP_PAD_RATE_HZ,
@@ -103,7 +112,7 @@ pub fn run_node(scene: &Scene, args: &NodeArgs, stop: &Stop) -> Result<String, C
             };
             // No locator: the contact CNN (tactile-nets with `std`) is not in this binary.
             let report = pad::run(&node, &mut source, None, &config, stop)?;
-            Ok(format!("{report:?}"))
+            Ok(report.to_string())
         }
     }
 }

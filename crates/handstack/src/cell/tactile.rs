@@ -3,8 +3,9 @@
 //! stopped.
 
 use super::error::CellError;
-use super::pace::{Pacer, Stop};
+use super::pace::Pacer;
 use crate::scene::parts::ForceModel;
+use crate::stop::Stop;
 use hand_control::grasp_loop::LoopConfig;
 use hand_traits::{PressureFrame, TactileSource};
 use hand_zenoh::node::Node;

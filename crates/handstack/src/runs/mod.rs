@@ -11,6 +11,7 @@ use crate::error::RunError;
 use crate::progress::Progress;
 use crate::scene::{Scene, SceneOf};
 use crate::stack::platform::{LinuxPlatform, Platform};
+use crate::stop::Stop;
 use crate::{Figure, Outcome, Plot};
 use std::time::Instant;
 
@@ -20,6 +21,8 @@ pub struct RunContext<'a> {
     pub progress: &'a dyn Progress,
     /// Where hardware buses, delays and the clock come from (Linux by default).
     pub platform: Box<dyn Platform>,
+    /// Ends the run early (the `handstack` binary sets it on SIGINT, SIGTERM and SIGHUP).
+    pub stop: Stop,
 }
 
 impl<'a> RunContext<'a> {
@@ -28,7 +31,13 @@ impl<'a> RunContext<'a> {
         Self {
             progress,
             platform: Box::new(LinuxPlatform::new()),
+            stop: Stop::new(),
         }
+    }
+
+    /// This context, ended early by `stop`.
+    pub fn with_stop(self, stop: Stop) -> Self {
+        Self { stop, ..self }
     }
 
     /// This context with its hardware opened through `platform` instead of Linux's device
@@ -48,21 +57,25 @@ pub struct Part {
     pub figures: Vec<Figure>,
     /// Plot data, report order.
     pub plots: Vec<Plot>,
+    /// What the run left its devices doing, one line each (`hand released …`).
+    pub notes: Vec<String>,
 }
 
 impl Part {
     /// The parts joined into the outcome of `scene` (its name and title), begun at `start`.
     pub fn join<X>(scene: &SceneOf<X>, parts: Vec<Part>, start: Instant) -> Outcome {
-        let (mut figures, mut plots) = (Vec::new(), Vec::new());
+        let (mut figures, mut plots, mut notes) = (Vec::new(), Vec::new(), Vec::new());
         for p in parts {
             figures.extend(p.figures);
             plots.extend(p.plots);
+            notes.extend(p.notes);
         }
         Outcome {
             scene: scene.name.clone(),
             title: scene.file.title.clone(),
             figures,
             plots,
+            notes,
             wall_s: start.elapsed().as_secs_f64(),
         }
     }
@@ -85,6 +98,7 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
             &mut tip,
             *r.get_ref().frames.get_ref(),
             cx.progress,
+            &cx.stop,
         )?);
     }
     Ok(Part::join(scene, parts, start))

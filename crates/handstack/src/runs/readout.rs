@@ -3,19 +3,36 @@
 
 use super::Part;
 use super::figure::measured;
+use crate::error::{Ending, RunError};
 use crate::progress::Progress;
+use crate::stop::Stop;
 use crate::{Line, Plot};
 use hand_traits::{PressureFrame, TactileSource};
 
 /// Reads `n` frames from `source` (any fingertip of three sensors) and reports its rate and
-/// noise; a read error ends the readout with that error.
-pub fn run<S>(source: &mut S, n: usize, progress: &dyn Progress) -> Result<Part, S::Error>
+/// noise; a read error ends the readout with that error, `stop` with how many frames it read.
+pub fn run<S>(
+    source: &mut S,
+    n: usize,
+    progress: &dyn Progress,
+    stop: &Stop,
+) -> Result<Part, RunError>
 where
     S: TactileSource<Frame = PressureFrame<3>> + ?Sized,
+    RunError: From<S::Error>,
 {
     progress.stage("readout: fingertip frames", n as u64);
     let mut frames = Vec::with_capacity(n);
     for _ in 0..n {
+        if let Some(reason) = stop.reason() {
+            return Err(RunError::Ended {
+                ending: Ending::Stopped(reason),
+                what: format!(
+                    "readout: stopped by {reason} after {} of {n} frames",
+                    frames.len()
+                ),
+            });
+        }
         frames.push(source.read_frame()?);
         progress.advance(1);
     }

@@ -29,6 +29,21 @@ pub struct Grasp {
     pub hold_s: Spanned<f64>,
     /// The fingers' goal position while closing, rad (default: hand-control's 0.2 rad).
     pub goal_rad: Option<Spanned<f32>>,
+    /// Recover from servo hardware faults instead of ending at the first fault:
+    /// `recover = { attempts = 2, within_s = 5 }` reboots a faulted servo up to `attempts`
+    /// times; a fault not cleared within `within_s` ends the run. A lost device always ends it.
+    pub recover: Option<Spanned<Recover>>,
+}
+
+/// `recover = { attempts, within_s }` of a grasp.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Recover {
+    /// Reboots allowed in the run, 1…10.
+    pub attempts: u32,
+    /// How long the hand may stay in its safe state after a fault before the run ends,
+    /// s (0.1…60).
+    pub within_s: f64,
 }
 
 /// Reads the fingertip at rest: frame period and per-sensor noise at its OSR.
@@ -117,41 +132,92 @@ impl ExperimentTable for Experiments {
     }
 
     fn check(scene: &SceneFile<Self>, cx: &Checker<'_>) -> Result<(), SceneError> {
-        hardware_only(scene, cx)?;
-        let x = scene.experiment.get_ref();
-        if let Some(g) = &x.grasp {
-            check_grasp_parts(scene, g, cx)?;
-            let band = &g.get_ref().torque_band;
-            let [lo, hi] = *band.get_ref();
-            if lo > hi || hi > 1023 {
-                return Err(cx.err(
-                    band.span(),
-                    "experiment.grasp.torque_band",
-                    format!("is [{lo}, {hi}]"),
-                    "[least, greatest] with least ≤ greatest ≤ 1023",
-                ));
-            }
-            check_hold_s(&g.get_ref().hold_s, cx)?;
-            if let Some(goal) = &g.get_ref().goal_rad {
-                if !goal.get_ref().is_finite() {
-                    return Err(cx.err(
-                        goal.span(),
-                        "experiment.grasp.goal_rad",
-                        format!("is {}", goal.get_ref()),
-                        "a finite angle, rad",
-                    ));
-                }
-            }
+        if let Some(arm) = &scene.arm {
+            return Err(cx.err(
+                arm.span(),
+                "arm",
+                "is named, but no experiment of `handstack run` moves an arm",
+                "no [arm] in a scene to run; `handstack node SCENE --part arm` runs an arm as a \
+                 ROS 2 node (feature `cell`)",
+            ));
         }
-        if let Some(r) = &x.readout {
-            check_readout(scene, r, cx)?;
-        }
-        Ok(())
+        check_experiments(scene, scene.experiment.get_ref(), cx)
     }
 }
 
+/// The `[experiment]` of a scene `handstack node` runs: `handstack run`'s tables, none
+/// required, and an `[arm]` welcome (the arm node moves it).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(transparent)]
+pub struct NodeExperiments(pub Experiments);
+
+impl ExperimentTable for NodeExperiments {
+    const ALLOWED: &'static str = Experiments::ALLOWED;
+    const REQUIRED: bool = false;
+
+    fn names(&self) -> Vec<&'static str> {
+        self.0.names()
+    }
+
+    fn check(scene: &SceneFile<Self>, cx: &Checker<'_>) -> Result<(), SceneError> {
+        check_experiments(scene, &scene.experiment.get_ref().0, cx)
+    }
+}
+
+/// The checks `handstack run` and `handstack node` share: real devices only, and each
+/// experiment with its parts and in range.
+fn check_experiments<X>(
+    scene: &SceneFile<X>,
+    x: &Experiments,
+    cx: &Checker<'_>,
+) -> Result<(), SceneError> {
+    hardware_only(scene, cx)?;
+    if let Some(g) = &x.grasp {
+        check_grasp_parts(scene, g, cx)?;
+        let band = &g.get_ref().torque_band;
+        let [lo, hi] = *band.get_ref();
+        if lo > hi || hi > 1023 {
+            return Err(cx.err(
+                band.span(),
+                "experiment.grasp.torque_band",
+                format!("is [{lo}, {hi}]"),
+                "[least, greatest] with least ≤ greatest ≤ 1023",
+            ));
+        }
+        check_hold_s(&g.get_ref().hold_s, cx)?;
+        if let Some(r) = &g.get_ref().recover {
+            let Recover { attempts, within_s } = *r.get_ref();
+            if !(1..=10).contains(&attempts)
+                || !within_s.is_finite()
+                || !(0.1..=60.0).contains(&within_s)
+            {
+                return Err(cx.err(
+                    r.span(),
+                    "experiment.grasp.recover",
+                    format!("is {{ attempts = {attempts}, within_s = {within_s} }}"),
+                    "attempts 1…10, within_s 0.1…60 s",
+                ));
+            }
+        }
+        if let Some(goal) = &g.get_ref().goal_rad {
+            if !goal.get_ref().is_finite() {
+                return Err(cx.err(
+                    goal.span(),
+                    "experiment.grasp.goal_rad",
+                    format!("is {}", goal.get_ref()),
+                    "a finite angle, rad",
+                ));
+            }
+        }
+    }
+    if let Some(r) = &x.readout {
+        check_readout(scene, r, cx)?;
+    }
+    Ok(())
+}
+
 /// Every device named must name its hardware, and no `[sim]`.
-fn hardware_only(scene: &SceneFile<Experiments>, cx: &Checker<'_>) -> Result<(), SceneError> {
+fn hardware_only<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(), SceneError> {
     const WHY: &str = "the handstack binary opens real devices only (the papers' simulated \
                        scenes run with `paper-scenes`)";
     if let Some(sim) = &scene.sim {

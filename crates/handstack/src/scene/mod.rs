@@ -47,10 +47,12 @@ use std::path::Path;
 use toml::Spanned;
 
 /// What a scene's `[experiment]` table holds: the experiments one program can run.
-pub trait ExperimentTable: DeserializeOwned + Clone + core::fmt::Debug {
+pub trait ExperimentTable: DeserializeOwned + Clone + Default + core::fmt::Debug {
     /// What may appear under `[experiment]`, for the error of a scene that names none
     /// (`"[experiment.grasp], [experiment.readout]"`).
     const ALLOWED: &'static str;
+    /// Whether a scene must name an experiment (a node's scene need not: it runs its parts).
+    const REQUIRED: bool = true;
     /// The names of the experiments present, in run order.
     fn names(&self) -> Vec<&'static str>;
     /// Checks the experiments against the parts they run on (the parts themselves are checked
@@ -61,7 +63,7 @@ pub trait ExperimentTable: DeserializeOwned + Clone + core::fmt::Debug {
 /// A scene file as written.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-#[serde(bound = "X: DeserializeOwned")]
+#[serde(bound = "X: DeserializeOwned + Default")]
 pub struct SceneFile<X = experiment::Experiments> {
     /// One line saying what the scene reproduces.
     pub title: String,
@@ -81,12 +83,22 @@ pub struct SceneFile<X = experiment::Experiments> {
     pub hand: Option<Spanned<parts::Hand>>,
     /// The arm.
     pub arm: Option<Spanned<parts::Arm>>,
-    /// What to run.
+    /// What to run (absent: none, at the file's start).
+    #[serde(default = "no_experiment")]
     pub experiment: Spanned<X>,
+}
+
+/// An `[experiment]` table the file does not have.
+fn no_experiment<X: Default>() -> Spanned<X> {
+    Spanned::new(0..0, X::default())
 }
 
 /// A parsed and validated `handstack` scene.
 pub type Scene = SceneOf<experiment::Experiments>;
+
+/// A scene as `handstack node` reads it: its parts, and its experiments if any (a grasp gives
+/// the hand node its band, goal and recovery).
+pub type NodeScene = SceneOf<experiment::NodeExperiments>;
 
 /// A parsed and validated scene whose `[experiment]` table is `X`.
 #[derive(Debug, Clone)]
@@ -110,7 +122,7 @@ impl<X: ExperimentTable> SceneOf<X> {
             toml::from_str(text).map_err(|e| SceneError::syntax(file, text, &e))?;
         let cx = Checker::new(file, text);
         validate::check_parts(&parsed, &cx)?;
-        if parsed.experiment.get_ref().names().is_empty() {
+        if X::REQUIRED && parsed.experiment.get_ref().names().is_empty() {
             return Err(cx.err(
                 parsed.experiment.span(),
                 "experiment",

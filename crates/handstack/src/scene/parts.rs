@@ -3,6 +3,8 @@
 //! a program that simulates devices (the papers' `paper-scenes`) simulates the others, and the
 //! `handstack` binary refuses them.
 
+use hand_control::control_table::ControlTable;
+use hand_control::grasp_loop::EndAction;
 use imu_icm20789::BaroMode;
 use serde::Deserialize;
 use toml::Spanned;
@@ -152,23 +154,61 @@ pub struct Controller {
     pub preset: Spanned<String>,
 }
 
-/// A servo hand model (hand-control's control tables).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum HandModel {
+/// A servo hand model: one of hand-control's control tables, named by its key (`mx28`,
+/// `xm430`, `rh_p12_rn`: the names `dxl-sim --servo` takes too).
+#[derive(Debug, Clone, Copy)]
+pub struct HandModel(&'static ControlTable);
+
+impl HandModel {
     /// Two ROBOTIS MX-28 (Protocol 2.0 firmware), the paper's hand.
-    Mx28,
-    /// ROBOTIS XM430-W350.
-    Xm430,
-    /// ROBOTIS RH-P12-RN gripper.
-    RhP12Rn,
+    pub const MX28: HandModel = HandModel(&hand_control::control_table::MX_28);
+
+    /// Its control table.
+    pub fn table(self) -> &'static ControlTable {
+        self.0
+    }
+}
+
+impl PartialEq for HandModel {
+    fn eq(&self, other: &HandModel) -> bool {
+        self.0.model_number == other.0.model_number
+    }
+}
+
+impl Eq for HandModel {}
+
+impl<'de> Deserialize<'de> for HandModel {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<HandModel, D::Error> {
+        let name = String::deserialize(d)?;
+        ControlTable::by_name(&name).map(HandModel).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "unknown model `{name}`, expected one of {}",
+                ControlTable::keys()
+            ))
+        })
+    }
+}
+
+/// `on_end = "…"`: one of [`EndAction::ALL`] by its name.
+fn end_action<'de, D: serde::Deserializer<'de>>(d: D) -> Result<EndAction, D::Error> {
+    let name = String::deserialize(d)?;
+    EndAction::from_name(&name).ok_or_else(|| {
+        let names: Vec<String> = EndAction::ALL
+            .iter()
+            .map(|a| format!("`{}`", a.name()))
+            .collect();
+        serde::de::Error::custom(format!(
+            "unknown variant `{name}`, expected {}",
+            names.join(", ")
+        ))
+    })
 }
 
 /// `[hand]`: the Dynamixel hand.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Hand {
-    /// `mx28`, `xm430` or `rh_p12_rn`.
+    /// `mx28`, `xm430` or `rh_p12_rn`; the servos on the bus must be this model.
     pub model: HandModel,
     /// Servo IDs on the bus (default `[1, 2]`).
     #[serde(default = "default_ids")]
@@ -180,6 +220,11 @@ pub struct Hand {
     /// How long to wait for a status packet, ms (default: the servo's 34 ms; USB adapters or
     /// a simulator on a loaded machine may need more).
     pub reply_timeout_ms: Option<u64>,
+    /// What the hand is left doing when a run ends, however it ends: `release` (the default:
+    /// open to where the run found it, then torque off), `hold` (keep the grip, torque on) or
+    /// `torque_off` (at once).
+    #[serde(default, deserialize_with = "end_action")]
+    pub on_end: EndAction,
 }
 
 fn default_ids() -> Vec<u8> {

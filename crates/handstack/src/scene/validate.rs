@@ -171,7 +171,14 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
             return Err(cx.err(
                 h.span(),
                 "hand.ids",
-                format!("is {:?}", hr.ids),
+                format!(
+                    "is [{}]",
+                    hr.ids
+                        .iter()
+                        .map(u8::to_string)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
                 "one or more distinct IDs 0…252",
             ));
         }

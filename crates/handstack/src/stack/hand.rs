@@ -22,7 +22,14 @@ pub fn open(hand: &Hand, port: &str) -> Result<ServoHand, RunError> {
     };
     let serial = serial2::SerialPort::open(port, baud).map_err(|e| fail(e.to_string()))?;
     let mut servo = ServoHand::with_reply_latency(serial, &hand.ids, latency)
-        .map_err(|e| fail(format!("servos {:?}: {e}", hand.ids)))?;
+        .map_err(|e| fail(format!("servos {}: {e}", ids(&hand.ids))))?;
+    let (found, named) = (servo.table(), hand.model.table());
+    if found.model_number != named.model_number {
+        return Err(fail(format!(
+            "the servos are {}, the scene names `{}` ({})",
+            found.name, named.key, named.name
+        )));
+    }
     // Operating Mode is in EEPROM, writable only with torque off (a previous run may have
     // left it on).
     servo
@@ -33,16 +40,36 @@ pub fn open(hand: &Hand, port: &str) -> Result<ServoHand, RunError> {
     Ok(servo)
 }
 
-/// Opens the hand `scene` names on its `serial_port` (a simulated hand has none: an error).
-pub fn open_scene<X>(scene: &crate::scene::SceneOf<X>) -> Result<ServoHand, RunError> {
-    let (hand, port) = scene
+/// Servo IDs as a person writes them: `1, 2`.
+fn ids(ids: &[u8]) -> String {
+    ids.iter().map(u8::to_string).collect::<Vec<_>>().join(", ")
+}
+
+/// What a hand's messages call its bus: `servo bus /dev/ttyUSB0`.
+pub fn bus_label(port: &str) -> String {
+    format!("servo bus {port}")
+}
+
+/// The `[hand]` `scene` names and its `serial_port` (a simulated hand has none: an error).
+pub fn scene_hand<X>(scene: &crate::scene::SceneOf<X>) -> Result<(&Hand, &str), RunError> {
+    scene
         .file
         .hand
         .as_ref()
-        .and_then(|h| Some((h.get_ref(), h.get_ref().serial_port.as_ref()?.get_ref())))
+        .and_then(|h| {
+            Some((
+                h.get_ref(),
+                h.get_ref().serial_port.as_ref()?.get_ref().as_str(),
+            ))
+        })
         .ok_or(RunError::Device {
             device: "hand",
             reason: "a hardware hand needs a [hand] on a serial_port".into(),
-        })?;
+        })
+}
+
+/// Opens the hand `scene` names on its `serial_port`.
+pub fn open_scene<X>(scene: &crate::scene::SceneOf<X>) -> Result<ServoHand, RunError> {
+    let (hand, port) = scene_hand(scene)?;
     open(hand, port)
 }

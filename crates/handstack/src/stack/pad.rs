@@ -31,11 +31,11 @@ pub fn open(platform: &dyn Platform, bus: &str, mode: BaroMode) -> Result<RealPa
     let mut delay = platform.delay();
     let mut chip = Icm20789::new_with_i2c(dev);
     chip.init(&mut &mut *delay)
-        .map_err(|e| fail(format!("ICM-20789: {e:?}")))?;
+        .map_err(|e| fail(format!("ICM-20789: {e}")))?;
     chip.configure_imu(&ImuSettings::TAP_PAD)
-        .map_err(|e| fail(format!("ICM-20789 settings: {e:?}")))?;
+        .map_err(|e| fail(format!("ICM-20789 settings: {e}")))?;
     chip.init_barometer(&mut &mut *delay)
-        .map_err(|e| fail(format!("ICM-20789 barometer: {e:?}")))?;
+        .map_err(|e| fail(format!("ICM-20789 barometer: {e}")))?;
     Ok(RealPad {
         chip,
         mode,
@@ -57,7 +57,7 @@ impl TactileSource for RealPad {
             .read_frame(self.mode, &mut &mut *self.delay)
             .map_err(|e| RunError::Device {
                 device: "sensors.imu_pad",
-                reason: format!("{e:?}"),
+                reason: e.to_string(),
             })?;
         Ok(ImuFrame {
             t_us,

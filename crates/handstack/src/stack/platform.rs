@@ -16,14 +16,21 @@ use embedded_hal::delay::DelayNs;
 use embedded_hal::i2c::{ErrorKind, ErrorType, I2c, Operation, SevenBitAddress};
 use hand_control::grasp_loop::{LoopClock, StdClock};
 
-/// A bus error, as the bus described it.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+/// A bus error, as the bus described it. Its `Debug` is its words too: drivers generic over
+/// their bus can only print a bus error's `Debug`, and their messages reach users.
+#[derive(Clone, PartialEq, Eq, thiserror::Error)]
 #[error("{detail}")]
 pub struct BusError {
     /// embedded-hal's classification (NACK, arbitration loss, …).
     pub kind: ErrorKind,
     /// The bus's own error, formatted.
     pub detail: String,
+}
+
+impl core::fmt::Debug for BusError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(&self.detail)
+    }
 }
 
 impl embedded_hal::i2c::Error for BusError {
@@ -36,8 +43,12 @@ impl embedded_hal::i2c::Error for BusError {
 pub struct I2cBus(Box<dyn I2c<Error = BusError> + Send>);
 
 impl I2cBus {
-    /// Wraps `bus`.
-    pub fn new<B: I2c + Send + 'static>(bus: B) -> I2cBus {
+    /// Wraps `bus`; its errors' texts are their `Display`.
+    pub fn new<B>(bus: B) -> I2cBus
+    where
+        B: I2c + Send + 'static,
+        B::Error: core::fmt::Display,
+    {
         I2cBus(Box::new(Erased(bus)))
     }
 }
@@ -69,7 +80,10 @@ impl<B: I2c> ErrorType for Erased<B> {
     type Error = BusError;
 }
 
-impl<B: I2c> I2c for Erased<B> {
+impl<B: I2c> I2c for Erased<B>
+where
+    B::Error: core::fmt::Display,
+{
     fn transaction(
         &mut self,
         address: SevenBitAddress,
@@ -79,7 +93,7 @@ impl<B: I2c> I2c for Erased<B> {
             .transaction(address, operations)
             .map_err(|e| BusError {
                 kind: embedded_hal::i2c::Error::kind(&e),
-                detail: format!("{e:?}"),
+                detail: e.to_string(),
             })
     }
 }

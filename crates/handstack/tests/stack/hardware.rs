@@ -94,7 +94,7 @@ impl Platform for Substitute {
 #[test]
 fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_servos() {
     use hand_control::sim::{SimBus, SimConfig};
-    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
+    let (mut bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
     drop(port);
     let path = bus.client_path().display().to_string();
     let text = grasp_scene(
@@ -134,18 +134,28 @@ fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_serv
         pressed.iter().all(|(_, p)| (p - 200.0).abs() <= 1.0),
         "{pressed:?}"
     );
-    // And the controller acted on it over Protocol 2.0: both servos hold torque and a Goal
-    // PWM the loop wrote (no longer the power-on value).
+    // And the controller acted on it over Protocol 2.0: both servos hold a Goal PWM the loop
+    // (or its release) wrote, no longer the power-on value; the run ended with the default
+    // end action, release then torque off.
     let table = &hand_control::control_table::MX_28;
+    // The torque off is a broadcast: nothing answers it to wait for.
+    bus.sync().expect("the bus runs");
     for id in [1, 2] {
         let (on, pwm) = bus
             .with_servo(id, |s| {
                 (s.torque_enabled(), s.get(table.goal_effort.address))
             })
             .expect("servo");
-        assert!(on, "servo {id} torque");
+        assert!(!on, "servo {id} torque left on");
         assert_ne!(pwm, table.effort_limit.default, "servo {id} Goal PWM");
     }
+    assert!(
+        o.notes
+            .iter()
+            .any(|n| n.starts_with("hand ") && n.ends_with("then torque off")),
+        "{:?}",
+        o.notes
+    );
 }
 
 /// The servos of `bus` have had no command: torque off, Goal PWM at its power-on value.
@@ -255,6 +265,31 @@ fn a_real_pad_is_read_through_the_driver_from_the_bus_it_names() {
 }
 
 #[test]
+fn servos_of_another_model_than_the_scenes_are_refused_before_any_command() {
+    use hand_control::sim::{SimBus, SimConfig};
+    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
+    drop(port);
+    let path = bus.client_path().display().to_string();
+    let text = grasp_scene(
+        &path,
+        "i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n",
+        1.0,
+    )
+    .replace("model = \"mx28\"", "model = \"xm430\"");
+    let scene = Scene::parse("hw.toml", &text).expect("valid scene");
+    let hand = scene.file.hand.as_ref().expect("hand").get_ref();
+    let e = handstack::stack::hand::open(hand, &path).expect_err("MX-28s, not XM430s");
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "cannot open hand at {path}: the servos are MX-28(2.0), the scene names `xm430` \
+             (XM430-W350)"
+        )
+    );
+    untouched(&bus, &[1, 2]);
+}
+
+#[test]
 fn a_missing_serial_port_is_a_cannot_open_error() {
     let text = grasp_scene(
         "/dev/ttyUSB-handstack-none",
@@ -275,6 +310,7 @@ fn a_missing_serial_port_is_a_cannot_open_error() {
 
 #[test]
 fn a_scene_naming_a_started_ur_simulator_connects_to_it() {
+    use handstack::scene::NodeScene;
     use ur_bridge::sim::{SimConfig, UrSim};
     let address = Ipv4Addr::new(127, 0, 0, 90);
     let _sim = UrSim::start(SimConfig {
@@ -287,19 +323,26 @@ fn a_scene_naming_a_started_ur_simulator_connects_to_it() {
          i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n[arm]\nmodel = \"ur3\"\n\
          host = \"{address}\"\n[experiment.readout]\nframes = 5\n"
     );
+    // `handstack run` moves no arm: an [arm] there is a scene error, not a silent connection.
+    let e = Scene::parse("hw.toml", &text).expect_err("an arm no experiment moves");
+    assert_eq!(e.key(), Some("arm"), "{e}");
+    assert!(
+        e.to_string().contains("handstack node SCENE --part arm"),
+        "{e}"
+    );
+    // A node's scene opens it: every device first, the arm by its host.
     let substitute = || Substitute {
         clock: hand_traits::sim::SimClock::new(),
         conversions: Arc::new(AtomicUsize::new(0)),
     };
-    let run_on = |text: &str| {
-        let scene = Scene::parse("hw.toml", text)?;
-        run(&scene, &RunContext::new(&Quiet).with_platform(substitute()))
+    let open = |text: &str| {
+        let scene = NodeScene::parse("hw.toml", text)?;
+        handstack::stack::check_real_devices(&scene, &substitute())
     };
-    let o = run_on(&text).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(o.figure("frames").map(|f| f.value), Some(5.0));
-    // A host nobody listens on is an open error naming it, before the readout.
+    open(&text).unwrap_or_else(|e| panic!("{e}"));
+    // A host nobody listens on is an open error naming it.
     let dead = text.replace("127.0.0.90", "127.0.0.91");
     assert!(
-        matches!(run_on(&dead), Err(RunError::Open { device: "arm", ref path, .. }) if path == "127.0.0.91")
+        matches!(open(&dead), Err(RunError::Open { device: "arm", ref path, .. }) if path == "127.0.0.91")
     );
 }

@@ -1,6 +1,11 @@
 //! The `handstack` crate as a user gets it: scene files of their own, real devices (here
 //! substitutes behind the real transports), the installed binary with no repository around it.
 
+#[cfg(feature = "cell")]
+mod cell_arm;
 mod cli;
+mod ending;
 mod hardware;
+mod hold;
+mod process;
 mod scenes;

@@ -57,8 +57,17 @@ fn a_device_without_its_hardware_is_refused() {
     );
     let e = err(&HAND.replace("serial_port = \"/dev/ttyUSB0\"\n", ""));
     says(&e, 7, "hand", &["names no hardware (`serial_port`)"]);
-    let e = err(&format!("{HAND}[arm]\nmodel = \"ur3\"\n"));
+    // An arm needs its host in a node's scene; a scene to run has no arm to move at all.
+    let arm = format!("{HAND}[arm]\nmodel = \"ur3\"\n");
+    let e = handstack::scene::NodeScene::parse("bad.toml", &arm).expect_err("no host");
     says(&e, 13, "arm", &["names no hardware (`host`)"]);
+    let e = err(&format!("{arm}host = \"192.168.1.10\"\n"));
+    says(
+        &e,
+        13,
+        "arm",
+        &["no experiment of `handstack run` moves an arm"],
+    );
     let e = err(&format!("{HAND}[sim]\nseed = 1\n"));
     says(&e, 13, "sim", &["simulates an environment", "paper-scenes"]);
 }

@@ -34,6 +34,15 @@ impl embedded_hal::i2c::Error for SimError {
     }
 }
 
+/// embedded-hal's words for the kind (`The peripheral did not acknowledge …`).
+impl core::fmt::Display for SimError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        core::fmt::Display::fmt(&self.0, f)
+    }
+}
+
+impl core::error::Error for SimError {}
+
 /// The ICM-20789 as seen from its I2C pins. Give it to the driver as its bus.
 ///
 /// A pressure beyond the codes the calibration can express saturates at the end code, and a

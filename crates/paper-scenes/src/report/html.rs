@@ -341,6 +341,7 @@ mod tests {
                 figure("b", Some("≥ 9"), Some(false)),
                 figure("c", None, None),
             ],
+            notes: vec![],
             plots: vec![Plot::Lines {
                 title: "trace <1>".into(),
                 x_label: "t, s".into(),

@@ -24,6 +24,7 @@
 //!         met: Some(true),
 //!     }],
 //!     plots: vec![],
+//!     notes: vec![],
 //!     wall_s: 1.5,
 //! };
 //! let trade = TradeSection::NotRequested;

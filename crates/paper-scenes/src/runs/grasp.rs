@@ -15,8 +15,9 @@ use crate::devices::grasp;
 use crate::error::device;
 use crate::scene::PaperScene;
 use crate::scene::experiments::Grasp;
+use hand_control::grasp_loop::EndAction;
 use handstack::runs::Part;
-use handstack::runs::grasp::{band, hold, plots, summarise, traces};
+use handstack::runs::grasp::{HoldFor, Plan, band, hold, plots, summarise, traces};
 use paper_experiments::grasp_rig::LIFT_AT_S;
 
 const SOURCE: &str = "seed 000 Table 5 (fixtures/paper/seed000_table5_grasp_torque.csv)";
@@ -28,6 +29,15 @@ pub fn run(scene: &PaperScene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part,
     let hold_s = *exp.hold_s.get_ref();
     let mut part = Part::default();
     let mut lines = Vec::new();
+    let label = scene
+        .file
+        .hand
+        .as_ref()
+        .and_then(|h| h.get_ref().serial_port.as_ref())
+        .map_or_else(
+            || "simulated servo bus".to_owned(),
+            |p| handstack::stack::hand::bus_label(p.get_ref()),
+        );
     cx.progress
         .stage("grasp: Table 5 objects", objects.len() as u64);
     for name in objects {
@@ -38,13 +48,19 @@ pub fn run(scene: &PaperScene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part,
         let (lo, hi) = (row.torque_min as u16, row.torque_max as u16);
         let band = band(lo, hi, name)?;
         let stack = grasp::open(scene, cx, name, band, exp.seed)?;
-        let held = hold(
-            stack.tip,
-            stack.hand,
-            stack.clock,
-            stack.config,
-            LIFT_AT_S + hold_s,
-        )?;
+        // The Table 5 protocol ends holding: the object's fate is judged at the hold's end
+        // (lift at 3 s from the world's start, then `hold_s`).
+        let plan = Plan {
+            hold: HoldFor::FromStart(LIFT_AT_S + hold_s),
+            recover: None,
+            stop: &cx.stop,
+            hand: &label,
+        };
+        let config = hand_control::grasp_loop::LoopConfig {
+            end_action: EndAction::Hold,
+            ..stack.config
+        };
+        let held = hold(stack.tip, stack.hand, stack.clock, config, &plan)?;
         let packets = held.hand.packet_counts();
         for (what, n) in [("sent", packets.sent), ("received", packets.received)] {
             part.figures.push(measured(

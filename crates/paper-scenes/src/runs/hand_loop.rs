@@ -35,7 +35,7 @@ use std::time::{Duration, Instant};
 
 use aot_locate::{AotLocator, ArrivalDetector, DetectorConfig};
 use hand_control::grasp_loop::{
-    ConfigError, FaultKind, GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator,
+    ConfigError, GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator,
 };
 use hand_traits::{
     ContactLocator, GraspPolicy, ImuFrame, LinearMotion, Pose, PressureFrame, TactileSource,
@@ -122,12 +122,7 @@ impl Estimators {
             out.contacts += 1;
         }
         let event = self.detector.event(onset, p);
-        out.aot_area = Some(
-            self.aot
-                .locate(&event)
-                .map_err(|e| format!("{e:?}"))?
-                .region,
-        );
+        out.aot_area = Some(self.aot.locate(&event).map_err(|e| e.to_string())?.region);
         if let Some(mlp) = &self.mlp {
             let reading = TapReading::from_detector(&self.detector, p, onset);
             let pred = mlp
@@ -359,12 +354,14 @@ where
 impl<S, P, A, C, Pad> HandLoop<S, P, A, C, Pad>
 where
     S: TactileSource<Frame = PressureFrame<3>>,
-    S::Error: core::fmt::Debug,
+    S::Error: core::fmt::Debug + core::fmt::Display,
     P: GraspPolicy,
+    P::Error: core::fmt::Display,
     A: RebootableActuator,
+    A::Error: core::fmt::Display,
     C: LoopClock,
     Pad: TactileSource<Frame = ImuFrame>,
-    Pad::Error: core::fmt::Debug,
+    Pad::Error: core::fmt::Display,
 {
     /// The loop over a fingertip, a policy, a hand and a clock (as [`GraspLoop::new`]), the
     /// estimators, the pad and the arm.
@@ -437,16 +434,12 @@ where
         let first = *self.first_tick_us.get_or_insert(s.t_us);
         if let Some(kind) = s.fault {
             if matches!(s.mode, Mode::Safe | Mode::Halted) {
-                let device = match kind {
-                    FaultKind::Source | FaultKind::Estimate => "sensors.fingertip",
-                    FaultKind::Policy => "controller",
-                    _ => "hand",
-                };
+                let device = handstack::runs::grasp::fault_device(kind);
                 let reason = self
                     .grasp
                     .events()
                     .last()
-                    .map_or_else(|| format!("{kind:?}"), |e| e.fault.to_string());
+                    .map_or_else(|| device.to_owned(), |e| e.fault.to_string());
                 self.end(device, &s, reason, false);
             }
         }
@@ -470,7 +463,7 @@ where
                         self.locate(&input, &s);
                     }
                 }
-                Err(e) => self.end("sensors.imu_pad", &s, format!("{e:?}"), true),
+                Err(e) => self.end("sensors.imu_pad", &s, e.to_string(), true),
             }
         }
         if self.fault.is_none() {

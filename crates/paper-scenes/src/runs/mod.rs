@@ -88,6 +88,7 @@ pub fn run(scene: &PaperScene, cx: &RunContext<'_>) -> Result<Outcome, Error> {
             &mut tip,
             *r.get_ref().frames.get_ref(),
             cx.progress,
+            &cx.stop,
         )?);
     }
     // The whole hand named: its parts again, fused into one 100 Hz control loop.

@@ -142,7 +142,7 @@ impl ExperimentTable for Experiments {
                 ));
             }
             if h.get_ref().serial_port.is_none() {
-                if h.get_ref().model != HandModel::Mx28 {
+                if h.get_ref().model != HandModel::MX28 {
                     return Err(cx.err(
                         h.span(),
                         "hand.model",

@@ -173,7 +173,7 @@ pub(crate) fn check(
     }
 
     if let Some(h) = &scene.hand {
-        if h.get_ref().model != HandModel::Mx28 && scene.controller.is_some() && sim.grasp.is_some()
+        if h.get_ref().model != HandModel::MX28 && scene.controller.is_some() && sim.grasp.is_some()
         {
             return Err(cx.err(
                 h.span(),

@@ -92,7 +92,7 @@ pub fn run(scene: &PaperScene, cx: &RunContext<'_>) -> Result<Part, crate::Error
 impl<Pad> Built<Pad>
 where
     Pad: TactileSource<Frame = ImuFrame>,
-    Pad::Error: core::fmt::Debug,
+    Pad::Error: core::fmt::Display,
 {
     /// The loop's figures so far.
     pub fn figures(&self) -> Part {
@@ -124,7 +124,7 @@ pub fn build_with<Pad>(
 ) -> Result<Option<Built<Pad>>, crate::Error>
 where
     Pad: TactileSource<Frame = ImuFrame>,
-    Pad::Error: core::fmt::Debug,
+    Pad::Error: core::fmt::Display,
 {
     let x = scene.file.experiment.get_ref();
     let (Some(g), Some(tap)) = (&x.grasp, &x.tap) else {

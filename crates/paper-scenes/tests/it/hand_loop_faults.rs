@@ -3,7 +3,7 @@
 //! and the time. The loop runs on the full-hand scene's simulated stack; its UR simulators sit
 //! on 127.0.0.210 and up.
 
-mod common;
+use crate::common;
 
 use common::scene_path;
 use hand_control::grasp_loop::Mode;
@@ -68,7 +68,7 @@ fn a_pad_bus_error_ends_the_loop_in_the_hold_within_its_cycle() {
 fn ended_in_safe_state<Pad>(b: &Built<Pad>, device: &str) -> u64
 where
     Pad: TactileSource<Frame = ImuFrame>,
-    Pad::Error: core::fmt::Debug,
+    Pad::Error: core::fmt::Display,
 {
     let l = &b.hand_loop;
     let f = l.fault().expect("a fault ended the loop");

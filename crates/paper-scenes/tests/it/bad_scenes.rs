@@ -82,7 +82,14 @@ fn missing_field_is_named() {
 #[test]
 fn wrong_type_says_what_was_expected() {
     let e = err(&GOOD.replace("osr = 4096", "osr = \"high\""));
-    names(&e, 3, &["invalid type", "u16"]);
+    names(
+        &e,
+        3,
+        &[
+            "`sensors.fingertip.osr` is the string \"high\"",
+            "allowed: a whole number",
+        ],
+    );
     let e = err(&GOOD.replace("model = \"sim\"", "model = \"huge\""));
     names(&e, 5, &["unknown variant `huge`", "table1", "sim"]);
 }

@@ -4,7 +4,7 @@
 //! same `paper_experiments::grasp_rig` path and seed), every settled torque lies in its Table 5 band
 //! and every object is held.
 
-mod common;
+use crate::common;
 
 use common::{root, run_scene, value};
 use handstack::Plot;

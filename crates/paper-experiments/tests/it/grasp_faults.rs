@@ -6,7 +6,7 @@
 //! overload is the servo's own (seed 000 §7: full torque on a stiff object), the wire faults are
 //! injected on the bus.
 
-mod common;
+use crate::common;
 
 use paper_experiments::grasp_rig as support;
 

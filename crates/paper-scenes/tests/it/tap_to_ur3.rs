@@ -5,7 +5,7 @@
 //! on its grid pose, in controller time as long as at real time. Needs `$HANDSTACK_PYTHON`
 //! (ur-rtde).
 
-mod common;
+use crate::common;
 
 use common::{root, run_scene, value};
 use handstack::Plot;

@@ -3,7 +3,7 @@
 //! their metrics at the scene's OSR 1024; the shortened grasp holds stay in their Table 5 bands;
 //! the nine taps move the arm onto the located poses.
 
-mod common;
+use crate::common;
 
 use common::{committed, metrics, run_scene, value};
 

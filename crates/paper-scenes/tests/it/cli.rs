@@ -1,7 +1,7 @@
 //! The `paper-scenes` binary: `run SCENE --json` prints the outcomes as JSON on stdout; a bad scene
 //! exits non-zero with the error (file:line:col, key, allowed values) on stderr.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

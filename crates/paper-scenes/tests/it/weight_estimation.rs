@@ -2,7 +2,7 @@
 //! Table 1 rows reproduce the force DNN's committed metrics (issue 8), and every Table 1 row
 //! meets issue 8's 0.5 gf target.
 
-mod common;
+use crate::common;
 
 use common::{committed, metrics, run_scene, value};
 use handstack::Plot;

@@ -1,6 +1,6 @@
 //! The pad against the figures of seed 002 it is calibrated to (read via `paper-fixtures`).
 
-mod imu_pad_common;
+use crate::imu_pad_common;
 
 use hand_sim::imu_pad::force::ForceCounts;
 use hand_sim::imu_pad::{ImuPad, ImuPadConfig, TapPosition, TapSpec};

@@ -5,7 +5,7 @@
 //! jittered-set (and the MLP's single-cell-set) figure is the one the doc's tables state (`cargo xtask train
 //! contact-mlp --docs-only`; `contact_location_drift` checks it).
 
-mod common;
+use crate::common;
 
 use common::{committed, metrics, root, run_scene, value};
 use handstack::Plot;

@@ -2,7 +2,7 @@
 //! input, frozen inference against dfdx, stable outputs for any input, and the drift check of
 //! the committed metrics.
 
-mod common;
+use crate::common;
 
 use common::root;
 use hand_traits::ForceEstimator;

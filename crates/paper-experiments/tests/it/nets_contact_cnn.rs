@@ -2,7 +2,7 @@
 //! the plain-array path against dfdx's forward, finite softmax, and the drift check of the
 //! committed metrics.
 
-mod common;
+use crate::common;
 
 use common::{bits, quick, root};
 use hand_traits::ContactLocator;

@@ -4,7 +4,7 @@
 //! Needs Chromium: `$HANDSTACK_CHROMIUM` (set by `cargo xtask test`) or `/usr/bin/chromium`.
 //! Without it this test fails, saying what to install; it never passes silently.
 
-mod common;
+use crate::common;
 
 use common::run_scene;
 use handstack::{Outcome, Plot};

@@ -1,6 +1,6 @@
 //! Helpers the integration tests share.
 
-// Each test binary compiles this module and uses a different subset of it.
+// Each test module uses a different subset of it.
 #![allow(dead_code)]
 
 use hand_control::grasp_loop::{FaultKind, Mode, Sample};

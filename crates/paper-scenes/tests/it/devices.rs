@@ -3,7 +3,7 @@
 //! arm through ur_rtde (a dead host is a "cannot open" error naming it); the readout reads the
 //! simulated fingertip's chip models through the real MS5611 driver.
 
-mod common;
+use crate::common;
 
 use handstack::RunError;
 use handstack::progress::Quiet;

@@ -3,7 +3,7 @@
 //! regular, the 30 irregular and the 1000 fresh irregular objects), the paper's figures stand
 //! beside them from the seed 001 fixture, and the hidden-class figures carry no target.
 
-mod common;
+use crate::common;
 
 use common::{committed, metrics_in, run_scene, value};
 use handstack::Plot;

@@ -1,7 +1,7 @@
 //! The contact-area MLP: save → load bit-identical, seeded determinism, typed errors on bad
 //! input, stable activations, and the drift check of the committed metrics.
 
-mod common;
+use crate::common;
 
 use common::{bits, quick, root};
 use hand_traits::ContactLocator;

@@ -1,6 +1,6 @@
 //! Fig. 5 of seed 002 (§III-C): accelerometer and gyroscope x / y along the rows, per column.
 
-mod imu_pad_common;
+use crate::imu_pad_common;
 
 use hand_sim::imu_pad::TapPosition;
 use imu_pad_common::{mean_by_position, taps, window_mean, window_peak_abs};

@@ -1,0 +1,115 @@
+//! The `handstack` command line: run a tactile hand stack from a scene file on its real devices
+//! (`handstack run SCENE... [--json]`), or only check scene files (`handstack check SCENE...`).
+//! With feature `cell`: a scene's stack as ROS 2 nodes on Zenoh (`handstack node SCENE`, or one
+//! part: `--part P [--namespace NS]`), and a cell of such nodes with a coordinator (`handstack
+//! cell CELL.toml`).
+//!
+//! [`main`] is the whole program; the `handstack` binary calls it with Linux's device files.
+//! A program for a board reached another way (a USB–I2C bridge, a bench without a fingertip)
+//! calls it with its own [`Platform`], and gets the same command line, the same shutdown on
+//! every signal and the same exit statuses.
+
+use crate::progress::Bars;
+use crate::runs::RunContext;
+#[cfg(feature = "cell")]
+use crate::scene::NodeScene;
+use crate::scene::{ExperimentTable as _, Scene};
+use crate::stack::platform::Platform;
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Makes the platform a run opens its hardware through (one per run, or per node part).
+pub type Platforms<'a> = &'a (dyn Fn() -> Box<dyn Platform> + Sync);
+
+/// Tactile hand stacks from scene files.
+#[derive(Parser)]
+#[command(name = "handstack", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Open the devices each scene file names and run its experiments.
+    Run {
+        /// Scene files.
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+        /// Print the outcomes as JSON on stdout (no progress, no table).
+        #[arg(long)]
+        json: bool,
+    },
+    /// Parse and validate scene files without opening anything.
+    Check {
+        /// Scene files.
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+    },
+    /// Run a scene's stack (or one part: pad, arm, fingertip or hand) on its real devices as
+    /// ROS 2 nodes on Zenoh (rmw_zenoh's conventions), until stdin closes.
+    #[cfg(feature = "cell")]
+    Node(crate::cell::cli::NodeCommand),
+    /// Start a Zenoh router, the nodes a cell file names (each its own process) and the
+    /// coordinator of seed 002's tap-to-move across them.
+    #[cfg(feature = "cell")]
+    Cell(crate::cell::cli::CellCommand),
+}
+
+/// Parses the command line and runs it, opening hardware through `platforms`.
+pub fn main(platforms: Platforms<'_>) -> ExitCode {
+    match Cli::parse().command {
+        Command::Run { scenes, json } => run(&scenes, json, platforms),
+        Command::Check { scenes } => check(&scenes),
+        #[cfg(feature = "cell")]
+        Command::Node(cmd) => cmd.main(
+            || Ok(crate::cell::scene_parts(&NodeScene::load(&cmd.scene)?)),
+            |args, stop| {
+                let scene = NodeScene::load(&cmd.scene)?;
+                crate::cell::real::run_node(&scene, args, stop, &*platforms())
+            },
+        ),
+        #[cfg(feature = "cell")]
+        Command::Cell(cmd) => cmd.main(|path, run| {
+            let name = path.file_stem().unwrap_or_default().to_string_lossy();
+            crate::cell::outcome::outcome(&name, run)
+        }),
+    }
+}
+
+fn check(scenes: &[PathBuf]) -> ExitCode {
+    let mut failed = false;
+    for path in scenes {
+        match Scene::load(path) {
+            Ok(s) => println!(
+                "{}: ok ({})",
+                path.display(),
+                s.file.experiment.get_ref().names().join(", ")
+            ),
+            Err(e) => {
+                eprintln!("error: {e}");
+                failed = true;
+            }
+        }
+    }
+    exit(failed)
+}
+
+fn run(scenes: &[PathBuf], json: bool, platforms: Platforms<'_>) -> ExitCode {
+    let bars = Bars::new(!json);
+    let mut cx = RunContext::new(&bars).with_stop(crate::stop::signal_stop());
+    cx.platform = platforms();
+    let runs = crate::summary::run_each(scenes, json, &bars, &cx.stop, |path| {
+        crate::run_file(path, &cx)
+    });
+    ExitCode::from(runs.exit_code)
+}
+
+fn exit(failed: bool) -> ExitCode {
+    if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}

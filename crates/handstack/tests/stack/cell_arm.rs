@@ -1,0 +1,204 @@
+//! The arm node's safe state (feature `cell`): when the node commanding it leaves the graph in
+//! the middle of a move, the arm is stopped (stopL) and does not arrive; a stop request stops
+//! it too; a controller that dies mid-move ends `handstack node`, saying so. ur-bridge's UR
+//! controller simulator (in this process on 127.0.0.95; the `ur-sim` binary on 127.0.0.96) at
+//! real time, through the real ur_rtde (needs `$HANDSTACK_PYTHON`); the router and the nodes on
+//! 127.0.0.1.
+
+use hand_zenoh::config::SessionConfig;
+use hand_zenoh::convert::{pose_from_msg, pose_to_msg};
+use hand_zenoh::keys::EntityKind;
+use hand_zenoh::msg::geometry_msgs::PoseStamped;
+use hand_zenoh::node::{Node, NodeOptions, Router};
+use handstack::cell::Stop;
+use handstack::cell::arm::{self, ArmNodeConfig};
+use std::net::Ipv4Addr;
+use std::time::{Duration, Instant};
+use ur_bridge::sim::{SimConfig, UrSim};
+use ur_bridge::{UrArm, UrConfig};
+
+const WAIT: Duration = Duration::from_secs(20);
+
+fn node(endpoint: &str, ns: &str, name: &str) -> Node {
+    let mut o = NodeOptions::new(ns, name);
+    o.session = SessionConfig::peer(endpoint);
+    Node::open(o).expect("node")
+}
+
+/// A commander on `endpoint` that sends the arm node of `/arm0` 0.15 m down (0.6 s at
+/// 0.25 m/s) and returns once the move is under way (1 cm): the commander, its `tcp_pose`
+/// subscription and `goal` publisher, and the goal.
+fn move_under_way(
+    endpoint: &str,
+) -> (
+    Node,
+    hand_zenoh::node::Subscription<PoseStamped>,
+    hand_zenoh::node::Publisher<PoseStamped>,
+    hand_traits::Pose,
+) {
+    let commander = node(endpoint, "/cell", "coordinator");
+    let mut tcp = commander
+        .subscription::<PoseStamped>("/arm0/tcp_pose", 256)
+        .unwrap();
+    let mut goal = commander.publisher::<PoseStamped>("/arm0/goal").unwrap();
+    assert!(
+        commander
+            .wait_for(EntityKind::Subscription, "/arm0/goal", WAIT)
+            .unwrap()
+    );
+    let start = pose_from_msg(
+        &tcp.recv_timeout(WAIT)
+            .unwrap()
+            .expect("a pose")
+            .message
+            .pose,
+    );
+    let mut target = start;
+    target.position_m[2] -= 0.15;
+    goal.publish(&PoseStamped {
+        pose: pose_to_msg(&target),
+        ..Default::default()
+    })
+    .unwrap();
+    let deadline = Instant::now() + WAIT;
+    while tcp
+        .recv_timeout(Duration::from_millis(100))
+        .unwrap()
+        .is_none_or(|p| pose_from_msg(&p.message.pose).distance_m(&start) <= 0.01)
+    {
+        assert!(Instant::now() < deadline, "the arm did not start moving");
+    }
+    (commander, tcp, goal, target)
+}
+
+#[test]
+fn the_arm_stops_when_its_commander_leaves_mid_move() {
+    if std::env::var_os("HANDSTACK_PYTHON").is_none() {
+        eprintln!(
+            "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"
+        );
+        return;
+    }
+    let address = Ipv4Addr::new(127, 0, 0, 95);
+    let sim = UrSim::start(SimConfig {
+        address,
+        ..SimConfig::default()
+    })
+    .expect("UR simulator");
+    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
+    let _router = Router::open(&endpoint).unwrap();
+    let stop = Stop::new();
+    let arm_thread = {
+        let (endpoint, stop) = (endpoint.clone(), stop.clone());
+        std::thread::spawn(move || {
+            let mut ur = UrArm::connect(UrConfig::new(address.to_string())).expect("ur_rtde");
+            let n = node(&endpoint, "/arm0", "arm");
+            arm::run(&n, &mut ur, &ArmNodeConfig::default(), &stop)
+        })
+    };
+    let (commander, tcp, goal, target) = move_under_way(&endpoint);
+    drop((tcp, goal, commander));
+    // Watch the arm from a second node until it has stood still for 0.5 s.
+    let watcher = node(&endpoint, "/cell", "watcher");
+    let mut tcp = watcher
+        .subscription::<PoseStamped>("/arm0/tcp_pose", 256)
+        .unwrap();
+    let mut last = None::<(hand_traits::Pose, Instant)>;
+    let deadline = Instant::now() + WAIT;
+    let rest = loop {
+        assert!(Instant::now() < deadline, "the arm never came to rest");
+        let Some(p) = tcp.recv_timeout(Duration::from_millis(100)).unwrap() else {
+            continue;
+        };
+        let pose = pose_from_msg(&p.message.pose);
+        match last {
+            Some((prev, since)) if prev.distance_m(&pose) < 1e-6 => {
+                if since.elapsed() > Duration::from_millis(500) {
+                    break pose;
+                }
+            }
+            _ => last = Some((pose, Instant::now())),
+        }
+    };
+    assert!(
+        rest.distance_m(&target) > 0.01,
+        "the arm went on to its goal: {:.4} m from it",
+        rest.distance_m(&target)
+    );
+    stop.set();
+    let report = arm_thread.join().unwrap().expect("the arm node");
+    assert_eq!(report.goals, 1);
+    assert_eq!(report.safe_stops, 1, "{report:?}");
+    assert_eq!(report.moves_done, 0, "{report:?}");
+    drop(watcher);
+    sim.kill();
+}
+
+#[test]
+fn a_controller_that_dies_mid_move_ends_the_arm_node_saying_so() {
+    use crate::process::{Lines, built, finish, signal, text};
+    use std::process::{Command, Stdio};
+    if std::env::var_os("HANDSTACK_PYTHON").is_none() {
+        eprintln!(
+            "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"
+        );
+        return;
+    }
+    let host = "127.0.0.96";
+    let mut ur = Command::new(built("ur-sim"))
+        .args(["--host", host])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("ur-sim starts");
+    let services = Lines::read(ur.stdout.take().expect("stdout"));
+    services.wait_for("ur-sim's RTDE", |l| {
+        l.iter().any(|l| l.starts_with("rtde "))
+    });
+    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
+    let _router = Router::open(&endpoint).unwrap();
+    let dir = std::env::temp_dir().join(format!("handstack-arm-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let scene = dir.join("arm.toml");
+    std::fs::write(
+        &scene,
+        format!("title = \"arm\"\n[arm]\nmodel = \"ur3\"\nhost = \"{host}\"\n"),
+    )
+    .expect("scene");
+    let mut arm_node = Command::new(env!("CARGO_BIN_EXE_handstack"))
+        .arg("node")
+        .arg(&scene)
+        .args([
+            "--part",
+            "arm",
+            "--namespace",
+            "/arm0",
+            "--connect",
+            &endpoint,
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("handstack node starts");
+    // Held open: a closed stdin is the node's normal stop, not what this test is about.
+    let _stdin = arm_node.stdin.take();
+    let _moving = move_under_way(&endpoint);
+    signal(ur.id(), "KILL");
+    let killed = Instant::now();
+    let _ = ur.wait();
+    let out = finish(arm_node);
+    let after = killed.elapsed();
+    let err = text(&out.stderr);
+    assert!(
+        after < Duration::from_secs(5),
+        "ended {after:?} after the kill: {err}"
+    );
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains(&format!("error: /arm0 arm: arm: controller at {host}: "))
+            && err.contains("the arm's stop (stopL) could not be sent"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

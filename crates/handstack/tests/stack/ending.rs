@@ -1,0 +1,289 @@
+//! Every way a run ends leaves the hand in its declared end state — tested as a user meets it:
+//! `handstack`'s command line (the `bench_rig` example: [`handstack::cli::main`] with model
+//! MS5611 fingertip buses, everything else the binary's) as its own process, `dxl-sim` as
+//! another on a pseudo-terminal, real signals (SIGINT, SIGTERM; SIGKILL of the servo bus), and
+//! what the servos were left doing read back over Protocol 2.0 and from `dxl-sim --trace`.
+//!
+//! "Within two control cycles" is counted on the bus: the state reads (one SYNC READ a cycle)
+//! the simulator executed after the signal was sent and before the end action's first packet.
+
+use crate::process::{Lines, built, finish, signal, text};
+use hand_control::ServoHand;
+use hand_control::control_table::MX_28;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// `dxl-sim` with two MX-28 (IDs 1 and 2), tracing every instruction.
+struct Servos {
+    child: Child,
+    path: String,
+    trace: Arc<Lines>,
+}
+
+impl Servos {
+    fn start() -> Servos {
+        let mut child = Command::new(built("dxl-sim"))
+            .args(["--servo", "mx28:1", "--servo", "mx28:2", "--trace"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("dxl-sim starts");
+        let trace = Lines::read(child.stdout.take().expect("stdout"));
+        trace.wait_for("pty path", |l| !l.is_empty());
+        let path = trace.snapshot()[0].clone();
+        assert!(path.starts_with("/dev/"), "{path}");
+        Servos { child, path, trace }
+    }
+
+    /// The servos' (torque enable, present position) read back over the bus.
+    fn read_back(&self) -> Vec<(i32, i32)> {
+        let port = serial2::SerialPort::open(&self.path, 1_000_000).expect("pty");
+        let mut hand = ServoHand::with_reply_latency(port, &[1, 2], Duration::from_millis(250))
+            .expect("both servos answer");
+        [1, 2]
+            .iter()
+            .map(|&id| {
+                let torque = hand.read_register(id, MX_28.torque_enable.address);
+                let position = hand.read_register(id, MX_28.present_position.address);
+                (torque.expect("torque"), position.expect("position"))
+            })
+            .collect()
+    }
+}
+
+impl Drop for Servos {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Trace lines that are a cycle's state read, a loop command's torque limit, and the two
+/// packets an end action can start with.
+fn is_state_read(l: &str) -> bool {
+    l.contains(" sync_read ")
+}
+fn is_torque_limit(l: &str) -> bool {
+    l.contains(" sync_write Goal PWM ")
+}
+fn is_torque_off(l: &str) -> bool {
+    l.ends_with(" sync_write Torque Enable 1=0 2=0")
+}
+/// A goal position to open (the servos start at 2048; the loop closes towards 130).
+fn is_opening(l: &str) -> bool {
+    l.contains(" sync_write Goal Position 1=20")
+}
+
+/// The simulated time (s) a trace line starts with.
+fn time_s(l: &str) -> f64 {
+    l.split(' ')
+        .next()
+        .and_then(|t| t.parse().ok())
+        .expect("a time")
+}
+
+/// A scene for the rig's fingertip and the servos at `port`, ending with `on_end` (none: the
+/// default), holding `hold_s`.
+fn scene(dir: &Path, port: &str, on_end: Option<&str>, hold_s: f64) -> PathBuf {
+    let on_end = on_end.map_or_else(String::new, |a| format!("on_end = \"{a}\"\n"));
+    let text = format!(
+        "title = \"bench rig\"\n[sensors.fingertip]\nosr = 256\n\
+         i2c_buses = [\"rig-0\", \"rig-1\", \"rig-2\"]\n[controller]\npreset = \"grasp\"\n\
+         [hand]\nmodel = \"mx28\"\nids = [1, 2]\nserial_port = \"{port}\"\n\
+         reply_timeout_ms = 250\n{on_end}[experiment.grasp]\ntorque_band = [250, 320]\n\
+         hold_s = {hold_s}\n"
+    );
+    let path = dir.join("rig.toml");
+    std::fs::write(&path, text).expect("scene");
+    path
+}
+
+/// A fresh directory for one test's files.
+fn dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("handstack-end-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+/// `handstack run SCENE` on the rig, the pad pressed at `press` (`never`: an empty hand).
+fn start_run(scene: &Path, press: &str) -> Child {
+    Command::new(built("examples/bench_rig"))
+        .arg("run")
+        .arg(scene)
+        .env("HANDSTACK_RIG_PRESS_S", press)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the rig starts")
+}
+
+/// Waits for 50 of the loop's commands (half a second of grasping), sends `sig`, and returns
+/// the trace's length when it was sent.
+fn grasp_then_signal(servos: &Servos, run: &Child, sig: &str) -> usize {
+    servos.trace.wait_for("50 loop commands", |l| {
+        l.iter().filter(|l| is_torque_limit(l)).count() >= 50
+    });
+    let sent_at = servos.trace.snapshot().len();
+    signal(run.id(), sig);
+    sent_at
+}
+
+/// The state reads after `from` before the first line `end` matches (which must come).
+fn cycles_until(trace: &[String], from: usize, end: impl Fn(&str) -> bool) -> usize {
+    let after = &trace[from..];
+    let at = after
+        .iter()
+        .position(|l| end(l))
+        .unwrap_or_else(|| panic!("no end action after the signal: {after:?}"));
+    after[..at].iter().filter(|l| is_state_read(l)).count()
+}
+
+#[test]
+fn ctrl_c_mid_grasp_turns_the_torque_off_within_two_cycles() {
+    let servos = Servos::start();
+    let dir = dir("sigint");
+    let run = start_run(&scene(&dir, &servos.path, Some("torque_off"), 20.0), "0.3");
+    let sent_at = grasp_then_signal(&servos, &run, "INT");
+    let out = finish(run);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(
+        err.contains("stopped by SIGINT (Ctrl-C) at ") && err.contains("; hand torque off"),
+        "{err}"
+    );
+    assert!(
+        !err.contains("Some(") && !err.contains(" { "),
+        "Debug text: {err}"
+    );
+    servos
+        .trace
+        .wait_for("torque off", |l| l.iter().any(|l| is_torque_off(l)));
+    let cycles = cycles_until(&servos.trace.snapshot(), sent_at, is_torque_off);
+    assert!(
+        cycles <= 2,
+        "{cycles} cycles after SIGINT before torque off"
+    );
+    for (torque, _) in servos.read_back() {
+        assert_eq!(torque, 0, "torque left on");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn sigterm_mid_grasp_releases_the_hand_then_turns_the_torque_off() {
+    let servos = Servos::start();
+    let dir = dir("sigterm");
+    let run = start_run(&scene(&dir, &servos.path, None, 20.0), "0.3");
+    let sent_at = grasp_then_signal(&servos, &run, "TERM");
+    let out = finish(run);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(143), "{err}");
+    assert!(
+        err.contains("stopped by SIGTERM at ")
+            && err.contains("; hand released (opened to ")
+            && err.ends_with("rad), then torque off\n"),
+        "{err}"
+    );
+    let trace = servos.trace.snapshot();
+    let cycles = cycles_until(&trace, sent_at, is_opening);
+    assert!(
+        cycles <= 2,
+        "{cycles} cycles after SIGTERM before the release"
+    );
+    assert!(trace.iter().any(|l| is_torque_off(l)), "no torque off");
+    // Open where the run found them (2048 = π rad), powered down.
+    for (torque, position) in servos.read_back() {
+        assert_eq!(torque, 0, "torque left on");
+        assert!((position - 2048).abs() <= 40, "not opened: {position}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_servo_bus_that_dies_mid_hold_ends_the_run_at_once_saying_so() {
+    let servos = Servos::start();
+    let dir = dir("bus");
+    let run = start_run(&scene(&dir, &servos.path, None, 20.0), "0.3");
+    servos.trace.wait_for("50 loop commands", |l| {
+        l.iter().filter(|l| is_torque_limit(l)).count() >= 50
+    });
+    signal(servos.child.id(), "KILL");
+    let killed = Instant::now();
+    let out = finish(run);
+    let after = killed.elapsed();
+    let err = text(&out.stderr);
+    // A 20 s hold, ended by the lost bus: the loop sees it in the cycle its exchange fails
+    // (one cycle is 10 ms; the bound leaves room for a loaded machine).
+    assert!(
+        after < Duration::from_secs(2),
+        "ended {after:?} after the kill"
+    );
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    let expected = format!("hand: servo bus {}: ", servos.path);
+    assert!(err.contains(&expected), "{err}");
+    assert!(err.contains("(os error 5) at "), "{err}");
+    assert!(
+        err.contains("; hand end action `release` did not reach it")
+            && err.contains("its servos keep their last command, torque limit "),
+        "{err}"
+    );
+    assert!(
+        !err.contains("Io(") && !err.contains("Os {"),
+        "Debug text: {err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_normal_run_holds_from_its_first_command_and_ends_released() {
+    let servos = Servos::start();
+    let dir = dir("normal");
+    let run = start_run(&scene(&dir, &servos.path, None, 1.0), "0.3");
+    let out = finish(run);
+    let (stdout, err) = (text(&out.stdout), text(&out.stderr));
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(
+        stdout.contains("  hand released (opened to ") && stdout.contains("then torque off"),
+        "{stdout}"
+    );
+    let trace = servos.trace.snapshot();
+    // hold_s = 1 from the first command: the loop's torque limits span one second of the
+    // servos' time (the simulator keeps wall time), whatever opening and taring took.
+    let limits: Vec<&String> = trace.iter().filter(|l| is_torque_limit(l)).collect();
+    let release = trace.iter().position(|l| is_opening(l)).expect("a release");
+    let last_loop = trace[..release]
+        .iter()
+        .rev()
+        .find(|l| is_torque_limit(l))
+        .expect("loop commands");
+    let held = time_s(last_loop) - time_s(limits[0]);
+    assert!((0.97..=1.05).contains(&held), "held {held} s");
+    assert!(trace[release..].iter().any(|l| is_torque_off(l)));
+    for (torque, position) in servos.read_back() {
+        assert_eq!(torque, 0, "torque left on");
+        assert!((position - 2048).abs() <= 40, "not opened: {position}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn closing_on_nothing_is_a_failed_grasp_not_a_met_target() {
+    let servos = Servos::start();
+    let dir = dir("empty");
+    let run = start_run(&scene(&dir, &servos.path, None, 20.0), "never");
+    let out = finish(run);
+    let (stdout, err) = (text(&out.stdout), text(&out.stderr));
+    assert_eq!(out.status.code(), Some(4), "{err}");
+    assert!(
+        err.contains("grasp: the hand closed to its goal without the fingertip seeing contact"),
+        "{err}"
+    );
+    assert!(!stdout.contains("yes"), "{stdout}");
+    for (torque, _) in servos.read_back() {
+        assert_eq!(torque, 0, "torque left on");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

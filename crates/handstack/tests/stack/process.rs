@@ -1,0 +1,107 @@
+//! Other processes, as a user runs them: binaries the workspace built, their output read line
+//! by line as it comes, real signals, bounded waits.
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output};
+use std::sync::{Arc, Condvar, Mutex};
+use std::time::{Duration, Instant};
+
+/// Longest any wait here takes (a bound, not a delay: each returns at its event).
+pub(crate) const WAIT: Duration = Duration::from_secs(30);
+
+/// A binary the workspace's `cargo test` built beside this test (`dxl-sim`), or one of this
+/// package's examples (`examples/bench_rig`).
+pub(crate) fn built(name: &str) -> PathBuf {
+    let exe = std::env::current_exe().expect("the test binary's path");
+    // target/<profile>/deps/<this test> → target/<profile>/<name>
+    let dir = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("target/<profile>");
+    let path = dir.join(name);
+    assert!(
+        path.exists(),
+        "{} is not built: run the workspace's tests (`cargo xtask test`, or `cargo test \
+         --workspace --all-features`), which build dxl-sim and this package's examples",
+        path.display()
+    );
+    path
+}
+
+/// Lines a child process printed, shared with the thread reading them.
+#[derive(Default)]
+pub(crate) struct Lines {
+    lines: Mutex<Vec<String>>,
+    more: Condvar,
+}
+
+impl Lines {
+    /// Reads `from` line by line into a new `Lines`.
+    pub(crate) fn read(from: impl std::io::Read + Send + 'static) -> Arc<Lines> {
+        let lines = Arc::new(Lines::default());
+        let keep = Arc::clone(&lines);
+        std::thread::spawn(move || {
+            for line in BufReader::new(from).lines().map_while(Result::ok) {
+                keep.lines.lock().expect("lines").push(line);
+                keep.more.notify_all();
+            }
+        });
+        lines
+    }
+
+    /// Waits until `done` holds for the lines so far; returns how many there were then.
+    pub(crate) fn wait_for(&self, what: &str, done: impl Fn(&[String]) -> bool) -> usize {
+        let deadline = Instant::now() + WAIT;
+        let mut lines = self.lines.lock().expect("lines");
+        while !done(&lines) {
+            let left = deadline.saturating_duration_since(Instant::now());
+            assert!(
+                !left.is_zero(),
+                "no {what} within {WAIT:?}: {:?}",
+                lines.last()
+            );
+            lines = self.more.wait_timeout(lines, left).expect("lines").0;
+        }
+        lines.len()
+    }
+
+    pub(crate) fn snapshot(&self) -> Vec<String> {
+        self.lines.lock().expect("lines").clone()
+    }
+}
+
+/// Waits for `child` to end (bounded), with what it printed.
+pub(crate) fn finish(child: Child) -> Output {
+    let pid = child.id();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(child.wait_with_output());
+    });
+    match rx.recv_timeout(WAIT) {
+        Ok(out) => out.expect("output"),
+        Err(_) => {
+            signal(pid, "KILL");
+            let said = rx
+                .recv_timeout(Duration::from_secs(5))
+                .ok()
+                .and_then(Result::ok)
+                .map_or_else(String::new, |o| text(&o.stderr));
+            panic!("the process did not end within {WAIT:?}; its stderr:\n{said}");
+        }
+    }
+}
+
+/// Sends `signal` (`INT`, `TERM`, `KILL`) to process `pid`, as a shell's `kill` does.
+pub(crate) fn signal(pid: u32, signal: &str) {
+    let ok = Command::new("kill")
+        .arg(format!("-{signal}"))
+        .arg(pid.to_string())
+        .status()
+        .expect("kill runs");
+    assert!(ok.success(), "kill -{signal} {pid}");
+}
+
+pub(crate) fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}

@@ -1,0 +1,17 @@
+//! paper-scenes' tests, one binary: the papers' scenes run as written against the committed
+//! figures, bad scenes, the command line, the report, the devices, the full hand and the cell.
+
+mod bad_scenes;
+mod cell;
+mod cli;
+mod common;
+mod contact_location;
+mod devices;
+mod full_hand;
+mod grasp_table5;
+mod hand_loop_faults;
+mod report_render;
+mod scene_props;
+mod softness;
+mod tap_to_ur3;
+mod weight_estimation;
