@@ -142,17 +142,33 @@ pub fn fault_device(kind: FaultKind) -> &'static str {
     }
 }
 
-/// Whether `e` is (or was caused by) an I/O error: the link to the device is gone (a closed
-/// port, an unplugged adapter), and no recovery can bring it back.
-fn link_lost(e: &(dyn std::error::Error + 'static)) -> bool {
+/// The I/O error `e` is, or was caused by: the link to the device is gone (a closed port, an
+/// unplugged adapter), and no recovery can bring it back.
+fn link_lost<'e>(e: &'e (dyn std::error::Error + 'static)) -> Option<&'e std::io::Error> {
     let mut cause = Some(e);
     while let Some(c) = cause {
-        if c.is::<std::io::Error>() {
-            return true;
+        if let Some(io) = c.downcast_ref::<std::io::Error>() {
+            return Some(io);
         }
         cause = c.source();
     }
-    false
+    None
+}
+
+/// The actuator's own error inside a loop fault, if the fault is the actuator's.
+fn actuator_error<SE, PE, AE>(fault: &LoopFault<SE, PE, AE>) -> Option<&AE>
+where
+    SE: core::fmt::Debug,
+    PE: core::fmt::Debug,
+    AE: core::fmt::Debug,
+{
+    match fault {
+        LoopFault::Command(e)
+        | LoopFault::State(e)
+        | LoopFault::SafeStop(e)
+        | LoopFault::Reboot(e) => Some(e),
+        _ => None,
+    }
 }
 
 /// A hand on the loop that gets `SafeAction::TorqueOff` if it is dropped before its end
@@ -207,17 +223,19 @@ impl<A: RebootableActuator> RebootableActuator for Guarded<A> {
 }
 
 /// What an end action left the hand doing, in words: `released (…), then torque off`, or,
-/// when it did not reach the hand, that and what the hand last had.
-pub fn left_text<E: core::fmt::Display>(
+/// when it did not reach the hand, that, why (unless the link to it is gone: the run's own
+/// error said so) and what the hand last had.
+pub fn left_text<E: std::error::Error + 'static>(
     report: &EndReport<E>,
     last_torque_raw: Option<u16>,
 ) -> String {
     match (&report.state, &report.error) {
         (Some(state), _) => format!("{state}"),
         (None, error) => {
-            let why = error
-                .as_ref()
-                .map_or_else(String::new, |e| format!(" ({e})"));
+            let why = match error {
+                Some(e) if link_lost(e).is_none() => format!(" ({e})"),
+                _ => String::new(),
+            };
             let last = last_torque_raw
                 .map_or_else(String::new, |t| format!(", torque limit {t} of 0…1023"));
             format!(
@@ -406,16 +424,15 @@ impl<'a> FaultWatch<'a> {
         C: LoopClock,
     {
         if let Some(kind) = s.fault {
-            let event = l.events().iter().rev().find(|e| e.cycle == s.cycle);
-            let lost = event.is_some_and(|e| match &e.fault {
-                LoopFault::Command(e)
-                | LoopFault::State(e)
-                | LoopFault::SafeStop(e)
-                | LoopFault::Reboot(e) => link_lost(e),
-                _ => false,
-            });
-            if self.recover.is_none() || lost {
-                let detail = event.map_or_else(|| kind_text(kind), |e| fault_text(&e.fault));
+            // This cycle's events, newest first; the last of them is what went wrong first.
+            let events = || l.events().iter().rev().take_while(|e| e.cycle == s.cycle);
+            if let Some(io) = events().find_map(|e| link_lost(actuator_error(&e.fault)?)) {
+                return Some(format!("hand: {} lost: {io}", self.hand));
+            }
+            if self.recover.is_none() {
+                let detail = events()
+                    .last()
+                    .map_or_else(|| kind_text(kind), |e| fault_text(&e.fault));
                 return Some(match (kind, fault_device(kind)) {
                     // The fingertip's own errors name it.
                     (FaultKind::Source, _) => detail,

@@ -141,6 +141,14 @@ impl ExperimentTable for Experiments {
                  ROS 2 node (feature `cell`)",
             ));
         }
+        if let (Some(hand), None) = (&scene.hand, &scene.experiment.get_ref().grasp) {
+            return Err(cx.err(
+                hand.span(),
+                "hand",
+                "is named, but no experiment of this scene moves it",
+                "[experiment.grasp] with it, or no [hand]",
+            ));
+        }
         check_experiments(scene, scene.experiment.get_ref(), cx)
     }
 }

@@ -12,7 +12,7 @@ use crate::scene::SceneOf;
 use platform::Platform;
 
 /// Opens every real device `scene` names (fingertip buses, pad bus, hand port, arm host) and
-/// closes them again: a wrong path or an absent device is a typed [`RunError::Open`] before
+/// closes them again (the hand with its torque off): a wrong path or an absent device is a typed [`RunError::Open`] before
 /// any experiment starts. The sensors are opened first, so a hand is never commanded when its
 /// fingertip cannot be read.
 pub fn check_real_devices<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Result<(), RunError> {
@@ -27,7 +27,14 @@ pub fn check_real_devices<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Res
     }
     if let Some(h) = &scene.file.hand {
         if let Some(port) = &h.get_ref().serial_port {
-            drop(hand::open(h.get_ref(), port.get_ref())?);
+            // Opened to check it, then left unpowered until a run commands it.
+            hand::open(h.get_ref(), port.get_ref())?
+                .set_torque(false)
+                .map_err(|e| RunError::Open {
+                    device: "hand",
+                    path: port.get_ref().clone(),
+                    reason: format!("torque off after the check: {e}"),
+                })?;
         }
     }
     if let Some(host) = scene

@@ -173,13 +173,20 @@ fn ctrl_c_mid_grasp_turns_the_torque_off_within_two_cycles() {
 }
 
 #[test]
-fn sigterm_mid_grasp_releases_the_hand_then_turns_the_torque_off() {
+fn sigterm_mid_grasp_releases_the_hand_then_turns_the_torque_off_through_a_second_signal() {
     let servos = Servos::start();
     let dir = dir("sigterm");
     let run = start_run(&scene(&dir, &servos.path, None, 20.0), "0.3");
     let sent_at = grasp_then_signal(&servos, &run, "TERM");
+    // A second signal while the hand opens (a user pressing Ctrl-C again) does not cut the
+    // release short.
+    servos.trace.wait_for("the release", |l| {
+        l[sent_at..].iter().any(|l| is_opening(l))
+    });
+    signal(run.id(), "INT");
     let out = finish(run);
     let err = text(&out.stderr);
+    // The first signal's status.
     assert_eq!(out.status.code(), Some(143), "{err}");
     assert!(
         err.contains("stopped by SIGTERM at ")
@@ -222,12 +229,11 @@ fn a_servo_bus_that_dies_mid_hold_ends_the_run_at_once_saying_so() {
         "ended {after:?} after the kill"
     );
     assert_eq!(out.status.code(), Some(3), "{err}");
-    let expected = format!("hand: servo bus {}: ", servos.path);
+    let expected = format!("hand: servo bus {} lost: ", servos.path);
     assert!(err.contains(&expected), "{err}");
     assert!(err.contains("(os error 5) at "), "{err}");
     assert!(
-        err.contains("; hand end action `release` did not reach it")
-            && err.contains("its servos keep their last command, torque limit "),
+        err.contains("; hand end action `release` did not reach it: its servos keep their last command, torque limit "),
         "{err}"
     );
     assert!(

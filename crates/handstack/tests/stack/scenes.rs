@@ -68,6 +68,13 @@ fn a_device_without_its_hardware_is_refused() {
         "arm",
         &["no experiment of `handstack run` moves an arm"],
     );
+    // A hand no experiment moves is refused too: a run would power it and leave it so.
+    let readout = HAND.replace(
+        "[experiment.grasp]\ntorque_band = [250, 320]\nhold_s = 30\n",
+        "[experiment.readout]\nframes = 10\n",
+    );
+    let e = err(&readout);
+    says(&e, 7, "hand", &["no experiment of this scene moves it"]);
     let e = err(&format!("{HAND}[sim]\nseed = 1\n"));
     says(&e, 13, "sim", &["simulates an environment", "paper-scenes"]);
 }
