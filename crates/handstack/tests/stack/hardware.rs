@@ -93,10 +93,7 @@ impl Platform for Substitute {
 
 #[test]
 fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_servos() {
-    use hand_control::sim::{SimBus, SimConfig};
-    let (mut bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
-    drop(port);
-    let path = bus.client_path().display().to_string();
+    let (mut bus, path) = servo_bus();
     let text = grasp_scene(
         &path,
         "i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n",
@@ -158,6 +155,16 @@ fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_serv
     );
 }
 
+/// Two simulated MX-28s on a pty, and the pty's path: a scene opens it by its path, as it
+/// would /dev/ttyUSB0.
+fn servo_bus() -> (hand_control::sim::SimBus, String) {
+    use hand_control::sim::{SimBus, SimConfig};
+    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
+    drop(port);
+    let path = bus.client_path().display().to_string();
+    (bus, path)
+}
+
 /// The servos of `bus` have had no command: torque off, Goal PWM at its power-on value.
 fn untouched(bus: &hand_control::sim::SimBus, ids: &[u8]) {
     let table = &hand_control::control_table::MX_28;
@@ -174,10 +181,7 @@ fn untouched(bus: &hand_control::sim::SimBus, ids: &[u8]) {
 
 #[test]
 fn a_hardware_grasp_never_reads_a_simulated_fingertip_and_fails_before_any_servo_command() {
-    use hand_control::sim::{SimBus, SimConfig};
-    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
-    drop(port); // the scene opens the pty by its path, as it would /dev/ttyUSB0
-    let path = bus.client_path().display().to_string();
+    let (bus, path) = servo_bus();
     let scene = |sensors: &str| grasp_scene(&path, sensors, 0.3);
     // Real servos, no sensor buses named: refused as a scene error (this binary has no
     // simulated fingertip to fall back on), and nothing reached the servos.
@@ -266,10 +270,7 @@ fn a_real_pad_is_read_through_the_driver_from_the_bus_it_names() {
 
 #[test]
 fn servos_of_another_model_than_the_scenes_are_refused_before_any_command() {
-    use hand_control::sim::{SimBus, SimConfig};
-    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
-    drop(port);
-    let path = bus.client_path().display().to_string();
+    let (bus, path) = servo_bus();
     let text = grasp_scene(
         &path,
         "i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n",
