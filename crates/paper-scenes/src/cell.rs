@@ -78,7 +78,7 @@ pub fn run_node(
                     .map_err(|e| failed("contact locator", e))
             };
             let report = pad::run(&node, &mut source, Some(&mut locate), &config, stop)?;
-            Ok(format!("{report:?}"))
+            Ok(report.to_string())
         }
         Part::Arm => {
             let mut stack = devices::arm::open(scene)?;
@@ -88,7 +88,7 @@ pub fn run_node(
                 ..ArmNodeConfig::default()
             };
             let report = arm::run(&node, &mut stack.arm, &config, stop)?;
-            Ok(format!("{report:?} (arm at {})", stack.host))
+            Ok(format!("{report} (arm at {})", stack.host))
         }
         Part::Fingertip => {
             let tip = devices::fingertip::open(scene, &*cx.stack.platform)

@@ -62,7 +62,7 @@ pub enum UrError {
     #[error("invalid argument: {0}")]
     InvalidArgument(String),
     /// A bounded wait ran out.
-    #[error("timed out after {after:?} waiting for {what}")]
+    #[error("timed out after {} s waiting for {what}", after.as_secs_f64())]
     Timeout {
         /// How long we waited.
         after: Duration,

@@ -140,7 +140,10 @@ pub fn run(
         if !node.wait_for(kind, &name, cell.discovery_timeout)? {
             return Err(CellError::Graph {
                 node: name,
-                what: format!("not in the graph within {:?}", cell.discovery_timeout),
+                what: format!(
+                    "not in the graph within {} s",
+                    cell.discovery_timeout.as_secs_f64()
+                ),
             });
         }
     }
@@ -167,7 +170,7 @@ pub fn run(
                 if Instant::now() > deadline {
                     return Err(CellError::Graph {
                         node: cell.pad.clone(),
-                        what: format!("no contact within {:?}", cell.contact_timeout),
+                        what: format!("no contact within {} s", cell.contact_timeout.as_secs_f64()),
                     });
                 }
             };
@@ -235,6 +238,9 @@ fn move_to(
     }
     Err(CellError::Graph {
         node: cell.arm.clone(),
-        what: format!("did not reach its goal within {:?}", cell.move_timeout),
+        what: format!(
+            "did not reach its goal within {} s",
+            cell.move_timeout.as_secs_f64()
+        ),
     })
 }

@@ -177,7 +177,7 @@ fn a_pad_node_killed_mid_run_is_seen_going_and_the_arm_is_stopped() {
         .find(|(ns, _)| ns == "/arm0")
         .map(|(_, l)| l.as_str());
     assert!(
-        arm.is_some_and(|l| l.contains("stops: 1")),
+        arm.is_some_and(|l| l.contains(" 1 stops asked")),
         "the arm node was not told to stop: {arm:?}"
     );
 }

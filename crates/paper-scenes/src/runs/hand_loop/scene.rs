@@ -265,8 +265,8 @@ pub fn figures(
     f.push(measured(
         "loop_cnn_triggers",
         &format!(
-            "fused loop: taps located by the CNN (regions {:?})",
-            st.located
+            "fused loop: taps located by the CNN (regions {})",
+            list(&st.located)
         ),
         st.cnn_triggers as f64,
         "",
@@ -286,8 +286,9 @@ pub fn figures(
     f.push(measured(
         "loop_fingertip_contacts",
         &format!(
-            "fused loop: fingertip contacts (last AoT area {:?}, MLP area {:?})",
-            st.aot_area, st.mlp_area
+            "fused loop: fingertip contacts (last AoT area {}, MLP area {})",
+            area(st.aot_area),
+            area(st.mlp_area)
         ),
         st.contacts as f64,
         "",
@@ -310,7 +311,7 @@ pub fn figures(
     };
     let t_s = r.t_us as f64 * 1e-6;
     let label = format!(
-        "fused loop: fault of {} in cycle {} at t = {t_s:.2} s ({}); hand {:?}",
+        "fused loop: fault of {} in cycle {} at t = {t_s:.2} s ({}); hand {}",
         r.device, r.cycle, r.reason, r.mode
     );
     f.push(measured("loop_fault", &label, 1.0, ""));
@@ -320,4 +321,21 @@ pub fn figures(
         t_s,
         "s",
     ));
+}
+
+/// Values as a person lists them: `1, 4, 7` (`none` when empty).
+fn list<T: core::fmt::Display>(values: &[T]) -> String {
+    if values.is_empty() {
+        return "none".to_owned();
+    }
+    values
+        .iter()
+        .map(T::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// An area, or `none` before the first.
+fn area<T: core::fmt::Display>(a: Option<T>) -> String {
+    a.map_or_else(|| "none".to_owned(), |a| a.to_string())
 }
