@@ -2,11 +2,12 @@
 """Independent ROS 2 / rmw_zenoh client for handstack, written without the Rust side's code.
 
 Everything ROS-specific is derived here from the `.msg` files and rosbags' ROS 2 Jazzy type store
-(type hashes, CDR), and everything Zenoh-specific from eclipse-zenoh and the rmw_zenoh design
-document (key expressions, liveliness tokens, attachment). Subcommands: hashes, cdr, encode,
-subscribe, router, selftest. Every command prints one JSON object (`encode`: one hex line);
-failures print {"error": ...} and exit 1. rosbags is imported lazily so that `router` runs
-under any eclipse-zenoh 1.x without it.
+(type hashes, CDR), and everything Zenoh-specific from eclipse-zenoh and rmw_zenoh's own texts:
+`docs/design.md` (key expressions, liveliness tokens, attachments), `attachment_helpers.cpp`
+(attachment serialization) and `liveliness_utils.cpp` (entity GIDs). Subcommands: hashes, cdr,
+encode, attachment, gid, subscribe, publish, call, router, selftest. Every command prints one
+JSON object (`encode`: one hex line); failures print {"error": ...} and exit 1. rosbags and
+xxhash are imported lazily so that `router` runs under any eclipse-zenoh 1.x without them.
 """
 from __future__ import annotations
 
@@ -17,9 +18,9 @@ import importlib.metadata
 import json
 import os
 import queue
-import secrets
 import select
 import socket
+import struct
 import subprocess
 import sys
 import threading
@@ -28,7 +29,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import zenoh
-from zenoh.ext import Int64, UInt8, ZDeserializeError, z_deserialize, z_serialize
+from zenoh.ext import Int64, ZDeserializeError, z_deserialize, z_serialize
 
 if TYPE_CHECKING:
     from rosbags.typesys.store import Typestore
@@ -59,6 +60,11 @@ SUB_QOS = "::,10:,:,:,,"  # ... and for a default subscription / service (design
 NODE = "handstack_interop"
 SELFTEST_TOPIC, SELFTEST_TYPE, SELFTEST_SERVICE = "/hand0/tactile/raw", "handstack_msgs/msg/PressureFrame", \
     "/hand0/tactile/tare"
+SELFTEST_COMMAND, SELFTEST_COMMAND_TYPE = "/hand0/gripper/command", "handstack_msgs/msg/GripperCommand"
+GID_LEN = 16  # RMW_GID_STORAGE_SIZE
+ATTACHMENT_LEN = 8 + 8 + 1 + GID_LEN  # design.md: i64 LE, i64 LE, 1-byte GID length, GID = 33 bytes
+LEGACY_PREFIX = bytes([15]) + b"sequence_number"  # how the old keyed attachment starts
+MAX_COUNT = 100_000  # upper bound on samples taken or published by one run
 
 
 class Failure(Exception):
@@ -186,6 +192,11 @@ def data_key(domain: int, topic: str, name: str, hash_: str) -> str:
     return f"{domain}/{topic.strip('/')}/{dds_name(name)}/{hash_}"
 
 
+def node_token(domain: int, zid: str, node: str = NODE) -> str:
+    """Liveliness token of a node (node id 0, empty enclave and namespace: '%'), design.md."""
+    return f"@ros2_lv/{domain}/{zid}/0/0/NN/%/%/{node}"
+
+
 def entity_token(domain: int, zid: str, eid: int, kind: str, topic: str, name: str, hash_: str,
                  qos: str, node: str = NODE) -> str:
     """Liveliness token of an entity of `node` (node id 0, empty enclave and namespace: '%')."""
@@ -193,20 +204,106 @@ def entity_token(domain: int, zid: str, eid: int, kind: str, topic: str, name: s
     return f"@ros2_lv/{domain}/{zid}/0/{eid}/{kind}/%/%/{node}/{mangled}/{dds_name(name)}/{hash_}/{qos}"
 
 
+def entity_gid(token: str) -> bytes:
+    """An entity's GID as rmw_zenoh computes it (`liveliness_utils.cpp`, `Entity` constructor).
+
+    XXH3-128 of the entity's whole liveliness key expression; the 16 GID bytes are the hash's
+    low 64 bits then its high 64 bits, each memcpy'd from a little-endian machine, i.e. the
+    128-bit hash as one little-endian number. Uses the `xxhash` package's XXH3, not ours.
+    """
+    import xxhash
+    h = xxhash.xxh3_128_intdigest(token.encode())
+    return (h & (2**64 - 1)).to_bytes(8, "little") + (h >> 64).to_bytes(8, "little")
+
+
+# Attachments. Current layout (rmw_zenoh `docs/design.md`, rolling branch 2025, "Publishers" /
+# "Service Clients" / "Service Servers"; `rmw_zenoh_cpp/src/detail/attachment_helpers.cpp` in
+# rmw_zenoh >= 0.2.4 on Jazzy, >= 0.1.2 on Humble, >= 0.6.0 on rolling): zenoh::ext::Serializer of
+# (int64 sequence_number, int64 source_timestamp, std::array<uint8_t, 16> source_gid). In the
+# Zenoh serialization format (eclipse-zenoh/roadmap rfcs/ALL/Serialization.md) integers are
+# fixed-width little-endian and a fixed-size array is written like a sequence: LEB128 element
+# count (16 = one byte 0x10), then the elements. So: <seq i64 LE> <stamp i64 LE> 10 <16 GID bytes>
+# = 33 bytes. Python has no fixed-size array type; `bytes` serializes as a sequence of u8, which
+# gives the same bytes.
 def make_attachment(seq: int, stamp_ns: int, gid: bytes) -> bytes:
-    """rmw_zenoh attachment: zenoh-ext serialized (str, i64, str, i64, str, 16 x u8 sequence)."""
+    """Current rmw_zenoh attachment, made with zenoh-ext's serializer: (i64, i64, 16 x u8)."""
+    if len(gid) != GID_LEN:
+        raise ValueError(f"a GID has {GID_LEN} bytes, not {len(gid)}")
+    return z_serialize((Int64(seq), Int64(stamp_ns), bytes(gid))).to_bytes()
+
+
+def manual_attachment(seq: int, stamp_ns: int, gid: bytes) -> bytes:
+    """The same 33 bytes written out by hand from design.md's description (a check of the above)."""
+    return struct.pack("<qqB", seq, stamp_ns, len(gid)) + bytes(gid)
+
+
+def make_legacy_attachment(seq: int, stamp_ns: int, gid: bytes) -> bytes:
+    """Old keyed layout (rmw_zenoh <= 0.2.3 on Jazzy, <= 0.1.1 on Humble): str, i64, str, i64, str, u8s."""
+    if len(gid) != GID_LEN:
+        raise ValueError(f"a GID has {GID_LEN} bytes, not {len(gid)}")
     return z_serialize(("sequence_number", Int64(seq), "source_timestamp", Int64(stamp_ns),
-                        "source_gid", [UInt8(b) for b in gid])).to_bytes()
+                        "source_gid", bytes(gid))).to_bytes()
 
 
-def parse_attachment(raw: bytes) -> tuple[int, int, bytes]:
-    """(sequence_number, source_timestamp, gid); raises ValueError unless it re-serializes exactly."""
-    tup = tuple[str, Int64, str, Int64, str, list[UInt8]]
-    k1, seq, k2, stamp, k3, gid = z_deserialize(tup, zenoh.ZBytes(raw))
-    if (k1, k2, k3) != ("sequence_number", "source_timestamp", "source_gid") or len(gid) != 16:
-        raise ValueError(f"unexpected attachment layout {raw.hex()}")
-    if make_attachment(seq, stamp, bytes(gid)) != raw:  # z_deserialize ignores trailing bytes
-        raise ValueError(f"attachment has extra or non-canonical bytes: {raw.hex()}")
+def manual_legacy_attachment(seq: int, stamp_ns: int, gid: bytes) -> bytes:
+    """The old 77 bytes by hand: each key as a one-byte LEB128 length + UTF-8 (all are < 128)."""
+    return b"".join(bytes([len(k)]) + k.encode() + v for k, v in (
+        ("sequence_number", struct.pack("<q", seq)), ("source_timestamp", struct.pack("<q", stamp_ns)),
+        ("source_gid", bytes([len(gid)]) + bytes(gid))))
+
+
+class AttachmentError(ValueError):
+    """An attachment that is not exactly the current layout; `info` says what it looks like."""
+
+    def __init__(self, raw: bytes | None, what: str) -> None:
+        super().__init__(what)
+        self.info = {"attachment_len": None if raw is None else len(raw),
+                     "attachment_hex": None if raw is None else raw.hex(),
+                     "looks_legacy": raw is not None and looks_legacy(raw)}
+
+
+def parse_legacy_attachment(raw: bytes) -> tuple[int, int, bytes]:
+    """(sequence_number, source_timestamp, gid) of an old keyed attachment; ValueError otherwise."""
+    tup = tuple[str, Int64, str, Int64, str, bytes]
+    try:
+        k1, seq, k2, stamp, k3, gid = z_deserialize(tup, zenoh.ZBytes(raw))
+    except (ZDeserializeError, ValueError, TypeError, UnicodeDecodeError) as exc:
+        raise ValueError(f"not the old layout: {exc}") from None
+    if (k1, k2, k3) != ("sequence_number", "source_timestamp", "source_gid") or len(gid) != GID_LEN \
+            or make_legacy_attachment(seq, stamp, gid) != raw:
+        raise ValueError("not the old layout")
+    return int(seq), int(stamp), bytes(gid)
+
+
+def looks_legacy(raw: bytes) -> bool:
+    """True for an exact old-layout (77-byte, keyed) attachment."""
+    try:
+        parse_legacy_attachment(raw)
+    except ValueError:
+        return False
+    return True
+
+
+def parse_attachment(raw: bytes | None) -> tuple[int, int, bytes]:
+    """(sequence_number, source_timestamp, gid) of a current-layout attachment, else AttachmentError.
+
+    zenoh-ext's deserializer reads (i64, i64, sequence of u8); the count must be 16, and the bytes
+    must re-serialize to exactly `raw` (z_deserialize, like rmw_zenoh's reader, ignores trailing
+    bytes; here they are an error).
+    """
+    if raw is None:
+        raise AttachmentError(None, "no attachment")
+    if looks_legacy(raw):
+        raise AttachmentError(raw, f"attachment is the old keyed {len(raw)}-byte layout, not the "
+                                   f"{ATTACHMENT_LEN}-byte one (rmw_zenoh <= 0.2.3 Jazzy / <= 0.1.1 Humble)")
+    try:
+        seq, stamp, gid = z_deserialize(tuple[Int64, Int64, bytes], zenoh.ZBytes(raw))
+    except (ZDeserializeError, ValueError, TypeError) as exc:
+        raise AttachmentError(raw, f"attachment does not deserialize as (i64, i64, u8 sequence): {exc}") from None
+    if len(gid) != GID_LEN:
+        raise AttachmentError(raw, f"attachment GID has {len(gid)} bytes, not {GID_LEN}")
+    if len(raw) != ATTACHMENT_LEN or make_attachment(seq, stamp, gid) != raw:
+        raise AttachmentError(raw, f"attachment is {len(raw)} bytes, not the {ATTACHMENT_LEN}-byte layout")
     return int(seq), int(stamp), bytes(gid)
 
 
@@ -228,26 +325,43 @@ def udp_sockets(pid: int | str = "self") -> int:
 
 
 def wait_for_tokens(session: zenoh.Session, domain: int, wanted: list[tuple[str, str, str, str]],
-                    deadline: float) -> None:
-    """Block until a liveliness token (kind, mangled name, dds type, hash) exists for each `wanted`."""
+                    deadline: float) -> list[str]:
+    """Block until a liveliness token (kind, mangled name, dds type, hash) exists for each `wanted`.
+
+    Returns every token seen that matches one of `wanted` (e.g. each publisher on a topic).
+    """
     tokens: queue.Queue[str] = queue.Queue()
     def on_token(sample: zenoh.Sample) -> None:
         if sample.kind == zenoh.SampleKind.PUT:
             tokens.put(str(sample.key_expr))
     sub = session.liveliness().declare_subscriber(f"@ros2_lv/{domain}/**", on_token, history=True)
-    missing, near = set(wanted), []
+    missing, near, found, all_wanted = set(wanted), [], [], set(wanted)
+    def take(key: str) -> None:
+        p = key.split("/")
+        if len(p) >= 13:
+            kind = (p[5], p[9], p[10], p[11])
+            if kind in all_wanted:
+                found.append(key)
+            missing.discard(kind)
+            near.extend(key for w in missing if (w[0], w[1]) == (p[5], p[9]))
     try:
         while missing:
             try:
                 key = tokens.get(timeout=max(0.0, deadline - time.monotonic()))
             except queue.Empty:
                 raise Failure("discovery timed out", missing=sorted(missing), same_name_tokens=near) from None
-            p = key.split("/")
-            if len(p) >= 13:
-                missing.discard((p[5], p[9], p[10], p[11]))
-                near += [key for w in missing if (w[0], w[1]) == (p[5], p[9])]
+            take(key)
+        with contextlib.suppress(queue.Empty):  # tokens that arrived together with the last one
+            while True:
+                take(tokens.get_nowait())
     finally:
         sub.undeclare()
+    return found
+
+
+def hash_function(store: Typestore, humble: bool) -> Any:
+    """Type name -> the hash field of keys and tokens (Humble's rmw_zenoh: TypeHashNotSupported)."""
+    return (lambda n: HUMBLE_HASH) if humble else (lambda n: ros_hash(store, n))
 
 
 # ---------------------------------------------------------------- subcommands
@@ -272,30 +386,51 @@ def cmd_encode(args: argparse.Namespace) -> str:
     return encode(store, args.type, from_plain(store, args.type, json.loads(args.json))).hex()
 
 
+def cmd_attachment(args: argparse.Namespace) -> dict[str, str]:
+    """Attachment bytes for --seq/--stamp/--gid via zenoh-ext (current layout; --legacy the old one)."""
+    gid = bytes.fromhex(args.gid)
+    if len(gid) != GID_LEN:
+        raise Failure(f"--gid needs {GID_LEN} bytes (32 hex digits), got {len(gid)}")
+    make, manual = (make_legacy_attachment, manual_legacy_attachment) if args.legacy \
+        else (make_attachment, manual_attachment)
+    raw = make(args.seq, args.stamp, gid)
+    if raw != manual(args.seq, args.stamp, gid):  # zenoh-ext and the written-out layout must agree
+        raise Failure("zenoh-ext's bytes differ from the documented layout", hex=raw.hex(),
+                      expected_hex=manual(args.seq, args.stamp, gid).hex())
+    return {"hex": raw.hex()}
+
+
+def cmd_gid(args: argparse.Namespace) -> dict[str, str]:
+    """GID of the entity with liveliness token --token: XXH3-128, low then high 64 bits, LE."""
+    return {"gid_hex": entity_gid(args.token).hex()}
+
+
 def cmd_subscribe(args: argparse.Namespace) -> dict[str, Any]:
     """Discover a publisher like rmw_zenoh does, take N samples, check them; optionally call a service."""
     store, _ = load_typestore(args.msgs)
     deadline, start, srv, stype = time.monotonic() + args.timeout, time.monotonic(), args.call_service, args.service_type
-    hash_of = (lambda n: HUMBLE_HASH) if args.humble else (lambda n: ros_hash(store, n))
+    hash_of = hash_function(store, args.humble)
     key = data_key(args.domain, args.topic, args.type, hash_of(args.type))
     wanted = [("MP", args.topic.replace("/", "%"), dds_name(args.type), hash_of(args.type))]
     wanted += [("SS", srv.replace("/", "%"), dds_name(stype), hash_of(stype))] if srv else []
     conf = make_config(args.mode, [args.connect], ["tcp/127.0.0.1:0"] if args.mode == "peer" else [])
     out: dict[str, Any] = {"key": key, "received": 0, "roundtrip_identical": 0, "attachment_ok": 0,
-                           "seq_first": None, "seq_last": None, "gaps": 0, "seq_strictly_increasing": True,
-                           "gid_hex": None, "timestamps_monotonic": True, "first_fields": None, "service": None}
+                           "attachment_len": None, "seq_first": None, "seq_last": None, "gaps": 0,
+                           "seq_strictly_increasing": True, "gid_hex": None, "gid_matches_token": None,
+                           "timestamps_monotonic": True, "first_fields": None, "service": None}
     with zenoh.open(conf) as session:
-        zid, gid, live = str(session.info.zid()), secrets.token_bytes(16), session.liveliness()
-        tokens = [live.declare_token(f"@ros2_lv/{args.domain}/{zid}/0/0/NN/%/%/{NODE}"), live.declare_token(
+        zid, live = str(session.info.zid()), session.liveliness()
+        client_token = entity_token(args.domain, zid, 11, "SC", srv, stype, hash_of(stype), SUB_QOS) if srv else None
+        tokens = [live.declare_token(node_token(args.domain, zid)), live.declare_token(
             entity_token(args.domain, zid, 10, "MS", args.topic, args.type, hash_of(args.type), SUB_QOS))]
-        if srv:
-            tokens.append(live.declare_token(entity_token(args.domain, zid, 11, "SC", srv, stype, hash_of(stype),
-                                                          SUB_QOS)))
+        if client_token:
+            tokens.append(live.declare_token(client_token))
         samples: queue.Queue[zenoh.Sample] = queue.Queue()
         sub = session.declare_subscriber(key, samples.put)
-        wait_for_tokens(session, args.domain, wanted, deadline)
+        found = wait_for_tokens(session, args.domain, wanted, deadline)
+        publisher_gids = {entity_gid(t).hex() for t in found if t.split("/")[5] == "MP"}
         out["discovery_s"], last_stamp = round(time.monotonic() - start, 3), 0
-        while out["received"] < args.count:
+        while out["received"] < min(args.count, MAX_COUNT):
             try:
                 sample = samples.get(timeout=max(0.0, deadline - time.monotonic()))
             except queue.Empty:
@@ -310,35 +445,44 @@ def cmd_subscribe(args: argparse.Namespace) -> dict[str, Any]:
             out["first_fields"] = out["first_fields"] or to_plain(msg)
             if not same and "first_mismatch" not in out:
                 out["first_mismatch"] = {"got": raw.hex(), "reencoded": encode(store, args.type, msg).hex()}
+            att = sample.attachment.to_bytes() if sample.attachment is not None else None
             try:
-                seq, stamp, sgid = parse_attachment(sample.attachment.to_bytes())
-            except (AttributeError, ValueError, ZDeserializeError) as exc:
-                out.setdefault("attachment_error", str(exc) or "no attachment")
-                continue
+                seq, stamp, sgid = parse_attachment(att)
+            except AttachmentError as exc:
+                raise Failure(f"sample {out['received'] - 1}: {exc}", **{**out, **exc.info}) from None
             out["attachment_ok"] += 1
+            out["attachment_len"] = len(att)
             if out["seq_last"] is not None:
                 out["seq_strictly_increasing"] &= seq > out["seq_last"]
                 out["gaps"] += max(0, seq - out["seq_last"] - 1)
                 out["timestamps_monotonic"] &= stamp >= last_stamp
             out["seq_first"] = seq if out["seq_first"] is None else out["seq_first"]
             out["seq_last"], last_stamp, out["gid_hex"] = seq, stamp, out["gid_hex"] or sgid.hex()
+            # Informational: does the GID follow rmw_zenoh's rule (XXH3-128 of a publisher's token)?
+            out["gid_matches_token"] = (out["gid_matches_token"] is not False) and sgid.hex() in publisher_gids
         sub.undeclare()
         if srv:
-            out["service"] = call_service(session, store, args, hash_of(stype), gid, deadline)
+            reply = request_reply(session, store, data_key(args.domain, srv, stype, hash_of(stype)),
+                                  stype, {}, 1, entity_gid(client_token), deadline)
+            out["service"] = {**reply.pop("response"), **reply}  # response fields at the top, as before
         out["udp_sockets"] = udp_sockets()
-        del tokens
+        for t in tokens:
+            t.undeclare()
     if (out["roundtrip_identical"] < out["received"] or out["attachment_ok"] < out["received"]
             or not out["seq_strictly_increasing"] or not out["timestamps_monotonic"] or out["udp_sockets"]):
         raise Failure("received data failed a check", **out)
     return out
 
 
-def call_service(session: zenoh.Session, store: Typestore, args: argparse.Namespace, hash_: str,
-                 gid: bytes, deadline: float) -> dict[str, Any]:
-    """One rmw_zenoh service call: get(ALL_COMPLETE, no consolidation) with request CDR and attachment."""
-    name, seq = args.service_type, 1
-    key = data_key(args.domain, args.call_service, name, hash_)
-    request = encode(store, f"{name}_Request", from_plain(store, f"{name}_Request", {}))
+def request_reply(session: zenoh.Session, store: Typestore, key: str, name: str, fields: dict[str, Any],
+                  seq: int, gid: bytes, deadline: float) -> dict[str, Any]:
+    """One rmw_zenoh service call: get(ALL_COMPLETE, no consolidation) with request CDR and attachment.
+
+    design.md "Service Clients": the attachment carries the request's sequence number, a source
+    timestamp and the client's GID; "Service Servers": the reply's carries the same sequence
+    number and client GID, with the server's own timestamp.
+    """
+    request = encode(store, f"{name}_Request", from_plain(store, f"{name}_Request", fields))
     replies = session.get(key, payload=request, attachment=make_attachment(seq, time.time_ns(), gid),
                           target=zenoh.QueryTarget.ALL_COMPLETE, consolidation=zenoh.ConsolidationMode.NONE,
                           timeout=max(0.1, deadline - time.monotonic()))
@@ -346,11 +490,108 @@ def call_service(session: zenoh.Session, store: Typestore, args: argparse.Namesp
         if reply.ok is None:
             raise Failure(f"service replied with an error: {reply.err.payload.to_string()}", key=key)
         msg, same = roundtrip(store, f"{name}_Response", reply.ok.payload.to_bytes())
-        att = reply.ok.attachment
-        rseq, _, rgid = parse_attachment(att.to_bytes()) if att is not None else (None, 0, b"")
-        return {**to_plain(msg), "key": key, "roundtrip_identical": same, "request_hex": request.hex(),
+        att = reply.ok.attachment.to_bytes() if reply.ok.attachment is not None else None
+        try:
+            rseq, _, rgid = parse_attachment(att)
+        except AttachmentError as exc:
+            raise Failure(f"service reply: {exc}", key=key, response=to_plain(msg),
+                          **{**exc.info, "reply_attachment_len": exc.info["attachment_len"]}) from None
+        return {"response": to_plain(msg), "key": key, "roundtrip_identical": same, "request_hex": request.hex(),
+                "reply_attachment_len": len(att), "reply_seq": rseq,
                 "seq_echoed": rseq == seq, "gid_echoed": rgid == gid}
     raise Failure("no service reply before the timeout", key=key)
+
+
+def header_stamped(store: Typestore, name: str, fields: dict[str, Any]) -> bool:
+    """True when `name` has a std_msgs/Header `header` whose stamp `fields` leaves unset."""
+    from rosbags.typesys.base import Nodetype
+    has = any(f == "header" and d[0] == Nodetype.NAME and d[1] == "std_msgs/msg/Header"
+              for f, d in store.fielddefs[name][1])
+    return has and "stamp" not in (fields.get("header") or {})
+
+
+def endpoint(args: argparse.Namespace, name: str) -> tuple[Typestore, float, str, str]:
+    """The type store, the run's deadline, `args.type`'s hash and the data key of `name`."""
+    store, _ = load_typestore(args.msgs)
+    hash_ = hash_function(store, args.humble)(args.type)
+    return store, time.monotonic() + args.timeout, hash_, data_key(args.domain, name, args.type, hash_)
+
+
+def cmd_publish(args: argparse.Namespace) -> dict[str, Any]:
+    """Publish N samples like an rmw_zenoh publisher once a matching subscription is in the graph."""
+    store, deadline, hash_, key = endpoint(args, args.topic)
+    fields = json.loads(args.json)
+    from_plain(store, args.type, fields)  # unknown fields fail before anything is declared
+    stamp_now = header_stamped(store, args.type, fields)
+    out: dict[str, Any] = {"key": key, "token": None, "gid_hex": None, "published": 0, "first_attachment_hex": None}
+    with zenoh.open(make_config("peer", [args.connect], ["tcp/127.0.0.1:0"])) as s:
+        zid, live = str(s.info.zid()), s.liveliness()
+        token = entity_token(args.domain, zid, 10, "MP", args.topic, args.type, hash_, PUB_QOS)
+        gid = entity_gid(token)
+        out.update(token=token, gid_hex=gid.hex())
+        pub = s.declare_publisher(key)
+        tokens = [live.declare_token(node_token(args.domain, zid)), live.declare_token(token)]
+        try:
+            try:
+                wait_for_tokens(s, args.domain, [("MS", args.topic.replace("/", "%"), dds_name(args.type), hash_)],
+                                deadline)
+            except Failure as exc:
+                raise Failure(str(exc), **{**out, **exc.info}) from None
+            # The token says a subscription exists; Zenoh's matching status says its subscriber
+            # declaration has reached this session too, so the first sample is not lost.
+            while not pub.matching_status.matching:
+                if time.monotonic() >= deadline:
+                    raise Failure("a subscription token appeared but no Zenoh subscriber matched", **out)
+                time.sleep(0.01)
+            start = time.monotonic()
+            for seq in range(1, min(args.count, MAX_COUNT) + 1):
+                due = start + (seq - 1) / args.rate
+                if due > deadline:
+                    raise Failure(f"timed out after {out['published']} of {args.count} samples", **out)
+                time.sleep(max(0.0, due - time.monotonic()))
+                now = time.time_ns()
+                msg = dict(fields)
+                if stamp_now:
+                    msg["header"] = {**(fields.get("header") or {}),
+                                     "stamp": {"sec": now // 10**9, "nanosec": now % 10**9}}
+                att = make_attachment(seq, now, gid)
+                pub.put(encode(store, args.type, from_plain(store, args.type, msg)), attachment=att)
+                out["published"] = seq
+                out["first_attachment_hex"] = out["first_attachment_hex"] or att.hex()
+            # Let the last sample leave; with --linger, stay in the graph that long (a ROS 2
+            # node that stops publishing but keeps running: its subscribers see no writer leave).
+            time.sleep(max(0.0, min(max(0.2, args.linger), deadline - time.monotonic())))
+        finally:
+            for t in tokens:
+                t.undeclare()
+            pub.undeclare()
+    return out
+
+
+def cmd_call(args: argparse.Namespace) -> dict[str, Any]:
+    """Call a service once like an rmw_zenoh client (SC token, attachment with --seq and own GID)."""
+    store, deadline, hash_, key = endpoint(args, args.service)
+    fields = json.loads(args.json)
+    from_plain(store, f"{args.type}_Request", fields)  # unknown fields fail before anything is declared
+    out: dict[str, Any] = {"key": key, "token": None, "gid_hex": None, "response": None,
+                           "reply_attachment_len": None, "seq_echoed": False, "gid_echoed": False, "reply_seq": None}
+    with zenoh.open(make_config("peer", [args.connect], ["tcp/127.0.0.1:0"])) as s:
+        zid, live = str(s.info.zid()), s.liveliness()
+        token = entity_token(args.domain, zid, 10, "SC", args.service, args.type, hash_, SUB_QOS)
+        gid = entity_gid(token)
+        out.update(token=token, gid_hex=gid.hex())
+        tokens = [live.declare_token(node_token(args.domain, zid)), live.declare_token(token)]
+        try:
+            wait_for_tokens(s, args.domain, [("SS", args.service.replace("/", "%"), dds_name(args.type), hash_)],
+                            deadline)
+            reply = request_reply(s, store, key, args.type, fields, args.seq, gid, deadline)
+        except Failure as exc:
+            raise Failure(str(exc), **{**out, **exc.info}) from None
+        finally:
+            for t in tokens:
+                t.undeclare()
+    return {**out, **{k: reply[k] for k in ("response", "reply_attachment_len", "seq_echoed", "gid_echoed",
+                                            "reply_seq", "roundtrip_identical")}}
 
 
 def cmd_router(args: argparse.Namespace) -> None:
@@ -365,23 +606,42 @@ def cmd_router(args: argparse.Namespace) -> None:
 
 
 def mimic_node(store: Typestore, connect: str, humble: bool, stop: threading.Event,
-               ready: threading.Event) -> None:
-    """Selftest stand-in for an rmw_zenoh node: /hand0/tactile/raw at 100 Hz, /hand0/tactile/tare."""
+               ready: threading.Event, inbox: list[tuple[bytes, bytes | None]]) -> None:
+    """Selftest stand-in for an rmw_zenoh node, current attachment layout on every message.
+
+    Publishes /hand0/tactile/raw at 100 Hz (GID: XXH3-128 of its MP token), serves
+    /hand0/tactile/tare (the reply echoes the request's sequence number and client GID) and
+    subscribes to /hand0/gripper/command, appending (payload, attachment) to `inbox`.
+    """
     topic, tname, srv, sname = SELFTEST_TOPIC, SELFTEST_TYPE, SELFTEST_SERVICE, "std_srvs/srv/Trigger"
-    hash_of = (lambda n: HUMBLE_HASH) if humble else (lambda n: ros_hash(store, n))
+    hash_of = hash_function(store, humble)
     with zenoh.open(make_config("peer", [connect], ["tcp/127.0.0.1:0"])) as s:
-        zid, gid, live = str(s.info.zid()), secrets.token_bytes(16), s.liveliness()
+        zid, live = str(s.info.zid()), s.liveliness()
+        pub_token = entity_token(0, zid, 10, "MP", topic, tname, hash_of(tname), PUB_QOS, "mimic")
+        gid = entity_gid(pub_token)
 
         def on_query(q: zenoh.Query) -> None:
-            seq, _, client_gid = parse_attachment(q.attachment.to_bytes())
-            store.deserialize_cdr(q.payload.to_bytes(), f"{sname}_Request")
+            try:
+                seq, _, client_gid = parse_attachment(q.attachment.to_bytes() if q.attachment is not None else None)
+                store.deserialize_cdr(q.payload.to_bytes(), f"{sname}_Request")
+            except Exception as exc:  # noqa: BLE001 - a bad request gets an error reply
+                q.reply_err(f"bad request: {exc}")
+                return
             resp = from_plain(store, f"{sname}_Response", {"success": True, "message": "tared 3 sensors"})
             q.reply(q.key_expr, encode(store, f"{sname}_Response", resp),
                     attachment=make_attachment(seq, time.time_ns(), client_gid))
+
+        def on_command(sample: zenoh.Sample) -> None:
+            if len(inbox) < 1000:
+                att = sample.attachment
+                inbox.append((sample.payload.to_bytes(), att.to_bytes() if att is not None else None))
+        ctype = SELFTEST_COMMAND_TYPE
         entities = (s.declare_queryable(data_key(0, srv, sname, hash_of(sname)), on_query, complete=True),
-                    live.declare_token(f"@ros2_lv/0/{zid}/0/0/NN/%/%/mimic"),
-                    live.declare_token(entity_token(0, zid, 10, "MP", topic, tname, hash_of(tname), PUB_QOS, "mimic")),
-                    live.declare_token(entity_token(0, zid, 11, "SS", srv, sname, hash_of(sname), SUB_QOS, "mimic")))
+                    s.declare_subscriber(data_key(0, SELFTEST_COMMAND, ctype, hash_of(ctype)), on_command),
+                    live.declare_token(node_token(0, zid, "mimic")), live.declare_token(pub_token),
+                    live.declare_token(entity_token(0, zid, 11, "SS", srv, sname, hash_of(sname), SUB_QOS, "mimic")),
+                    live.declare_token(entity_token(0, zid, 12, "MS", SELFTEST_COMMAND, ctype, hash_of(ctype),
+                                                    SUB_QOS, "mimic")))
         pub, seq = s.declare_publisher(data_key(0, topic, tname, hash_of(tname))), 0
         ready.set()
         while not stop.wait(0.01):  # the publishing period, not a wait for discovery
@@ -389,50 +649,119 @@ def mimic_node(store: Typestore, connect: str, humble: bool, stop: threading.Eve
             frame = {"header": {"stamp": {"sec": now // 10**9, "nanosec": now % 10**9}, "frame_id": "hand0"},
                      "pressure_pa": [101325.0 + seq, 0.1 * seq, -3.5]}
             pub.put(encode(store, tname, from_plain(store, tname, frame)), attachment=make_attachment(seq, now, gid))
-        del entities
+        pub.undeclare()
+        for e in reversed(entities):
+            e.undeclare()
+
+
+def check_inbox(store: Typestore, inbox: list[tuple[bytes, bytes | None]], sent: dict[str, Any]) -> dict[str, Any]:
+    """What the mimic subscription got from `publish`, checked against the spec and `sent`."""
+    seqs, stamps, gids, same, errors = [], [], set(), 0, []
+    for payload, att in inbox:
+        same += roundtrip(store, SELFTEST_COMMAND_TYPE, payload)[1]
+        try:
+            seq, stamp, gid = parse_attachment(att)
+        except AttachmentError as exc:
+            errors.append(exc.info)
+            continue
+        seqs.append(seq)
+        stamps.append(stamp)
+        gids.add(gid.hex())
+    expected_gid = entity_gid(sent["token"]).hex() if sent.get("token") else None
+    return {"received": len(inbox), "roundtrip_identical": same, "attachment_errors": errors,
+            "seqs": seqs, "seqs_are_1_to_n": seqs == list(range(1, sent["published"] + 1)),
+            "timestamps_monotonic": stamps == sorted(stamps),
+            "gid_is_xxh3_of_token": gids == {sent["gid_hex"]} and sent["gid_hex"] == expected_gid,
+            "first_attachment_matches": bool(inbox) and inbox[0][1] is not None
+            and inbox[0][1].hex() == sent["first_attachment_hex"]}
 
 
 def cmd_selftest(args: argparse.Namespace) -> dict[str, Any]:
-    """Hashes vs published values, CDR and attachment layout, then router + mimic node + subscribe."""
+    """Hashes, attachment layouts, GIDs, then router + mimic node + subscribe / publish / call."""
     store, ours = load_typestore(args.msgs)
     wrong = {n: ros_hash(store, n) for n, h in PUBLISHED.items() if ros_hash(store, n) != f"RIHS01_{h}"}
     gid = bytes(range(16))
-    manual = b"".join(bytes([len(k)]) + k.encode() + v for k, v in (  # varint lengths < 128 are one byte
-        ("sequence_number", (7).to_bytes(8, "little", signed=True)),
-        ("source_timestamp", (-1).to_bytes(8, "little", signed=True)), ("source_gid", bytes([16]) + gid)))
+    current = make_attachment(7, -1, gid)
+    legacy = make_legacy_attachment(7, -1, gid)
+    rejected = {}
+    # An old attachment whose sequence number's low byte is 16 reads as (i64, i64, 16 bytes) + 44
+    # trailing bytes; only the length check rejects it.
+    for name, raw in (("legacy", legacy), ("legacy_seq16", make_legacy_attachment(16, -1, gid)),
+                      ("trailing_byte", current + b"\0"), ("short_gid", current[:16] + b"\x0f" + gid[:15]),
+                      ("empty", b""), ("none", None)):
+        try:
+            parse_attachment(raw)
+            rejected[name] = False
+        except AttachmentError as exc:
+            rejected[name] = exc.info["looks_legacy"] if name.startswith("legacy") else True
+    import xxhash
     checks: dict[str, Any] = {
         "published_hashes_match": not wrong, "mismatched": wrong,
-        "attachment_layout": make_attachment(7, -1, gid) == manual == make_attachment(*parse_attachment(manual)),
+        "attachment_layout": current == manual_attachment(7, -1, gid) and len(current) == ATTACHMENT_LEN
+        and parse_attachment(current) == (7, -1, gid),
+        "legacy_layout": legacy == manual_legacy_attachment(7, -1, gid) and len(legacy) == 77
+        and legacy.startswith(LEGACY_PREFIX) and parse_legacy_attachment(legacy) == (7, -1, gid),
+        "attachments_rejected": rejected,
+        # XXH3-128 of "" from the xxHash reference (high64 99aa06d3014798d8, low64 6001c324468d497f),
+        # and the GID byte order: the low half's LE bytes first.
+        "xxh3_reference": xxhash.xxh3_128_hexdigest(b"") == "99aa06d3014798d86001c324468d497f"
+        and entity_gid("").hex() == "7f498d4624c30160d8984701d306aa99",
+        "design_md_talker_gid": entity_gid("@ros2_lv/2/8b20917502ee955ac4476e0266340d5c/0/10/MP/%/%/talker/"
+                                           "%chatter/std_msgs::msg::dds_::String_/RIHS01_" + PUBLISHED[
+                                               "std_msgs/msg/String"] + "/" + PUB_QOS).hex(),
         "default_roundtrips": all(roundtrip(store, n, encode(store, n, from_plain(store, n, {})))[1]
                                   for n in [*ours, *HASHED[:-1], "std_srvs/srv/Trigger_Request"])}
     with socket.socket() as probe:  # a free loopback port for the router
         probe.bind(("127.0.0.1", 0))
         endpoint = f"tcp/127.0.0.1:{probe.getsockname()[1]}"
-    router = subprocess.Popen([sys.executable, __file__, "router", "--listen", endpoint, "--seconds", "120"],
+    router = subprocess.Popen([sys.executable, __file__, "router", "--listen", endpoint, "--seconds", "180"],
                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     try:
         if not select.select([router.stdout], [], [], 10)[0] or "ready" not in router.stdout.readline():
             raise Failure("router did not start", endpoint=endpoint)
         checks["router_udp_sockets"] = udp_sockets(router.pid)
         for humble in (False, True):
-            stop, ready = threading.Event(), threading.Event()
-            node = threading.Thread(target=mimic_node, args=(store, endpoint, humble, stop, ready))
+            stop, ready, inbox = threading.Event(), threading.Event(), []
+            node = threading.Thread(target=mimic_node, args=(store, endpoint, humble, stop, ready, inbox))
             node.start()
+            run: dict[str, Any] = {}
+            checks["humble" if humble else "hashed"] = run
             try:
                 ready.wait(10)
-                checks["humble" if humble else "hashed"] = cmd_subscribe(argparse.Namespace(
-                    msgs=args.msgs, connect=endpoint, domain=0, mode="peer", count=20, timeout=15, humble=humble,
-                    topic=SELFTEST_TOPIC, type=SELFTEST_TYPE, call_service=SELFTEST_SERVICE,
-                    service_type="std_srvs/srv/Trigger"))
+                common = {"msgs": args.msgs, "connect": endpoint, "domain": 0, "humble": humble}
+                run["subscribe"] = cmd_subscribe(argparse.Namespace(
+                    **common, mode="peer", count=20, timeout=15, topic=SELFTEST_TOPIC, type=SELFTEST_TYPE,
+                    call_service=SELFTEST_SERVICE, service_type="std_srvs/srv/Trigger"))
+                run["publish"] = cmd_publish(argparse.Namespace(
+                    **common, topic=SELFTEST_COMMAND, type=SELFTEST_COMMAND_TYPE, count=10, rate=50.0, linger=0.0, timeout=15,
+                    json=json.dumps({"header": {"frame_id": "hand0"}, "position_rad": 0.5, "effort": 0.25})))
+                for _ in range(200):  # up to 2 s for the last samples to arrive
+                    if len(inbox) >= run["publish"]["published"]:
+                        break
+                    time.sleep(0.01)
+                run["publish_received"] = check_inbox(store, list(inbox), run["publish"])
+                run["call"] = cmd_call(argparse.Namespace(
+                    **common, service=SELFTEST_SERVICE, type="std_srvs/srv/Trigger", json="{}", seq=42, timeout=15))
             finally:
                 stop.set()
                 node.join()
     finally:
         router.stdin.close()
         router.wait(10)
-    if wrong or not checks["attachment_layout"] or not checks["default_roundtrips"] or checks["router_udp_sockets"] \
-            or any(r["received"] != 20 or r["gaps"] or not all(r["service"][k] for k in ("success", "seq_echoed",
-                   "gid_echoed", "roundtrip_identical")) for r in (checks["hashed"], checks["humble"])):
+    def run_ok(r: dict[str, Any]) -> bool:
+        sub, got, call = r["subscribe"], r["publish_received"], r["call"]
+        return (sub["received"] == 20 and not sub["gaps"] and sub["attachment_len"] == ATTACHMENT_LEN
+                and sub["gid_matches_token"] is True
+                and all(sub["service"][k] for k in ("success", "seq_echoed", "gid_echoed", "roundtrip_identical"))
+                and r["publish"]["published"] == 10 and got["received"] == 10 and got["roundtrip_identical"] == 10
+                and not got["attachment_errors"] and got["seqs_are_1_to_n"] and got["timestamps_monotonic"]
+                and got["gid_is_xxh3_of_token"] and got["first_attachment_matches"]
+                and call["response"]["success"] is True and call["seq_echoed"] and call["gid_echoed"]
+                and call["reply_seq"] == 42 and call["reply_attachment_len"] == ATTACHMENT_LEN
+                and call["gid_hex"] == entity_gid(call["token"]).hex())
+    if wrong or not checks["attachment_layout"] or not checks["legacy_layout"] or not all(rejected.values()) \
+            or not checks["xxh3_reference"] or not checks["default_roundtrips"] or checks["router_udp_sockets"] \
+            or not all(run_ok(checks[k]) for k in ("hashed", "humble")):
         raise Failure("selftest failed", **checks)
     return checks
 
@@ -441,25 +770,52 @@ def main() -> int:
     """Parse arguments, run one subcommand, print its result; exit 1 with {"error": ...} on failure."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
-    commands = {"hashes": cmd_hashes, "cdr": cmd_cdr, "encode": cmd_encode, "subscribe": cmd_subscribe,
+    commands = {"hashes": cmd_hashes, "cdr": cmd_cdr, "encode": cmd_encode, "attachment": cmd_attachment,
+                "gid": cmd_gid, "subscribe": cmd_subscribe, "publish": cmd_publish, "call": cmd_call,
                 "router": cmd_router, "selftest": cmd_selftest}
     ps = {name: sub.add_parser(name, help=fn.__doc__.splitlines()[0]) for name, fn in commands.items()}
-    for name in ("hashes", "cdr", "encode", "subscribe", "selftest"):
+    for name in ("hashes", "cdr", "encode", "subscribe", "publish", "call", "selftest"):
         ps[name].add_argument("--msgs", type=Path, default=DEFAULT_MSGS, help="handstack_msgs or its msg/ folder")
     for name, extra in (("cdr", "--hex"), ("encode", "--json")):
         ps[name].add_argument("--type", required=True)
         ps[name].add_argument(extra, required=True)
+    p = ps["attachment"]
+    p.add_argument("--seq", type=int, required=True, help="sequence number (int64)")
+    p.add_argument("--stamp", type=int, required=True, help="source timestamp, ns since the UNIX epoch (int64)")
+    p.add_argument("--gid", required=True, help="16-byte GID as 32 hex digits")
+    p.add_argument("--legacy", action="store_true", help="the old keyed 77-byte layout")
+    ps["gid"].add_argument("--token", required=True, help="an entity's full liveliness key expression")
+
+    def positive(kind: type) -> Any:
+        def parse(text: str) -> Any:
+            value = kind(text)
+            if value <= 0:
+                raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
+            return value
+        return parse
+    for name in ("subscribe", "publish", "call"):
+        p = ps[name]
+        p.add_argument("--connect", required=True)
+        p.add_argument("--domain", type=int, default=0)
+        p.add_argument("--timeout", type=positive(float), default=10.0, help="seconds for the whole run")
+        p.add_argument("--humble", action="store_true", help="keys and tokens carry TypeHashNotSupported")
+    for name in ("subscribe", "publish"):
+        ps[name].add_argument("--topic", default=SELFTEST_TOPIC if name == "subscribe" else SELFTEST_COMMAND)
+        ps[name].add_argument("--type", default=SELFTEST_TYPE if name == "subscribe" else SELFTEST_COMMAND_TYPE)
+        ps[name].add_argument("--count", type=positive(int), default=10)
     p = ps["subscribe"]
-    p.add_argument("--connect", required=True)
-    p.add_argument("--domain", type=int, default=0)
     p.add_argument("--mode", choices=("peer", "client"), default="peer")
-    p.add_argument("--topic", default=SELFTEST_TOPIC)
-    p.add_argument("--type", default=SELFTEST_TYPE)
-    p.add_argument("--count", type=int, default=10)
-    p.add_argument("--timeout", type=float, default=10.0, help="seconds for the whole run")
-    p.add_argument("--humble", action="store_true", help="keys and tokens carry TypeHashNotSupported")
     p.add_argument("--call-service", help="e.g. /hand0/tactile/tare")
     p.add_argument("--service-type", default="std_srvs/srv/Trigger")
+    p = ps["publish"]
+    p.add_argument("--json", default="{}", help="message fields; an unset header.stamp is each sample's time")
+    p.add_argument("--rate", type=positive(float), default=10.0, help="samples per second")
+    p.add_argument("--linger", type=float, default=0.0, help="seconds to stay after the last sample")
+    p = ps["call"]
+    p.add_argument("--service", default=SELFTEST_SERVICE)
+    p.add_argument("--type", default="std_srvs/srv/Trigger", choices=sorted(SERVICES))
+    p.add_argument("--json", default="{}", help="request fields")
+    p.add_argument("--seq", type=int, default=1, help="the request's sequence number")
     ps["router"].add_argument("--listen", required=True)
     ps["router"].add_argument("--seconds", type=float, default=3600.0)
     args = ap.parse_args()

@@ -348,7 +348,7 @@ const COSTS: [(&str, &str, &str); 12] = [
     ),
     (
         "attachment_encode",
-        "attachment encode (77 bytes, a new `Vec`)",
+        "attachment encode (33 bytes, an array)",
         "rmw",
     ),
     ("attachment_decode", "attachment decode", "rmw"),

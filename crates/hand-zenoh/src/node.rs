@@ -17,7 +17,7 @@
 //! # Ok::<(), hand_zenoh::NodeError>(())
 //! ```
 
-use crate::attachment::Attachment;
+use crate::attachment::{Attachment, AttachmentError, Layout};
 use crate::cdr::CdrWriter;
 use crate::config::SessionConfig;
 use crate::error::NodeError;
@@ -215,9 +215,11 @@ impl Node {
             .map_err(NodeError::zenoh)?;
         Ok(Subscription {
             inner,
-            _ep: ep,
+            ep,
             stats: SubscriptionStats::default(),
             last_seq: HashMap::new(),
+            refusals: Vec::new(),
+            unsaid: 0,
             _m: PhantomData,
         })
     }
@@ -232,7 +234,6 @@ impl Node {
         let ep = self.endpoint(name, &service_description::<S>(), EntityKind::Service)?;
         let counts = Arc::new(ServiceCounts::default());
         let seen = Arc::clone(&counts);
-        let gid = ep.gid;
         let queryable = self
             .session
             .declare_queryable(ep.key.clone())
@@ -243,28 +244,35 @@ impl Node {
                     .as_deref()
                     .ok_or(NodeError::Payload(crate::cdr::CdrError::NoHeader(0)))
                     .and_then(|b| S::Request::from_cdr(b).map_err(NodeError::from));
-                let asked = query
-                    .attachment()
-                    .and_then(|a| Attachment::decode(&a.to_bytes()).ok());
-                match request {
-                    Ok(req) => {
+                // A request carries its client's sequence number and GID; the reply echoes
+                // them (rmw_zenoh docs/design.md, "Service Servers"), so one without a readable
+                // attachment cannot be answered as a ROS 2 client expects: refused, counted.
+                let asked = match query.attachment().map(|a| Attachment::read(&a.to_bytes())) {
+                    Some(Ok((a, _))) => Ok(a),
+                    Some(Err(e)) => Err(format!("request attachment: {e}")),
+                    None => Err("the request has no attachment (sequence number, GID)".to_owned()),
+                };
+                match (request, asked) {
+                    (Ok(req), Ok(asked)) => {
                         seen.handled.fetch_add(1, Ordering::Relaxed);
                         let response = handler(req).to_cdr();
-                        // The reply carries the request's sequence number and client GID,
-                        // so the client can match it (rmw_zenoh's convention).
                         let att = Attachment {
-                            sequence_number: asked.map_or(0, |a| a.sequence_number),
+                            sequence_number: asked.sequence_number,
                             source_timestamp: now_ns(),
-                            source_gid: asked.map_or(gid, |a| a.source_gid),
+                            source_gid: asked.source_gid,
                         };
                         let _ = query
                             .reply(query.key_expr().clone(), response)
                             .attachment(att.encode())
                             .wait();
                     }
-                    Err(e) => {
+                    (Err(e), _) => {
                         seen.malformed.fetch_add(1, Ordering::Relaxed);
                         let _ = query.reply_err(e.to_string()).wait();
+                    }
+                    (Ok(_), Err(why)) => {
+                        seen.refused.fetch_add(1, Ordering::Relaxed);
+                        let _ = query.reply_err(why).wait();
                     }
                 }
             })
@@ -442,25 +450,40 @@ pub struct Received<M> {
     pub received_ns: i64,
 }
 
-/// What a subscription has seen.
+/// What a subscription has seen. Every sample it was given is in exactly one of `received`,
+/// `malformed` and `refused`.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct SubscriptionStats {
     /// Messages decoded and returned.
     pub received: u64,
-    /// Samples dropped because the payload or attachment did not decode.
+    /// Samples dropped because the payload did not decode.
     pub malformed: u64,
+    /// Samples dropped because their attachment could not be read (neither rmw_zenoh layout).
+    pub refused: u64,
+    /// Of `received`, those that came without an attachment (a bare Zenoh writer).
+    pub missing_attachment: u64,
+    /// Of `received`, those whose attachment had the layout of rmw_zenoh ≤ 0.2.3 (Jazzy) /
+    /// ≤ 0.1.1 (Humble).
+    pub legacy_attachment: u64,
     /// Samples missing by the writers' sequence numbers (counted per writer GID).
     pub lost: u64,
 }
 
-/// Receives `M`; malformed samples are counted and dropped, never returned.
+/// Receives `M`; malformed and refused samples are counted and dropped, never returned.
 pub struct Subscription<M> {
     inner: zenoh::pubsub::Subscriber<FifoChannelHandler<Sample>>,
-    _ep: Endpoint,
+    ep: Endpoint,
     stats: SubscriptionStats,
     last_seq: HashMap<[u8; 16], i64>,
+    /// Each way an attachment was refused, once: said when first seen.
+    refusals: Vec<AttachmentError>,
+    /// Refusals not yet handed out by [`Subscription::new_refusals`].
+    unsaid: usize,
     _m: PhantomData<fn() -> M>,
 }
+
+/// The most distinct refusals a subscription remembers (each is said once).
+const REFUSALS_KEPT: usize = 16;
 
 impl<M: Message> Subscription<M> {
     /// The next well-formed message, waiting up to `timeout`; `None` when none came.
@@ -491,13 +514,13 @@ impl<M: Message> Subscription<M> {
     }
 
     fn take(&mut self, sample: &Sample) -> Option<Received<M>> {
-        let attachment = match sample
-            .attachment()
-            .map(|a| Attachment::decode(&a.to_bytes()))
-        {
-            Some(Ok(a)) => Some(a),
-            Some(Err(_)) => {
-                self.stats.malformed += 1;
+        let attachment = match sample.attachment().map(|a| Attachment::read(&a.to_bytes())) {
+            Some(Ok((a, layout))) => Some((a, layout)),
+            Some(Err(e)) => {
+                self.stats.refused += 1;
+                if !self.refusals.contains(&e) && self.refusals.len() < REFUSALS_KEPT {
+                    self.refusals.push(e);
+                }
                 return None;
             }
             None => None,
@@ -506,6 +529,12 @@ impl<M: Message> Subscription<M> {
             self.stats.malformed += 1;
             return None;
         };
+        match attachment {
+            None => self.stats.missing_attachment += 1,
+            Some((_, Layout::Legacy)) => self.stats.legacy_attachment += 1,
+            Some((_, Layout::Current)) => {}
+        }
+        let attachment = attachment.map(|(a, _)| a);
         if let Some(a) = attachment {
             let last = self.last_seq.insert(a.source_gid, a.sequence_number);
             if let Some(last) = last.filter(|&l| a.sequence_number > l) {
@@ -524,12 +553,26 @@ impl<M: Message> Subscription<M> {
     pub fn stats(&self) -> SubscriptionStats {
         self.stats
     }
+
+    /// The topic's fully qualified name.
+    pub fn name(&self) -> &str {
+        &self.ep.name
+    }
+
+    /// The ways attachments were refused since the last call, each said once in the
+    /// subscription's life (a writer on a third layout is logged once, not once a sample).
+    pub fn new_refusals(&mut self) -> &[AttachmentError] {
+        let new = &self.refusals[self.unsaid..];
+        self.unsaid = self.refusals.len();
+        new
+    }
 }
 
 #[derive(Debug, Default)]
 struct ServiceCounts {
     handled: AtomicU64,
     malformed: AtomicU64,
+    refused: AtomicU64,
 }
 
 /// A served service; dropping it withdraws it.
@@ -548,6 +591,11 @@ impl ServiceServer {
     /// Requests that did not decode (answered with an error reply).
     pub fn malformed(&self) -> u64 {
         self.counts.malformed.load(Ordering::Relaxed)
+    }
+
+    /// Requests without a readable attachment (answered with an error reply).
+    pub fn refused(&self) -> u64 {
+        self.counts.refused.load(Ordering::Relaxed)
     }
 }
 
@@ -604,7 +652,24 @@ impl<S: Service> Client<S> {
             .map_err(NodeError::zenoh)?;
         let reply = replies.recv().map_err(|_| timed_out(&self.ep))?;
         match reply.into_result() {
-            Ok(sample) => Ok(S::Response::from_cdr(&sample.payload().to_bytes())?),
+            Ok(sample) => {
+                // The reply echoes this request's sequence number and this client's GID.
+                let echoed = sample
+                    .attachment()
+                    .and_then(|a| Attachment::read(&a.to_bytes()).ok())
+                    .is_some_and(|(a, _)| {
+                        a.sequence_number == self.seq && a.source_gid == self.ep.gid
+                    });
+                if !echoed {
+                    return Err(NodeError::Refused {
+                        service: self.ep.name.clone(),
+                        reason: "the reply does not echo the request's sequence number and \
+                                 client GID"
+                            .into(),
+                    });
+                }
+                Ok(S::Response::from_cdr(&sample.payload().to_bytes())?)
+            }
             Err(e) => Err(NodeError::Refused {
                 service: self.ep.name.clone(),
                 reason: String::from_utf8_lossy(&e.payload().to_bytes()).into_owned(),

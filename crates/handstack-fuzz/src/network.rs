@@ -45,8 +45,13 @@ pub fn cdr(data: &[u8]) {
         9 => message::<TriggerRequest>(payload),
         10 => message::<TriggerResponse>(payload),
         _ => {
-            if let Ok(a) = Attachment::decode(payload) {
+            // Either layout reads back as written; a read never panics.
+            if let Ok((a, _)) = Attachment::read(payload) {
                 assert_eq!(Attachment::decode(&a.encode()), Ok(a));
+                assert_eq!(
+                    Attachment::read(&a.encode_legacy()),
+                    Ok((a, hand_zenoh::attachment::Layout::Legacy))
+                );
             }
         }
     }

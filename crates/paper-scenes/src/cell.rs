@@ -54,7 +54,7 @@ pub fn run_node(
     cx: &RunContext<'_>,
     stop: &Stop,
 ) -> Result<String, CellError> {
-    let frame_id = args.namespace.trim_start_matches('/').to_owned();
+    let frame_id = handstack::cell::frames::device_frame(&args.namespace);
     match args.part {
         Part::Pad => {
             let (per_region, window) = tap_plan(scene);
@@ -84,7 +84,7 @@ pub fn run_node(
             let mut stack = devices::arm::open(scene)?;
             let node = Node::open(args.options())?;
             let config = ArmNodeConfig {
-                frame_id: format!("{frame_id}_base"),
+                frame_id: handstack::cell::frames::base_frame(&args.namespace),
                 ..ArmNodeConfig::default()
             };
             let report = arm::run(&node, &mut stack.arm, &config, stop)?;

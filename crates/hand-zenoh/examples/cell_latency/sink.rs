@@ -67,7 +67,9 @@ impl<M: Message + Send> Source for Rmw<M> {
         self.sub.stats().lost
     }
     fn malformed(&self) -> u64 {
-        self.sub.stats().malformed + self.no_attachment
+        // Undecodable, an unreadable attachment, or none: each a sample not received whole.
+        let s = self.sub.stats();
+        s.malformed + s.refused + self.no_attachment
     }
 }
 

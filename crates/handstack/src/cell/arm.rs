@@ -1,7 +1,9 @@
 //! A Universal Robots arm as a node (`/arm0`): `joint_states` (`sensor_msgs/JointState`) and
 //! `tcp_pose` (`geometry_msgs/PoseStamped`, the UR rotation vector as a quaternion) at the
-//! node's rate; `goal` (`PoseStamped`) in: each goal starts a moveL to it, a newer goal
-//! replacing the move under way; the service `stop` (`std_srvs/Trigger`): stopL.
+//! node's rate, in the arm's base frame ([`frames::base_frame`]: `arm0_base`); `goal`
+//! (`PoseStamped`) in: each goal in that frame starts a moveL to it, a newer goal replacing the
+//! move under way (a goal in any other frame is refused and counted: the node does not
+//! transform poses); the service `stop` (`std_srvs/Trigger`): stopL.
 //!
 //! Safe state: when the last node publishing goals leaves the graph while the arm moves (its
 //! liveliness token goes: a crash, a kill, a lost link), the arm is stopped (stopL) at once;
@@ -10,6 +12,7 @@
 
 use super::commanders::Commanders;
 use super::error::CellError;
+use super::frames;
 use super::pace::Pacer;
 use crate::stop::Stop;
 use hand_traits::LinearMotion;
@@ -37,7 +40,7 @@ pub const UR_JOINTS: [&str; 6] = [
 pub struct ArmNodeConfig {
     /// State messages (and move polls) per second.
     pub rate_hz: f64,
-    /// The frame id of its messages (`arm0_base`).
+    /// The frame id of its messages and of the goals it takes (`arm0_base`).
     pub frame_id: String,
     /// Speed and acceleration of the moves.
     pub motion: LinearMotion,
@@ -49,7 +52,7 @@ impl Default for ArmNodeConfig {
     fn default() -> Self {
         ArmNodeConfig {
             rate_hz: 50.0,
-            frame_id: "base".to_owned(),
+            frame_id: frames::base_frame("/arm0"),
             motion: LinearMotion::default(),
             stop_decel_m_per_s2: 1.2,
         }
@@ -59,8 +62,12 @@ impl Default for ArmNodeConfig {
 /// What the arm node did.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ArmNodeReport {
-    /// Goals received.
+    /// Goals taken (each started a move).
     pub goals: u64,
+    /// Goals refused: not in the arm's base frame.
+    pub refused: u64,
+    /// Goal samples whose attachment could not be read (neither rmw_zenoh layout).
+    pub unreadable: u64,
     /// Moves that ran to their end.
     pub moves_done: u64,
     /// stopL on request (the `stop` service).
@@ -73,8 +80,9 @@ impl core::fmt::Display for ArmNodeReport {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         write!(
             f,
-            "{} goals, {} moves done, {} stops asked, {} safe stops",
-            self.goals, self.moves_done, self.stops, self.safe_stops
+            "{} goals, {} refused (another frame), {} unreadable, {} moves done, {} stops \
+             asked, {} safe stops",
+            self.goals, self.refused, self.unreadable, self.moves_done, self.stops, self.safe_stops
         )
     }
 }
@@ -136,8 +144,14 @@ pub fn run(
             }
             let mut latest = None;
             while let Some(g) = goals.try_recv()? {
-                latest = Some(g.message);
+                if g.message.header.frame_id == config.frame_id {
+                    latest = Some(g.message);
+                } else {
+                    report.refused += 1;
+                }
             }
+            super::unreadable::say_new(&mut goals);
+            report.unreadable = goals.stats().refused;
             if let Some(goal) = latest {
                 report.goals += 1;
                 current = Some(

@@ -223,7 +223,7 @@ fn move_to(
     while tcp.try_recv()?.is_some() {}
     let t0 = Instant::now();
     goal.publish(&PoseStamped {
-        header: header(now_ns(), "base"),
+        header: header(now_ns(), &super::frames::base_frame(&cell.arm)),
         pose: pose_to_msg(target),
     })?;
     while t0.elapsed() < cell.move_timeout {

@@ -56,6 +56,8 @@ pub struct HandNodeReport {
     pub commands: u64,
     /// Commands refused: a goal outside the loop's limits (never sent to the hand).
     pub refused: u64,
+    /// Command samples whose attachment could not be read (neither rmw_zenoh layout).
+    pub unreadable: u64,
     /// `grasp/start` calls that started the loop.
     pub starts: u64,
     /// `grasp/stop` calls that stopped it.
@@ -75,11 +77,12 @@ impl core::fmt::Display for HandNodeReport {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         write!(
             f,
-            "{} cycles; goals: {} taken, {} refused; {} starts, {} stops, {} safe stops; \
+            "{} cycles; goals: {} taken, {} refused, {} unreadable; {} starts, {} stops, {} safe stops; \
              forces: {} published, {} frames refused; hand {}",
             self.cycles,
             self.commands,
             self.refused,
+            self.unreadable,
             self.starts,
             self.stops,
             self.safe_stops,
@@ -161,7 +164,9 @@ where
         name: vec!["gripper".to_owned()],
         position: vec![0.0],
         velocity: vec![0.0],
-        effort: vec![0.0],
+        // JointState's effort is N·m (or N): the servo reports a load fraction, which
+        // `grasp/state` carries; so no effort here rather than a number in another unit.
+        effort: Vec::new(),
         ..JointState::default()
     };
     let safe = |grasp: &mut GraspLoop<_, _, A, C, 3>| {
@@ -200,6 +205,8 @@ where
                     Err(_) => report.refused += 1,
                 }
             }
+            super::unreadable::say_new(&mut commands);
+            report.unreadable = commands.stats().refused;
             if running {
                 let sample = *grasp.cycle();
                 report.cycles += 1;
@@ -236,7 +243,6 @@ where
                     joint_msg.header = h;
                     joint_msg.position[0] = f64::from(s.position_rad);
                     joint_msg.velocity[0] = f64::from(s.velocity_rad_per_s);
-                    joint_msg.effort[0] = f64::from(s.load_fraction);
                     joints.publish(&joint_msg)?;
                 }
             }

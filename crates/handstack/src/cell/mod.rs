@@ -24,6 +24,7 @@ mod commanders;
 pub mod coordinator;
 mod error;
 pub mod file;
+pub mod frames;
 pub mod hand;
 pub mod launch;
 pub mod outcome;
@@ -31,6 +32,7 @@ mod pace;
 pub mod pad;
 pub mod real;
 pub mod tactile;
+mod unreadable;
 
 pub use crate::stop::Stop;
 pub use error::CellError;

@@ -24,7 +24,7 @@ pub fn run_node(
     stop: &Stop,
     platform: &dyn Platform,
 ) -> Result<String, CellError> {
-    let frame_id = args.namespace.trim_start_matches('/').to_owned();
+    let frame_id = super::frames::device_frame(&args.namespace);
     match args.part {
         Part::Arm => {
             let host = scene
@@ -39,7 +39,7 @@ pub fn run_node(
             let mut ur = crate::stack::arm::open(host.get_ref())?;
             let node = Node::open(args.options())?;
             let config = ArmNodeConfig {
-                frame_id: format!("{frame_id}_base"),
+                frame_id: super::frames::base_frame(&args.namespace),
                 ..ArmNodeConfig::default()
             };
             Ok(arm::run(&node, &mut ur, &config, stop)?.to_string())

@@ -55,9 +55,10 @@ fn move_under_way(
     );
     let mut target = start;
     target.position_m[2] -= 0.15;
+    // In the arm's base frame: a goal in any other is refused.
     goal.publish(&PoseStamped {
+        header: hand_zenoh::convert::header(0, &handstack::cell::frames::base_frame("/arm0")),
         pose: pose_to_msg(&target),
-        ..Default::default()
     })
     .unwrap();
     let deadline = Instant::now() + WAIT;

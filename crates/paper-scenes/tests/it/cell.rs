@@ -349,6 +349,9 @@ fn a_scenes_whole_stack_runs_as_one_node_process() {
             panic!("{name} never appeared; node log:\n{}", log.join().unwrap());
         }
     }
+    // A current ROS 2 node (the independent rmw_zenoh client, current attachments) starts
+    // the grasp, commands the hand and sends the arm a goal; the nodes act on them.
+    commanded_by_a_ros2_client(&endpoint, &watcher);
     // Closing stdin stops every part; the process ends on its own, successfully.
     drop(child.stdin.take());
     let deadline = Instant::now() + wait;
@@ -366,5 +369,129 @@ fn a_scenes_whole_stack_runs_as_one_node_process() {
     assert!(status.success(), "{status}: {log}");
     for part in ["/hand0 hand: ", "/pad0 pad: ", "/arm0 arm: "] {
         assert!(log.contains(part), "no {part:?} in {log}");
+    }
+    // The hand took the five goals inside its limits and refused the one outside; the arm
+    // refused the goal in a frame it does not publish in and moved to the one in its own.
+    assert!(
+        log.contains("goals: 5 taken, 1 refused, 0 unreadable; 1 starts,"),
+        "{log}"
+    );
+    assert!(
+        log.contains("/arm0 arm: 1 goals, 1 refused (another frame), 0 unreadable, 1 moves done"),
+        "{log}"
+    );
+}
+
+/// Runs `python/interop/ros_zenoh_client.py` with `args`; its JSON report.
+fn ros_client(args: &[&str]) -> serde_json::Value {
+    let py = std::env::var_os("HANDSTACK_PYTHON").expect("HANDSTACK_PYTHON");
+    let (command, rest) = args.split_first().expect("a subcommand");
+    let out = std::process::Command::new(py)
+        .arg(root().join("python/interop/ros_zenoh_client.py"))
+        .arg(command)
+        .arg("--msgs")
+        .arg(root().join("crates/hand-zenoh/ros/handstack_msgs"))
+        .args(rest)
+        .output()
+        .expect("run the python client");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "client {args:?}: {text}");
+    serde_json::from_str(text.trim()).unwrap_or_else(|e| panic!("{e}: {text}"))
+}
+
+/// The full hand's nodes, commanded as a ROS 2 node on a current rmw_zenoh would: `grasp/start`
+/// called, six `GripperCommand`s (five inside the rig's goal limits, one 3 rad outside), an
+/// arm goal in frame `base` (refused) and one in the arm's `arm0_base` at the UR3 grid's
+/// region 5, which the arm reaches (its `tcp_pose` read back here).
+fn commanded_by_a_ros2_client(endpoint: &str, watcher: &Node) {
+    use hand_zenoh::convert::{pose_from_msg, pose_to_msg};
+    use hand_zenoh::msg::geometry_msgs::PoseStamped;
+    use std::time::Duration;
+
+    let common = ["--connect", endpoint, "--timeout", "30"];
+    let call = [
+        &["call", "--service", "/hand0/grasp/start", "--seq", "3"],
+        &common[..],
+    ]
+    .concat();
+    let started = ros_client(&call);
+    assert_eq!(started["response"]["success"], true, "{started}");
+    assert_eq!(started["seq_echoed"], true, "{started}");
+    let origin = hand_sim::grasp::rig::ORIGIN_RAD;
+    for (position, count) in [(origin + 0.3, "5"), (origin + 3.0, "1")] {
+        let json = format!(r#"{{"header": {{"frame_id": "hand0"}}, "position_rad": {position}}}"#);
+        let publish = [
+            &[
+                "publish",
+                "--topic",
+                "/hand0/gripper/command",
+                "--type",
+                "handstack_msgs/msg/GripperCommand",
+                "--json",
+                &json,
+                "--count",
+                count,
+                "--rate",
+                "50",
+            ],
+            &common[..],
+        ]
+        .concat();
+        let sent = ros_client(&publish);
+        assert_eq!(sent["published"].to_string(), count, "{sent}");
+    }
+    let mut tcp = watcher
+        .subscription::<PoseStamped>("/arm0/tcp_pose", 64)
+        .unwrap();
+    let grid = RegionToGrid::ur3_default().unwrap();
+    let target = *grid.pose(5).unwrap();
+    let m = pose_to_msg(&target);
+    let (p, q) = (m.position, m.orientation);
+    for frame in ["base", "arm0_base"] {
+        let json = format!(
+            r#"{{"header": {{"frame_id": "{frame}"}}, "pose": {{"position": {{"x": {}, "y": {}, "z": {}}}, "orientation": {{"x": {}, "y": {}, "z": {}, "w": {}}}}}}}"#,
+            p.x, p.y, p.z, q.x, q.y, q.z, q.w
+        );
+        // The goal's writer stays in the graph for the move (a writer that leaves mid-move
+        // stops the arm: its safe state).
+        let publish = [
+            &[
+                "publish",
+                "--topic",
+                "/arm0/goal",
+                "--type",
+                "geometry_msgs/msg/PoseStamped",
+                "--json",
+                &json,
+                "--count",
+                "1",
+                "--linger",
+                if frame == "base" { "0" } else { "10" },
+            ],
+            &common[..],
+        ]
+        .concat();
+        if frame == "base" {
+            ros_client(&publish);
+            continue;
+        }
+        let publish: Vec<String> = publish.iter().map(ToString::to_string).collect();
+        let mover = std::thread::spawn(move || {
+            ros_client(&publish.iter().map(String::as_str).collect::<Vec<_>>())
+        });
+        let deadline = Instant::now() + Duration::from_secs(10);
+        let mut last = f64::INFINITY;
+        while last > 1e-4 {
+            assert!(
+                Instant::now() < deadline,
+                "the arm never reached the goal: {last} m away"
+            );
+            if let Some(s) = tcp.recv_timeout(Duration::from_millis(100)).unwrap() {
+                last = pose_from_msg(&s.message.pose).distance_m(&target);
+                assert_eq!(s.message.header.frame_id, "arm0_base");
+            }
+        }
+        let sent = mover.join().unwrap();
+        assert_eq!(sent["published"], 1, "{sent}");
     }
 }

@@ -4,9 +4,8 @@
 //! test` sets it to the workspace venv); skipped without it. Everything on 127.0.0.1, multicast
 //! scouting off.
 
-mod common;
-
-use common::free_endpoint;
+use crate::common::free_endpoint;
+use crate::python::{client, client_text, hex, msgs_dir, python, root};
 
 use hand_traits::{PressureFrame as Frame, TactileSource};
 use hand_zenoh::HashMode;
@@ -27,53 +26,11 @@ use hand_zenoh::tactile::{TactileInfo, TactileNode};
 use hand_zenoh::types::{TypeDescription, type_hash};
 use serde_json::Value;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
-
-fn python() -> Option<PathBuf> {
-    let p = std::env::var_os("HANDSTACK_PYTHON").map(PathBuf::from);
-    if p.is_none() {
-        eprintln!(
-            "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"
-        );
-    }
-    p
-}
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn msgs_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("ros/handstack_msgs")
-}
-
-/// Runs the client with `args`, returns its JSON (fails the test on a non-zero exit).
-fn client(python: &Path, args: &[&str]) -> Value {
-    let text = client_text(python, args);
-    serde_json::from_str(text.trim()).unwrap_or_else(|e| panic!("client JSON {text}: {e}"))
-}
-
-fn client_text(python: &Path, args: &[&str]) -> String {
-    let mut cmd = Command::new(python);
-    cmd.arg(root().join("python/interop/ros_zenoh_client.py"))
-        .args(args);
-    let out = cmd.output().expect("run the python client");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "client {args:?} failed: {text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    text.into_owned()
-}
-
-fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
-}
 
 fn descriptions() -> Vec<TypeDescription> {
     vec![
@@ -373,6 +330,15 @@ fn check_report(report: &Value, key: &str) {
     assert_eq!(report["roundtrip_identical"], 20, "{report}");
     assert_eq!(report["gaps"], 0, "{report}");
     assert_eq!(report["timestamps_monotonic"], true, "{report}");
+    // The current rmw_zenoh layout, and the GID rmw_zenoh derives from the publisher's token.
+    assert_eq!(
+        report["attachment_len"],
+        hand_zenoh::attachment::LEN,
+        "{report}"
+    );
+    assert_eq!(report["gid_matches_token"], true, "{report}");
+    assert_eq!(report["service"]["seq_echoed"], true, "{report}");
+    assert_eq!(report["service"]["gid_echoed"], true, "{report}");
     assert_eq!(report["service"]["success"], true, "{report}");
     assert_eq!(
         report["first_fields"]["header"]["frame_id"],

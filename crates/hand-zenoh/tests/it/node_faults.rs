@@ -4,10 +4,9 @@
 //! lost); a force estimator's refusals are counted, not published; and nothing opens a UDP
 //! socket. All on 127.0.0.1, multicast scouting off.
 
-mod common;
+use crate::common::{free_endpoint, node};
 
-use common::{free_endpoint, node};
-
+use hand_zenoh::attachment::{Attachment, AttachmentError, Layout};
 use hand_zenoh::keys::{self, EntityKind};
 use hand_zenoh::msg::handstack_msgs::PressureFrame;
 use hand_zenoh::msg::std_srvs::{Trigger, TriggerRequest, TriggerResponse};
@@ -72,16 +71,66 @@ fn malformed_samples_and_requests_are_counted_and_dropped() {
     let n = huge.len();
     huge[n - 16..n - 12].copy_from_slice(&u32::MAX.to_le_bytes());
     raw.put(&key, huge).wait().unwrap();
+    // Attachments no rmw_zenoh writes: 3 bytes; 33 with a GID length of 3; twice the first
+    // kind (said once).
     raw.put(&key, good.clone())
         .attachment(vec![1, 2, 3])
         .wait()
         .unwrap();
-    publisher.publish(&frame(7.0)).unwrap();
+    let mut gid3 = Attachment {
+        sequence_number: 1,
+        source_timestamp: 2,
+        source_gid: [5; 16],
+    }
+    .encode();
+    gid3[16] = 3;
+    raw.put(&key, good.clone()).attachment(gid3).wait().unwrap();
+    raw.put(&key, good.clone())
+        .attachment(vec![9, 9, 9])
+        .wait()
+        .unwrap();
+    // No attachment (a bare Zenoh writer), and the layout of rmw_zenoh ≤ 0.2.3: read, counted.
+    raw.put(&key, good.clone()).wait().unwrap();
+    let old = Attachment {
+        sequence_number: 1,
+        source_timestamp: 2,
+        source_gid: [6; 16],
+    };
+    raw.put(&key, good.clone())
+        .attachment(old.encode_legacy())
+        .wait()
+        .unwrap();
+    // A writer's first sample is sequence number 1 (rmw_zenoh's publishers count from 1).
+    assert_eq!(publisher.publish(&frame(7.0)).unwrap(), 1);
+    let bare = sub.recv_timeout(WAIT).unwrap().expect("the bare frame");
+    assert_eq!(bare.attachment, None);
+    let legacy = sub
+        .recv_timeout(WAIT)
+        .unwrap()
+        .expect("the older layout's frame");
+    assert_eq!(legacy.attachment, Some(old));
     let got = sub.recv_timeout(WAIT).unwrap().expect("the good frame");
     assert_eq!(got.message, frame(7.0));
-    assert_eq!(got.attachment.map(|a| a.source_gid), Some(publisher.gid()));
-    assert_eq!(sub.stats().malformed, 4, "{:?}", sub.stats());
-    assert_eq!(sub.stats().received, 1);
+    assert_eq!(
+        got.attachment.map(|a| (a.sequence_number, a.source_gid)),
+        Some((1, publisher.gid()))
+    );
+    let stats = sub.stats();
+    assert_eq!(
+        (stats.malformed, stats.refused, stats.received),
+        (3, 3, 3),
+        "{stats:?}"
+    );
+    assert_eq!(
+        (stats.missing_attachment, stats.legacy_attachment),
+        (1, 1),
+        "{stats:?}"
+    );
+    assert_eq!(
+        sub.new_refusals(),
+        [AttachmentError::Length(3), AttachmentError::GidLength(3)]
+    );
+    assert!(sub.new_refusals().is_empty(), "said twice");
 
     let server = a
         .service::<Trigger, _>("tactile/tare", |_| TriggerResponse {
@@ -104,15 +153,45 @@ fn malformed_samples_and_requests_are_counted_and_dropped() {
         &type_hash(&service_description::<Trigger>()).to_string(),
     );
     let replies = raw
-        .get(service_key)
+        .get(&service_key)
         .payload(vec![0u8; 2])
         .timeout(WAIT)
         .wait()
         .unwrap();
     let reply = replies.recv().expect("a reply");
     assert!(reply.result().is_err(), "garbage got a success reply");
-    assert_eq!(server.handled(), 1);
+    // A request without an attachment cannot be answered as a ROS 2 client expects (the reply
+    // echoes its sequence number and GID): an error reply, counted.
+    let replies = raw
+        .get(&service_key)
+        .payload(TriggerRequest {}.to_cdr())
+        .timeout(WAIT)
+        .wait()
+        .unwrap();
+    let reply = replies.recv().expect("a reply");
+    assert!(reply.result().is_err(), "no attachment got a success reply");
+    // One in the older layout is answered, echoing its sequence number and GID.
+    let asked = Attachment {
+        sequence_number: 41,
+        source_timestamp: 3,
+        source_gid: [7; 16],
+    };
+    let replies = raw
+        .get(service_key)
+        .payload(TriggerRequest {}.to_cdr())
+        .attachment(asked.encode_legacy())
+        .timeout(WAIT)
+        .wait()
+        .unwrap();
+    let reply = replies.recv().expect("a reply");
+    let sample = reply.result().expect("a success reply");
+    let (echo, layout) =
+        Attachment::read(&sample.attachment().expect("an attachment").to_bytes()).unwrap();
+    assert_eq!(layout, Layout::Current);
+    assert_eq!((echo.sequence_number, echo.source_gid), (41, [7; 16]));
+    assert_eq!(server.handled(), 2);
     assert_eq!(server.malformed(), 1);
+    assert_eq!(server.refused(), 1);
 }
 
 #[test]

@@ -9,7 +9,7 @@ use std::process::Command;
 
 fn example() -> PathBuf {
     let exe = std::env::current_exe().expect("the test's own path");
-    // target/<profile>/deps/cell_latency_smoke-<hash> → target/<profile>/examples/cell_latency
+    // target/<profile>/deps/it-<hash> → target/<profile>/examples/cell_latency
     let profile_dir = exe
         .parent()
         .and_then(|deps| deps.parent())
