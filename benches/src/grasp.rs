@@ -4,7 +4,7 @@
 //!
 //! These are the compute steps of `hand_control::grasp_loop::GraspLoop::cycle`, called one by
 //! one so each can be timed; the loop itself adds its fault bookkeeping and a log entry per
-//! cycle (see `tests/zero_alloc.rs` for what that log costs) and talks to a real port.
+//! cycle (see `tests/alloc/zero_alloc.rs` for what that log costs) and talks to a real port.
 
 use crate::CycleError;
 use crate::fingertip::{Press, PressSchedule, PressedFingertip, rect};

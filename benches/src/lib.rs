@@ -19,10 +19,10 @@
 //!
 //! # Allocations
 //!
-//! `tests/zero_alloc.rs` counts heap blocks (dhat) over 500 cycles after a 200-cycle warm-up:
+//! `tests/alloc/zero_alloc.rs` counts heap blocks (dhat) over 500 cycles after a 200-cycle warm-up:
 //! none in any scene's cycle, the contact MLP's calls counted apart and none there either. It
 //! also prints each scene's peak heap (one child process per scene).
-//! `tests/grasp_loop_log.rs` measures `GraspLoop::cycle` itself over the grasp scene's parts:
+//! `tests/alloc/grasp_loop_log.rs` measures `GraspLoop::cycle` itself over the grasp scene's parts:
 //! its only allocations are its per-cycle log `Vec` growing (one sample a cycle, a reallocation
 //! per doubling), which is why the grasp scene's cycle calls the loop's steps one by one.
 //!
@@ -51,7 +51,7 @@ pub mod tap;
 pub mod weight;
 pub mod workloads;
 
-/// The fuzzy benches' reference engine (issue 5), shared with fuzzy-mamdani's tests.
+/// The fuzzy benches' reference engine (81 rules), shared with fuzzy-mamdani's tests.
 #[path = "../../crates/fuzzy-mamdani/tests/common/mod.rs"]
 mod fuzzy_reference;
 
@@ -59,8 +59,10 @@ pub use error::CycleError;
 
 use std::path::PathBuf;
 
-/// The control loop period every cycle is compared with: 10 ms (100 Hz).
-pub const LOOP_BUDGET_NS: f64 = 10_000_000.0;
+/// The control loop period every cycle is compared with: the grasp loop's default, 10 ms
+/// (100 Hz).
+pub const LOOP_BUDGET_NS: f64 =
+    hand_control::grasp_loop::LoopConfig::DEFAULT_PERIOD_US as f64 * 1e3;
 
 /// The workspace root (committed models are read from it).
 pub fn workspace_root() -> PathBuf {

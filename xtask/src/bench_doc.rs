@@ -133,7 +133,7 @@ fn scene_rows(measurements: &[Measurement]) -> String {
     out
 }
 
-/// Issue 23's wall-time targets: workload, target (ns), the figure committed before the work
+/// The wall-time targets: workload, target (ns), the figure of the unoptimised build
 /// (`docs/benchmarks.md` at `daae243`, a 2-core Intel Xeon VM; the MLP and CNN figures there are
 /// the `cycle_contact/mlp` and `cycle_tap/policy` stages).
 const TARGETS: [(&str, f64, f64); 3] = [
@@ -258,11 +258,11 @@ pub fn document(
     {
         let _ = writeln!(
             s,
-            "## Targets (issue 23)\n\n\
+            "## Targets\n\n\
              Per call of the contact MLP (features, network and catalogue decode), of the paper \
              CNN (standardise, conv, dense head, softmax) and of the full-hand cycle, in this \
-             run; beside them the figures committed before the work, measured on another \
-             machine.\n\n{}",
+             run; beside them the figures of the unoptimised build (`daae243`), measured on \
+             another machine.\n\n{}",
             target_rows(measurements)
         );
     }

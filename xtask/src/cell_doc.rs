@@ -3,7 +3,7 @@
 //! loopback; R rounds, 3 by default, of every configuration, each an S-second window, 10 by
 //! default) and rewrites the generated part of
 //! `docs/cell.md`: the machine, date and commit, latency and loss per configuration, the
-//! overhead over bare Zenoh at p50, CPU per process, and whether the goals were met.
+//! overhead over bare Zenoh at p50, CPU per process, and whether the cell's goals were met.
 
 use crate::bench_doc::Machine;
 use crate::run::{cargo, step};

@@ -4,12 +4,19 @@
 //! - `fuzz --seed`: writes the seed corpora (`fuzz/seeds/TARGET/`) from the fixtures, the
 //!   trained models and captures of the simulators.
 //! - `fuzz TARGET|--all [--seconds N]`: fuzzes each target N seconds (default 1800), growing
-//!   `fuzz/corpus/TARGET/` from the seeds, then minimises that corpus (`cargo fuzz cmin`) and
-//!   appends the run's figures (executions, edges, features, corpus, findings) to
-//!   `fuzz/runs.tsv`, and rewrites the fuzzing section of `docs/reliability.md` from that file
-//!   (`fuzz --doc`: only that). A crash stops the target's run; its input is under `fuzz/artifacts/TARGET/`, and
+//!   its corpus from the seeds, then minimises that corpus (`cargo fuzz cmin`) and appends the
+//!   run's figures (executions, edges, features, corpus, findings) to `fuzz/runs.tsv`, and
+//!   rewrites the fuzzing section of `docs/reliability.md` from that file (`fuzz --doc`: only
+//!   that). A crash stops the target's run; its input is under `fuzz/artifacts/TARGET/`, and
 //!   after the fix it is committed to `fuzz/regressions/TARGET/`, which the replay test
 //!   (`cargo xtask test`) runs for good.
+//!
+//! A corpus is committed as one archive, `fuzz/corpus/TARGET.tar.gz`. A run unpacks it into
+//! the work folder `target/fuzz-corpus/TARGET/`, fuzzes and minimises there, and packs the
+//! folder back into the archive (deterministically: an unchanged corpus gives the same bytes),
+//! all through handstack-fuzz's `fuzz-corpus` binary, so xtask links no archive code. Inputs a
+//! run that did not finish left in the work folder, and a loose `fuzz/corpus/TARGET/` folder
+//! (what a hand `cargo fuzz run TARGET` grows), join the next run's corpus.
 //!
 //! It installs cargo-fuzz (crates.io, pinned below) if it is missing and says so. The builds
 //! use the workspace's stable toolchain with `RUSTC_BOOTSTRAP=1` for libFuzzer's `-Z`
@@ -32,6 +39,18 @@ const TOOLCHAIN: &str = "stable";
 pub const DEFAULT_SECONDS: u64 = 1800;
 /// Longest input libFuzzer makes: the largest seed (a model file) fits.
 const MAX_LEN: usize = 1 << 18;
+
+/// Where each target's corpus is committed: `fuzz/corpus/TARGET.tar.gz`.
+pub fn archive(root: &Path, target: &str) -> PathBuf {
+    root.join("fuzz/corpus").join(format!("{target}.tar.gz"))
+}
+
+/// The folder a run grows and minimises a target's corpus in, `target/fuzz-corpus/TARGET/`:
+/// inside the repository, on the file system of `fuzz/`, since `cargo fuzz cmin` minimises into
+/// a temporary folder there and renames it over this one.
+pub fn work_dir(root: &Path, target: &str) -> PathBuf {
+    root.join("target/fuzz-corpus").join(target)
+}
 
 /// The targets: `fuzz/fuzz_targets/NAME.rs`.
 pub fn targets(root: &Path) -> Result<Vec<String>> {
@@ -257,10 +276,90 @@ pub fn parse_stats(output: &str) -> RunStats {
     s
 }
 
+/// `fuzz-corpus pack|unpack FROM TO` (handstack-fuzz's binary).
+fn fuzz_corpus(root: &Path, command: &str, from: &Path, to: &Path) -> Result<()> {
+    step(
+        &format!("fuzz-corpus {command} {}", from.display()),
+        cargo(root)
+            .args([
+                "run",
+                "--quiet",
+                "--profile",
+                "test",
+                "-p",
+                "handstack-fuzz",
+            ])
+            .args(["--bin", "fuzz-corpus", "--", command])
+            .arg(from)
+            .arg(to),
+    )
+}
+
+/// Copies the files of `from` (if it is a folder) into `into` where `into` has no file of that
+/// name (libFuzzer names an input by its bytes' SHA-1), and returns how many it copied.
+pub fn fold(from: &Path, into: &Path) -> Result<usize> {
+    if !from.is_dir() {
+        return Ok(0);
+    }
+    let mut copied = 0;
+    for entry in std::fs::read_dir(from).with_context(|| format!("reading {}", from.display()))? {
+        let entry = entry?;
+        let to = into.join(entry.file_name());
+        if entry.file_type()?.is_file() && !to.exists() {
+            std::fs::copy(entry.path(), &to).with_context(|| {
+                format!("copying {} to {}", entry.path().display(), to.display())
+            })?;
+            copied += 1;
+        }
+    }
+    Ok(copied)
+}
+
+/// Unpacks `target`'s archive (if it has one yet) into its work folder, with the inputs of an
+/// unfinished run's work folder and of a loose `fuzz/corpus/TARGET/` folder joined in; returns
+/// the work folder.
+fn unpack_corpus(root: &Path, target: &str) -> Result<PathBuf> {
+    let (archive, work) = (archive(root, target), work_dir(root, target));
+    let fresh = work.with_extension("unpacking");
+    if fresh.exists() {
+        std::fs::remove_dir_all(&fresh)?;
+    }
+    if archive.exists() {
+        fuzz_corpus(root, "unpack", &archive, &fresh)?;
+    } else {
+        println!(
+            "xtask: {target} has no corpus yet; this run starts {}",
+            archive.display()
+        );
+        std::fs::create_dir_all(&fresh)?;
+    }
+    let left = fold(&work, &fresh)?;
+    if left > 0 {
+        println!(
+            "xtask: {left} inputs an unfinished run left in {} join the corpus",
+            work.display()
+        );
+    }
+    let loose = root.join("fuzz/corpus").join(target);
+    let joined = fold(&loose, &fresh)?;
+    if joined > 0 {
+        println!(
+            "xtask: {joined} inputs of the loose folder {} join the corpus, which goes into {} \
+             after the run: delete the folder then",
+            loose.display(),
+            archive.display()
+        );
+    }
+    if work.exists() {
+        std::fs::remove_dir_all(&work)?;
+    }
+    std::fs::rename(&fresh, &work)?;
+    Ok(work)
+}
+
 fn fuzz_one(root: &Path, target: &str, seconds: u64) -> Result<()> {
-    let corpus = root.join("fuzz/corpus").join(target);
+    let corpus = unpack_corpus(root, target)?;
     let seeds = root.join("fuzz/seeds").join(target);
-    std::fs::create_dir_all(&corpus)?;
     println!("==> fuzz {target} for {seconds} s");
     let mut child = fuzz_cargo(root)
         .args(["fuzz", "run", target])
@@ -302,6 +401,9 @@ fn fuzz_one(root: &Path, target: &str, seconds: u64) -> Result<()> {
     }
     let files = std::fs::read_dir(&corpus)?.count();
     record(root, target, fuzzed_s, &stats, files)?;
+    // Packed even after a finding: the corpus grown until then is kept, as it is.
+    fuzz_corpus(root, "pack", &corpus, &archive(root, target))?;
+    std::fs::remove_dir_all(&corpus)?;
     println!(
         "    {target}: {} executions, {} edges, {} features, corpus {files} after cmin, finding: {}",
         stats.executions,
@@ -361,6 +463,22 @@ mod tests {
                    2026-11-26T14:00:00Z\tdef\tcdr\t120\t2400\t12\t25\t6\tnone\n";
         let s = doc_section(tsv);
         assert!(s.contains("| `cdr` | 3.0 min | 2 | 2026-11-26 at def (120 s) | 2400 | 20 | 12 | 25 | 6 | none |"), "{s}");
+    }
+
+    #[test]
+    fn folding_copies_only_the_inputs_not_there_yet() {
+        let tmp = std::env::temp_dir().join(format!("xtask-fold-{}", std::process::id()));
+        let (from, into) = (tmp.join("from"), tmp.join("into"));
+        std::fs::create_dir_all(&from).unwrap();
+        std::fs::create_dir_all(&into).unwrap();
+        std::fs::write(from.join("a"), "new").unwrap();
+        std::fs::write(from.join("b"), "from").unwrap();
+        std::fs::write(into.join("b"), "kept").unwrap();
+        assert_eq!(fold(&from, &into).unwrap(), 1);
+        assert_eq!(std::fs::read_to_string(into.join("a")).unwrap(), "new");
+        assert_eq!(std::fs::read_to_string(into.join("b")).unwrap(), "kept");
+        assert_eq!(fold(&tmp.join("missing"), &into).unwrap(), 0);
+        std::fs::remove_dir_all(&tmp).unwrap();
     }
 
     #[test]

@@ -45,7 +45,7 @@ pub fn write_report(root: &Path, measurements: &[Measurement]) -> Result<()> {
     let peers: serde_json::Value =
         serde_json::from_slice(&out.stdout).context("fuzzy_peers.py printed no JSON")?;
     let mut md = String::from(
-        "# fuzzy-mamdani performance\n\nWritten by `cargo xtask bench`. The issue-5 reference engine \
+        "# fuzzy-mamdani performance\n\nWritten by `cargo xtask bench`. The 81-rule reference engine \
          (2 inputs × 9 terms, 81 rules, min / max / min, centroid over 201 points), one evaluation, \
          on this machine, in one run: MATLAB's end-point samples and fuzzylite's midpoints \
          (pyfuzzylite's own rule, so the row to compare with it), and the grasp preset.\n\n\
@@ -85,7 +85,7 @@ pub fn write_report(root: &Path, measurements: &[Measurement]) -> Result<()> {
             .map_or_else(|| "—".to_string(), |(_, c)| c.clone())
     };
     let speed = format!(
-        "| Speed (issue-5 reference engine, one run) | {} | {} | {} |",
+        "| Speed (81-rule reference engine, one run) | {} | {} | {} |",
         human(ours.mean_ns),
         cell("fuzzylite"),
         cell("scikit"),

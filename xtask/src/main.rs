@@ -2,8 +2,8 @@
 
 use std::process::ExitCode;
 use xtask::{
-    bench, cell_doc, consumer, demo, firmware, fixtures, fuzz, package, run, test, trade, train,
-    venv, workspace_root,
+    architecture, bench, cell_doc, consumer, demo, firmware, fixtures, fuzz, package, run, test,
+    trade, train, venv, workspace_root,
 };
 
 const USAGE: &str = "usage: cargo xtask <command>
@@ -11,6 +11,8 @@ const USAGE: &str = "usage: cargo xtask <command>
 commands:
   test                      set up .venv and chromium, then fmt, clippy, every test, docs, fixtures --check
                             (and once more with numpy's widest SIMD kernels off)
+  architecture [--check]    draw the crate graph (cargo metadata) into docs/architecture.md, then check
+                            the architecture rules (--check: fail if the drawn graph differs instead)
   fixtures [--check]        regenerate the generated fixtures, or check the committed ones (third-party
                             float output by value within a tolerance: fixtures/README.md)
   fixtures --check --numpy-narrowed
@@ -47,14 +49,21 @@ commands:
   fuzz --seed               write the fuzz targets' seed corpora (fuzz/seeds/) from fixtures, models, captures
   fuzz TARGET... | --all [--seconds N]
                             fuzz each target N s (default 1800) with libFuzzer (installs
-                            cargo-fuzz), minimise fuzz/corpus/TARGET, append the figures to fuzz/runs.tsv
-                            and rewrite the fuzzing section of docs/reliability.md (--doc: that alone)";
+                            cargo-fuzz), growing its corpus fuzz/corpus/TARGET.tar.gz (unpacked into
+                            target/fuzz-corpus/TARGET, minimised, packed back), append the figures to
+                            fuzz/runs.tsv and rewrite the fuzzing section of docs/reliability.md (--doc:
+                            that alone)";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let root = workspace_root();
     let result = match args.first().map(String::as_str) {
         Some("test") if args.len() == 1 => test::run(&root),
+        Some("architecture") => match &args[1..] {
+            [] => architecture::run(&root, false),
+            [flag] if flag == "--check" => architecture::run(&root, true),
+            _ => usage_error(),
+        },
         Some("fixtures") => match &args[1..] {
             [] => fixtures::run(&root, fixtures::Mode::Write),
             [flag] if flag == "--check" => fixtures::run(&root, fixtures::Mode::Check),

@@ -7,7 +7,7 @@
 //!
 //! - `contact-mlp` (`--docs-only`): `docs/contact-location/contact-mlp-osr.svg`, prints the
 //!   MLP's markdown table, and rewrites the generated sections of `docs/contact-location.md`
-//!   (the targets under issue 21's labels, the jittered set);
+//!   (the targets under border-aware labels, the jittered set);
 //! - `force-dnn`: the training curve and section 1 of `docs/learning.md`;
 //! - `softness` (`--docs-only`): confusion matrices, training curves and section 2;
 //! - `contact-cnn` (`--docs-only`): Table I side by side, the confusion matrix and section 3,

@@ -1,5 +1,5 @@
 //! AoT per localisation: eq. 3, or the ranging scorer, over the nine areas, argmax and
-//! confidence, through the `ContactLocator` trait (issue 7 target: under 100 ns).
+//! confidence, through the `ContactLocator` trait (target: under 100 ns).
 
 use aot_locate::{AotLocator, ArrivalEvent, Geometry, Ranging, Scorer};
 use criterion::{Criterion, criterion_group, criterion_main};

@@ -1,4 +1,4 @@
-//! Evaluation cost of the issue-5 reference engine (centroid, 201 samples; MATLAB's end points
+//! Evaluation cost of the 81-rule reference engine (centroid, 201 samples; MATLAB's end points
 //! and fuzzylite's midpoints) and of the paper's grasp preset (center average).
 #![allow(missing_docs)] // criterion's macros generate undocumented items
 

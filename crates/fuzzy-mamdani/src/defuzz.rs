@@ -13,8 +13,8 @@
 //! The two sampled rules weigh the ends of the universe differently. End-point samples give
 //! the first and last sample a full weight where the trapezoid rule would give half, so a term
 //! reaching an end of the range pulls the centroid towards that end by O(1/n) of the span:
-//! the issue-25 probe (an output term at the end of 0…1023, 201 samples) was 2.41 off the
-//! exact centroid. Midpoints integrate with an O(1/n²) error for smooth sets (0.038 in the
+//! a probe with an output term at the end of 0…1023 and 201 samples is 2.41 off the exact
+//! centroid. Midpoints integrate with an O(1/n²) error for smooth sets (0.038 in the
 //! same probe) but can miss a peak narrower than one cell. Use [`Resolution::Exact`] where the
 //! terms allow it; use the sampled rule of the tool whose numbers you must reproduce.
 

@@ -26,7 +26,7 @@
 //!   output, so the table is monotone: more error never lowers torque, a faster rise never raises
 //!   it. With the partition above, center-average interpolates the table bilinearly-like between
 //!   centres: the surface is smooth and monotone, like the paper's Figure 18
-//!   (`tests/preset.rs` checks both on a grid).
+//!   (`tests/it/preset.rs` checks both on a grid).
 //! * **Operators.** Product AND, max aggregation, min implication, center average. With center
 //!   average the AND decides monotonicity: under min, a rule cell already clamped to NH keeps
 //!   gaining weight as `e` grows and the torque can *fall* (0.8 units at e = −0.975,
@@ -45,8 +45,8 @@ use crate::{Defuzzifier, Engine, EngineBuilder, EvalError, Mf, Real, Scratch, TN
 /// The paper's term names, most negative first (Table 3).
 pub const TERM_NAMES: [&str; 9] = ["NH", "NB", "NM", "NS", "ZO", "PS", "PM", "PB", "PH"];
 
-/// The top of the MX-28 torque-limit scale.
-pub const TORQUE_RAW_MAX: f64 = 1023.0;
+/// The top of the MX-28 torque-limit scale ([`Effort::TORQUE_LIMIT_RAW_MAX`]).
+pub const TORQUE_RAW_MAX: f64 = Effort::TORQUE_LIMIT_RAW_MAX as f64;
 
 /// The paper's controller as an engine: inputs `e`, `de` on `[-1, 1]`, output `torque` on
 /// `[0, 1023]`, center-average defuzzification (see the module documentation for the numbers).

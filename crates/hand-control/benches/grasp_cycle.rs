@@ -1,6 +1,6 @@
 //! One grasp-loop cycle's compute, without I/O: contact estimate from three pad pressures,
 //! the paper's fuzzy controller (seed 000 §5, 9 × 9 rules, center average), the torque band
-//! and the gripper command. Target: < 20 µs per cycle (issue 9).
+//! and the gripper command. Target: < 20 µs per cycle.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use hand_control::grasp_loop::{PressureEstimator, TorqueBand};

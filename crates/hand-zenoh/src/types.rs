@@ -7,7 +7,7 @@
 //! use hand_zenoh::msg::{Message, sensor_msgs::Imu};
 //! use hand_zenoh::types::type_hash;
 //!
-//! // The same hash ROS 2 Jazzy's sensor_msgs and rosbags give (tests/ros_interop.rs checks).
+//! // The same hash ROS 2 Jazzy's sensor_msgs and rosbags give (tests/it/ros_interop.rs checks).
 //! let hash = type_hash(&Imu::description());
 //! assert!(hash.to_string().starts_with("RIHS01_"));
 //! ```

@@ -1,7 +1,7 @@
 //! `cargo xtask test` replays every fuzz target's committed inputs: its seeds
-//! (`fuzz/seeds/TARGET/`), the corpus fuzzing grew from them (`fuzz/corpus/TARGET/`, minimised)
-//! and its regressions (`fuzz/regressions/TARGET/`, one file per finding, kept after the fix).
-//! Deterministic, no fuzzing: a panic here is a finding that came back.
+//! (`fuzz/seeds/TARGET/`), the corpus fuzzing grew from them (`fuzz/corpus/TARGET.tar.gz`, one
+//! archive, minimised) and its regressions (`fuzz/regressions/TARGET/`, one file per finding,
+//! kept after the fix). Deterministic, no fuzzing: a panic here is a finding that came back.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
@@ -22,28 +22,68 @@ fn files(dir: &Path) -> Vec<PathBuf> {
     out
 }
 
+/// The targets `fuzz/runs.tsv` records a run of: each run leaves the target a corpus archive,
+/// so a missing one is a lost corpus, not a target never fuzzed.
+fn fuzzed() -> Vec<String> {
+    let runs = std::fs::read_to_string(root().join("fuzz/runs.tsv")).unwrap_or_default();
+    runs.lines()
+        .skip(1)
+        .filter_map(|l| l.split('\t').nth(2))
+        .map(str::to_owned)
+        .collect()
+}
+
+/// The entries of `fuzz/corpus/TARGET.tar.gz`, each named `ARCHIVE:ENTRY`.
+fn corpus(target: &str, fuzzed: &[String]) -> Vec<(String, Vec<u8>)> {
+    let archive = root().join("fuzz/corpus").join(format!("{target}.tar.gz"));
+    if !archive.exists() {
+        assert!(
+            !fuzzed.iter().any(|f| f == target),
+            "{target}: fuzz/runs.tsv records fuzzing it, but its corpus {} is missing",
+            archive.display()
+        );
+        return Vec::new();
+    }
+    handstack_fuzz::corpus::read(&archive)
+        .unwrap_or_else(|e| panic!("{target}: {e}"))
+        .into_iter()
+        .map(|(name, bytes)| (format!("{}:{name}", archive.display()), bytes))
+        .collect()
+}
+
 #[test]
 fn every_corpus_replays_without_a_finding() {
+    let fuzzed = fuzzed();
     let mut findings = Vec::new();
     for t in handstack_fuzz::TARGETS {
-        let [seeds, corpus, regressions] = ["seeds", "corpus", "regressions"]
-            .map(|d| files(&root().join("fuzz").join(d).join(t.name)));
+        let [seeds, regressions] =
+            ["seeds", "regressions"].map(|d| files(&root().join("fuzz").join(d).join(t.name)));
         assert!(
             !seeds.is_empty(),
             "{}: no seeds (cargo xtask fuzz --seed)",
             t.name
         );
-        for path in seeds.iter().chain(&corpus).chain(&regressions) {
+        let corpus = corpus(t.name, &fuzzed);
+        let entries = corpus.len();
+        let read = |path: &PathBuf| {
             let bytes = std::fs::read(path).expect("a readable corpus file");
+            (path.display().to_string(), bytes)
+        };
+        let inputs = seeds
+            .iter()
+            .map(read)
+            .chain(corpus)
+            .chain(regressions.iter().map(read));
+        for (name, bytes) in inputs {
             if catch_unwind(AssertUnwindSafe(|| (t.run)(&bytes))).is_err() {
-                findings.push(path.display().to_string());
+                findings.push(name);
             }
         }
         eprintln!(
-            "{:<13} {:>3} seeds, {:>5} corpus files, {:>3} regressions",
+            "{:<13} {:>3} seeds, {:>5} corpus entries, {:>3} regressions",
             t.name,
             seeds.len(),
-            corpus.len(),
+            entries,
             regressions.len()
         );
     }

@@ -44,7 +44,7 @@ pub struct Figure {
     pub paper: Option<f64>,
     /// Where the paper's value comes from (seed, table, page), when `paper` is set.
     pub source: Option<String>,
-    /// The target, e.g. `≥ 90` or `≤ 0.5`, if one is set.
+    /// The target, e.g. `≥ 90` or `≤ 0.5`, if one is set.
     pub target: Option<String>,
     /// Whether `value` meets `target` (`None` without a target).
     pub met: Option<bool>,

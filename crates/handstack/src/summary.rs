@@ -174,7 +174,7 @@ pub fn run_each<E: core::fmt::Display + ExitStatus>(
 mod tests {
     use super::error_line;
 
-    /// Issue 24: a scene error printed `error: a.toml: a.toml:18:1: …`.
+    /// A scene error names its file once, not `error: a.toml: a.toml:18:1: …`.
     #[test]
     fn an_error_line_names_the_file_once() {
         assert_eq!(

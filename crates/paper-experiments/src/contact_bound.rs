@@ -1,4 +1,4 @@
-//! How precisely the fingertip's readings place a contact, in principle (issue 21): the
+//! How precisely the fingertip's readings place a contact, in principle: the
 //! Cramér–Rao bound of the simulator's own forward model for a single-cell tap, and the share
 //! of taps an efficient locator would put on the right one of the 24 cells.
 //!

@@ -6,7 +6,7 @@
 //! tested on repeat 1 (same contacts, fresh sensor noise and baseline). Two models per OSR use
 //! the paper's recipe ([`recipe`], one per head: the baseline rows); a third uses the
 //! configuration chosen on a validation split of repeat 0 ([`validation_split`], [`select`]),
-//! never on repeat 1. A fourth, [`Mlp::OffLattice`] (issue 21), learns the cell under each
+//! never on repeat 1. A fourth, [`Mlp::OffLattice`], learns the cell under each
 //! contact's centroid from repeat 0 and six seeded jittered draws of hand-sim
 //! ([`OFF_LATTICE_TRAIN_SEEDS`]); its configuration is chosen on seventeen other draws
 //! ([`OFF_LATTICE_VALIDATION_SEEDS`], [`select_off_lattice`]). A fifth,
@@ -523,10 +523,9 @@ pub const OFF_LATTICE_TRAIN_SEEDS: [u64; 6] = [
     0x0FF1_A771_0006,
 ];
 /// Seeds of the jittered draws that choose the off-lattice models' configurations: the
-/// seventh draw, which chose them alone until issue 21's third stop, and sixteen more. Why
-/// sixteen: on one draw's 216 single-cell taps one tap is 0.46 points, and the search's winner
-/// scored 1.7 points lower on the held-out single-cell set than on its draw; 3672 single-cell
-/// taps make a tap 0.03 points.
+/// seventh draw and sixteen more. Why sixteen: on one draw's 216 single-cell taps one tap is
+/// 0.46 points, and the search's winner scored 1.7 points lower on the held-out single-cell set
+/// than on its draw; 3672 single-cell taps make a tap 0.03 points.
 pub const OFF_LATTICE_VALIDATION_SEEDS: [u64; 17] = [
     0x0FF1_A771_0000,
     0x0FF1_A771_0100,
@@ -585,8 +584,8 @@ pub fn off_lattice_grid() -> Vec<Candidate> {
 
 /// The off-lattice search of [`Mlp::OffLatticeCentroid`]: the centroid head × dropout 0.3 (the
 /// paper's) / 0 × L2 0.001 / 1e-4 / 0 × 1500 / 3000 epochs, the paper's setting first; then
-/// the dropout-free points again on a quadratic base (issue 21: dropout 0.3 lost every point
-/// of the first search, and a base does not make a regression less blurred by it); last, the
+/// the dropout-free points again on a quadratic base (dropout 0.3 lost every point of the first
+/// search, and a base does not make a regression less blurred by it); last, the
 /// previous search's choice (base, L2 0, 3000 epochs) as an ensemble of
 /// [`CENTROID_ENSEMBLE_MEMBERS`].
 pub fn off_lattice_centroid_grid() -> Vec<Candidate> {

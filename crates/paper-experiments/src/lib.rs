@@ -10,7 +10,7 @@
 //!   held-out protocols and committed models (seed 000 §2.2 and §4, seed 002 §IV-A, seed 001);
 //! - [`aot_eval`]: Arrival-of-Time on the fingertip taps (seed 000 §3);
 //! - [`contact_location`]: every contact locator on both held-out tap sets against seed 000's
-//!   targets, under issue 21's labels (the docs, their drift test and the scene share it);
+//!   targets, under the border-aware labels (the docs, their drift test and the scene share it);
 //! - [`contact_bound`]: the Cramér–Rao bound of the fingertip's forward model, what an
 //!   efficient single-cell locator could reach on those sets;
 //! - [`jobs`]: the training jobs, and [`train`], the command over them (`papers train MODEL`,

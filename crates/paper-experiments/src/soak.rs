@@ -1,4 +1,4 @@
-//! The grasp loop soaked under random faults (issue 24): the Table 5 cube held by the
+//! The grasp loop soaked under random faults: the Table 5 cube held by the
 //! Dynamixel driver over the simulated Protocol 2.0 bus (pty) and read by the simulated
 //! fingertip through the MS5611 driver ([`crate::grasp_rig`]), for a long simulated time, with
 //! fault windows drawn from a seeded RNG. Every cycle is checked as it runs:

@@ -6,7 +6,7 @@
 //!   household objects (153 grasps). The 6 empty grasps are left out: the paper gives them no
 //!   class among its three, and a fourth output would change its 8 → 4 → 4 → 3 network.
 //! - Test on `test_regular` (24 objects), `test_irregular` (30 objects) and
-//!   `test_irregular_1000` (a fresh draw of 1000 household objects, issue 21), one grasp each,
+//!   `test_irregular_1000` (a fresh draw of 1000 household objects), one grasp each,
 //!   each classified from its whole series ([`tactile_nets::softness`]).
 //! - Labels: household objects carry the class their fingers' local moduli indicate (the
 //!   dataset's `label`, `hand_sim::underactuated::dataset::sensor_class`); the accuracy against
@@ -453,7 +453,7 @@ impl SoftnessClassifier for Pooled {
     }
 }
 
-/// Household training objects our variant adds to the protocol's 153 grasps (issue 21), drawn
+/// Household training objects our variant adds to the protocol's 153 grasps, drawn
 /// at training time by hand-sim ([`hand_sim::underactuated::dataset::household_draw`]) from the
 /// dataset's seed, stream [`TRAIN_DRAW`]: as many as the large test draw. The paper's 18 put
 /// one object at 5.6 validation points and left the label's boundaries almost without data.

@@ -43,8 +43,8 @@ pub fn locator_path(root: &Path) -> PathBuf {
 }
 /// The pad's scene seed.
 pub const PAD_SEED: u64 = 10;
-/// Taps per region of the committed run and the scene (issue 21: at least 10, so that one tap
-/// moves the figure by at most 1.1 points).
+/// Taps per region of the committed run and the scene: at least 10, so that one tap moves the
+/// figure by at most 1.1 points.
 pub const TAPS_PER_REGION: usize = 10;
 /// Controller seconds per wall-clock second of the simulated UR3 in the committed run and the
 /// scene: moves keep their controller-time profiles and end 10 × sooner in wall time.

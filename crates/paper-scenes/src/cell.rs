@@ -22,8 +22,7 @@ use std::path::Path;
 use tactile_nets::contact_cnn::ContactCnn;
 use ur_bridge::tap_to_move::TapToMoveConfig;
 
-/// The fingertip node's rate (seed 000 reads its fingertips at 100 Hz).
-const FINGERTIP_RATE_HZ: f32 = 100.0;
+use handstack::cell::real::FINGERTIP_RATE_HZ;
 
 fn failed(device: &'static str, e: impl ToString) -> CellError {
     CellError::Device {

@@ -130,8 +130,8 @@ pub const BLOCK: usize = 32;
 #[cfg(feature = "std")]
 impl<const I: usize, const O: usize> SparseDense<I, O> {
     /// The stored width of a block: a narrow layer (`O < BLOCK`, e.g. a 9-class head) is one
-    /// block of `O`, so the forward pass reads no padding (issue 23: the paper CNN's 320 → 9
-    /// layer streamed 40 KB of which 29 KB were zeros).
+    /// block of `O`, so the forward pass reads no padding (padded to a block, the paper CNN's
+    /// 320 → 9 layer would stream 40 KB of which 29 KB are zeros).
     const WIDTH: usize = if O < BLOCK { O } else { BLOCK };
 
     /// The input-major copy of `dense`.
@@ -184,7 +184,7 @@ impl<const I: usize, const O: usize> SparseDense<I, O> {
             // SAFETY: the one requirement of a `target_feature` function is that the CPU has
             // the feature, checked just above. Why: the same lane-wise mul and add on 8 lanes
             // instead of SSE2's 4 (bit-identical results: each output's sum keeps its order),
-            // measured 3.61 → 2.70 µs per paper-CNN call on an AMD EPYC (issue 23).
+            // measured 3.61 → 2.70 µs per paper-CNN call on an AMD EPYC.
             #[allow(unsafe_code)]
             unsafe {
                 accumulate_avx::<I, O>(&self.weights, index, value, &mut y);

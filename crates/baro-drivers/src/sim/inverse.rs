@@ -48,7 +48,7 @@ mod tests {
     use super::*;
     use crate::sim::DATASHEET_COEFFICIENTS;
 
-    /// Issue 24: NaN °C gave the code for 0.00 °C and infinity the end code.
+    /// NaN or infinite °C has no code (not the code for 0.00 °C, nor the end code).
     #[test]
     fn non_finite_truth_has_no_code_and_finite_extremes_saturate() {
         let cal = Calibration::new(DATASHEET_COEFFICIENTS);

@@ -1,14 +1,14 @@
 //! Engines shared by the integration tests and the benchmark.
-#![allow(dead_code, unreachable_pub)] // each test binary uses a subset
+#![allow(dead_code)] // each target that includes it uses a subset
 
 use fuzzy_mamdani::{Defuzzifier, Engine, EngineBuilder, Mf, Real, Resolution};
 
 const NAMES: [&str; 9] = ["NH", "NB", "NM", "NS", "ZO", "PS", "PM", "PB", "PH"];
 
-/// The benchmark's reference engine (issue 5): e, de on [-1, 1], 9 terms centred at −1, −0.75 … 1
+/// The benchmark's reference engine: e, de on [-1, 1], 9 terms centred at −1, −0.75 … 1
 /// (NH / PH Gaussian σ = 0.1667, the rest triangles of half-width 0.25), output on [-1, 1] with
 /// 9 Gaussians σ = 0.125, rules `e is T_i and de is T_j → tau is T_clamp(i+j−4)`, min / max / min.
-pub fn reference_engine<T: Real>(defuzz: Defuzzifier) -> Engine<T> {
+pub(crate) fn reference_engine<T: Real>(defuzz: Defuzzifier) -> Engine<T> {
     let c = |i: usize| T::of(-1.0 + 0.25 * i as f64);
     let input_terms = || {
         (0..9).map(move |i| {
@@ -59,7 +59,7 @@ pub fn reference_engine<T: Real>(defuzz: Defuzzifier) -> Engine<T> {
 
 /// The benchmarks' inputs: a deterministic sweep over the universes, including the ends and a
 /// little beyond (fuzzy-mamdani's criterion bench and the workspace's instruction counts).
-pub fn bench_inputs() -> Vec<[f64; 2]> {
+pub(crate) fn bench_inputs() -> Vec<[f64; 2]> {
     (0..64)
         .map(|k| {
             [
@@ -71,18 +71,18 @@ pub fn bench_inputs() -> Vec<[f64; 2]> {
 }
 
 /// The reference engine with its benchmark defuzzifier: centroid over 201 samples.
-pub fn reference_201<T: Real>() -> Engine<T> {
+pub(crate) fn reference_201<T: Real>() -> Engine<T> {
     reference_engine(Defuzzifier::Centroid(Resolution::Samples(201)))
 }
 
 /// The reference engine under fuzzylite's integration: centroid over 201 midpoints.
-pub fn reference_midpoints_201<T: Real>() -> Engine<T> {
+pub(crate) fn reference_midpoints_201<T: Real>() -> Engine<T> {
     reference_engine(Defuzzifier::Centroid(Resolution::Midpoints(201)))
 }
 
 /// The crisp value of one output term `term` over `[min, max]` when `copies` identical rules
 /// fire it fully (an input term that holds everywhere).
-pub fn single_term(
+pub(crate) fn single_term(
     term: Mf<f64>,
     min: f64,
     max: f64,

@@ -120,6 +120,9 @@ pub struct LoopConfig {
 }
 
 impl LoopConfig {
+    /// The default control period, µs: 100 Hz, the rate the fingertips are read at.
+    pub const DEFAULT_PERIOD_US: u64 = 10_000;
+
     /// 100 Hz, 500 Pa target (about the seed 000 fingertip's mean rise under a 5 N whole-pad grip), 50 Pa contact threshold, 2 Hz rate filter, 10 tare cycles,
     /// goal 0.2 rad within 0…0.5 rad, the full band, hold last safe effort on a fault, manual
     /// recovery, release at the end (at most 3 s to open: an MX-28 at a third of its PWM opens
@@ -127,7 +130,7 @@ impl LoopConfig {
     /// 3-sensor pad).
     pub fn new() -> LoopConfig {
         LoopConfig {
-            period_us: 10_000,
+            period_us: Self::DEFAULT_PERIOD_US,
             target_pressure_pa: 500.0,
             contact_threshold_pa: 50.0,
             rate_cutoff_hz: 2.0,

@@ -1,6 +1,6 @@
 """The official ROBOTIS SDK (PyPI `dynamixel-sdk`) drives the simulated bus.
 
-Usage: sdk_against_sim.py PORT ID,ID,...   (run by tests/sdk_python.rs)
+Usage: sdk_against_sim.py PORT ID,ID,...   (run by tests/it/sdk_python.rs)
 Exits non-zero with a message on the first mismatch; prints one line per check.
 """
 import sys

@@ -1,4 +1,4 @@
-//! Seeded fingertip datasets for the learning issues, as CSV text.
+//! Seeded fingertip datasets for the learned models, as CSV text.
 //!
 //! - [`taps`]: every contact shape of seed 000 Figure 7 ([`FIGURE7_SHAPES`], shared with
 //!   `aot-locate`) at every position (moved right, then
@@ -7,9 +7,9 @@
 //!   contact-area MLP). Two files: `taps.csv` (one row per tap) and `series.csv` (one row per
 //!   frame).
 //! - [`jittered_taps`]: a held-out set of the same contacts shifted off the lattice by seeded
-//!   offsets within ± half a cell (issue 21), in the same two schemas.
+//!   offsets within ± half a cell, in the same two schemas.
 //! - [`single_cell_taps`]: a larger held-out set of one-cell contacts shifted the same way,
-//!   for the 24-area figure (issue 21), in the same two schemas; and
+//!   for the 24-area figure, in the same two schemas; and
 //!   [`single_cell_osr256_taps`], three times as many draws at OSR 256 alone.
 //! - [`weights`]: seed 000 Table 1's experiment — 0 → 200 gf in 10 gf steps on the whole pad,
 //!   one step every 2 s, read at OSR 4096 — three seeded runs, one row per frame.
@@ -162,7 +162,7 @@ pub const SINGLE_CELL_DRAWS: u32 = 14;
 /// [`SINGLE_CELL_DRAWS`] times, shifted as [`jittered_taps`] shifts its contacts but from
 /// streams of their own, so no offset or noise draw repeats that set's: 1008 taps per OSR.
 /// The jittered set holds 216 single-cell taps, where one tap is 0.46 points; here one is
-/// 0.1 point (issue 21 asked for test sets large enough to trust).
+/// 0.1 point: a test set large enough to trust.
 pub fn single_cell_taps(seed: u64) -> Result<(String, String), SimError> {
     one_cell_taps(
         seed,
@@ -180,8 +180,8 @@ pub const SINGLE_CELL_OSR256_DRAWS: u32 = 42;
 
 /// A third held-out set off the lattice, at the scene's OSR only: (`single_cell_osr256_taps.csv`,
 /// `single_cell_osr256_series.csv`), drawn as [`single_cell_taps`] but [`SINGLE_CELL_OSR256_DRAWS`]
-/// times from streams of its own: 3024 taps, where one tap is 0.03 point. Issue 21's third
-/// stop added it to judge a model chosen after the other two sets had been read.
+/// times from streams of its own: 3024 taps, where one tap is 0.03 point. It judges a model
+/// chosen after the other two sets had been read.
 pub fn single_cell_osr256_taps(seed: u64) -> Result<(String, String), SimError> {
     one_cell_taps(
         seed,

@@ -5,7 +5,7 @@
 //! them: Table 2's single-cell rises at 5 / 7 / 9 kgf for areas 1.1 and 1.5, and Table 1's
 //! whole-pad rises for 50…200 gf, weighted ×3 (its rig had other baselines, 1191 / 1199 /
 //! 1018 hPa). The script works in kgf; the law in newton. Residuals are listed in
-//! docs/sim-calibration.md and held by tests/fingertip_calibration.rs.
+//! docs/sim-calibration.md and held by tests/it/fingertip_calibration.rs.
 //!
 //! The sensor positions are fixed, not fitted ([`super::geometry::SENSORS_MM`], `aot-locate`'s
 //! simulated pad): an inverted triangle (§3, Figure 5) with the two upper sensors level with
@@ -22,8 +22,8 @@
 //!
 //! The timing parameters are not fitted either (the paper reports no timing): an assumption
 //! sized so that arrival-time differences (≈ 5–40 ms across the pad) span a few MS5611 cycles
-//! between OSR 256 (1.2 ms per three-sensor cycle) and OSR 4096 (18 ms), the trade issue 7
-//! measures.
+//! between OSR 256 (1.2 ms per three-sensor cycle) and OSR 4096 (18 ms), the trade the
+//! contact-location evaluation measures.
 
 use super::contact::KGF_N;
 use super::law::LawParams;

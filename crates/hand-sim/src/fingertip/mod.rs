@@ -6,7 +6,7 @@
 //! - [`law`]: contact → each sensor's steady rise and arrival delay (calibrated to Tables 1–2);
 //! - [`physics`]: true pressures over time (baseline, drift, re-zero, first-order response);
 //! - [`model`]: the three chip models read through the real driver, as a scene model;
-//! - [`dataset`]: the seeded tap and weight datasets the learning issues train on.
+//! - [`dataset`]: the seeded tap and weight datasets the learned models train on.
 
 pub mod contact;
 pub mod dataset;

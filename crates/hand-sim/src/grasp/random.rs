@@ -1,5 +1,5 @@
-//! Seeded objects around the six of Table 5, for the closed-loop tests of issue 9 ("the same with
-//! 20 randomised objects"). Each draws a base object and perturbs its mass, friction, stiffness,
+//! Seeded objects around the six of Table 5, for the closed-loop tests (the holds repeated on 20
+//! randomised objects). Each draws a base object and perturbs its mass, friction, stiffness,
 //! crush force and size; its holding range is then *derived* from the statics, not assumed.
 
 use rand::Rng;

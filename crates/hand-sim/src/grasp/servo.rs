@@ -15,8 +15,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::SimError;
 
-/// Top of the paper's torque-limit scale (§7: 1023 = 100 %).
-pub const TORQUE_LIMIT_MAX: u16 = 1023;
+/// Top of the paper's torque-limit scale (§7: 1023 = 100 %), hand-traits' own.
+pub const TORQUE_LIMIT_MAX: u16 = hand_traits::Effort::TORQUE_LIMIT_RAW_MAX;
 
 /// The RAM settings and the assumed mechanics of the grasp hand's servos.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

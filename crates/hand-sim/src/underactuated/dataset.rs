@@ -1,9 +1,9 @@
-//! The seeded softness grasps issue 8 trains and tests on, following seed 001's protocol
+//! The seeded softness grasps the softness net trains and tests on, following seed 001's protocol
 //! (§3.1, §3.3, §4): training = the 27 model objects × [`REPEATS`] poses, 18 household objects
 //! and 6 empty grasps; tests = 24 regular-shape objects (new instances of the model shapes, new
 //! poses) and 30 irregular household objects; and, beyond the paper, a fresh draw of
-//! [`LARGE_IRREGULAR_TESTS`] household test objects from the same generator (issue 21: at 30
-//! objects one object is worth 3.3 points).
+//! [`LARGE_IRREGULAR_TESTS`] household test objects from the same generator (at 30 objects one
+//! object is worth 3.3 points).
 //!
 //! Household objects have one overall modulus (their label's class) but each finger meets a
 //! different local stiffness (log-normal spread, and with probability [`FEATURE_PROBABILITY`]
@@ -41,7 +41,7 @@ pub const EMPTY_GRASPS: usize = 6;
 pub const REGULAR_TESTS: usize = 24;
 /// Irregular-shape test objects (seed 001 §4: 30).
 pub const IRREGULAR_TESTS: usize = 30;
-/// Household test objects of the large fresh draw (issue 21; not in the paper).
+/// Household test objects of the large fresh draw (not in the paper).
 pub const LARGE_IRREGULAR_TESTS: usize = 1000;
 /// Sampling rate of the series, Hz.
 pub const SAMPLE_HZ: f64 = 10.0;
@@ -202,7 +202,7 @@ pub(super) fn household(rng: &mut ChaCha8Rng, class: Softness) -> ObjectConfig {
     }
 }
 
-/// The label rule of a household object (issue 21): the class of the band holding the median
+/// The label rule of a household object: the class of the band holding the median
 /// of its four local moduli — in ln, the mean of the ln of the second and third smallest (the
 /// geometric mean of the middle two). A median in the gap between two bands belongs to the
 /// band nearer in ln (the boundary is the gap's geometric midpoint: 51.96 kPa between soft and
@@ -358,7 +358,7 @@ pub fn run(spec: &GraspSpec) -> Result<Grasp, SimError> {
 /// `n` household objects drawn as the test draws are (overall classes in turn, labelled by
 /// [`sensor_class`]) from the stream `name` of `seed`, as training grasps numbered 0, 1, 2…:
 /// more household training objects than the paper's 18, for a model that needs them (the
-/// softness variant, issue 21). Each grasp's seed is derived from `name` too, so a draw shares
+/// softness variant). Each grasp's seed is derived from `name` too, so a draw shares
 /// neither objects nor poses with the dataset's streams, or with a draw of another name.
 pub fn household_draw(seed: u64, name: &str, n: usize) -> Result<Vec<GraspSpec>, SimError> {
     let mut rng = crate::seed::stream(seed, name);

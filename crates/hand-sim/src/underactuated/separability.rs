@@ -1,5 +1,5 @@
 //! A sanity check of a dataset's difficulty: a nearest-centroid classifier on standardised
-//! features. Not the paper's network (that is issue 8's); only a floor it should clear.
+//! features. Not the paper's network (`tactile-nets` has that); only a floor it should clear.
 
 use hand_traits::Softness;
 

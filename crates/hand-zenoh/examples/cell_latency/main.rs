@@ -1,4 +1,4 @@
-//! The cell on loopback, measured (issue 22, `docs/cell.md`): end-to-end latency
+//! The cell on loopback, measured (`docs/cell.md`): end-to-end latency
 //! frame-publish → subscriber (p50 / p99 / max), loss by sequence gaps after discovery, and
 //! the CPU each process takes, for 1, 4 and 16 hands × 3 fingertips at 100 Hz plus one pad
 //! (`sensor_msgs/Imu` and a `PressureFrame`, 30 Hz each), over this crate's nodes (`rmw`) and

@@ -1,5 +1,5 @@
 //! Our own messages. Their `.msg` files are `ros/handstack_msgs/msg/*.msg` (a ROS 2 package);
-//! tests/ros_interop.rs checks that rosbags, reading those files, gives the same type hashes
+//! tests/it/ros_interop.rs checks that rosbags, reading those files, gives the same type hashes
 //! and the same CDR bytes as these declarations.
 
 /// `handstack_msgs`.

@@ -1,5 +1,5 @@
 //! The standard ROS 2 types the stack publishes, field for field as ROS 2 Jazzy defines them
-//! (the hashes are checked against rosbags' Jazzy type store in tests/ros_interop.rs).
+//! (the hashes are checked against rosbags' Jazzy type store in tests/it/ros_interop.rs).
 
 /// `builtin_interfaces`.
 pub mod builtin_interfaces {

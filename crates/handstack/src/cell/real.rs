@@ -15,7 +15,8 @@ use hand_zenoh::tactile::TactileInfo;
 use ur_bridge::tap_to_move::TapToMoveConfig;
 
 /// The fingertip's frame rate as a node (seed 000 reads its fingertips at 100 Hz).
-pub const FINGERTIP_RATE_HZ: f32 = 100.0;
+pub const FINGERTIP_RATE_HZ: f32 =
+    1e6 / hand_control::grasp_loop::LoopConfig::DEFAULT_PERIOD_US as f32;
 
 /// Runs `args.part` of `scene` on its real device as a node until `stop`; says what it did.
 pub fn run_node(

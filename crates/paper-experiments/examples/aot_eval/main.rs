@@ -152,7 +152,7 @@ fn section(rep: &Report) -> Result<String, std::fmt::Error> {
     )?;
     writeln!(
         s,
-        "**Eq. 3 as written misses the issue's 90 % target by far, at every OSR.** Why: with \
+        "**Eq. 3 as written misses the 90 % target by far, at every OSR.** Why: with \
          non-negative weights `w_k = P_k · Σt / t_k`, `Arr_n = Σ_k w_k / r_{{n,k}}` is largest \
          where some `1 / r_{{n,k}}` is largest, i.e. at the area nearest the dominant sensor. \
          On this pad that is area 5 for sensor 1 (2.1 mm), 7 for sensor 2 (0.5 mm) and 3 for \
@@ -323,7 +323,7 @@ fn plot(rep: &Report, path: &Path) -> Result<(), String> {
             BLACK.mix(0.4),
         ))
         .map_err(|e| e.to_string())?
-        .label("issue 7 target (90 %)")
+        .label("target (90 %)")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.mix(0.4)));
     chart
         .configure_series_labels()

@@ -167,16 +167,16 @@ pub enum TapSet {
     Lattice,
     /// `jittered_taps.csv` / `jittered_series.csv.gz` (gzipped: 3.8 MB of text): the same
     /// contacts shifted off the lattice within ± half a cell, three draws each; held out
-    /// entirely (issue 21).
+    /// entirely.
     Jittered,
     /// `single_cell_taps.csv` / `single_cell_series.csv.gz`: one-cell contacts only, shifted
     /// the same way, 14 draws of each cell and force (1008 taps per OSR); held out entirely,
-    /// for the 24-area figure (issue 21).
+    /// for the 24-area figure.
     SingleCell,
     /// `single_cell_osr256_taps.csv` / `single_cell_osr256_series.csv.gz`: one-cell contacts
     /// shifted the same way, at the scene's OSR 256 only, 42 draws of each cell and force
-    /// (3024 taps); held out entirely, added to judge a model chosen after the other sets had
-    /// been read (issue 21).
+    /// (3024 taps); held out entirely, to judge a model chosen after the other sets had been
+    /// read.
     SingleCellOsr256,
 }
 

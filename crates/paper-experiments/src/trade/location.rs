@@ -46,9 +46,9 @@ pub fn tasks() -> Vec<Task> {
                    free meanwhile. Accuracy: `paper_experiments::aot_eval` (the evaluator behind \
                    docs/contact-location.md) on the jittered held-out set of \
                    `fixtures/datasets/fingertip/` (612 taps per OSR shifted off the cell \
-                   lattice, so the strict label has no ties: issue 21), ranging constants \
-                   fitted on the lattice set's repeat 0. The lattice set's figures under \
-                   issue 21's labels are in docs/contact-location.md. The dataset was \
+                   lattice, so the strict label has no ties), ranging constants fitted on \
+                   the lattice set's repeat 0. The lattice set's figures, where a border tap \
+                   counts in either area, are in docs/contact-location.md. The dataset was \
                    simulated per OSR (chip noise and sample period of that OSR)."
                 .into(),
         },
@@ -77,8 +77,8 @@ pub fn tasks() -> Vec<Task> {
             note: "Not one task: AoT answers 3 × 3 areas and the MLP 24 areas on the \
                    barometric fingertip (each at its best OSR, named in the setting); the CNN \
                    answers 9 regions of the ICM-20789 pad (seed 002) from a 4 × 38 IMU window. \
-                   The front is drawn because the issue asks for it; read it as 'what each \
-                   method buys per µs', not as one method beating another on the same labels. \
+                   Read the front as 'what each method buys per µs', not as one method \
+                   beating another on the same labels. \
                    Cost: one localisation from the already-extracted features (arrival event / \
                    9 MLP features / window), median of repeats; MLP and CNN run their frozen \
                    (plain-array) forward. The MLP's figure is `ContactMlp::predict` with the \

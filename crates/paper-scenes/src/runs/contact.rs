@@ -1,10 +1,10 @@
 //! Seed 000 §3–4: where the fingertip was touched. Arrival-of-Time (eq. 3 as written, and
 //! aot-locate's ranging scorer) on the 3 × 3 grid, the contact MLP on the 4 × 6 grid, over the
 //! held-out simulated tap sets of `fixtures/datasets/fingertip/` (read through the MS5611
-//! driver) at the scene's OSR: the lattice's repeat 1, where a border tap may go to either area
-//! (issue 21), the jittered set, under the strict label, and (the MLP only) the larger
-//! single-cell set. The evaluation is
-//! `paper_experiments::contact_location`, the one `docs/contact-location.md` is written from.
+//! driver) at the scene's OSR: the lattice's repeat 1, where a border tap may go to either area,
+//! the jittered set, under the strict label, and (the MLP only) the larger single-cell set. The
+//! evaluation is `paper_experiments::contact_location`, the one `docs/contact-location.md` is
+//! written from.
 
 use super::figure::{Target, measured, target};
 use super::{Part, RunContext};
@@ -70,7 +70,7 @@ fn aot_part(cl: &ContactLocation, rule: Rule, osr: u16, part: &mut Part) {
     let strict = rep.by_osr.get(&(rule, osr)).copied().unwrap_or_default();
     part.figures.push(tally(
         &format!("{k}_accuracy_pct"),
-        &format!("{name}: 3 × 3, lattice taps, a border tap in either area (issue 21)"),
+        &format!("{name}: 3 × 3, lattice taps, a border tap in either area"),
         cl.aot(Set::Lattice, rule, osr),
         Some(AOT_TARGET_PCT),
     ));

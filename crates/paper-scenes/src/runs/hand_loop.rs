@@ -1,4 +1,4 @@
-//! The full hand as one control loop (issue 19, point 4).
+//! The full hand as one control loop.
 //!
 //! Every 10 ms tick of hand-control's [`GraspLoop`] (its [`FixedRate`](hand_control::grasp_loop::FixedRate)
 //! grid on the loop clock) the [`HandLoop`]:

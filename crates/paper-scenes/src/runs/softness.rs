@@ -1,7 +1,7 @@
 //! Seed 001 §3.3–4: soft / moderate / hard from the underactuated hand's four FSRs and four
 //! distal potentiometers. The committed 8 → 4 → 4 → 3 models run on the simulated hand's
 //! grasps (`fixtures/datasets/underactuated/`, hand-sim) of the 24 regular and 30 irregular
-//! test objects and of the fresh draw of 1000 irregular ones (issue 21): the paper's recipe (the
+//! test objects and of the fresh draw of 1000 irregular ones: the paper's recipe (the
 //! optimiser's models) or our variant (finger-order-invariant inputs, more household training
 //! objects), as the scene names; the one that runs is the selected seed (lowest training MSE,
 //! chosen on training data only), through `paper_experiments::softness_eval` as

@@ -20,7 +20,7 @@ use tactile_nets::force_dnn::ForceDnn;
 
 /// Seed 000 Table 1, cited beside every paper value.
 const SOURCE: &str = "seed 000 Table 1, Expect. Weight";
-/// The Table 1 fit target of issue 8: every row within 0.5 gf.
+/// The Table 1 fit target: every row within 0.5 gf.
 const FIT_TOL_GF: f64 = 0.5;
 
 /// Runs the weight experiment of `scene`.

@@ -22,7 +22,7 @@
 //! - [`Head::CellSet`]: 24 sigmoid outputs, one per cell (multi-label cross-entropy on the
 //!   tap's cell mask); decoded to the catalogue contact of highest likelihood under independent
 //!   cells.
-//! - [`Head::Centroid`] (ours, issue 21): two linear outputs regressing the contact's centroid
+//! - [`Head::Centroid`] (ours): two linear outputs regressing the contact's centroid
 //!   in cell units ([`ContactExample::centroid`], mean squared error), for contacts anywhere
 //!   on the pad rather than on its cell lattice; decoded to the one cell under the point.
 //!   Optionally on a [`QuadraticBase`] fitted in closed form first, the network learning
@@ -316,8 +316,8 @@ fn decode_label(y: f32, catalogue: impl IntoIterator<Item = u32>) -> Option<(u32
 /// `ln σ(z) − ln σ(−z) = z` it equals `Σ_i ln σ(−z_i) + Σ_{i ∈ mask} z_i`. The first sum is the
 /// same for every entry and cancels in the argmax and in the posterior (which only reads
 /// differences), so an entry scores the sum of its cells' logits: a few adds per entry and one
-/// `exp`, where the direct form took 24 `ln σ` per entry (issue 23: 1 632 per call, ~90 % of
-/// the MLP's instructions).
+/// `exp`, where the direct form takes 24 `ln σ` per entry (1 632 per call, ~90 % of the MLP's
+/// instructions).
 fn decode_cells(logits: &[f32], catalogue: impl IntoIterator<Item = u32>) -> Option<(u32, f32)> {
     let mut best = (0u32, f32::NEG_INFINITY);
     let mut any = false;

@@ -1,4 +1,4 @@
-//! The generated sections of `docs/contact-location.md`: the targets under issue 21's labels
+//! The generated sections of `docs/contact-location.md`: the targets under border-aware labels
 //! and the jittered held-out set, from one [`ContactLocation`] evaluation of the committed
 //! datasets and models (`papers docs contact-mlp` writes them after the MLP's table and plot).
 

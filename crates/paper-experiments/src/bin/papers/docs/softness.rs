@@ -234,7 +234,7 @@ fn section(
          Training rows: every {STRIDE}th sample of each series (1.4 s apart, 11 per grasp, \
          1683 rows). A grasp is classified by the mean of the network's outputs over all 141 \
          samples of its series (t₁ … t₁ + 14 s, 10 Hz); the largest mean wins.\n\n\
-         **Labels** (issue 21, fixed before any net was trained on them): model and regular \
+         **Labels** (fixed before any net was trained on them): model and regular \
          objects carry their material's class; every household object (training and test) the \
          class its fingers measure — the class band holding the median of its four local moduli \
          (`hand_sim::underactuated::dataset::sensor_class`; the rule in \
