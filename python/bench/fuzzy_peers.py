@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Times issue 5's reference engine in scikit-fuzzy 0.5.0 and pyfuzzylite 8.0.6.
+"""Times the reference engine in scikit-fuzzy 0.5.0 and pyfuzzylite 8.0.6.
 
 The engine: e, de on [-1, 1] with 9 terms each (centres -1, -0.75 ... 1; NH / PH Gaussian
 sigma 0.1667, the rest triangles of half-width 0.25), output tau on [-1, 1] with 9 Gaussians

@@ -35,7 +35,7 @@ use crate::run::{cargo, step};
 pub const CARGO_FUZZ_VERSION: &str = "0.13.2";
 /// The toolchain the fuzz builds use (see the module docs for why not a nightly).
 const TOOLCHAIN: &str = "stable";
-/// A run's length when `--seconds` is not given: issue 24's 30 minutes a target.
+/// A run's length when `--seconds` is not given: 30 minutes a target.
 pub const DEFAULT_SECONDS: u64 = 1800;
 /// Longest input libFuzzer makes: the largest seed (a model file) fits.
 const MAX_LEN: usize = 1 << 18;

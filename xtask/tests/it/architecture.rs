@@ -34,7 +34,7 @@ fn the_workspace_graph_is_the_documented_one() {
         .map(ToString::to_string)
         .collect();
     assert!(report.is_empty(), "\n{}", report.join("\n"));
-    // The eight product crates of issue 19, and the kinds the rules rest on.
+    // The product crates, and the kinds the rules rest on.
     for name in [
         "hand-traits",
         "baro-drivers",

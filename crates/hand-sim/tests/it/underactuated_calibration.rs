@@ -99,7 +99,7 @@ fn model_object_sizes_are_table_1() {
     }
 }
 
-/// A household draw (issue 21's extra training objects): training grasps numbered from 0, the
+/// A household draw (the extra training objects): training grasps numbered from 0, the
 /// overall classes in turn, each labelled by what its fingers measure, and none of its objects
 /// or grasp seeds among the dataset's (nor another draw's).
 #[test]
@@ -232,7 +232,7 @@ fn fig9_ordering_on_cylinders() {
     }
 }
 
-/// Issue 21: a household object is labelled by the class of the median of its four local
+/// A household object is labelled by the class of the median of its four local
 /// moduli, its hidden overall class kept beside it; model and regular objects by their
 /// material, which the rule agrees with (every finger meets that material).
 #[test]

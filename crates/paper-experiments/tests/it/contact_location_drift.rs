@@ -1,5 +1,5 @@
 //! Drift check: the generated sections of `docs/contact-location.md` (the targets under
-//! issue 21's labels, the jittered set) are what a re-run of the evaluation over the committed
+//! the labels, the jittered set) are what a re-run of the evaluation over the committed
 //! taps and models writes (`cargo xtask train contact-mlp --docs-only` on change). Counts and
 //! percentages only: our code decides every character.
 
@@ -27,7 +27,7 @@ fn generated_sections_match_a_rerun() {
         section(&doc, JITTERED_HEADING),
         jittered_section(&cl).trim()
     );
-    // The set sizes issue 21 asks for: ≥ 600 jittered taps per OSR, every one off a border.
+    // The set sizes: ≥ 600 jittered taps per OSR, every one off a border.
     for osr in cl.osrs() {
         let t = cl.aot(Set::Jittered, Rule::Ranging, osr);
         assert!(t.n >= 600, "OSR {osr}: {} jittered taps", t.n);

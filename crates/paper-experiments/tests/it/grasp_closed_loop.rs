@@ -1,4 +1,4 @@
-//! Closed-loop holds in simulated time (issue 9 "Done when"): the fuzzy grasp loop, fed by
+//! Closed-loop holds in simulated time: the fuzzy grasp loop, fed by
 //! hand-sim's barometric fingertip through the real MS5611 driver, closes hand-sim's MX-28 rig
 //! on each seed 000 Table 5 object (bands read from `paper-fixtures`) and on 20 randomised
 //! objects, lifts at 3 s and holds 120 s: no slip, no damage, no fault, settled torque inside

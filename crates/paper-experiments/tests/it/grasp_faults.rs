@@ -1,4 +1,4 @@
-//! Faults in the closed loop (issue 9 "Done when"): overload, a lost status packet, a corrupted
+//! Faults in the closed loop: overload, a lost status packet, a corrupted
 //! CRC, a servo that stops answering, an out-of-range command → a typed error, the safe state
 //! in the same cycle, nothing panics, and the log keeps every cycle.
 //!
@@ -274,7 +274,7 @@ fn a_world_that_cannot_be_built_is_a_typed_error_not_a_panic() {
     assert!(matches!(e, support::RigError::Sim(_)), "{e}");
 }
 
-/// Issue 24's soak, short: a minute of simulated grasping with a fault window every 2 s on
+/// The soak, short: a minute of simulated grasping with a fault window every 2 s on
 /// average, of every kind, each seen as its typed error with the safe state in that cycle,
 /// and the loop grasping again after each (`cargo xtask soak` runs the hour per seed).
 #[test]

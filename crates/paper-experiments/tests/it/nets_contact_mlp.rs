@@ -215,7 +215,7 @@ fn check_one_cell_set(
     Ok(per_osr)
 }
 
-/// The single-cell held-out set (issue 21's larger 24-area set): 14 draws per cell and force
+/// The single-cell held-out set (the larger 24-area set): 14 draws per cell and force
 /// at every OSR, 1008 taps per OSR; and the OSR-256 set added to judge the quadratic-base
 /// search: 42 draws at OSR 256 only, 3024 taps. Neither repeats the other's or the jittered
 /// set's offsets.

@@ -184,7 +184,7 @@ fn committed_metrics_match_a_re_evaluation_of_the_committed_weights() -> Result<
     assert_eq!(committed.rows.len(), 4);
     let drift = committed.drift(&fresh, 1e-4);
     assert!(drift.is_empty(), "committed metrics drifted: {drift:#?}");
-    // The target: the Table 1 fit within 0.5 gf on every row.
+    // The target: the Table 1 fit within 0.5 gf on every row.
     let fit = fresh.row("table1/fit").expect("fit row");
     for s in &table {
         let key = force_eval::row_key(s.weight_gf);

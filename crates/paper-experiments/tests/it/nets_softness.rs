@@ -222,7 +222,7 @@ fn committed_models_match_their_metrics_and_beat_the_papers_regular_figure() -> 
     let lm = selected(&runs, "lm").expect("an LM model");
     assert_eq!(lm.evaluation.regular.total(), regular.objects);
     assert!(100.0 * lm.evaluation.regular.accuracy() > regular.accuracy_pct);
-    // Issue 21: the 30 and the 1000 irregular objects, each scored under both classes.
+    // The 30 and the 1000 irregular objects, each scored under both classes.
     let e = &lm.evaluation;
     assert_eq!(
         [
@@ -236,7 +236,7 @@ fn committed_models_match_their_metrics_and_beat_the_papers_regular_figure() -> 
     Ok(())
 }
 
-/// Issue 21's labels on the committed dataset: every household object's `label` is the class
+/// The labels on the committed dataset: every household object's `label` is the class
 /// band of the median of its committed local moduli, and the Bayes ceiling of the hidden class
 /// computed from the committed grasps is the one `ceiling.csv` states (two paths, one figure).
 #[test]

@@ -107,7 +107,7 @@ fn out_of_range_osr_lists_the_ratios() {
     );
     assert!(matches!(e.location(), Some(l) if l.column == 7), "{e}");
     // The exact text a user reads: the file once, line:col, the key, what is allowed; the same
-    // through the run's error (issue 24: `handstack run` printed the file twice).
+    // through the run's error (not the file twice).
     let text = "bad.toml:3:7: `sensors.fingertip.osr` is 8192, an OSR the MS5611 does not have; \
                 allowed: 256, 512, 1024, 2048, 4096";
     assert_eq!(e.to_string(), text);

@@ -42,7 +42,7 @@ fn a_bad_scene_exits_non_zero_and_says_why() {
     let _ = std::fs::remove_dir_all(&dir);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    // The file once, then line:col (issue 24: it printed `error: bad.toml: bad.toml:3:7: …`).
+    // The file once, then line:col (not `error: bad.toml: bad.toml:3:7: …`).
     let line = format!(
         "error: {}:3:7: `sensors.fingertip.osr` is 300, an OSR the MS5611 does not have; \
          allowed: 256, 512, 1024, 2048, 4096",

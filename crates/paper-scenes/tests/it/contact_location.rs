@@ -72,7 +72,7 @@ fn contact_scene_reproduces_the_committed_contact_figures() {
         (value(&o, "aot_ranging_hits"), value(&o, "aot_ranging_taps")),
         row[2]
     );
-    // Issue 21's labels: ranging meets 90 % on the lattice (a border tap in either area) and
+    // The labels: ranging meets 90 % on the lattice (a border tap in either area) and
     // on the jittered set (strict), as the doc states; the strict and interior-only lattice
     // figures carry no target.
     for fig in [

@@ -1,5 +1,5 @@
-//! `fixtures/scenes/softness.toml` run as written: the selected model of our variant (issue 21:
-//! `model = "ours"`) — its accuracies and confusion counts are its committed metrics row (the 24
+//! `fixtures/scenes/softness.toml` run as written: the selected model of our variant
+//! (`model = "ours"`) — its accuracies and confusion counts are its committed metrics row (the 24
 //! regular, the 30 irregular and the 1000 fresh irregular objects), the paper's figures stand
 //! beside them from the seed 001 fixture, and the hidden-class figures carry no target.
 

@@ -59,7 +59,7 @@ const ALIGNED: &str = "where hand-sim's training windows are centred";
 fn tap_scene_moves_the_arm_as_the_committed_run_did() {
     let o = run_scene("tap-to-ur3");
     let (correct, n) = doc_located(ALIGNED);
-    assert!(n >= 90.0, "issue 21: at least 10 taps per region");
+    assert!(n >= 90.0, "at least 10 taps per region");
     let per_region = doc_per_region(ALIGNED);
     assert_eq!(per_region.len(), 9);
     for (r, pct) in per_region.iter().enumerate() {

@@ -1,6 +1,6 @@
 //! `fixtures/scenes/weight-estimation.toml` run as written: the live fingertip series and the
-//! Table 1 rows reproduce the force DNN's committed metrics (issue 8), and every Table 1 row
-//! meets issue 8's 0.5 gf target.
+//! Table 1 rows reproduce the force DNN's committed metrics, and every Table 1 row
+//! meets the 0.5 gf target.
 
 use crate::common;
 
