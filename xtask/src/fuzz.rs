@@ -74,17 +74,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     if args == ["--seed"] {
         return step(
             "fuzz seeds (fuzz/seeds/)",
-            cargo(root)
-                .args([
-                    "run",
-                    "--quiet",
-                    "--profile",
-                    "test",
-                    "-p",
-                    "handstack-fuzz",
-                ])
-                .args(["--bin", "fuzz-seeds", "--"])
-                .arg(root),
+            fuzz_bin(root, "fuzz-seeds").arg(root),
         );
     }
     let known = targets(root)?;
@@ -276,22 +266,27 @@ pub fn parse_stats(output: &str) -> RunStats {
     s
 }
 
+/// `cargo run` of handstack-fuzz's binary `name` under the `test` profile (built by the tests
+/// already), its arguments to follow.
+fn fuzz_bin(root: &Path, name: &str) -> Command {
+    let mut cmd = cargo(root);
+    cmd.args([
+        "run",
+        "--quiet",
+        "--profile",
+        "test",
+        "-p",
+        "handstack-fuzz",
+    ])
+    .args(["--bin", name, "--"]);
+    cmd
+}
+
 /// `fuzz-corpus pack|unpack FROM TO` (handstack-fuzz's binary).
 fn fuzz_corpus(root: &Path, command: &str, from: &Path, to: &Path) -> Result<()> {
     step(
         &format!("fuzz-corpus {command} {}", from.display()),
-        cargo(root)
-            .args([
-                "run",
-                "--quiet",
-                "--profile",
-                "test",
-                "-p",
-                "handstack-fuzz",
-            ])
-            .args(["--bin", "fuzz-corpus", "--", command])
-            .arg(from)
-            .arg(to),
+        fuzz_bin(root, "fuzz-corpus").arg(command).arg(from).arg(to),
     )
 }
 
