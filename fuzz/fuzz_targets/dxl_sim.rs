@@ -1,4 +1,5 @@
 #![no_main]
-//! `handstack_fuzz::dxl::sim` under libFuzzer (`cargo xtask fuzz dxl_sim`).
+//! `dxl_sim` under libFuzzer (`cargo xtask fuzz dxl_sim`): the simulated servo bus's request handling (hand-control `sim`).
+//! Written from `handstack_fuzz::TARGETS` by `cargo xtask fuzz --seed`.
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::dxl::sim(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::run("dxl_sim", data));

@@ -1,4 +1,5 @@
 #![no_main]
-//! `handstack_fuzz::files::fis` under libFuzzer (`cargo xtask fuzz fis`).
+//! `fis` under libFuzzer (`cargo xtask fuzz fis`): MATLAB .fis import, evaluation and re-export (fuzzy-mamdani).
+//! Written from `handstack_fuzz::TARGETS` by `cargo xtask fuzz --seed`.
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::files::fis(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::run("fis", data));

@@ -1,4 +1,5 @@
 #![no_main]
-//! `handstack_fuzz::files::fll` under libFuzzer (`cargo xtask fuzz fll`).
+//! `fll` under libFuzzer (`cargo xtask fuzz fll`): fuzzylite .fll import, evaluation and re-export (fuzzy-mamdani).
+//! Written from `handstack_fuzz::TARGETS` by `cargo xtask fuzz --seed`.
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::files::fll(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::run("fll", data));

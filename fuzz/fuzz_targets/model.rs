@@ -1,4 +1,5 @@
 #![no_main]
-//! `handstack_fuzz::files::model` under libFuzzer (`cargo xtask fuzz model`).
+//! `model` under libFuzzer (`cargo xtask fuzz model`): safetensors model loading and one forward pass (tactile-nets).
+//! Written from `handstack_fuzz::TARGETS` by `cargo xtask fuzz --seed`.
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::files::model(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::run("model", data));

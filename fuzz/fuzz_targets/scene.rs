@@ -1,4 +1,5 @@
 #![no_main]
-//! `handstack_fuzz::files::scene` under libFuzzer (`cargo xtask fuzz scene`).
+//! `scene` under libFuzzer (`cargo xtask fuzz scene`): scene TOML parsing and validation, and the error text (handstack).
+//! Written from `handstack_fuzz::TARGETS` by `cargo xtask fuzz --seed`.
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::files::scene(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::run("scene", data));

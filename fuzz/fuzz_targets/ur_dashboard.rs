@@ -1,4 +1,5 @@
 #![no_main]
-//! `handstack_fuzz::ur::dashboard` under libFuzzer (`cargo xtask fuzz ur_dashboard`).
+//! `ur_dashboard` under libFuzzer (`cargo xtask fuzz ur_dashboard`): the UR simulator's dashboard server (ur-bridge `sim`, port 29999).
+//! Written from `handstack_fuzz::TARGETS` by `cargo xtask fuzz --seed`.
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::ur::dashboard(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::run("ur_dashboard", data));

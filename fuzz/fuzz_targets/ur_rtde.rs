@@ -1,4 +1,5 @@
 #![no_main]
-//! `handstack_fuzz::ur::rtde` under libFuzzer (`cargo xtask fuzz ur_rtde`).
+//! `ur_rtde` under libFuzzer (`cargo xtask fuzz ur_rtde`): the UR simulator's RTDE server (ur-bridge `sim`, port 30004).
+//! Written from `handstack_fuzz::TARGETS` by `cargo xtask fuzz --seed`.
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::ur::rtde(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::run("ur_rtde", data));

@@ -1,4 +1,5 @@
 #![no_main]
-//! `handstack_fuzz::ur::script` under libFuzzer (`cargo xtask fuzz ur_script`).
+//! `ur_script` under libFuzzer (`cargo xtask fuzz ur_script`): the UR simulator's script intake (ur-bridge `sim`, port 30003).
+//! Written from `handstack_fuzz::TARGETS` by `cargo xtask fuzz --seed`.
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::ur::script(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| handstack_fuzz::run("ur_script", data));

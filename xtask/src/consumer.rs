@@ -4,7 +4,7 @@
 //! run. Third-party versions come from the workspace's `Cargo.lock`, copied in.
 
 use crate::package::product_crates;
-use crate::run::{cargo, step, workspace_dev_profile};
+use crate::run::{cargo, step, workspace_test_profile};
 use anyhow::{Context, Result, bail};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -48,7 +48,7 @@ pub fn run(root: &Path, python: &Path) -> Result<()> {
     std::fs::copy(root.join("Cargo.lock"), consumer.join("Cargo.lock"))
         .context("copy Cargo.lock")?;
     let mut cmd = cargo(root);
-    workspace_dev_profile(&mut cmd)
+    workspace_test_profile(&mut cmd)
         .args(["test", "--doc", "--manifest-path"])
         .arg(consumer.join("Cargo.toml"))
         // Shares compiled third-party crates with the workspace build.

@@ -4,7 +4,7 @@
 //! dependencies taken from the packages just made.
 
 use crate::architecture::parse_rules;
-use crate::run::{cargo, step, workspace_dev_profile};
+use crate::run::{cargo, step, workspace_test_profile};
 use anyhow::{Context, Result};
 use std::path::Path;
 
@@ -24,7 +24,7 @@ pub fn run(root: &Path) -> Result<()> {
     let crates = product_crates(root)?;
     forget_unpacked_packages(&crates)?;
     let mut cmd = cargo(root);
-    workspace_dev_profile(&mut cmd).args(["package", "--allow-dirty"]);
+    workspace_test_profile(&mut cmd).args(["package", "--allow-dirty"]);
     for name in &crates {
         cmd.args(["-p", name]);
     }

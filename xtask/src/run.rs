@@ -14,16 +14,24 @@ pub fn cargo(root: &Path) -> Command {
 }
 
 /// Gives `cmd`, a cargo build of a manifest outside the workspace (a packaged crate being
-/// verified, the consumer crate), the workspace's `[profile.dev]` debug setting and no
-/// incremental cache: such a manifest does not read the workspace's profiles, and with cargo's
-/// defaults (full debug info, incremental) those builds wrote 3.8 GB and once filled CI's disk.
-pub fn workspace_dev_profile(cmd: &mut Command) -> &mut Command {
-    cmd.env("CARGO_PROFILE_DEV_DEBUG", DEV_DEBUG)
+/// verified, the consumer crate), the settings of the workspace's `[profile.test]`
+/// (`opt-level`, `debug`, no incremental cache) for its `dev` profile: such a manifest does not
+/// read the workspace's profiles. With the same settings its third-party crates hash as the
+/// test build's do and land in the same `target/debug`, so `cargo xtask test` compiles each of
+/// them once, not once per profile; with cargo's defaults (full debug info, incremental) those
+/// builds also wrote 3.8 GB and once filled CI's disk.
+pub fn workspace_test_profile(cmd: &mut Command) -> &mut Command {
+    cmd.env("CARGO_PROFILE_DEV_OPT_LEVEL", TEST_OPT_LEVEL)
+        .env("CARGO_PROFILE_DEV_DEBUG", DEV_DEBUG)
         .env("CARGO_INCREMENTAL", "0")
 }
 
-/// The workspace's `[profile.dev] debug` (root `Cargo.toml`; a test holds the two together).
+/// The workspace's `[profile.dev] debug`, which `[profile.test]` inherits (root `Cargo.toml`;
+/// a test holds the two together).
 const DEV_DEBUG: &str = "line-tables-only";
+
+/// The workspace's `[profile.test] opt-level` (root `Cargo.toml`; a test holds the two together).
+const TEST_OPT_LEVEL: &str = "2";
 
 /// Runs `cmd` as the step `name`, printing its name and wall time; fails if it fails.
 pub fn step(name: &str, cmd: &mut Command) -> Result<()> {
@@ -104,16 +112,26 @@ impl Binary {
 
 #[cfg(test)]
 mod tests {
-    /// [`super::DEV_DEBUG`] is what the root `Cargo.toml` sets for `[profile.dev]`.
-    #[test]
-    fn the_dev_debug_setting_is_the_workspaces() {
+    /// The value of `key` in the root `Cargo.toml`'s `[profile.NAME]` section.
+    fn profile_setting(name: &str, key: &str) -> String {
         let manifest = std::fs::read_to_string(crate::workspace_root().join("Cargo.toml")).unwrap();
-        let dev = manifest
-            .split("[profile.dev]")
+        let section = manifest
+            .split(&format!("[profile.{name}]"))
             .nth(1)
             .and_then(|rest| rest.split("\n[").next())
-            .expect("a [profile.dev] section");
-        let want = format!("debug = \"{}\"", super::DEV_DEBUG);
-        assert!(dev.lines().any(|l| l.trim() == want), "{dev}");
+            .unwrap_or_else(|| panic!("a [profile.{name}] section"));
+        section
+            .lines()
+            .find_map(|l| l.trim().strip_prefix(key)?.trim().strip_prefix('='))
+            .map(|v| v.trim().trim_matches('"').to_owned())
+            .unwrap_or_else(|| panic!("[profile.{name}] sets no {key}"))
+    }
+
+    /// [`super::DEV_DEBUG`] and [`super::TEST_OPT_LEVEL`] are what the root `Cargo.toml` sets.
+    #[test]
+    fn the_outside_builds_use_the_workspaces_test_settings() {
+        assert_eq!(profile_setting("dev", "debug"), super::DEV_DEBUG);
+        assert_eq!(profile_setting("test", "opt-level"), super::TEST_OPT_LEVEL);
+        assert_eq!(profile_setting("test", "incremental"), "false");
     }
 }

@@ -206,7 +206,7 @@ where
             force.publish(header.clone(), &rise_hpa(&frame.pressure_pa, &tare))?;
         }
         let every = self.info.rate_hz.max(1.0) as u64;
-        if self.frames % every == 0 {
+        if self.frames.is_multiple_of(every) {
             self.sensor_info.publish(&SensorInfo {
                 header,
                 chip: self.info.chip.clone(),

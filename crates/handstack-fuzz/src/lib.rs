@@ -24,6 +24,7 @@
 //! (t.run)(b"Engine: e\nInputVariable: x\n  range: 0 1\n");
 //! ```
 
+pub mod cargo_fuzz;
 pub mod corpus;
 pub mod dxl;
 pub mod files;
@@ -105,6 +106,16 @@ pub const TARGETS: [Target; 11] = [
 /// The target called `name`.
 pub fn target(name: &str) -> Option<&'static Target> {
     TARGETS.iter().find(|t| t.name == name)
+}
+
+/// Runs the target called `name` on `data`: the body of each `fuzz/fuzz_targets/NAME.rs`
+/// ([`cargo_fuzz`]).
+///
+/// # Panics
+/// If no target is called `name` (the files are written from [`TARGETS`], so it names one).
+pub fn run(name: &str, data: &[u8]) {
+    let t = target(name).unwrap_or_else(|| panic!("no fuzz target `{name}`"));
+    (t.run)(data)
 }
 
 /// The longest input a target looks at; longer ones are cut (libFuzzer's `-max_len` is set to

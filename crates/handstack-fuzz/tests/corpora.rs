@@ -111,3 +111,40 @@ fn the_committed_seeds_are_the_generated_ones() {
         }
     }
 }
+
+/// The cargo-fuzz project's targets are [`handstack_fuzz::TARGETS`]: each
+/// `fuzz/fuzz_targets/NAME.rs` and the `[[bin]]` tables of `fuzz/Cargo.toml` are what
+/// `cargo xtask fuzz --seed` writes from it, and no other target file is there.
+#[test]
+fn the_cargo_fuzz_project_is_written_from_the_targets() {
+    use handstack_fuzz::{TARGETS, cargo_fuzz};
+    let again = "differs from handstack_fuzz::TARGETS (cargo xtask fuzz --seed)";
+    let manifest =
+        std::fs::read_to_string(root().join("fuzz/Cargo.toml")).expect("fuzz/Cargo.toml");
+    assert_eq!(
+        cargo_fuzz::manifest(&manifest, &TARGETS).as_deref(),
+        Some(manifest.as_str()),
+        "fuzz/Cargo.toml {again}"
+    );
+    let mut names = Vec::new();
+    for path in files(&root().join("fuzz/fuzz_targets")) {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let t = handstack_fuzz::target(&name).unwrap_or_else(|| {
+            panic!(
+                "{}: not a target of handstack_fuzz::TARGETS",
+                path.display()
+            )
+        });
+        let committed = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(
+            committed,
+            cargo_fuzz::target_source(t),
+            "{} {again}",
+            path.display()
+        );
+        names.push(name);
+    }
+    let mut want: Vec<&str> = TARGETS.iter().map(|t| t.name).collect();
+    want.sort_unstable();
+    assert_eq!(names, want, "fuzz/fuzz_targets/ {again}");
+}
