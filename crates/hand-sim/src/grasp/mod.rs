@@ -48,7 +48,7 @@ pub mod statics;
 
 pub use config::{GraspConfig, ObjectChoice, TorqueStep};
 pub use hold::{HoldOutcome, HoldTest, run_hold, sweep_holding_range};
-pub use object::{ObjectKind, ObjectParams, TABLE5};
+pub use object::{ObjectKind, ObjectParams};
 pub use plant::{GraspBody, GraspPlant};
 pub use random::{RandomObject, random_objects};
 pub use rig::{GraspRig, GraspState, RigParams};

@@ -18,6 +18,7 @@
 //! servo reach its goal first).
 
 use serde::Serialize;
+use std::sync::OnceLock;
 
 use super::rig::RigParams;
 use super::servo::{TORQUE_LIMIT_MAX, positive};
@@ -27,16 +28,28 @@ use crate::SimError;
 /// Standard gravity, m/s².
 pub const G: f64 = 9.806_65;
 
-/// Table 5 of seed 000: torque min / max per object, MX-28 counts. The library's calibration
-/// target; the tests re-read the same numbers from `paper-fixtures` and compare.
-pub const TABLE5: [(ObjectKind, u16, u16); 6] = [
-    (ObjectKind::Cube, 80, 400),
-    (ObjectKind::Cylinder, 120, 400),
-    (ObjectKind::Cone, 80, 1023),
-    (ObjectKind::Ellipsoid, 50, 400),
-    (ObjectKind::PaperCup, 50, 1023),
-    (ObjectKind::ScrollTissue, 160, 370),
-];
+/// One row of Table 5: an object and its torque min / max, MX-28 counts.
+type Table5Row = (ObjectKind, u16, u16);
+
+/// Table 5 of seed 000, as `paper-fixtures` reads it, read once.
+fn table5_rows() -> Result<&'static [Table5Row], SimError> {
+    static ROWS: OnceLock<Result<Vec<Table5Row>, String>> = OnceLock::new();
+    let rows = ROWS.get_or_init(|| {
+        let fixture = paper_fixtures::seed000::table5_grasp_torque().map_err(|e| e.to_string())?;
+        fixture
+            .iter()
+            .map(|row| {
+                let kind = ObjectKind::from_name(&row.object)
+                    .ok_or_else(|| format!("unknown object `{}`", row.object))?;
+                let count =
+                    |v: u32| u16::try_from(v).map_err(|_| format!("{v} is no torque limit"));
+                Ok((kind, count(row.torque_min)?, count(row.torque_max)?))
+            })
+            .collect()
+    });
+    rows.as_deref()
+        .map_err(|reason| SimError::config("Table 5 fixture", reason.clone()))
+}
 
 /// The objects of Table 5.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -83,12 +96,16 @@ impl ObjectKind {
         ObjectKind::ALL.into_iter().find(|k| k.name() == name)
     }
 
-    /// Table 5's (min, max) for this object.
-    pub fn table5(self) -> (u16, u16) {
-        TABLE5
+    /// Table 5's (min, max) for this object (`fixtures/paper/seed000_table5_grasp_torque.csv`
+    /// through `paper-fixtures`); an error if the fixture cannot be read or lacks the object.
+    pub fn table5(self) -> Result<(u16, u16), SimError> {
+        table5_rows()?
             .iter()
             .find(|(k, _, _)| *k == self)
-            .map_or((0, 0), |&(_, lo, hi)| (lo, hi))
+            .map(|&(_, lo, hi)| (lo, hi))
+            .ok_or_else(|| {
+                SimError::config("Table 5 fixture", format!("no row for `{}`", self.name()))
+            })
     }
 
     /// The assumed material and shape (everything Table 5 does not fix).
@@ -192,9 +209,10 @@ pub struct ObjectParams {
 }
 
 impl ObjectParams {
-    /// The Table 5 object `kind`, calibrated to its row of [`TABLE5`] for `rig`.
+    /// The Table 5 object `kind`, calibrated to its row of Table 5 ([`ObjectKind::table5`]) for
+    /// `rig`.
     pub fn table5(kind: ObjectKind, rig: &RigParams) -> Result<ObjectParams, SimError> {
-        let (lo, hi) = kind.table5();
+        let (lo, hi) = kind.table5()?;
         ObjectParams::calibrated(kind, lo, hi, rig)
     }
 
