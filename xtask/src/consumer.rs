@@ -48,8 +48,8 @@ pub fn run(root: &Path, python: &Path) -> Result<()> {
     std::fs::copy(root.join("Cargo.lock"), consumer.join("Cargo.lock"))
         .context("copy Cargo.lock")?;
     let mut cmd = cargo(root);
-    workspace_test_profile(&mut cmd)
-        .args(["test", "--doc", "--manifest-path"])
+    workspace_test_profile(&mut cmd, root)?;
+    cmd.args(["test", "--doc", "--manifest-path"])
         .arg(consumer.join("Cargo.toml"))
         // Shares compiled third-party crates with the workspace build.
         .env("CARGO_TARGET_DIR", root.join("target"))

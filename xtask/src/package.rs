@@ -24,7 +24,8 @@ pub fn run(root: &Path) -> Result<()> {
     let crates = product_crates(root)?;
     forget_unpacked_packages(&crates)?;
     let mut cmd = cargo(root);
-    workspace_test_profile(&mut cmd).args(["package", "--allow-dirty"]);
+    workspace_test_profile(&mut cmd, root)?;
+    cmd.args(["package", "--allow-dirty"]);
     for name in &crates {
         cmd.args(["-p", name]);
     }

@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result, bail};
 use std::ffi::OsStr;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
@@ -14,24 +14,57 @@ pub fn cargo(root: &Path) -> Command {
 }
 
 /// Gives `cmd`, a cargo build of a manifest outside the workspace (a packaged crate being
-/// verified, the consumer crate), the settings of the workspace's `[profile.test]`
-/// (`opt-level`, `debug`, no incremental cache) for its `dev` profile: such a manifest does not
-/// read the workspace's profiles. With the same settings its third-party crates hash as the
-/// test build's do and land in the same `target/debug`, so `cargo xtask test` compiles each of
-/// them once, not once per profile; with cargo's defaults (full debug info, incremental) those
-/// builds also wrote 3.8 GB and once filled CI's disk.
-pub fn workspace_test_profile(cmd: &mut Command) -> &mut Command {
-    cmd.env("CARGO_PROFILE_DEV_OPT_LEVEL", TEST_OPT_LEVEL)
-        .env("CARGO_PROFILE_DEV_DEBUG", DEV_DEBUG)
-        .env("CARGO_INCREMENTAL", "0")
+/// verified, the consumer crate), the workspace's `[profile.dev]` and `[profile.test]` settings
+/// (with their per-package ones) for its `dev` profile, read from the root `Cargo.toml`: such a
+/// manifest does not read the workspace's profiles. With the same settings its third-party
+/// crates hash as the test build's do and land in the same `target/debug`, so `cargo xtask
+/// test` compiles each of them once, not once per profile; with cargo's defaults (full debug
+/// info, incremental) those builds also wrote 3.8 GB and once filled CI's disk.
+pub fn workspace_test_profile(cmd: &mut Command, root: &Path) -> Result<()> {
+    let manifest = std::fs::read_to_string(root.join("Cargo.toml")).context("Cargo.toml")?;
+    for setting in test_profile_as_dev(&manifest) {
+        cmd.arg("--config").arg(setting);
+    }
+    cmd.env("CARGO_INCREMENTAL", "0");
+    Ok(())
 }
 
-/// The workspace's `[profile.dev] debug`, which `[profile.test]` inherits (root `Cargo.toml`;
-/// a test holds the two together).
-const DEV_DEBUG: &str = "line-tables-only";
-
-/// The workspace's `[profile.test] opt-level` (root `Cargo.toml`; a test holds the two together).
-const TEST_OPT_LEVEL: &str = "2";
+/// `[profile.dev]` and then `[profile.test]` settings of `manifest` (each with its
+/// `.package.NAME` sections), as `profile.dev….KEY=VALUE` for `cargo --config`: what the test
+/// profile is, said of `dev`.
+fn test_profile_as_dev(manifest: &str) -> Vec<String> {
+    let mut settings = Vec::new();
+    for profile in ["dev", "test"] {
+        let mut section: Option<String> = None;
+        for line in manifest.lines().map(str::trim) {
+            if line.starts_with('[') {
+                let name = line.trim_matches(|c| c == '[' || c == ']');
+                section = name
+                    .strip_prefix(&format!("profile.{profile}"))
+                    .filter(|rest| rest.is_empty() || rest.starts_with(".package."))
+                    .map(str::to_owned);
+                continue;
+            }
+            let (Some(suffix), Some((key, value))) = (&section, line.split_once('=')) else {
+                continue;
+            };
+            if line.starts_with('#') {
+                continue;
+            }
+            let key = key.trim();
+            let value = value.split(" #").next().unwrap_or("").trim();
+            let key = if suffix.is_empty() {
+                key.to_owned()
+            } else {
+                // Package names with `-` need quoting in a dotted key.
+                let package = &suffix[".package.".len()..];
+                format!("package.\"{}\".{key}", package.trim_matches('"'))
+            };
+            settings.push(format!("profile.dev.{key}={value}"));
+        }
+    }
+    settings
+}
 
 /// Runs `cmd` as the step `name`, printing its name and wall time; fails if it fails.
 pub fn step(name: &str, cmd: &mut Command) -> Result<()> {
@@ -65,6 +98,54 @@ pub fn rustup_lines(args: &[&str], why: &str) -> Result<Vec<String>> {
         .lines()
         .map(|l| l.trim().to_owned())
         .collect())
+}
+
+/// The test build's `cargo test --workspace --all-features` command, with `env` (what the test
+/// step sets: build scripts may read it, so it is part of what the build is).
+pub fn test_build(root: &Path, env: &[(&str, &Path)]) -> Command {
+    let mut cmd = cargo(root);
+    cmd.args(["test", "--workspace", "--all-features"]);
+    for (key, value) in env {
+        cmd.env(key, value);
+    }
+    cmd
+}
+
+/// The path of the binary `name` of `package` as the test build ([`test_build`]) made it for
+/// the package's integration tests: `--no-run` after the test step builds nothing and names it.
+pub fn tested_binary(
+    root: &Path,
+    env: &[(&str, &Path)],
+    package: &str,
+    name: &str,
+) -> Result<PathBuf> {
+    let out = test_build(root, env)
+        .args(["--no-run", "--message-format=json"])
+        .stderr(std::process::Stdio::inherit())
+        .output()
+        .context("cargo test --no-run")?;
+    if !out.status.success() {
+        bail!("the test build failed ({})", out.status);
+    }
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    stdout
+        .lines()
+        .filter_map(|line| serde_json::from_str::<serde_json::Value>(line).ok())
+        .filter(|m| m["reason"] == "compiler-artifact")
+        .filter(|m| m["target"]["name"] == name && m["target"]["kind"][0] == "bin")
+        .filter(|m| m["package_id"].as_str().and_then(package_name) == Some(package))
+        .find_map(|m| m["executable"].as_str().map(PathBuf::from))
+        .with_context(|| format!("the test build made no `{name}` binary of {package}"))
+}
+
+/// The package name in a cargo package ID: `path+file:///…/NAME#VERSION` or
+/// `path+file:///…/DIR#NAME@VERSION`.
+fn package_name(id: &str) -> Option<&str> {
+    let (url, fragment) = id.rsplit_once('#')?;
+    match fragment.split_once('@') {
+        Some((name, _)) => Some(name),
+        None => url.rsplit('/').next(),
+    }
 }
 
 /// A workspace binary that a workflow runs through `cargo run`.
@@ -112,26 +193,49 @@ impl Binary {
 
 #[cfg(test)]
 mod tests {
-    /// The value of `key` in the root `Cargo.toml`'s `[profile.NAME]` section.
-    fn profile_setting(name: &str, key: &str) -> String {
-        let manifest = std::fs::read_to_string(crate::workspace_root().join("Cargo.toml")).unwrap();
-        let section = manifest
-            .split(&format!("[profile.{name}]"))
-            .nth(1)
-            .and_then(|rest| rest.split("\n[").next())
-            .unwrap_or_else(|| panic!("a [profile.{name}] section"));
-        section
-            .lines()
-            .find_map(|l| l.trim().strip_prefix(key)?.trim().strip_prefix('='))
-            .map(|v| v.trim().trim_matches('"').to_owned())
-            .unwrap_or_else(|| panic!("[profile.{name}] sets no {key}"))
+    #[test]
+    fn the_test_profile_is_said_of_dev() {
+        let manifest = "[profile.dev]\ndebug = \"line-tables-only\"\n\n[profile.bench]\ndebug = false\n\n\
+                        [profile.test]\n# why\nopt-level = 2 # fast\nincremental = false\n\n\
+                        [profile.test.package.zenoh-config]\nopt-level = 0\n";
+        assert_eq!(
+            super::test_profile_as_dev(manifest),
+            [
+                "profile.dev.debug=\"line-tables-only\"",
+                "profile.dev.opt-level=2",
+                "profile.dev.incremental=false",
+                "profile.dev.package.\"zenoh-config\".opt-level=0",
+            ]
+        );
     }
 
-    /// [`super::DEV_DEBUG`] and [`super::TEST_OPT_LEVEL`] are what the root `Cargo.toml` sets.
+    /// The workspace's own profiles say what the outside builds copy.
     #[test]
-    fn the_outside_builds_use_the_workspaces_test_settings() {
-        assert_eq!(profile_setting("dev", "debug"), super::DEV_DEBUG);
-        assert_eq!(profile_setting("test", "opt-level"), super::TEST_OPT_LEVEL);
-        assert_eq!(profile_setting("test", "incremental"), "false");
+    fn the_workspace_sets_a_test_profile() {
+        let manifest = std::fs::read_to_string(crate::workspace_root().join("Cargo.toml")).unwrap();
+        let settings = super::test_profile_as_dev(&manifest);
+        assert!(
+            settings.contains(&"profile.dev.opt-level=2".to_owned()),
+            "{settings:?}"
+        );
+        assert!(
+            settings.contains(&"profile.dev.incremental=false".to_owned()),
+            "{settings:?}"
+        );
+    }
+
+    #[test]
+    fn package_ids_name_their_package() {
+        let name = super::package_name;
+        assert_eq!(
+            name("path+file:///w/crates/hand-sim#0.1.0"),
+            Some("hand-sim")
+        );
+        assert_eq!(
+            name("path+file:///w/benches#handstack-benches@0.1.0"),
+            Some("handstack-benches")
+        );
+        assert_eq!(name("registry+https://x/index#serde@1.0.0"), Some("serde"));
+        assert_eq!(name("no fragment"), None);
     }
 }

@@ -1,6 +1,6 @@
 //! `cargo xtask test`: everything CI checks, in the order that fails fastest.
 
-use crate::run::{cargo, step};
+use crate::run::{cargo, step, test_build};
 use crate::{chromium, consumer, embedded, firmware, fixtures, msrv, package, venv};
 use anyhow::Result;
 use std::path::Path;
@@ -33,13 +33,11 @@ pub fn run(root: &Path) -> Result<()> {
     msrv::check(root)?;
     package::run(root)?;
     consumer::run(root, &python)?;
-    step(
-        "test",
-        cargo(root)
-            .args(["test", "--workspace", "--all-features"])
-            .env("HANDSTACK_PYTHON", &python)
-            .env("HANDSTACK_CHROMIUM", &chromium),
-    )?;
+    let env = [
+        ("HANDSTACK_PYTHON", python.as_path()),
+        ("HANDSTACK_CHROMIUM", chromium.as_path()),
+    ];
+    step("test", &mut test_build(root, &env))?;
     crate::bench::instructions(root, "check")?;
     step(
         "doc",
@@ -48,7 +46,7 @@ pub fn run(root: &Path) -> Result<()> {
             .env("RUSTDOCFLAGS", "-D warnings"),
     )?;
     println!("==> fixtures --check");
-    fixtures::run(root, fixtures::Mode::Check)?;
+    fixtures::run_with_tested_papers(root, fixtures::Mode::Check, &env)?;
     println!("==> fixtures --check, numpy's widest SIMD kernels off");
     fixtures::check_with_numpy_narrowed(root)
 }
