@@ -23,7 +23,7 @@ pub enum CycleError {
     Ranging(aot_locate::RangingError),
     /// The region-to-grid map.
     #[error("grid: {0}")]
-    Grid(#[from] ur_bridge::GridError),
+    Grid(#[from] handstack::tap_to_move::GridError),
     /// The torque band or a paper fixture.
     #[error("configuration: {0}")]
     Config(String),

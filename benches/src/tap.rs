@@ -1,21 +1,21 @@
 //! Tap to UR3 (seed 002 §IV): ICM-20789 frames (hand-sim's pad: the chip model read by the
 //! real `imu-icm20789` driver at 30 Hz, Low Noise pressure) → the 4 × 38 accelerometer /
 //! gyroscope window (hand-sim's cutter) → the committed contact CNN (frozen path) → region →
-//! its UR3 grid pose (ur-bridge's `RegionToGrid`; the arm's I/O is not part of the cycle).
+//! its UR3 grid pose (handstack's `RegionToGrid`; the arm's I/O is not part of the cycle).
 //!
 //! Every cycle classifies the latest 38 frames: the cost of the cycle in which a tap's
-//! window completes, which the tap-to-move loop (`ur_bridge::tap_to_move`) pays once per tap.
+//! window completes, which the tap-to-move loop (`handstack::tap_to_move`) pays once per tap.
 
 use crate::CycleError;
 use hand_sim::imu_pad::{ImuPad, ImuPadConfig, TapSpec, TapWindow, WINDOW_SAMPLES};
 use hand_traits::{ImuFrame, Pose, TactileSource};
+use handstack::tap_to_move::RegionToGrid;
 use paper_experiments::cnn_eval::{MODEL_DIR, model_file};
 use paper_experiments::data::imu_pad::WINDOW_VALUES;
 use tactile_nets::contact_cnn::{ContactCnn, Prediction, Variant};
-use ur_bridge::RegionToGrid;
 
 /// The window as the CNN reads it: channel-major, acc in mm/s², gyro in mrad/s (the units of
-/// hand-sim's tap dataset it was trained on, as in ur-bridge's tap-to-move example).
+/// hand-sim's tap dataset it was trained on, as in paper-experiments' tap-to-move example).
 pub type CnnWindow = [f32; WINDOW_VALUES];
 
 /// One cycle's result.

@@ -2,7 +2,7 @@
 //!
 //! [`graph`] draws the workspace's dependency graph from `cargo metadata` (each crate's normal
 //! and dev-dependencies on other members, with the features each edge turns on), grouped into
-//! product crates (published), reproduction crates, simulators and tools; `cargo xtask
+//! product crates, simulators (both published), reproduction crates and tools; `cargo xtask
 //! architecture` writes it between the document's generated-part markers ([`BEGIN`], [`END`])
 //! and `--check` (and xtask's tests) fail when the drawn graph is not the declared one.
 //!
@@ -13,17 +13,20 @@
 //!
 //! The rules, whatever the table's rows say:
 //! - a product crate (kind `product` or `driver`) never depends on a `simulator` or
-//!   `reproduction` crate, under any feature and as no kind of dependency;
+//!   `reproduction` crate, under any feature and as no kind of dependency; a simulator never
+//!   depends on a `reproduction` crate;
 //! - nothing depends on the `composition` root;
 //! - a driver's normal and build dependencies are `hand-traits` among ours and only the
 //!   third-party crates its row lists; a tool's third-party ones are those its row lists (xtask
 //!   stays thin);
 //! - every edge between workspace crates is one the table allows;
-//! - reproduction and tool crates are `publish = false`; product crates are publishable, and
-//!   docs.rs documents all their features (as the doc step of `cargo xtask test` does);
-//! - a product crate's `src/` names no repository path (`"fixtures/…"`, `"docs/…"` literals);
-//! - no product crate has a binary target but `handstack`'s `handstack` ([`product_bins`]);
-//! - no product crate's `src/` names a paper seed (`seed 000`…`seed 002`, `seed000`…:
+//! - reproduction and tool crates are `publish = false`; product crates and simulators are
+//!   publishable, and docs.rs documents all their features (as the doc step of `cargo xtask
+//!   test` does);
+//! - a published crate's `src/` names no repository path (`"fixtures/…"`, `"docs/…"` literals);
+//! - no product crate has a binary target but `handstack`'s `handstack` ([`product_bins`]; a
+//!   simulator's program is its own);
+//! - no published crate's `src/` names a paper seed (`seed 000`…`seed 002`, `seed000`…:
 //!   [`seed_mentions`]).
 //!
 //! The last two have known exceptions, listed in [`KNOWN_PRODUCT_BINS`] and
@@ -47,7 +50,8 @@ pub enum Kind {
     Product,
     /// A published chip driver: embedded-hal and `hand-traits` only.
     Driver,
-    /// `publish = false`: the papers' physics behind the devices' real interfaces.
+    /// Published: a program a user runs beside their own code (`cargo install ur-sim`), answering
+    /// a real protocol on a real transport; it may use the product crate owning that protocol.
     Simulator,
     /// `publish = false`: the papers' datasets, protocols and reports.
     Reproduction,
@@ -70,9 +74,14 @@ impl Kind {
         })
     }
 
-    /// Published to crates.io (product crates and drivers).
+    /// A product crate: published, useful alone (product crates and drivers).
     pub fn is_product(self) -> bool {
         matches!(self, Kind::Product | Kind::Driver)
+    }
+
+    /// Published to crates.io: product crates, drivers and simulators.
+    pub fn is_published(self) -> bool {
+        self.is_product() || self == Kind::Simulator
     }
 }
 
@@ -282,17 +291,21 @@ pub fn check(rules: &BTreeMap<String, Rule>, packages: &[Package]) -> Vec<Violat
             continue;
         };
         let published = !p.unpublished;
+        let what = if rule.kind == Kind::Simulator {
+            "a simulator"
+        } else {
+            "a product crate"
+        };
         match rule.kind {
-            Kind::Simulator | Kind::Reproduction | Kind::Tool if published => say(format!(
+            Kind::Reproduction | Kind::Composition | Kind::Tool if published => say(format!(
                 "`{}` ({:?}) must be publish = false",
                 p.name, rule.kind
             )),
-            Kind::Product | Kind::Driver if !published => say(format!(
-                "`{}` is a product crate but publish = false",
-                p.name
-            )),
-            Kind::Product | Kind::Driver if !p.docs_rs_all_features => say(format!(
-                "`{}` is a product crate without `[package.metadata.docs.rs] all-features = true`",
+            k if k.is_published() && !published => {
+                say(format!("`{}` is {what} but publish = false", p.name));
+            }
+            k if k.is_published() && !p.docs_rs_all_features => say(format!(
+                "`{}` is {what} without `[package.metadata.docs.rs] all-features = true`",
                 p.name
             )),
             _ => {}
@@ -330,6 +343,11 @@ pub fn check(rules: &BTreeMap<String, Rule>, packages: &[Package]) -> Vec<Violat
                     "{edge}: a product crate never depends on a simulator or reproduction crate"
                 ));
             }
+            if rule.kind == Kind::Simulator && target.kind == Kind::Reproduction {
+                say(format!(
+                    "{edge}: a simulator is published and never depends on a reproduction crate"
+                ));
+            }
             let allowed = rule.may_use.as_ref().is_none_or(|m| m.contains(&e.to));
             if !allowed {
                 say(format!(
@@ -341,12 +359,12 @@ pub fn check(rules: &BTreeMap<String, Rule>, packages: &[Package]) -> Vec<Violat
     bad
 }
 
-/// Repository paths named in string literals under `src/` of each product crate:
-/// `(file, line number, line)`.
+/// Repository paths named in string literals under `src/` of each published crate (product
+/// crates and simulators): `(file, line number, line)`.
 pub fn repository_paths(rules: &BTreeMap<String, Rule>, packages: &[Package]) -> Vec<Violation> {
     let mut bad = Vec::new();
     for p in packages {
-        if !rules.get(&p.name).is_some_and(|r| r.kind.is_product()) {
+        if !rules.get(&p.name).is_some_and(|r| r.kind.is_published()) {
             continue;
         }
         let mut files = Vec::new();
@@ -365,7 +383,7 @@ pub fn repository_paths(rules: &BTreeMap<String, Rule>, packages: &[Package]) ->
                     .any(|s| code.contains(s))
                 {
                     bad.push(Violation(format!(
-                        "{}:{}: a product crate names a repository path: {}",
+                        "{}:{}: a published crate names a repository path: {}",
                         file.display(),
                         i + 1,
                         code
@@ -403,8 +421,6 @@ pub const STACK_BIN: (&str, &str) = ("handstack", "handstack");
 pub const KNOWN_PRODUCT_BINS: &[(&str, &str)] = &[
     // The Protocol 2.0 servo-bus simulator on a pty (feature `sim`), for the ROBOTIS SDK.
     ("hand-control", "dxl-sim"),
-    // The UR controller simulator on loopback (feature `sim`), for ur_rtde.
-    ("ur-bridge", "ur-sim"),
 ];
 
 /// Files of product crates' `src/` that name a paper seed, with how many times: known exceptions
@@ -459,29 +475,30 @@ pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
     ("crates/tactile-nets/src/pretrained.rs", 9),
     ("crates/tactile-nets/src/softness.rs", 3),
     ("crates/tactile-nets/src/softness_train.rs", 1),
-    // ur-bridge: the tap-to-move loop and its grid.
-    ("crates/ur-bridge/src/grid.rs", 1),
-    ("crates/ur-bridge/src/lib.rs", 1),
-    ("crates/ur-bridge/src/tap_to_move.rs", 1),
 ];
 
 /// Where the known exceptions live, for the messages.
 const LISTS: &str = "xtask/src/architecture.rs";
 
-/// Binary targets of product crates (published ones, by `cargo metadata`) against
-/// [`STACK_BIN`] and `known` ([`KNOWN_PRODUCT_BINS`] in the real check).
-pub fn product_bins(packages: &[Package], known: &[(&str, &str)]) -> Vec<Violation> {
+/// Binary targets of product crates (kinds `product` and `driver` in `rules`; a simulator's
+/// program is its own) against [`STACK_BIN`] and `known` ([`KNOWN_PRODUCT_BINS`] in the real
+/// check).
+pub fn product_bins(
+    rules: &BTreeMap<String, Rule>,
+    packages: &[Package],
+    known: &[(&str, &str)],
+) -> Vec<Violation> {
     let mut bad = Vec::new();
     let shipped: BTreeSet<(&str, &str)> = packages
         .iter()
-        .filter(|p| !p.unpublished)
+        .filter(|p| rules.get(&p.name).is_some_and(|r| r.kind.is_product()))
         .flat_map(|p| p.bins.iter().map(|b| (p.name.as_str(), b.as_str())))
         .collect();
     for &(krate, bin) in &shipped {
         if (krate, bin) != STACK_BIN && !known.contains(&(krate, bin)) {
             bad.push(Violation(format!(
                 "`{krate}` has a binary `{bin}`: no product crate but `handstack` ships one \
-                 (a simulator or tool binary belongs in a publish = false crate)"
+                 (a simulator's program belongs in a simulator crate, a tool's in a tool crate)"
             )));
         }
     }
@@ -513,8 +530,8 @@ pub fn seed_mention_lines(text: &str) -> Vec<usize> {
     lines
 }
 
-/// Paper-seed mentions in the `.rs` files under each product crate's `src/` (published ones,
-/// by `cargo metadata`), against `known` ([`KNOWN_SEED_MENTIONS`] in the real check); paths are
+/// Paper-seed mentions in the `.rs` files under each published crate's `src/` (product crates
+/// and simulators, by `cargo metadata`), against `known` ([`KNOWN_SEED_MENTIONS`] in the real check); paths are
 /// relative to `root`.
 pub fn seed_mentions(root: &Path, packages: &[Package], known: &[(&str, usize)]) -> Vec<Violation> {
     let mut found: BTreeMap<String, Vec<usize>> = BTreeMap::new();
@@ -581,19 +598,26 @@ pub const END: &str = "<!-- end of generated part -->";
 /// A group of the drawn graph, in the order drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Group {
-    /// Published (`publish` not false).
+    /// Published (`publish` not false), but simulators.
     Product,
+    /// Kind `simulator` (published).
+    Simulator,
     /// Kinds `reproduction` and `composition`.
     Reproduction,
-    /// Kind `simulator`.
-    Simulator,
     /// Kind `tool`.
     Tool,
 }
 
 impl Group {
-    /// The group of `p`: product if published, else by its kind in the rules table.
+    /// The group of `p`: a simulator by its kind in the rules table, else product if
+    /// published, else by its kind.
     pub fn of(p: &Package, rules: &BTreeMap<String, Rule>) -> Result<Group> {
+        if rules
+            .get(&p.name)
+            .is_some_and(|r| r.kind == Kind::Simulator)
+        {
+            return Ok(Group::Simulator);
+        }
         if !p.unpublished {
             return Ok(Group::Product);
         }
@@ -618,7 +642,7 @@ impl Group {
         match self {
             Group::Product => "Product crates (published)",
             Group::Reproduction => "Reproduction crates (publish = false)",
-            Group::Simulator => "Simulators (publish = false)",
+            Group::Simulator => "Simulators (published)",
             Group::Tool => "Tools (publish = false)",
         }
     }
@@ -767,7 +791,7 @@ pub fn violations(
 ) -> Vec<Violation> {
     let mut bad = check(rules, packages);
     bad.extend(repository_paths(rules, packages));
-    bad.extend(product_bins(packages, KNOWN_PRODUCT_BINS));
+    bad.extend(product_bins(rules, packages, KNOWN_PRODUCT_BINS));
     bad.extend(seed_mentions(root, packages, KNOWN_SEED_MENTIONS));
     bad
 }

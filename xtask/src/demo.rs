@@ -4,8 +4,8 @@
 //!   `paper-scenes run … --report target/demo/report.html`; prints where the report is.
 //! - `--screenshot`: the same, then a full-page screenshot of the report in headless Chromium,
 //!   `docs/demo-report.png` (the picture in `docs/demo.md`).
-//! - `tap-to-move`: seed 002 §IV-B on the simulated UR3 through the real ur_rtde (ur-bridge's
-//!   `tap_to_move` example), into `docs/arm-tap-to-move.md`.
+//! - `tap-to-move`: seed 002 §IV-B on the simulated UR3 (ur-sim) through the real ur_rtde
+//!   (paper-experiments' `tap_to_move` example), into `docs/arm-tap-to-move.md`.
 
 use crate::run::{cargo, step};
 use anyhow::{Context, Result, bail};

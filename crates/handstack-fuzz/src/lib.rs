@@ -58,17 +58,17 @@ pub const TARGETS: [Target; 11] = [
     },
     Target {
         name: "ur_rtde",
-        about: "the UR simulator's RTDE server (ur-bridge `sim`, port 30004)",
+        about: "the UR simulator's RTDE server (ur-sim, port 30004)",
         run: ur::rtde,
     },
     Target {
         name: "ur_dashboard",
-        about: "the UR simulator's dashboard server (ur-bridge `sim`, port 29999)",
+        about: "the UR simulator's dashboard server (ur-sim, port 29999)",
         run: ur::dashboard,
     },
     Target {
         name: "ur_script",
-        about: "the UR simulator's script intake (ur-bridge `sim`, port 30003)",
+        about: "the UR simulator's script intake (ur-sim, port 30003)",
         run: ur::script,
     },
     Target {

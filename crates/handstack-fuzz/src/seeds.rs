@@ -312,7 +312,7 @@ fn cdr() -> Vec<Seed> {
 /// A ur_rtde session's packages as its client sends them: version, controller version, an
 /// output recipe, an input recipe, start, input data, pause.
 fn ur_rtde() -> Vec<Seed> {
-    use ur_bridge::sim::fuzzing::{
+    use ur_sim::fuzzing::{
         DATA_PACKAGE, GET_URCONTROL_VERSION, PAUSE, REQUEST_PROTOCOL_VERSION, SETUP_INPUTS,
         SETUP_OUTPUTS, START, package,
     };

@@ -1,6 +1,6 @@
 //! The UR controller simulator's three inputs, as a client's bytes.
 
-use ur_bridge::sim::fuzzing;
+use ur_sim::fuzzing;
 
 /// RTDE packages (port 30004).
 pub fn rtde(data: &[u8]) {

@@ -23,7 +23,10 @@
 //! - [`progress`]: where a run reports its stages;
 //! - [`cli`]: the command line, for the `handstack` binary and any program with a platform of its
 //!   own;
-//! - [`stop`]: what ends a run early (SIGINT, SIGTERM, SIGHUP), through its one shutdown path.
+//! - [`stop`]: what ends a run early (SIGINT, SIGTERM, SIGHUP), through its one shutdown path;
+//! - [`tap_to_move`]: a tap on the pad moves the arm to the grid pose of the region it hit
+//!   (the loop over `hand-traits` parts, its trigger and its region → grid map), which the
+//!   cell runs across processes.
 //!
 //! Nothing here reads a repository path or holds a simulator: the papers' simulated scenes,
 //! their report and the speed / accuracy trade are the reproduction's (`paper-scenes`,
@@ -40,6 +43,7 @@ pub mod scene;
 pub mod stack;
 pub mod stop;
 pub mod summary;
+pub mod tap_to_move;
 
 pub use error::{Ending, RunError};
 pub use outcome::{Figure, Line, Outcome, Plot};

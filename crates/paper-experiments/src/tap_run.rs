@@ -13,11 +13,11 @@ use std::time::Duration;
 
 use hand_sim::imu_pad::{ImuPad, ImuPadConfig, TapSpec, TapWindow, WINDOW_SAMPLES, WINDOW_SIGNALS};
 use hand_traits::{Arm, ContactLocator, ImuFrame, LinearMotion, Pose};
+use handstack::tap_to_move::{RegionToGrid, TapToMove, TapToMoveConfig};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use ur_bridge::sim::{SimConfig, TimeScale, UrSim};
-use ur_bridge::tap_to_move::{TapToMove, TapToMoveConfig};
-use ur_bridge::{RegionToGrid, UrArm, UrConfig, UrError};
+use ur_bridge::{UrArm, UrConfig, UrError};
+use ur_sim::{SimConfig, TimeScale, UrSim};
 
 use crate::cnn_eval::{self, Committed};
 

@@ -17,10 +17,10 @@ use handstack::cell::hand::{self, HandNodeConfig};
 use handstack::cell::launch::CellRun;
 use handstack::cell::pad::{self, PadNodeConfig};
 use handstack::cell::{CellError, CellFile, NodeArgs, Part, Stop, tactile};
+use handstack::tap_to_move::TapToMoveConfig;
 use paper_experiments::tap_run::{self, TAPS_PER_REGION};
 use std::path::Path;
 use tactile_nets::contact_cnn::ContactCnn;
-use ur_bridge::tap_to_move::TapToMoveConfig;
 
 use handstack::cell::real::FINGERTIP_RATE_HZ;
 

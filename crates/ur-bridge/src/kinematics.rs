@@ -5,7 +5,7 @@
 //! of kinematics and dynamics", universal-robots.com) and the UR3 datasheet (reach 500 mm, joint
 //! range ±360°, wrist 3 infinite, joint speeds 180 °/s base/shoulder/elbow and 360 °/s wrists).
 
-use core::f64::consts::PI;
+use core::f64::consts::{FRAC_PI_2, PI};
 
 use hand_traits::Pose;
 use nalgebra::{Isometry3, Matrix6, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6};
@@ -47,6 +47,9 @@ pub enum KinematicsError {
 
 /// Six joint angles, base first, in radians.
 pub type Joints = [f64; 6];
+
+/// A home joint configuration: shoulder up, forearm level, tool pointing down.
+pub const HOME_Q: Joints = [0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0];
 
 /// A UR arm's geometry and limits.
 #[derive(Debug, Clone, PartialEq)]
@@ -92,7 +95,7 @@ impl UrModel {
 
     /// The frame of every joint axis: `frames[i]` is the base-to-frame-`i` transform, `frames[0]`
     /// the base and `frames[6]` the flange (the TCP, with no tool offset).
-    pub(crate) fn frames(&self, q: &Joints) -> [Isometry3<f64>; 7] {
+    pub fn frames(&self, q: &Joints) -> [Isometry3<f64>; 7] {
         let mut frames = [Isometry3::identity(); 7];
         for i in 0..6 {
             let link = Isometry3::from_parts(
@@ -140,7 +143,7 @@ impl UrModel {
     /// Joint angles near `q_near` that put the flange at `target`, or why there are none.
     ///
     /// Damped least squares on the 6-D pose error; converges to ~1e-12 from a seed within a
-    /// few tenths of a radian, which is how the simulator steps straight-line moves.
+    /// few tenths of a radian, so a straight-line move can be followed step by step.
     pub fn inverse_near(
         &self,
         target: &Isometry3<f64>,

@@ -47,11 +47,13 @@ fn the_workspace_graph_is_the_documented_one() {
     ] {
         assert!(rules[name].kind.is_product(), "{name}");
     }
-    for name in ["paper-experiments", "paper-fixtures"] {
+    for name in ["paper-experiments", "paper-fixtures", "hand-sim"] {
         assert_eq!(rules[name].kind, Kind::Reproduction, "{name}");
     }
-    // The papers' physics is a simulator, below the reproduction and beside no product crate.
-    assert_eq!(rules["hand-sim"].kind, Kind::Simulator);
+    // The UR controller simulator is a published program of its own, above the product crate
+    // whose protocol it answers and below none.
+    assert_eq!(rules["ur-sim"].kind, Kind::Simulator);
+    assert!(rules["ur-sim"].kind.is_published() && !rules["ur-sim"].kind.is_product());
     // The installable stack is a product; the papers' scenes are the composition root above it.
     assert_eq!(rules["handstack"].kind, Kind::Product);
     assert_eq!(rules["paper-scenes"].kind, Kind::Composition);
@@ -99,6 +101,7 @@ fn lawful() -> Vec<Package> {
         package("tactile-nets", false, &[("aot-locate", "normal", false)]),
         package("hand-control", false, &[("fuzzy-mamdani", "dev", false)]),
         package("ur-bridge", false, &[("ur-bridge", "dev", false)]),
+        package("ur-sim", false, &[("ur-bridge", "normal", false)]),
         package("hand-zenoh", false, &[("hand-traits", "normal", false)]),
         package("hand-sim", true, &[("baro-drivers", "normal", false)]),
         package("paper-fixtures", true, &[]),
@@ -164,6 +167,8 @@ fn a_product_crate_on_the_simulator_fails_under_any_feature_or_kind() {
     for (from, to, kind, optional) in [
         ("hand-control", "hand-sim", "normal", true),
         ("ur-bridge", "hand-sim", "dev", false),
+        ("ur-bridge", "ur-sim", "dev", false),
+        ("handstack", "ur-sim", "dev", false),
         ("tactile-nets", "paper-experiments", "normal", false),
         ("aot-locate", "paper-fixtures", "dev", false),
     ] {
@@ -174,6 +179,24 @@ fn a_product_crate_on_the_simulator_fails_under_any_feature_or_kind() {
             "{from} → {to}: {bad:?}"
         );
     }
+}
+
+#[test]
+fn a_simulator_uses_the_product_crate_of_its_protocol_never_the_reproduction() {
+    let bad = after(|p| add(p, "ur-sim", "paper-experiments", "normal", false));
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`ur-sim` → `paper-experiments`")
+                && b.contains("never depends on a reproduction crate")),
+        "{bad:?}"
+    );
+    // Nor a product crate other than the ones its row names.
+    let bad = after(|p| add(p, "ur-sim", "handstack", "normal", false));
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`ur-sim` → `handstack`") && b.contains("not in its row")),
+        "{bad:?}"
+    );
 }
 
 #[test]
@@ -312,8 +335,8 @@ fn a_product_crate_naming_a_repository_path_fails() {
 }
 
 #[test]
-fn the_packaged_crates_are_the_tables_product_crates() {
-    let crates = xtask::package::product_crates(&xtask::workspace_root()).expect("the table");
+fn the_packaged_crates_are_the_tables_product_crates_and_simulators() {
+    let crates = xtask::package::published_crates(&xtask::workspace_root()).expect("the table");
     assert_eq!(
         crates,
         [
@@ -327,6 +350,7 @@ fn the_packaged_crates_are_the_tables_product_crates() {
             "imu-icm20789",
             "tactile-nets",
             "ur-bridge",
+            "ur-sim",
         ]
     );
 }
@@ -340,14 +364,32 @@ fn a_product_crate_on_the_simulator_is_named_as_such() {
                 && b.contains("never depends on a simulator")),
         "{bad:?}"
     );
-    // And a simulator is never published.
+    // The published simulator too, even for tests only: spawn its binary instead.
+    let bad = after(|p| add(p, "handstack", "ur-sim", "dev", false));
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`handstack` → `ur-sim` (dev)")
+                && b.contains("never depends on a simulator")),
+        "{bad:?}"
+    );
+    // And a simulator is published (users install it), with docs.rs documenting all of it.
     let bad = after(|p| {
-        let sim = p.iter_mut().find(|p| p.name == "hand-sim").expect("sim");
-        sim.unpublished = false;
+        let sim = p.iter_mut().find(|p| p.name == "ur-sim").expect("sim");
+        sim.unpublished = true;
     });
     assert!(
         bad.iter()
-            .any(|b| b.contains("`hand-sim` (Simulator) must be publish = false")),
+            .any(|b| b.contains("`ur-sim` is a simulator but publish = false")),
+        "{bad:?}"
+    );
+    let bad = after(|p| {
+        let sim = p.iter_mut().find(|p| p.name == "ur-sim").expect("sim");
+        sim.docs_rs_all_features = false;
+    });
+    assert!(
+        bad.iter().any(|b| b.contains(
+            "`ur-sim` is a simulator without `[package.metadata.docs.rs] all-features = true`"
+        )),
         "{bad:?}"
     );
 }
@@ -401,7 +443,8 @@ fn the_drawn_graph_is_the_one_cargo_metadata_declares() {
         "`hand-traits[sim]`",
         "`imu-icm20789[sim]`",
         "`hand-control[sim]`",
-        "`ur-bridge[sim]` (optional: default feature `arm`)",
+        "`ur-bridge` (optional: default feature `arm`)",
+        "`ur-sim` (optional: default feature `arm`)",
     ] {
         assert!(experiments.contains(edge), "{edge} not in {experiments}");
     }
@@ -410,7 +453,7 @@ fn the_drawn_graph_is_the_one_cargo_metadata_declares() {
     for group in [
         "**Product crates (published)**",
         "**Reproduction crates (publish = false)**",
-        "**Simulators (publish = false)**",
+        "**Simulators (published)**",
         "**Tools (publish = false)**",
     ] {
         assert!(in_doc.contains(group), "{group}");
@@ -466,9 +509,18 @@ fn stand_in_graph() -> (BTreeMap<String, Rule>, Vec<Package>) {
     let mut stack = package("handstack", false, &[("baro-drivers", "normal", false)]);
     stack.deps[0].default_features = false;
     stack.deps[0].target = Some("cfg(unix)".into());
+    let mut ur_sim = package(
+        "ur-sim",
+        false,
+        &[("ur-bridge", "normal", false), ("ur-bridge", "dev", false)],
+    );
+    ur_sim.deps[0].default_features = false;
+    ur_sim.deps[1].features = vec!["rtde-client".into()];
     let packages = vec![
         stack,
+        ur_sim,
         sim,
+        package("ur-bridge", false, &[]),
         package("xtask", true, &[("paper-fixtures", "normal", false)]),
         package("paper-fixtures", true, &[]),
         baro,
@@ -482,7 +534,7 @@ fn the_drawing_is_grouped_sorted_and_names_features() {
     let (rules, packages) = stand_in_graph();
     let drawing = graph(&rules, &packages).expect("draws");
     let expected = "\
-6 workspace crates; 4 edges between them, and 1 more in tests, examples and benches (`cargo metadata`).
+8 workspace crates; 5 edges between them, and 2 more in tests, examples and benches (`cargo metadata`).
 
 **Product crates (published)**
 
@@ -491,18 +543,20 @@ fn the_drawing_is_grouped_sorted_and_names_features() {
 | `baro-drivers` | `hand-traits` (optional: `sim`; `async` → `[embedded-hal-async]`; `sim` → `[embedded-hal]`) | — |
 | `hand-traits` | — | — |
 | `handstack` | `baro-drivers` (no default features; on `cfg(unix)` only) | — |
+| `ur-bridge` | — | — |
+
+**Simulators (published)**
+
+| crate | uses | tests, examples and benches also use |
+|---|---|---|
+| `ur-sim` | `ur-bridge` (no default features) | `ur-bridge[rtde-client]` |
 
 **Reproduction crates (publish = false)**
 
 | crate | uses | tests, examples and benches also use |
 |---|---|---|
-| `paper-fixtures` | — | — |
-
-**Simulators (publish = false)**
-
-| crate | uses | tests, examples and benches also use |
-|---|---|---|
 | `hand-sim` | `baro-drivers[async, sim]` | `paper-fixtures` |
+| `paper-fixtures` | — | — |
 
 **Tools (publish = false)**
 
@@ -528,7 +582,7 @@ fn a_crate_the_rules_table_does_not_know_cannot_be_drawn() {
     packages.push(package("stray", false, &[]));
     let drawing = graph(&rules, &packages).expect("draws");
     assert_eq!(
-        Group::of(&packages[6], &rules).expect("group"),
+        Group::of(packages.last().expect("stray"), &rules).expect("group"),
         Group::Product
     );
     assert!(drawing.contains("| `stray` | — | — |"), "{drawing}");
@@ -550,11 +604,11 @@ fn a_new_binary_in_a_product_crate_fails() {
         with_bins("hand-control", false, &["dxl-sim"]),
         with_bins("paper-scenes", true, &["paper-scenes"]),
     ];
-    assert_eq!(product_bins(&packages, known), []);
+    assert_eq!(product_bins(&rules(), &packages, known), []);
     let mut more = packages.clone();
     more[1].bins.push("dxl-probe".into());
     more[0].bins.push("handstack-extra".into());
-    let bad: Vec<String> = product_bins(&more, known)
+    let bad: Vec<String> = product_bins(&rules(), &more, known)
         .iter()
         .map(ToString::to_string)
         .collect();
@@ -574,10 +628,11 @@ fn a_known_binary_that_is_gone_fails_naming_the_line_to_delete() {
     let known: &[(&str, &str)] = &[("hand-control", "dxl-sim"), ("ur-bridge", "ur-sim")];
     let packages = vec![
         with_bins("hand-control", false, &["dxl-sim"]),
-        // Moved to a publish = false crate: no longer a product crate's binary.
-        with_bins("ur-bridge", true, &["ur-sim"]),
+        with_bins("ur-bridge", false, &[]),
+        // Moved to a simulator crate, published: a simulator's program is no product binary.
+        with_bins("ur-sim", false, &["ur-sim"]),
     ];
-    let bad = product_bins(&packages, known);
+    let bad = product_bins(&rules(), &packages, known);
     assert_eq!(bad.len(), 1, "{bad:?}");
     assert!(
         bad[0]

@@ -9,6 +9,7 @@
 
 use super::error::CellError;
 use crate::stop::Stop;
+use crate::tap_to_move::RegionToGrid;
 use hand_traits::Pose;
 use hand_zenoh::convert::{header, pose_from_msg, pose_to_msg};
 use hand_zenoh::keys::{EntityKind, mangle};
@@ -17,7 +18,6 @@ use hand_zenoh::msg::handstack_msgs::ContactArray;
 use hand_zenoh::msg::std_srvs::{Trigger, TriggerRequest};
 use hand_zenoh::node::{Graph, Node, Subscription, now_ns};
 use std::time::{Duration, Instant};
-use ur_bridge::RegionToGrid;
 
 /// The coordinator's settings.
 #[derive(Debug, Clone)]

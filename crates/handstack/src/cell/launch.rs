@@ -9,6 +9,7 @@ use super::coordinator::{self, CellReport, CellRow, TapToMoveCell};
 use super::error::CellError;
 use super::file::CellFile;
 use crate::stop::Stop;
+use crate::tap_to_move::RegionToGrid;
 use hand_zenoh::config::SessionConfig;
 use hand_zenoh::node::{Node, NodeOptions, Router};
 use std::io::{BufRead as _, BufReader};
@@ -16,7 +17,6 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
-use ur_bridge::RegionToGrid;
 
 /// One node process: its namespace, the child, and what it wrote on stderr so far.
 #[derive(Debug)]

@@ -6,12 +6,12 @@
 use super::error::CellError;
 use super::pace::Pacer;
 use crate::stop::Stop;
+use crate::tap_to_move::{TapToMoveConfig, TapTrigger};
 use hand_traits::{Contact, ImuFrame, TactileSource};
 use hand_zenoh::convert::{contact_to_msg, header, imu_to_msg};
 use hand_zenoh::msg::handstack_msgs::{ContactArray, PressureFrame};
 use hand_zenoh::msg::sensor_msgs::Imu;
 use hand_zenoh::node::{Node, now_ns};
-use ur_bridge::tap_to_move::{TapToMoveConfig, TapTrigger};
 
 /// How the pad node runs.
 #[derive(Debug, Clone)]

@@ -10,9 +10,9 @@ use super::{NodeArgs, tactile};
 use crate::scene::NodeScene;
 use crate::stack::platform::Platform;
 use crate::stop::Stop;
+use crate::tap_to_move::TapToMoveConfig;
 use hand_zenoh::node::Node;
 use hand_zenoh::tactile::TactileInfo;
-use ur_bridge::tap_to_move::TapToMoveConfig;
 
 /// The fingertip's frame rate as a node (seed 000 reads its fingertips at 100 Hz).
 pub const FINGERTIP_RATE_HZ: f32 =

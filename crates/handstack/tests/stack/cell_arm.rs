@@ -1,9 +1,8 @@
 //! The arm node's safe state (feature `cell`): when the node commanding it leaves the graph in
 //! the middle of a move, the arm is stopped (stopL) and does not arrive; a stop request stops
-//! it too; a controller that dies mid-move ends `handstack node`, saying so. ur-bridge's UR
-//! controller simulator (in this process on 127.0.0.95; the `ur-sim` binary on 127.0.0.96) at
-//! real time, through the real ur_rtde (needs `$HANDSTACK_PYTHON`); the router and the nodes on
-//! 127.0.0.1.
+//! it too; a controller that dies mid-move ends `handstack node`, saying so. The workspace's
+//! `ur-sim` binary as the UR controller (on 127.0.0.95 and 127.0.0.96) at real time, through the
+//! real ur_rtde (needs `$HANDSTACK_PYTHON`); the router and the nodes on 127.0.0.1.
 
 use hand_zenoh::config::SessionConfig;
 use hand_zenoh::convert::{pose_from_msg, pose_to_msg};
@@ -12,10 +11,10 @@ use hand_zenoh::msg::geometry_msgs::PoseStamped;
 use hand_zenoh::node::{Node, NodeOptions, Router};
 use handstack::cell::Stop;
 use handstack::cell::arm::{self, ArmNodeConfig};
-use std::net::Ipv4Addr;
 use std::time::{Duration, Instant};
-use ur_bridge::sim::{SimConfig, UrSim};
 use ur_bridge::{UrArm, UrConfig};
+
+use crate::process::UrSim;
 
 const WAIT: Duration = Duration::from_secs(20);
 
@@ -80,19 +79,15 @@ fn the_arm_stops_when_its_commander_leaves_mid_move() {
         );
         return;
     }
-    let address = Ipv4Addr::new(127, 0, 0, 95);
-    let sim = UrSim::start(SimConfig {
-        address,
-        ..SimConfig::default()
-    })
-    .expect("UR simulator");
+    let address = "127.0.0.95";
+    let sim = UrSim::start(address);
     let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
     let _router = Router::open(&endpoint).unwrap();
     let stop = Stop::new();
     let arm_thread = {
         let (endpoint, stop) = (endpoint.clone(), stop.clone());
         std::thread::spawn(move || {
-            let mut ur = UrArm::connect(UrConfig::new(address.to_string())).expect("ur_rtde");
+            let mut ur = UrArm::connect(UrConfig::new(address)).expect("ur_rtde");
             let n = node(&endpoint, "/arm0", "arm");
             arm::run(&n, &mut ur, &ArmNodeConfig::default(), &stop)
         })
@@ -137,7 +132,7 @@ fn the_arm_stops_when_its_commander_leaves_mid_move() {
 
 #[test]
 fn a_controller_that_dies_mid_move_ends_the_arm_node_saying_so() {
-    use crate::process::{Lines, built, finish, signal, text};
+    use crate::process::{finish, text};
     use std::process::{Command, Stdio};
     if std::env::var_os("HANDSTACK_PYTHON").is_none() {
         eprintln!(
@@ -146,16 +141,7 @@ fn a_controller_that_dies_mid_move_ends_the_arm_node_saying_so() {
         return;
     }
     let host = "127.0.0.96";
-    let mut ur = Command::new(built("ur-sim"))
-        .args(["--host", host])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("ur-sim starts");
-    let services = Lines::read(ur.stdout.take().expect("stdout"));
-    services.wait_for("ur-sim's RTDE", |l| {
-        l.iter().any(|l| l.starts_with("rtde "))
-    });
+    let ur = UrSim::start(host);
     let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
     let _router = Router::open(&endpoint).unwrap();
     let dir = std::env::temp_dir().join(format!("handstack-arm-{}", std::process::id()));
@@ -185,9 +171,8 @@ fn a_controller_that_dies_mid_move_ends_the_arm_node_saying_so() {
     // Held open: a closed stdin is the node's normal stop, not what this test is about.
     let _stdin = arm_node.stdin.take();
     let _moving = move_under_way(&endpoint);
-    signal(ur.id(), "KILL");
     let killed = Instant::now();
-    let _ = ur.wait();
+    ur.kill();
     let out = finish(arm_node);
     let after = killed.elapsed();
     let err = text(&out.stderr);

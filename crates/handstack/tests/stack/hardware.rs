@@ -13,7 +13,6 @@ use handstack::runs::{RunContext, run};
 use handstack::scene::{Scene, SceneError};
 use handstack::stack::platform::{I2cBus, Platform};
 use handstack::{Plot, RunError};
-use std::net::Ipv4Addr;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -312,13 +311,9 @@ fn a_missing_serial_port_is_a_cannot_open_error() {
 #[test]
 fn a_scene_naming_a_started_ur_simulator_connects_to_it() {
     use handstack::scene::NodeScene;
-    use ur_bridge::sim::{SimConfig, UrSim};
-    let address = Ipv4Addr::new(127, 0, 0, 90);
-    let _sim = UrSim::start(SimConfig {
-        address,
-        ..SimConfig::default()
-    })
-    .expect("simulator");
+    // The workspace's `ur-sim` binary, as a user's CI runs it.
+    let address = "127.0.0.90";
+    let _sim = crate::process::UrSim::start(address);
     let text = format!(
         "title = \"real arm\"\n[sensors.fingertip]\nosr = 256\n\
          i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n[arm]\nmodel = \"ur3\"\n\

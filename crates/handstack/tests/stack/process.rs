@@ -3,15 +3,15 @@
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output};
+use std::process::{Child, Command, Output, Stdio};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 /// Longest any wait here takes (a bound, not a delay: each returns at its event).
 pub(crate) const WAIT: Duration = Duration::from_secs(30);
 
-/// A binary the workspace's `cargo test` built beside this test (`dxl-sim`), or one of this
-/// package's examples (`examples/bench_rig`).
+/// A binary the workspace's `cargo test` built beside this test (`dxl-sim`, `ur-sim`), or one
+/// of this package's examples (`examples/bench_rig`).
 pub(crate) fn built(name: &str) -> PathBuf {
     let exe = std::env::current_exe().expect("the test binary's path");
     // target/<profile>/deps/<this test> → target/<profile>/<name>
@@ -23,7 +23,7 @@ pub(crate) fn built(name: &str) -> PathBuf {
     assert!(
         path.exists(),
         "{} is not built: run the workspace's tests (`cargo xtask test`, or `cargo test \
-         --workspace --all-features`), which build dxl-sim and this package's examples",
+         --workspace --all-features`), which build dxl-sim, ur-sim and this package's examples",
         path.display()
     );
     path
@@ -68,6 +68,47 @@ impl Lines {
 
     pub(crate) fn snapshot(&self) -> Vec<String> {
         self.lines.lock().expect("lines").clone()
+    }
+}
+
+/// The workspace's `ur-sim` binary (a simulated UR controller, as a user runs it in CI) on
+/// `host`, listening; SIGTERM and reaped when dropped.
+pub(crate) struct UrSim {
+    child: Child,
+}
+
+impl UrSim {
+    /// Starts `ur-sim --host HOST` and waits for its `rtde` line (its last port listening).
+    pub(crate) fn start(host: &str) -> UrSim {
+        let mut child = Command::new(built("ur-sim"))
+            .args(["--host", host])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("ur-sim starts");
+        let services = Lines::read(child.stdout.take().expect("stdout"));
+        services.wait_for("ur-sim's RTDE", |l| {
+            l.iter().any(|l| l.starts_with("rtde "))
+        });
+        UrSim { child }
+    }
+
+    /// Kills it at once (SIGKILL: every socket closes, no goodbye) and reaps it.
+    pub(crate) fn kill(mut self) {
+        signal(self.child.id(), "KILL");
+        let _ = self.child.wait();
+    }
+}
+
+impl Drop for UrSim {
+    fn drop(&mut self) {
+        if let Ok(None) = self.child.try_wait() {
+            let _ = Command::new("kill")
+                .arg("-TERM")
+                .arg(self.child.id().to_string())
+                .status();
+            let _ = self.child.wait();
+        }
     }
 }
 

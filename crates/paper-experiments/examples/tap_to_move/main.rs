@@ -4,11 +4,11 @@
 
 use paper_experiments::tap_run as run;
 
+use handstack::tap_to_move::TapToMoveConfig;
 use std::path::Path;
 use std::time::Instant;
 use tactile_nets::contact_cnn::ContactCnn;
-use ur_bridge::sim::TimeScale;
-use ur_bridge::tap_to_move::TapToMoveConfig;
+use ur_sim::TimeScale;
 
 fn main() -> Result<(), String> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");

@@ -6,9 +6,9 @@ use paper_experiments::tap_run as run;
 
 use hand_sim::imu_pad::TapSpec;
 use hand_traits::{Contact, ContactLocator};
+use handstack::tap_to_move::TapToMoveConfig;
 use run::Window;
-use ur_bridge::sim::TimeScale;
-use ur_bridge::tap_to_move::TapToMoveConfig;
+use ur_sim::TimeScale;
 
 /// Answers the scheduled regions in order: a stand-in for the CNN that measures no recognition.
 struct Scheduled {

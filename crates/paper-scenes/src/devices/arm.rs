@@ -1,4 +1,4 @@
-//! The arm a paper scene names: ur-bridge's UR controller simulator on loopback by default (at
+//! The arm a paper scene names: ur-sim's UR controller simulator on loopback by default (at
 //! the `[sim.arm]` time scale), or the controller at `host`; either way the real ur_rtde client
 //! (`handstack::stack::arm`).
 
@@ -7,10 +7,10 @@ use handstack::RunError;
 use std::net::Ipv4Addr;
 use std::sync::atomic::{AtomicU8, Ordering};
 use ur_bridge::UrArm;
-use ur_bridge::sim::{SimConfig, UrSim};
+use ur_sim::{SimConfig, UrSim};
 
 /// Loopback addresses handed to the simulators this process starts (127.0.0.60 on), so scenes
-/// run side by side in one process do not share ports; ur-bridge's own tests use lower ones.
+/// run side by side in one process do not share ports; ur-sim's own tests use lower ones.
 static NEXT_OCTET: AtomicU8 = AtomicU8::new(60);
 
 /// Hands out simulator addresses from 127.0.0.`octet` on (never lower than the default 60, nor

@@ -2,7 +2,7 @@
 //! its hardware (opened by `handstack::stack`, through the run's platform), else simulated at
 //! its real interface — the MS5611 chip models under hand-sim's pad behind the real driver,
 //! the Table 5 world's servo-bus simulator behind `ServoHand`, the ICM-20789 chip model behind
-//! the real driver, ur-bridge's UR controller simulator on loopback behind the real ur_rtde
+//! the real driver, ur-sim's UR controller simulator on loopback behind the real ur_rtde
 //! client. The runners get handles and cannot tell which they hold.
 
 pub mod arm;

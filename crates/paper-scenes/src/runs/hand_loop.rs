@@ -10,7 +10,7 @@
 //!    and the contact (the arrival detector, eq. 3 Arrival-of-Time on 3 × 3, and the contact MLP
 //!    on 4 × 6 when one is given);
 //! 3. reads the ICM-20789 pad on the cycles where its own 30 Hz tick falls due, feeds its frames
-//!    to a streaming tap trigger (pressure over the resting baseline, as ur-bridge's
+//!    to a streaming tap trigger (pressure over the resting baseline, as handstack's
 //!    `TapToMove`), and on a completed window asks the CNN for the region;
 //! 4. polls the arm once, without blocking: the moveL in flight (`UrArm::progress`), or starts
 //!    the next one (`UrArm::start_move_linear`) to the grid pose of the last region located.
@@ -40,11 +40,11 @@ use hand_control::grasp_loop::{
 use hand_traits::{
     ContactLocator, GraspPolicy, ImuFrame, LinearMotion, Pose, PressureFrame, TactileSource,
 };
+use handstack::tap_to_move::{RegionToGrid, TapTrigger};
 use tactile_nets::contact_cnn::ContactCnn;
 use tactile_nets::contact_mlp::{ContactMlp, TapReading, features};
 use tactile_nets::force_dnn::{ForceDnn, LiveTare};
-use ur_bridge::tap_to_move::TapTrigger;
-use ur_bridge::{MoveHandle, RegionToGrid, UrArm};
+use ur_bridge::{MoveHandle, UrArm};
 
 /// The loop clock with the wall time spent waiting on it counted, and the loop time at which
 /// the last wait returned (the cycle's start).

@@ -1,8 +1,8 @@
 //! Seed 002 §IV-B: taps on the ICM-20789 pad (hand-sim, read through the real driver at the
 //! scene's pressure mode) trigger on the pressure rise; the 4 × 38 accelerometer / gyroscope
-//! window goes to the committed contact CNN; the region it names moves the UR3 (ur-bridge's
+//! window goes to the committed contact CNN; the region it names moves the UR3 (ur-sim's
 //! loopback simulator through the real ur_rtde, or the controller at `[arm] host`) to its grid
-//! pose. The loop is ur-bridge's `TapToMove` via `paper_experiments::tap_run`, the code path of the
+//! pose. The loop is handstack's `TapToMove` via `paper_experiments::tap_run`, the code path of the
 //! `tap_to_move` example that wrote docs/arm-tap-to-move.md.
 
 use super::figure::{Target, measured, paper, target};
@@ -10,10 +10,10 @@ use super::{Part, RunContext};
 use crate::scene::PaperScene;
 use crate::scene::experiments::{Tap, WindowPlacement};
 use handstack::RunError;
+use handstack::tap_to_move::TapToMoveConfig;
 use handstack::{Line, Plot};
 use paper_experiments::tap_run::{self, DEPTH_MM, Row};
 use tactile_nets::contact_cnn::ContactCnn;
-use ur_bridge::tap_to_move::TapToMoveConfig;
 
 /// Runs the tap-to-UR3 experiment of `scene`.
 pub fn run(scene: &PaperScene, exp: &Tap, cx: &RunContext<'_>) -> Result<Part, crate::Error> {

@@ -1,7 +1,7 @@
 //! `[sim]`: the simulated physics of a paper scene (hand-sim's scene config), checked against
 //! the parts: a simulated device gets the sensor knobs the scene gives its part (OSR, pressure
 //! mode); a device the scene reads from real hardware, or none, must not be simulated.
-//! `[sim.arm]` is ur-bridge's UR controller simulator, for an `[arm]` without a host.
+//! `[sim.arm]` is ur-sim's UR controller simulator, for an `[arm]` without a host.
 
 use super::Experiments;
 use hand_sim::scene::SceneConfig;
@@ -10,14 +10,14 @@ use handstack::scene::{Checker, SceneError, SceneFile};
 use serde::Deserialize;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue, Deserializer, ValueDeserializer};
-use ur_bridge::sim::TimeScale;
+use ur_sim::TimeScale;
 
-/// `[sim.arm]`: how ur-bridge's UR controller simulator runs when the scene's `[arm]` names no
+/// `[sim.arm]`: how ur-sim's UR controller simulator runs when the scene's `[arm]` names no
 /// host. The arm itself is still reached through ur_rtde on loopback; nothing here reaches the
 /// runner.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ArmSim {
-    /// `time_scale`: controller seconds per wall-clock second (`ur_bridge::sim::SimConfig::
+    /// `time_scale`: controller seconds per wall-clock second (`ur_sim::SimConfig::
     /// time_scale`; default 1, real time). Moves keep their controller-time profiles and RTDE
     /// `timestamp`s; they end `time_scale` × sooner on the wall clock.
     pub time_scale: TimeScale,

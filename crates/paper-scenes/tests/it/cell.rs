@@ -16,13 +16,13 @@ use hand_zenoh::node::{Node, NodeOptions, Router};
 use handstack::cell::coordinator::{self, TapToMoveCell};
 use handstack::cell::launch::{self, start_nodes};
 use handstack::cell::{CellError, CellFile, Stop};
+use handstack::tap_to_move::RegionToGrid;
 use paper_experiments::tap_run;
 use paper_scenes::scene::PaperScene;
 use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::Instant;
 use tactile_nets::contact_cnn::ContactCnn;
-use ur_bridge::RegionToGrid;
 
 /// The arm node processes each start their simulator on 127.0.0.60: one cell at a time.
 static ONE_CELL: Mutex<()> = Mutex::new(());

@@ -19,7 +19,7 @@ fn run_text(text: &str) -> Result<handstack::Outcome, Error> {
 
 #[test]
 fn a_scene_naming_a_started_ur_simulator_moves_it() {
-    use ur_bridge::sim::{SimConfig, UrSim};
+    use ur_sim::{SimConfig, UrSim};
     let address = Ipv4Addr::new(127, 0, 0, 90);
     let _sim = UrSim::start(SimConfig {
         address,

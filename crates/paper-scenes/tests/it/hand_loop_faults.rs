@@ -124,7 +124,7 @@ fn a_fingertip_bus_error_ends_the_loop_in_the_hold_within_its_cycle() {
 fn losing_the_arm_mid_move_ends_the_loop_in_the_hold_within_its_cycle() {
     let mut b = built();
     b.hand_loop.run_until(1_000_000);
-    let far = *ur_bridge::RegionToGrid::ur3_default()
+    let far = *handstack::tap_to_move::RegionToGrid::ur3_default()
         .expect("the UR3 grid")
         .pose(8)
         .expect("region 8");

@@ -14,14 +14,13 @@ use hand_sim::imu_pad::ImuPad;
 use hand_traits::{ImuFrame, TactileSource};
 use handstack::RunError;
 use handstack::scene::parts::{ForceModel, Locator};
+use handstack::tap_to_move::{RegionToGrid, TapToMoveConfig};
 use paper_experiments::cnn_eval::{MODEL_DIR as CNN_DIR, model_file};
 use paper_experiments::grasp_rig::{self, LIFT_AT_S};
 use paper_experiments::tap_run;
 use tactile_nets::contact_cnn::{ContactCnn, Variant};
 use tactile_nets::contact_mlp::ContactMlp;
 use tactile_nets::force_dnn::ForceDnn;
-use ur_bridge::RegionToGrid;
-use ur_bridge::tap_to_move::TapToMoveConfig;
 
 /// The pad's rate, Hz (seed 002 §III-C).
 pub const PAD_HZ: u32 = 30;
@@ -71,7 +70,7 @@ pub struct Built<Pad = ImuPad> {
     /// Where the arm is connected.
     pub host: String,
     /// The arm's simulator, when the scene named no host.
-    pub sim: Option<ur_bridge::sim::UrSim>,
+    pub sim: Option<ur_sim::UrSim>,
 }
 
 /// Runs the fused loop of `scene`: the first grasp object closed, lifted at 3 s and held

@@ -1,4 +1,4 @@
-//! `ur-sim`: a simulated Universal Robots controller for ur_rtde tests (feature `sim`), in place
+//! `ur-sim`: a simulated Universal Robots controller for ur_rtde tests, in place
 //! of URSim in Docker: it starts in milliseconds and the unmodified ur_rtde client accepts it.
 //!
 //! Prints one line per listening port, `SERVICE ADDRESS` (`dashboard 127.0.0.1:29999`,
@@ -13,7 +13,7 @@ use clap::{Parser, ValueEnum};
 use signal_hook::consts::{SIGINT, SIGTERM};
 use signal_hook::iterator::Signals;
 use ur_bridge::kinematics::UrModel;
-use ur_bridge::sim::{SimConfig, TimeScale, UrSim};
+use ur_sim::{SimConfig, TimeScale, UrSim};
 
 /// A simulated UR controller (dashboard, script intake and RTDE) that ur_rtde connects to.
 #[derive(Debug, Parser)]

@@ -5,6 +5,14 @@
 //! call), runs the bytes through the same code the TCP servers run, advances the controller a
 //! bounded number of control cycles (so that commands and moves start), and returns what the
 //! server wrote back. Deterministic: the same bytes give the same answer.
+//!
+//! ```
+//! let reply = ur_sim::fuzzing::dashboard(b"robotmode\n");
+//! assert_eq!(
+//!     String::from_utf8_lossy(&reply),
+//!     "Connected: Universal Robots Dashboard Server\nRobotmode: RUNNING\n"
+//! );
+//! ```
 
 use std::sync::{Arc, Mutex};
 
@@ -82,7 +90,7 @@ pub fn script(input: &[u8]) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::wire;
+    use crate::wire;
 
     /// The packages in `bytes`, in order.
     fn packages(mut bytes: &[u8]) -> Vec<(u8, Vec<u8>)> {

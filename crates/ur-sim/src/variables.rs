@@ -171,8 +171,8 @@ pub(crate) fn output_value(c: &Controller, name: &str, ty: VarType) -> Value {
         "elbow_position" => Value::Vector3d(c.elbow_position()),
         "joint_mode" => Value::Vector6Int32(
             [match c.robot_mode {
-                crate::status::robot_mode::RUNNING => JOINT_RUNNING_MODE,
-                crate::status::robot_mode::IDLE => JOINT_IDLE_MODE,
+                ur_bridge::status::robot_mode::RUNNING => JOINT_RUNNING_MODE,
+                ur_bridge::status::robot_mode::IDLE => JOINT_IDLE_MODE,
                 _ => JOINT_POWER_OFF_MODE,
             }; 6],
         ),

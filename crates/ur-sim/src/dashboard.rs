@@ -5,7 +5,7 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
 
 use super::Shared;
-use crate::status::{robot_mode, safety_mode};
+use ur_bridge::status::{robot_mode, safety_mode};
 
 fn mode_name(mode: i32) -> &'static str {
     match mode {
@@ -74,12 +74,12 @@ fn answer(shared: &Shared, line: &str) -> Option<String> {
         "pause" => "Failed to execute: pause".into(),
         "running" => format!(
             "Program running: {}",
-            c.runtime_state == crate::status::runtime_state::PLAYING
+            c.runtime_state == ur_bridge::status::runtime_state::PLAYING
         ),
         "programState" => {
             let state = match c.runtime_state {
-                crate::status::runtime_state::PLAYING => "PLAYING",
-                crate::status::runtime_state::PAUSED => "PAUSED",
+                ur_bridge::status::runtime_state::PLAYING => "PLAYING",
+                ur_bridge::status::runtime_state::PAUSED => "PAUSED",
                 _ => "STOPPED",
             };
             format!("{state} {}", c.program_name())

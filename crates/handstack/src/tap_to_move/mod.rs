@@ -1,7 +1,12 @@
-//! Seed 002 §IV-B as a loop over the `hand-traits` traits: the arm goes home and waits; when
-//! the pad's pressure rises above a threshold, the accelerometer / gyroscope window around that
-//! instant goes to a [`ContactLocator`]; the region it names picks a grid pose; the arm moves
-//! there in a straight line. Any fault stops the arm (`Arm::stop`) before it is returned.
+//! Tap-to-move as a loop over the `hand-traits` traits, after Al and Martinez-Hernandez,
+//! "Multimodal barometric and inertial measurement unit based tactile sensor for robot control"
+//! (§IV-B): the arm goes home and waits; when the pad's pressure rises above a threshold, the
+//! accelerometer / gyroscope window around that instant goes to a [`ContactLocator`]; the region
+//! it names picks a grid pose ([`RegionToGrid`]); the arm moves there in a straight line. Any
+//! fault stops the arm (`Arm::stop`) before it is returned.
+//!
+//! The cell runs it across processes ([`crate::cell`], feature `cell`): the pad node triggers
+//! with [`TapTrigger`], the coordinator picks the grid pose.
 
 use std::borrow::Borrow;
 use std::collections::VecDeque;
@@ -9,7 +14,9 @@ use std::time::Instant;
 
 use hand_traits::{Arm, ContactLocator, ImuFrame, LinearMotion, TactileSource};
 
-use crate::grid::{GridError, RegionToGrid};
+mod grid;
+
+pub use grid::{GridError, REGIONS, RegionToGrid};
 
 /// When a contact counts, and which frames the locator sees.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -97,7 +104,7 @@ pub type Window<'a> = (&'a [ImuFrame], u64);
 ///
 /// ```
 /// use hand_traits::ImuFrame;
-/// use ur_bridge::tap_to_move::{TapToMoveConfig, TapTrigger};
+/// use handstack::tap_to_move::{TapToMoveConfig, TapTrigger};
 ///
 /// let config = TapToMoveConfig { frames_before: 2, frames_after: 2, ..Default::default() };
 /// let mut trigger = TapTrigger::new(config);

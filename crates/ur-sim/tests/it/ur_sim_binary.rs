@@ -48,7 +48,7 @@ fn readme_shows_the_check_and_the_commands_this_test_runs() {
     );
     let job = fenced("yaml");
     for line in [
-        "cargo install ur-bridge --features sim --locked",
+        "cargo install ur-sim --locked",
         "python ci/test_ur_sim.py",
         "grep -q \"^rtde \"",
     ] {

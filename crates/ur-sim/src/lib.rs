@@ -1,22 +1,28 @@
-//! A UR controller on loopback that the unmodified ur_rtde client accepts: dashboard server
-//! (29999), RTDE (30004), and a script intake (30003) that recognises ur_rtde's control script
-//! and runs its register protocol on a kinematic UR3.
+//! A simulated Universal Robots controller on loopback that the unmodified ur_rtde client
+//! accepts: dashboard server (29999), RTDE (30004), and a script intake (30003) that recognises
+//! ur_rtde's control script and runs its register protocol on a kinematic UR3 (ur-bridge's
+//! [`UrModel`]). The `ur-sim` program runs one as a process; [`UrSim`] runs one in yours.
 //!
 //! ur_rtde's `RTDEControlInterface` connects to the fixed ports 29999 / 30003 / 30004, so
 //! simulators that must run side by side bind different loopback addresses (`127.0.0.2`,
 //! `127.0.0.3`, … all reach the local host on Linux).
 //!
 //! ```no_run
-//! use ur_bridge::sim::{SimConfig, UrSim};
+//! use ur_sim::{SimConfig, UrSim};
 //! let sim = UrSim::start(SimConfig::default())?; // 127.0.0.1
-//! // … connect ur_rtde (or `UrArm`) to 127.0.0.1 …
+//! // … connect ur_rtde (or ur-bridge's `UrArm`) to 127.0.0.1 …
 //! sim.kill(); // every socket closes at once, as if the controller died
 //! # Ok::<(), std::io::Error>(())
 //! ```
+//!
+//! - [`UrSim`], [`SimConfig`]: a controller on its three ports, its clock, joints and log;
+//! - [`TimeScale`]: controller time against wall time;
+//! - [`fuzzing`]: the three servers' request handling fed from bytes, for fuzzers.
+//!
+//! Plain Rust: ur-bridge without its default `rtde-client` feature, no pyo3, no Python.
 
 mod controller;
 mod dashboard;
-#[doc(hidden)]
 pub mod fuzzing;
 mod motion;
 mod rtde;
@@ -34,9 +40,9 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use crate::kinematics::{Joints, UrModel};
-use crate::status::robot_mode;
 use controller::Controller;
+use ur_bridge::kinematics::{Joints, UrModel};
+use ur_bridge::status::robot_mode;
 
 /// How the simulated controller is set up.
 #[derive(Debug, Clone, PartialEq)]
@@ -67,7 +73,7 @@ pub struct SimConfig {
 
 impl Default for SimConfig {
     /// A CB3 UR3 (software 3.15.8) on 127.0.0.1 at the real ports, powered, brakes released,
-    /// at the home pose of [`crate::RegionToGrid::HOME_Q`].
+    /// at the home pose of [`ur_bridge::kinematics::HOME_Q`].
     fn default() -> Self {
         Self {
             address: Ipv4Addr::LOCALHOST,
@@ -75,7 +81,7 @@ impl Default for SimConfig {
             script_port: 30003,
             rtde_port: 30004,
             model: UrModel::ur3(),
-            initial_q: crate::RegionToGrid::HOME_Q,
+            initial_q: ur_bridge::kinematics::HOME_Q,
             initial_mode: robot_mode::RUNNING,
             control_period: Duration::from_millis(8),
             controller_version: (3, 15, 8, 106_339),

@@ -10,12 +10,12 @@ use std::time::Duration;
 /// 1 stretches every move against them.
 ///
 /// ```
-/// use ur_bridge::sim::TimeScale;
+/// use ur_sim::TimeScale;
 /// let fast: TimeScale = "4".parse()?;
 /// assert_eq!(fast.wall(std::time::Duration::from_millis(8)).as_micros(), 2_000);
 /// assert!("0".parse::<TimeScale>().is_err());
 /// assert!("fast".parse::<TimeScale>().is_err());
-/// # Ok::<(), ur_bridge::sim::TimeScaleError>(())
+/// # Ok::<(), ur_sim::TimeScaleError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TimeScale(f64);

@@ -1,14 +1,14 @@
 //! RTDE wire format (Universal Robots' RTDE guide, protocol version 2): package types, the
 //! variable types and their big-endian encodings.
 
-pub(crate) use crate::rtde_frame::{read_package, write_package};
+pub(crate) use ur_bridge::rtde_frame::{read_package, write_package};
 
 /// `RTDE_REQUEST_PROTOCOL_VERSION` ('V').
-pub const REQUEST_PROTOCOL_VERSION: u8 = crate::rtde_frame::REQUEST_PROTOCOL_VERSION;
+pub const REQUEST_PROTOCOL_VERSION: u8 = ur_bridge::rtde_frame::REQUEST_PROTOCOL_VERSION;
 
 /// Frames `payload` as a package of type `kind`.
 pub fn package(kind: u8, payload: &[u8]) -> std::io::Result<Vec<u8>> {
-    crate::rtde_frame::package(kind, payload)
+    ur_bridge::rtde_frame::package(kind, payload)
 }
 /// `RTDE_GET_URCONTROL_VERSION` ('v').
 pub const GET_URCONTROL_VERSION: u8 = 118;

@@ -8,10 +8,11 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{Ipv4Addr, Shutdown, SocketAddr, TcpStream};
 use std::time::{Duration, Instant};
 
-use hand_traits::LinearMotion;
 use ur_bridge::kinematics::{self, UrModel};
-use ur_bridge::sim::{SimConfig, UrSim};
-use ur_bridge::{RegionToGrid, UrArm, UrConfig};
+use ur_bridge::{LinearMotion, UrArm, UrConfig};
+use ur_sim::{SimConfig, UrSim};
+
+use crate::grid::Grid;
 
 /// Every read, write and connect of a raw client.
 const IO_TIMEOUT: Duration = Duration::from_secs(5);
@@ -120,14 +121,14 @@ fn fresh_client_works(sim: &UrSim, octet: u8) {
         "{:?}",
         sim.log()
     );
-    let grid = RegionToGrid::ur3_default().unwrap();
+    let grid = Grid::ur3();
     let fast = LinearMotion {
         speed_m_per_s: 0.5,
         accel_m_per_s2: 2.0,
     };
-    arm.move_linear(grid.pose(4).unwrap(), &fast)
+    arm.move_linear(grid.pose(4), &fast)
         .unwrap_or_else(|e| panic!("moveL: {e}; log {:?}", sim.log()));
-    assert!(arm.tool_pose().unwrap().distance_m(grid.pose(4).unwrap()) < 1e-4);
+    assert!(arm.tool_pose().unwrap().distance_m(grid.pose(4)) < 1e-4);
 }
 
 #[test]
@@ -376,7 +377,7 @@ fn a_client_vanishing_mid_move_without_a_watchdog_leaves_the_move_to_finish() {
     // As on a real controller: nothing in ur_rtde's script notices a client that went, so the
     // running move ends at its target and the arm rests there.
     let sim = on_any_ports(27);
-    let target = *RegionToGrid::ur3_default().unwrap().pose(0).unwrap();
+    let target = *Grid::ur3().pose(0);
     let mut client = RawControl::connect(&sim);
     client.start_move(&sim, &target, 0.25);
     drop(client);
@@ -397,7 +398,7 @@ fn a_client_vanishing_mid_move_without_a_watchdog_leaves_the_move_to_finish() {
 fn a_client_vanishing_mid_move_with_a_watchdog_stops_the_arm() {
     const WATCHDOG_HZ: f64 = 2.0;
     let sim = on_any_ports(28);
-    let target = *RegionToGrid::ur3_default().unwrap().pose(0).unwrap();
+    let target = *Grid::ur3().pose(0);
     let mut client = RawControl::connect(&sim);
     client.command(
         SET_WATCHDOG,

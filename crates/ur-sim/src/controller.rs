@@ -13,8 +13,8 @@ use std::collections::VecDeque;
 use nalgebra::{Isometry3, Vector6};
 
 use super::motion::Trapezoid;
-use crate::kinematics::{self, Joints, UrModel};
-use crate::status::{self, robot_mode, runtime_state, safety_mode};
+use ur_bridge::kinematics::{self, Joints, UrModel};
+use ur_bridge::status::{self, robot_mode, runtime_state, safety_mode};
 
 /// ur_rtde command numbers this controller executes (`RTDE::RobotCommand::Type`).
 mod cmd {
@@ -777,8 +777,8 @@ impl Controller {
     }
 }
 
-fn pose6(v: &[f64; 6]) -> hand_traits::Pose {
-    hand_traits::Pose {
+fn pose6(v: &[f64; 6]) -> ur_bridge::Pose {
+    ur_bridge::Pose {
         position_m: [v[0], v[1], v[2]],
         rotation_vec_rad: [v[3], v[4], v[5]],
     }
@@ -810,7 +810,7 @@ mod tests {
     fn running() -> Controller {
         let mut c = Controller::new(
             UrModel::ur3(),
-            crate::RegionToGrid::HOME_Q,
+            ur_bridge::kinematics::HOME_Q,
             robot_mode::RUNNING,
         );
         c.receive_script("def rtde_control():\n# HEADER_BEGIN\n    global reg_offset_float = # float register offset\n0    global reg_offset_int = # int register offset\n0    global y = 1\n    def signal_ready():\n    def process_cmd(cmd):\nend\n");
@@ -859,7 +859,7 @@ mod tests {
         assert_eq!(c.runtime_state, runtime_state::PLAYING, "{:?}", c.log);
         c.model.q_max_rad[0] = 0.05;
         c.in_double[..6].copy_from_slice(&{
-            let mut q = crate::RegionToGrid::HOME_Q;
+            let mut q = ur_bridge::kinematics::HOME_Q;
             q[0] = 0.2;
             q
         });

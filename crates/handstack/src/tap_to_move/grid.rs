@@ -1,12 +1,11 @@
-//! The seed's region → grid map (seed 002 §IV-B: "the region recognised by the CNN is mapped to
-//! a predefined robot position on a grid"): 9 pad regions → 9 tool poses, each checked for a
-//! joint solution within the arm's reach and joint limits, reached in a straight line from home.
-
-use core::f64::consts::FRAC_PI_2;
+//! The region → grid map of tap-to-move ("the region recognised by the CNN is mapped to a
+//! predefined robot position on a grid", §IV-B of the paper cited in the parent module): 9 pad regions →
+//! 9 tool poses, each checked for a joint solution within the arm's reach and joint limits,
+//! reached in a straight line from home.
 
 use hand_traits::Pose;
 
-use crate::kinematics::{self, Joints, KinematicsError, UrModel};
+use ur_bridge::kinematics::{self, Joints, KinematicsError, UrModel};
 
 /// Regions of the pad, and positions on the grid.
 pub const REGIONS: usize = 9;
@@ -52,8 +51,9 @@ pub struct RegionToGrid {
 const LINE_CHECKS: usize = 20;
 
 impl RegionToGrid {
-    /// The home joint configuration: shoulder up, forearm level, tool pointing down.
-    pub const HOME_Q: Joints = [0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0];
+    /// The home joint configuration: shoulder up, forearm level, tool pointing down
+    /// ([`kinematics::HOME_Q`]).
+    pub const HOME_Q: Joints = kinematics::HOME_Q;
 
     /// A grid from explicit poses, validated against `model` from `home_q`.
     pub fn new(model: &UrModel, home_q: Joints, poses: [Pose; REGIONS]) -> Result<Self, GridError> {
@@ -92,13 +92,14 @@ impl RegionToGrid {
     /// orientation as at home. Region `r` is row `r / 3` (along y), column `r % 3` (along x).
     ///
     /// ```
-    /// use ur_bridge::{kinematics::UrModel, RegionToGrid};
+    /// use handstack::tap_to_move::RegionToGrid;
+    /// use ur_bridge::kinematics::UrModel;
     /// let grid = RegionToGrid::square(&UrModel::ur3(), RegionToGrid::HOME_Q, [-0.30, -0.11, 0.20], 0.06)?;
     /// let p4 = grid.pose(4)?; // the centre
     /// assert!((p4.position_m[0] + 0.30).abs() < 1e-12);
     /// // 0.9 m from the base is beyond a UR3's 0.5 m reach:
     /// assert!(RegionToGrid::square(&UrModel::ur3(), RegionToGrid::HOME_Q, [-0.9, 0.0, 0.2], 0.06).is_err());
-    /// # Ok::<(), ur_bridge::GridError>(())
+    /// # Ok::<(), handstack::tap_to_move::GridError>(())
     /// ```
     pub fn square(
         model: &UrModel,

@@ -7,11 +7,12 @@
 use std::net::Ipv4Addr;
 use std::time::{Duration, Instant};
 
-use hand_traits::{LinearMotion, Pose};
-use ur_bridge::kinematics::{self, UrModel};
-use ur_bridge::sim::{SimConfig, TimeScale, UrSim};
+use ur_bridge::kinematics::{self, HOME_Q, UrModel};
 use ur_bridge::status::robot_mode;
-use ur_bridge::{JointMotion, RegionToGrid, UrArm, UrConfig, UrError};
+use ur_bridge::{JointMotion, LinearMotion, Pose, UrArm, UrConfig, UrError};
+use ur_sim::{SimConfig, TimeScale, UrSim};
+
+use crate::grid::Grid;
 
 /// 0.1 mm: the bound on the final TCP position.
 const TCP_TOLERANCE_M: f64 = 1e-4;
@@ -78,7 +79,7 @@ fn connects_and_reports_state() {
     assert!(status.is_program_running(), "{status:?} {:?}", sim.log());
     assert!(!status.is_protective_stopped());
     let q = arm.joint_positions().unwrap();
-    assert_eq!(q, RegionToGrid::HOME_Q);
+    assert_eq!(q, HOME_Q);
     let expected = kinematics::to_pose(&UrModel::ur3().forward(&q));
     assert!(arm.tool_pose().unwrap().distance_m(&expected) < 1e-12);
     assert!(
@@ -90,11 +91,11 @@ fn connects_and_reports_state() {
 
 #[test]
 fn move_j_and_move_l_reach_every_grid_pose() {
-    let grid = RegionToGrid::ur3_default().unwrap();
+    let grid = Grid::ur3();
     let (sim, mut arm) = start(12, |_| {}, |_| {});
     let home = *grid.home();
     for region in 0..9u16 {
-        let target = *grid.pose(region).unwrap();
+        let target = *grid.pose(region);
         arm.move_joints_to_pose(&target, &fast_joint())
             .unwrap_or_else(|e| panic!("moveJ {region}: {e} {:?}", sim.log()));
         let d = arm.tool_pose().unwrap().distance_m(&target);
@@ -111,9 +112,9 @@ fn move_j_and_move_l_reach_every_grid_pose() {
 
 #[test]
 fn async_move_stops_midway() {
-    let grid = RegionToGrid::ur3_default().unwrap();
+    let grid = Grid::ur3();
     let (_sim, mut arm) = start(13, |_| {}, |_| {});
-    let target = *grid.pose(0).unwrap();
+    let target = *grid.pose(0);
     let slow = LinearMotion {
         speed_m_per_s: 0.05,
         accel_m_per_s2: 0.5,
@@ -186,10 +187,9 @@ fn unreachable_pose_is_a_protective_stop() {
         Ok(_) => panic!("connected to a protectively stopped arm"),
     }
     arm.recover_from_protective_stop().unwrap();
-    let grid = RegionToGrid::ur3_default().unwrap();
-    arm.move_linear(grid.pose(4).unwrap(), &fast_linear())
-        .unwrap();
-    assert!(arm.tool_pose().unwrap().distance_m(grid.pose(4).unwrap()) < TCP_TOLERANCE_M);
+    let grid = Grid::ur3();
+    arm.move_linear(grid.pose(4), &fast_linear()).unwrap();
+    assert!(arm.tool_pose().unwrap().distance_m(grid.pose(4)) < TCP_TOLERANCE_M);
 }
 
 /// A moveL 5 m away. A real controller does not refuse it up front: ur_rtde's
@@ -207,8 +207,8 @@ fn move_l_five_metres_away_is_unreachable_and_stops_the_arm_inside_its_reach() {
 
     // Asked first: no solution, and the arm does not move.
     assert!(!arm.is_reachable(&far).unwrap(), "{:?}", sim.log());
-    let grid = RegionToGrid::ur3_default().unwrap();
-    assert!(arm.is_reachable(grid.pose(4).unwrap()).unwrap());
+    let grid = Grid::ur3();
+    assert!(arm.is_reachable(grid.pose(4)).unwrap());
     let q1 = sim.joints();
     assert!(
         q0.iter().zip(&q1).all(|(a, b)| (a - b).abs() < 1e-9),
@@ -293,9 +293,9 @@ fn a_host_with_nothing_listening_is_connection_refused() {
 
 #[test]
 fn joint_limit_is_a_protective_stop() {
-    let limit = RegionToGrid::HOME_Q[0] + 0.2;
+    let limit = HOME_Q[0] + 0.2;
     let (sim, mut arm) = start(15, |c| c.model.q_max_rad[0] = limit, |_| {});
-    let mut q = RegionToGrid::HOME_Q;
+    let mut q = HOME_Q;
     q[0] += 0.5;
     let err = arm.move_joints(&q, &fast_joint()).unwrap_err();
     assert!(matches!(err, UrError::ProtectiveStop { .. }), "{err}");
@@ -308,13 +308,13 @@ fn joint_limit_is_a_protective_stop() {
 
 #[test]
 fn killed_controller_is_a_typed_error_without_hang() {
-    let grid = RegionToGrid::ur3_default().unwrap();
+    let grid = Grid::ur3();
     let (sim, mut arm) = start(16, |_| {}, |_| {});
     let slow = LinearMotion {
         speed_m_per_s: 0.05,
         accel_m_per_s2: 0.5,
     };
-    let handle = arm.start_move_linear(grid.pose(8).unwrap(), &slow).unwrap();
+    let handle = arm.start_move_linear(grid.pose(8), &slow).unwrap();
     while arm.progress(&handle).unwrap().fraction < 0.1 {}
     sim.kill();
     let t0 = Instant::now();
@@ -379,13 +379,13 @@ fn powers_up_over_the_dashboard() {
 /// The arm polls every 1 ms, so the client sees the end within a tenth of a cycle at either
 /// scale (the default 8 ms poll would add up to `scale` × 8 ms of controller time).
 fn timed_grid_move(octet: u8, scale: f64) -> (f64, f64) {
-    let grid = RegionToGrid::ur3_default().unwrap();
+    let grid = Grid::ur3();
     let (sim, mut arm) = start(
         octet,
         |c| c.time_scale = TimeScale::new(scale).unwrap(),
         |c| c.poll_period = Duration::from_millis(1),
     );
-    let target = *grid.pose(0).unwrap();
+    let target = *grid.pose(0);
     let t0 = arm.controller_time_s().unwrap();
     let wall = Instant::now();
     arm.move_linear(&target, &LinearMotion::default())
@@ -411,9 +411,9 @@ fn timed_grid_move(octet: u8, scale: f64) -> (f64, f64) {
 #[test]
 fn time_scale_shortens_the_wall_time_of_a_move_not_its_controller_time() {
     const SCALE: f64 = 10.0;
-    let grid = RegionToGrid::ur3_default().unwrap();
+    let grid = Grid::ur3();
     // The trapezoid: 0.141 m at 0.25 m/s with 1.2 m/s² ramps.
-    let length = grid.home().distance_m(grid.pose(0).unwrap());
+    let length = grid.home().distance_m(grid.pose(0));
     let profile_s = length / 0.25 + 0.25 / 1.2;
     // Real time, then ten times faster: one after the other, so neither loads the other.
     let (real_ctrl, real_wall) = timed_grid_move(19, 1.0);
