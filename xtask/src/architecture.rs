@@ -19,9 +19,10 @@
 //!   third-party crates its row lists; a tool's third-party ones are those its row lists (xtask
 //!   stays thin);
 //! - every edge between workspace crates is one the table allows;
-//! - reproduction and tool crates are `publish = false`; product crates are publishable, and
-//!   docs.rs documents all their features (as the doc step of `cargo xtask test` does);
-//! - a product crate's `src/` names no repository path (`"fixtures/…"`, `"docs/…"` literals);
+//! - reproduction and tool crates are `publish = false`; product crates and simulators are
+//!   publishable, and docs.rs documents all their features (as the doc step of `cargo xtask
+//!   test` does);
+//! - a published crate's `src/` names no repository path (`"fixtures/…"`, `"docs/…"` literals);
 //! - no product crate has a binary target but `handstack`'s `handstack` ([`product_bins`]);
 //! - no product crate's `src/` names a paper seed (`seed 000`…`seed 002`, `seed000`…:
 //!   [`seed_mentions`]).
@@ -45,9 +46,10 @@ pub const TABLE_HEADING: &str = "## Dependency rules";
 pub enum Kind {
     /// Published, useful alone.
     Product,
-    /// A published chip driver: embedded-hal and `hand-traits` only.
+    /// A published chip driver: embedded-hal and the workspace crates its row lists only.
     Driver,
-    /// `publish = false`: the papers' physics behind the devices' real interfaces.
+    /// Published: a tool a user runs as a process beside their own code, answering a real
+    /// protocol on a real transport; it may use the product crate that owns the protocol.
     Simulator,
     /// `publish = false`: the papers' datasets, protocols and reports.
     Reproduction,
@@ -70,9 +72,15 @@ impl Kind {
         })
     }
 
-    /// Published to crates.io (product crates and drivers).
+    /// A product crate (product crates and drivers): published, useful alone, and never on a
+    /// simulator or reproduction crate.
     pub fn is_product(self) -> bool {
         matches!(self, Kind::Product | Kind::Driver)
+    }
+
+    /// Published to crates.io (product crates, drivers and simulators).
+    pub fn is_published(self) -> bool {
+        self.is_product() || self == Kind::Simulator
     }
 }
 
@@ -282,17 +290,21 @@ pub fn check(rules: &BTreeMap<String, Rule>, packages: &[Package]) -> Vec<Violat
             continue;
         };
         let published = !p.unpublished;
+        let what = if rule.kind == Kind::Simulator {
+            "a simulator"
+        } else {
+            "a product crate"
+        };
         match rule.kind {
-            Kind::Simulator | Kind::Reproduction | Kind::Tool if published => say(format!(
+            Kind::Reproduction | Kind::Tool if published => say(format!(
                 "`{}` ({:?}) must be publish = false",
                 p.name, rule.kind
             )),
-            Kind::Product | Kind::Driver if !published => say(format!(
-                "`{}` is a product crate but publish = false",
-                p.name
-            )),
-            Kind::Product | Kind::Driver if !p.docs_rs_all_features => say(format!(
-                "`{}` is a product crate without `[package.metadata.docs.rs] all-features = true`",
+            k if k.is_published() && !published => {
+                say(format!("`{}` is {what} but publish = false", p.name));
+            }
+            k if k.is_published() && !p.docs_rs_all_features => say(format!(
+                "`{}` is {what} without `[package.metadata.docs.rs] all-features = true`",
                 p.name
             )),
             _ => {}
@@ -341,12 +353,12 @@ pub fn check(rules: &BTreeMap<String, Rule>, packages: &[Package]) -> Vec<Violat
     bad
 }
 
-/// Repository paths named in string literals under `src/` of each product crate:
-/// `(file, line number, line)`.
+/// Repository paths named in string literals under `src/` of each published crate (product
+/// crates and simulators): `(file, line number, line)`.
 pub fn repository_paths(rules: &BTreeMap<String, Rule>, packages: &[Package]) -> Vec<Violation> {
     let mut bad = Vec::new();
     for p in packages {
-        if !rules.get(&p.name).is_some_and(|r| r.kind.is_product()) {
+        if !rules.get(&p.name).is_some_and(|r| r.kind.is_published()) {
             continue;
         }
         let mut files = Vec::new();
@@ -401,8 +413,6 @@ pub const STACK_BIN: (&str, &str) = ("handstack", "handstack");
 /// own. [`product_bins`] fails on a binary missing here, and on a line here whose binary is
 /// gone: delete the line when its simulator moves out of the product crate.
 pub const KNOWN_PRODUCT_BINS: &[(&str, &str)] = &[
-    // The Protocol 2.0 servo-bus simulator on a pty (feature `sim`), for the ROBOTIS SDK.
-    ("hand-control", "dxl-sim"),
     // The UR controller simulator on loopback (feature `sim`), for ur_rtde.
     ("ur-bridge", "ur-sim"),
 ];
@@ -419,15 +429,6 @@ pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
     ("crates/aot-locate/src/label.rs", 2),
     ("crates/aot-locate/src/locator.rs", 1),
     ("crates/aot-locate/src/score.rs", 2),
-    // hand-control: the grasp loop and the servo models the grasping paper used.
-    ("crates/hand-control/src/control_table/mx28.rs", 1),
-    ("crates/hand-control/src/control_table/rh_p12_rn.rs", 1),
-    ("crates/hand-control/src/grasp_loop/config.rs", 3),
-    ("crates/hand-control/src/grasp_loop/mod.rs", 1),
-    ("crates/hand-control/src/grasp_loop/runner.rs", 2),
-    ("crates/hand-control/src/lib.rs", 1),
-    ("crates/hand-control/src/servo_hand/mod.rs", 1),
-    ("crates/hand-control/src/sim/servo.rs", 1),
     // hand-traits: the contact-pressure estimate.
     ("crates/hand-traits/src/estimate.rs", 1),
     // hand-zenoh: the force topic.
@@ -468,8 +469,9 @@ pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
 /// Where the known exceptions live, for the messages.
 const LISTS: &str = "xtask/src/architecture.rs";
 
-/// Binary targets of product crates (published ones, by `cargo metadata`) against
-/// [`STACK_BIN`] and `known` ([`KNOWN_PRODUCT_BINS`] in the real check).
+/// Binary targets of the published ones among `packages` (by `cargo metadata`) against
+/// [`STACK_BIN`] and `known` ([`KNOWN_PRODUCT_BINS`] in the real check); [`violations`] gives
+/// it the product crates (a simulator ships its binary).
 pub fn product_bins(packages: &[Package], known: &[(&str, &str)]) -> Vec<Violation> {
     let mut bad = Vec::new();
     let shipped: BTreeSet<(&str, &str)> = packages
@@ -581,19 +583,26 @@ pub const END: &str = "<!-- end of generated part -->";
 /// A group of the drawn graph, in the order drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Group {
-    /// Published (`publish` not false).
+    /// Published (`publish` not false), but simulators.
     Product,
     /// Kinds `reproduction` and `composition`.
     Reproduction,
-    /// Kind `simulator`.
+    /// Kind `simulator` (published).
     Simulator,
     /// Kind `tool`.
     Tool,
 }
 
 impl Group {
-    /// The group of `p`: product if published, else by its kind in the rules table.
+    /// The group of `p`: a simulator by its kind in the rules table, else product if published,
+    /// else by its kind.
     pub fn of(p: &Package, rules: &BTreeMap<String, Rule>) -> Result<Group> {
+        if rules
+            .get(&p.name)
+            .is_some_and(|r| r.kind == Kind::Simulator)
+        {
+            return Ok(Group::Simulator);
+        }
         if !p.unpublished {
             return Ok(Group::Product);
         }
@@ -618,7 +627,7 @@ impl Group {
         match self {
             Group::Product => "Product crates (published)",
             Group::Reproduction => "Reproduction crates (publish = false)",
-            Group::Simulator => "Simulators (publish = false)",
+            Group::Simulator => "Simulators (published)",
             Group::Tool => "Tools (publish = false)",
         }
     }
@@ -767,7 +776,12 @@ pub fn violations(
 ) -> Vec<Violation> {
     let mut bad = check(rules, packages);
     bad.extend(repository_paths(rules, packages));
-    bad.extend(product_bins(packages, KNOWN_PRODUCT_BINS));
+    let products: Vec<Package> = packages
+        .iter()
+        .filter(|p| rules.get(&p.name).is_some_and(|r| r.kind.is_product()))
+        .cloned()
+        .collect();
+    bad.extend(product_bins(&products, KNOWN_PRODUCT_BINS));
     bad.extend(seed_mentions(root, packages, KNOWN_SEED_MENTIONS));
     bad
 }

@@ -1,9 +1,9 @@
 //! The consumer test: a scratch crate outside the workspace (`target/consumer/`) that depends
-//! only on the `.crate` files `cargo package` wrote, unpacked afresh, and runs every product
+//! only on the `.crate` files `cargo package` wrote, unpacked afresh, and runs every published
 //! crate's README as its own doctests — what a user who added the crates from crates.io would
 //! run. Third-party versions come from the workspace's `Cargo.lock`, copied in.
 
-use crate::package::product_crates;
+use crate::package::published_crates;
 use crate::run::{cargo, step, workspace_dev_profile};
 use anyhow::{Context, Result, bail};
 use std::fmt::Write as _;
@@ -12,10 +12,9 @@ use std::process::Command;
 
 /// The features each README's examples use beyond the defaults (the chip models and simulators
 /// stand in for hardware), and the crates a README's example uses besides its own.
-const README_NEEDS: [(&str, &[&str]); 4] = [
+const README_NEEDS: [(&str, &[&str]); 3] = [
     ("baro-drivers", &["sim"]),
     ("imu-icm20789", &["sim"]),
-    ("hand-control", &["sim"]),
     ("ur-bridge", &["sim"]),
 ];
 
@@ -40,7 +39,7 @@ pub fn run(root: &Path, python: &Path) -> Result<()> {
     std::fs::create_dir_all(consumer.join("src")).context("create target/consumer")?;
     std::fs::create_dir_all(&unpacked).context("create target/consumer/crates")?;
     let mut packages = Vec::new();
-    for name in product_crates(root)? {
+    for name in published_crates(root)? {
         packages.push(unpack(root, &name, &unpacked)?);
     }
     std::fs::write(consumer.join("Cargo.toml"), manifest(&packages)?)?;

@@ -9,8 +9,8 @@
 //!
 //! - `test`: sets up `.venv` and Chromium, then fmt check, clippy `-D warnings`, the `no_std`
 //!   crates built for two thumb targets (rustup adds them), the fingertip firmware linked for
-//!   both and its pipeline run on the host, the MSRV check of every product crate on its
-//!   declared toolchain, `cargo package` of every product crate with verification and the
+//!   both and its pipeline run on the host, the MSRV check of every published crate on its
+//!   declared toolchain, `cargo package` of every published crate with verification and the
 //!   consumer test of every README against the packages, every test, docs, and
 //!   `fixtures --check` (once more with numpy's widest SIMD kernels off): the one command CI runs.
 //! - `fixtures [--check]`: regenerates every generated fixture, or checks the committed ones
@@ -29,7 +29,7 @@
 //!   Each trains with `papers train MODEL`, then draws with `papers docs MODEL` ([`train`]).
 //! - `firmware [--write]`: the fingertip firmware (`firmware/fingertip`) linked for both thumb
 //!   targets and run on the host; `--write` regenerates `docs/embedded.md`'s figures.
-//! - `package`: `cargo package` of every product crate, then the consumer test.
+//! - `package`: `cargo package` of every published crate, then the consumer test.
 //! - `trade`: the speed / accuracy trade report (`papers trade`) into `docs/trade.md`.
 //! - `demo [--screenshot]`: runs every scene in `fixtures/scenes/` on the simulated default
 //!   and writes `target/demo/report.html` (`--screenshot`: also `docs/demo-report.png`).

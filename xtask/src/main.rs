@@ -33,7 +33,7 @@ commands:
   train contact-cnn [--docs-only]
                             run the contact CNN's Table I protocol, write weights, metrics, plots,
                             docs (--docs-only: redraw plots and docs from the committed metrics)
-  package                   cargo package every product crate (verified), then run every README's
+  package                   cargo package every published crate (verified), then run every README's
                             examples against the packages from a scratch crate (the consumer test)
   firmware [--write]        link the fingertip firmware for both thumb targets, run it on the host;
                             --write: regenerate docs/embedded.md (sizes, callgrind counts)

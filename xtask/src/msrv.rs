@@ -1,4 +1,4 @@
-//! The minimum supported Rust versions: every product crate ([`product_crates`]) checked on
+//! The minimum supported Rust versions: every published crate ([`published_crates`]) checked on
 //! the toolchain of the `rust-version` its manifest declares, with every feature, its library
 //! and its binaries, against the workspace's `Cargo.lock` (`--locked`: a locked dependency that
 //! needs a newer Rust fails the check, as it would for a user on that toolchain). Crates that
@@ -7,28 +7,28 @@
 //! stable toolchain's.
 
 use crate::architecture::workspace_packages;
-use crate::package::product_crates;
+use crate::package::published_crates;
 use crate::run::{rustup_lines, step};
 use anyhow::{Context, Result, bail};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 
-/// Each product crate's declared `rust-version` (`cargo metadata --no-deps`), by crate name;
-/// fails if a product crate declares none.
+/// Each published crate's declared `rust-version` (`cargo metadata --no-deps`), by crate name;
+/// fails if a published crate declares none.
 pub fn declared(root: &Path) -> Result<BTreeMap<String, String>> {
     let packages = workspace_packages(root)?;
-    product_crates(root)?
+    published_crates(root)?
         .into_iter()
         .map(|name| {
             let package = packages
                 .iter()
                 .find(|p| p.name == name)
-                .with_context(|| format!("product crate {name} is not a workspace member"))?;
+                .with_context(|| format!("published crate {name} is not a workspace member"))?;
             let version = package
                 .rust_version
                 .clone()
-                .with_context(|| format!("product crate {name} declares no rust-version"))?;
+                .with_context(|| format!("published crate {name} declares no rust-version"))?;
             Ok((name, version))
         })
         .collect()
@@ -70,7 +70,7 @@ pub fn ensure_toolchain(name: &str) -> Result<()> {
     Ok(())
 }
 
-/// Checks every product crate on the toolchain of its declared `rust-version`, one
+/// Checks every published crate on the toolchain of its declared `rust-version`, one
 /// `rustup run TOOLCHAIN cargo check --locked --all-features --lib --bins -p …` per version.
 pub fn check(root: &Path) -> Result<()> {
     let mut groups: BTreeMap<String, Vec<String>> = BTreeMap::new();

@@ -1,6 +1,6 @@
-//! The published crates as crates.io would get them: `cargo package` of every product crate
-//! (kinds `product` and `driver` in `docs/architecture.md`'s rules table), each verified by
-//! building it from its packaged files alone, the workspace's own crates among its
+//! The published crates as crates.io would get them: `cargo package` of every published crate
+//! (kinds `product`, `driver` and `simulator` in `docs/architecture.md`'s rules table), each
+//! verified by building it from its packaged files alone, the workspace's own crates among its
 //! dependencies taken from the packages just made.
 
 use crate::architecture::parse_rules;
@@ -8,27 +8,27 @@ use crate::run::{cargo, step, workspace_dev_profile};
 use anyhow::{Context, Result};
 use std::path::Path;
 
-/// The product crates of the rules table, by name.
-pub fn product_crates(root: &Path) -> Result<Vec<String>> {
+/// The published crates of the rules table (product crates, drivers and simulators), by name.
+pub fn published_crates(root: &Path) -> Result<Vec<String>> {
     let doc = std::fs::read_to_string(root.join("docs/architecture.md"))
         .context("docs/architecture.md")?;
     Ok(parse_rules(&doc)?
         .into_iter()
-        .filter(|(_, rule)| rule.kind.is_product())
+        .filter(|(_, rule)| rule.kind.is_published())
         .map(|(name, _)| name)
         .collect())
 }
 
-/// Packages and verifies every product crate (uncommitted edits included).
+/// Packages and verifies every published crate (uncommitted edits included).
 pub fn run(root: &Path) -> Result<()> {
-    let crates = product_crates(root)?;
+    let crates = published_crates(root)?;
     forget_unpacked_packages(&crates)?;
     let mut cmd = cargo(root);
     workspace_dev_profile(&mut cmd).args(["package", "--allow-dirty"]);
     for name in &crates {
         cmd.args(["-p", name]);
     }
-    step("package the product crates", &mut cmd)
+    step("package the published crates", &mut cmd)
 }
 
 /// Removes our crates' copies that an earlier `cargo package` unpacked from its temporary

@@ -9,7 +9,7 @@ use std::path::Path;
 /// the `no_std` builds for the thumb targets ([`embedded::build`]), the fingertip firmware
 /// linked for both and run on the host ([`firmware::check`]), the MSRV check ([`msrv::check`]),
 /// `cargo package` of every
-/// product crate ([`package::run`]) and every README against the packages ([`consumer::run`]),
+/// published crate ([`package::run`]) and every README against the packages ([`consumer::run`]),
 /// every test with every feature, the instruction-count gate (`bench --check`),
 /// the docs with warnings denied, and `fixtures --check` (again with numpy's widest SIMD kernels off).
 pub fn run(root: &Path) -> Result<()> {
