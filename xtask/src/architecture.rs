@@ -15,7 +15,7 @@
 //! - a product crate (kind `product` or `driver`) never depends on a `simulator` or
 //!   `reproduction` crate, under any feature and as no kind of dependency;
 //! - nothing depends on the `composition` root;
-//! - a driver's normal and build dependencies are `hand-traits` among ours and only the
+//! - a driver's normal and build dependencies are the workspace crates its row lists and only the
 //!   third-party crates its row lists; a tool's third-party ones are those its row lists (xtask
 //!   stays thin);
 //! - every edge between workspace crates is one the table allows;
