@@ -16,7 +16,7 @@
 //!   `reproduction` crate, under any feature and as no kind of dependency; a simulator never
 //!   depends on a `reproduction` crate;
 //! - nothing depends on the `composition` root;
-//! - a driver's normal and build dependencies are `hand-traits` among ours and only the
+//! - a driver's normal and build dependencies are the workspace crates its row lists and only the
 //!   third-party crates its row lists; a tool's third-party ones are those its row lists (xtask
 //!   stays thin);
 //! - every edge between workspace crates is one the table allows;
@@ -48,7 +48,7 @@ pub const TABLE_HEADING: &str = "## Dependency rules";
 pub enum Kind {
     /// Published, useful alone.
     Product,
-    /// A published chip driver: embedded-hal and `hand-traits` only.
+    /// A published chip driver: embedded-hal and the workspace crates its row lists only.
     Driver,
     /// Published: a program a user runs beside their own code (`cargo install ur-sim`), answering
     /// a real protocol on a real transport; it may use the product crate owning that protocol.
@@ -74,7 +74,8 @@ impl Kind {
         })
     }
 
-    /// A product crate: published, useful alone (product crates and drivers).
+    /// A product crate (product crates and drivers): published, useful alone, and never on a
+    /// simulator or reproduction crate.
     pub fn is_product(self) -> bool {
         matches!(self, Kind::Product | Kind::Driver)
     }
@@ -418,10 +419,7 @@ pub const STACK_BIN: (&str, &str) = ("handstack", "handstack");
 /// to "no product crate has a binary but `handstack`", each a simulator run as a process of its
 /// own. [`product_bins`] fails on a binary missing here, and on a line here whose binary is
 /// gone: delete the line when its simulator moves out of the product crate.
-pub const KNOWN_PRODUCT_BINS: &[(&str, &str)] = &[
-    // The Protocol 2.0 servo-bus simulator on a pty (feature `sim`), for the ROBOTIS SDK.
-    ("hand-control", "dxl-sim"),
-];
+pub const KNOWN_PRODUCT_BINS: &[(&str, &str)] = &[];
 
 /// Files of product crates' `src/` that name a paper seed, with how many times: known exceptions
 /// to "no product crate's `src/` names a paper seed" (`seed 000`, `seed001`, …, any case), as
@@ -435,15 +433,6 @@ pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
     ("crates/aot-locate/src/label.rs", 2),
     ("crates/aot-locate/src/locator.rs", 1),
     ("crates/aot-locate/src/score.rs", 2),
-    // hand-control: the grasp loop and the servo models the grasping paper used.
-    ("crates/hand-control/src/control_table/mx28.rs", 1),
-    ("crates/hand-control/src/control_table/rh_p12_rn.rs", 1),
-    ("crates/hand-control/src/grasp_loop/config.rs", 3),
-    ("crates/hand-control/src/grasp_loop/mod.rs", 1),
-    ("crates/hand-control/src/grasp_loop/runner.rs", 2),
-    ("crates/hand-control/src/lib.rs", 1),
-    ("crates/hand-control/src/servo_hand/mod.rs", 1),
-    ("crates/hand-control/src/sim/servo.rs", 1),
     // hand-traits: the contact-pressure estimate.
     ("crates/hand-traits/src/estimate.rs", 1),
     // hand-zenoh: the force topic.

@@ -1,7 +1,8 @@
 //! The consumer test: a scratch crate outside the workspace (`target/consumer/`) that depends
 //! only on the `.crate` files `cargo package` wrote, unpacked afresh, and runs every published
 //! crate's README (product crates and simulators) as its own doctests — what a user who added
-//! the crates from crates.io would run. Third-party versions come from the workspace's `Cargo.lock`, copied in.
+//! the crates from crates.io would run. Third-party versions come from the workspace's
+//! `Cargo.lock`, copied in.
 
 use crate::package::published_crates;
 use crate::run::{cargo, step, workspace_test_profile};
@@ -12,11 +13,7 @@ use std::process::Command;
 
 /// The features each README's examples use beyond the defaults (the chip models and simulators
 /// stand in for hardware), and the crates a README's example uses besides its own.
-const README_NEEDS: [(&str, &[&str]); 3] = [
-    ("baro-drivers", &["sim"]),
-    ("imu-icm20789", &["sim"]),
-    ("hand-control", &["sim"]),
-];
+const README_NEEDS: [(&str, &[&str]); 2] = [("baro-drivers", &["sim"]), ("imu-icm20789", &["sim"])];
 
 /// Crates the README examples use that are not ours: a driver user has embedded-hal.
 const EXTRA_DEPENDENCIES: [(&str, &str); 1] = [("embedded-hal", "1.0.0")];

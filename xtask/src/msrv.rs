@@ -1,6 +1,6 @@
-//! The minimum supported Rust versions: every published crate ([`published_crates`]: product
-//! crates and simulators) checked on the toolchain of the `rust-version` its manifest declares,
-//! with every feature, its library and its binaries, against the workspace's `Cargo.lock` (`--locked`: a locked dependency that
+//! The minimum supported Rust versions: every published crate ([`published_crates`]) checked on
+//! the toolchain of the `rust-version` its manifest declares, with every feature, its library
+//! and its binaries, against the workspace's `Cargo.lock` (`--locked`: a locked dependency that
 //! needs a newer Rust fails the check, as it would for a user on that toolchain). Crates that
 //! declare the same version are checked in one `cargo check`; rustup installs a missing
 //! toolchain (minimal profile) and says so. The builds go to `target/msrv`, apart from the
@@ -15,7 +15,7 @@ use std::path::Path;
 use std::process::Command;
 
 /// Each published crate's declared `rust-version` (`cargo metadata --no-deps`), by crate name;
-/// fails if one declares none.
+/// fails if a published crate declares none.
 pub fn declared(root: &Path) -> Result<BTreeMap<String, String>> {
     let packages = workspace_packages(root)?;
     published_crates(root)?

@@ -1,7 +1,7 @@
-//! The published crates as crates.io would get them: `cargo package` of every product crate and
-//! simulator (kinds `product`, `driver` and `simulator` in `docs/architecture.md`'s rules
-//! table), each verified by building it from its packaged files alone, the workspace's own
-//! crates among its dependencies taken from the packages just made.
+//! The published crates as crates.io would get them: `cargo package` of every published crate
+//! (kinds `product`, `driver` and `simulator` in `docs/architecture.md`'s rules table), each
+//! verified by building it from its packaged files alone, the workspace's own crates among its
+//! dependencies taken from the packages just made.
 
 use crate::architecture::parse_rules;
 use crate::run::{cargo, step, workspace_test_profile};

@@ -5,11 +5,11 @@
 //! # How the count is kept honest
 //!
 //! dhat's global allocator counts the heap blocks of *every* thread in the process, so whatever
-//! answers the bus is counted too. `hand_control::sim` cannot be that answerer here: its thread
-//! allocates for every packet it receives (`protocol::Parser::next_packet` unstuffs into a fresh
-//! `Vec`, `World::handle` builds its reply in another, each status packet's data is a `Vec`), a
-//! sync write included — so a window around `write_goals` would count the simulator's blocks, and
-//! a strict zero would be impossible even for an allocation-free driver.
+//! answers the bus is counted too. `dxl-sim`'s simulated bus cannot be that answerer here: its
+//! thread allocates for every packet it receives (`protocol::Parser::next_packet` unstuffs into a
+//! fresh `Vec`, the simulator builds its reply in another, each status packet's data is a
+//! `Vec`), a sync write included — so a window around `write_goals` would count the simulator's
+//! blocks, and a strict zero would be impossible even for an allocation-free driver.
 //!
 //! The bus's far end is therefore a scripted responder on a pty pair (`SerialPort::pair`, as the
 //! simulator uses): a thread that knows the exact bytes of every instruction this test sends

@@ -8,9 +8,6 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
-#[cfg(feature = "sim")]
-extern crate alloc;
-
 mod arm;
 mod contact;
 mod estimate;
@@ -18,8 +15,6 @@ mod force;
 mod frames;
 mod gripper;
 mod policy;
-#[cfg(feature = "sim")]
-pub mod sim;
 mod softness;
 mod source;
 

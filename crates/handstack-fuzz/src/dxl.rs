@@ -8,9 +8,9 @@
 use std::time::Duration;
 
 use arbitrary::{Arbitrary, Unstructured};
-use hand_control::fuzzing::{decode_replies, sim_answers};
+use dxl_sim::{SimConfig, answer_bytes};
+use hand_control::decode_replies;
 use hand_control::protocol::{MAX_ID, MAX_LEN, Parser, encode, instruction_id};
-use hand_control::sim::SimConfig;
 
 /// The servo IDs of the simulated bus and of the replies the driver expects.
 pub const IDS: [u8; 3] = [1, 2, 3];
@@ -109,7 +109,7 @@ pub fn sim(data: &[u8]) {
             Err(_) => return,
         }
     };
-    let answers = sim_answers(
+    let answers = answer_bytes(
         &SimConfig::with_ids(&IDS),
         &wire,
         chunk,

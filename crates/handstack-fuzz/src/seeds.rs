@@ -5,10 +5,9 @@
 use std::path::Path;
 use std::time::Duration;
 
+use dxl_sim::{SimConfig, answer_bytes};
 use hand_control::control_table::MX_28;
-use hand_control::fuzzing::sim_answers;
 use hand_control::protocol::{encode, instruction_id as ins, packet_id};
-use hand_control::sim::SimConfig;
 
 use crate::dxl::IDS;
 use crate::files::FILE_SEPARATOR;
@@ -141,7 +140,7 @@ fn dxl_status() -> Vec<Seed> {
     requests()
         .into_iter()
         .filter_map(|(name, wire)| {
-            let answers = sim_answers(
+            let answers = answer_bytes(
                 &SimConfig::with_ids(&IDS),
                 &wire,
                 wire.len(),

@@ -12,10 +12,9 @@
 //! The model fingertip rests at 1000 mbar and is pressed by 1, 2 and 3 mbar (sensors 1–3)
 //! from `HANDSTACK_RIG_PRESS_S` seconds after start (default 0.3; `never`: an empty hand).
 
-use baro_drivers::sim::{Conditions, Ms5611Sim};
+use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock};
 use embedded_hal::delay::DelayNs;
 use hand_control::grasp_loop::{LoopClock, StdClock};
-use hand_traits::sim::SimClock;
 use handstack::stack::platform::{I2cBus, Platform};
 use std::time::{Duration, Instant};
 

@@ -14,18 +14,18 @@ use std::cell::RefCell;
 use std::rc::Rc;
 use std::time::Duration;
 
+use dxl_sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
 use hand_control::control_table::MX_28;
 use hand_control::grasp_loop::{
     ConfigError, FaultKind, GraspLoop, LoopClock, LoopConfig, TorqueBand,
 };
-use hand_control::sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
 use hand_control::{PacketCounts, ServoHand};
 use hand_sim::SimError;
 use hand_sim::fingertip::{Fingertip, FingertipConfig};
 use hand_sim::grasp::rig::{ORIGIN_RAD, SERVO_ID};
 use hand_sim::grasp::{GraspBody, GraspPlant, GraspState, ObjectParams, RigParams};
-use hand_traits::sim::SimClock;
 use hand_traits::{PressureFrame, TactileSource};
+use sim_clock::SimClock;
 
 /// Physics step, s (hand-sim's grasp tests use the same).
 pub const DT_S: f64 = 1e-3;

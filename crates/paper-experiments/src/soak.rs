@@ -20,8 +20,8 @@ use std::time::{Duration, Instant};
 
 use core::fmt::Debug;
 
+use dxl_sim::REPLY_LATENCY;
 use hand_control::grasp_loop::{LoopFault, Mode, Recovery, TorqueBand};
-use hand_control::sim::REPLY_LATENCY;
 use hand_control::{DEFAULT_REPLY_LATENCY, Error, faults_from_hardware_error};
 use hand_sim::grasp::{ObjectKind, ObjectParams, RigParams};
 use hand_traits::SafeAction;

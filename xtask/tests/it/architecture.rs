@@ -44,6 +44,7 @@ fn the_workspace_graph_is_the_documented_one() {
         "tactile-nets",
         "hand-control",
         "ur-bridge",
+        "sim-clock",
     ] {
         assert!(rules[name].kind.is_product(), "{name}");
     }
@@ -54,6 +55,9 @@ fn the_workspace_graph_is_the_documented_one() {
     // whose protocol it answers and below none.
     assert_eq!(rules["ur-sim"].kind, Kind::Simulator);
     assert!(rules["ur-sim"].kind.is_published() && !rules["ur-sim"].kind.is_product());
+    // The servo bus on a pty is a published simulator, above the crate whose protocol it speaks.
+    assert_eq!(rules["dxl-sim"].kind, Kind::Simulator);
+    assert!(rules["dxl-sim"].kind.is_published() && !rules["dxl-sim"].kind.is_product());
     // The installable stack is a product; the papers' scenes are the composition root above it.
     assert_eq!(rules["handstack"].kind, Kind::Product);
     assert_eq!(rules["paper-scenes"].kind, Kind::Composition);
@@ -90,10 +94,15 @@ fn edge(to: &str, kind: &'static str, optional: bool) -> Edge {
 fn lawful() -> Vec<Package> {
     vec![
         package("hand-traits", false, &[]),
+        package("sim-clock", false, &[("embedded-hal", "normal", false)]),
         package(
             "baro-drivers",
             false,
-            &[("embedded-hal", "normal", false), ("rand", "normal", true)],
+            &[
+                ("embedded-hal", "normal", false),
+                ("rand", "normal", true),
+                ("sim-clock", "normal", true),
+            ],
         ),
         package("imu-icm20789", false, &[("embedded-hal", "normal", false)]),
         package("aot-locate", false, &[("hand-traits", "normal", false)]),
@@ -103,7 +112,22 @@ fn lawful() -> Vec<Package> {
         package("ur-bridge", false, &[("ur-bridge", "dev", false)]),
         package("ur-sim", false, &[("ur-bridge", "normal", false)]),
         package("hand-zenoh", false, &[("hand-traits", "normal", false)]),
-        package("hand-sim", true, &[("baro-drivers", "normal", false)]),
+        package(
+            "dxl-sim",
+            false,
+            &[
+                ("hand-control", "normal", false),
+                ("fuzzy-mamdani", "dev", false),
+            ],
+        ),
+        package(
+            "hand-sim",
+            true,
+            &[
+                ("baro-drivers", "normal", false),
+                ("dxl-sim", "normal", false),
+            ],
+        ),
         package("paper-fixtures", true, &[]),
         package("paper-experiments", true, &[("hand-sim", "normal", false)]),
         package("handstack-benches", true, &[("hand-sim", "normal", false)]),
@@ -166,6 +190,8 @@ fn the_lawful_stand_in_graph_passes() {
 fn a_product_crate_on_the_simulator_fails_under_any_feature_or_kind() {
     for (from, to, kind, optional) in [
         ("hand-control", "hand-sim", "normal", true),
+        ("hand-control", "dxl-sim", "dev", false),
+        ("baro-drivers", "dxl-sim", "normal", true),
         ("ur-bridge", "hand-sim", "dev", false),
         ("ur-bridge", "ur-sim", "dev", false),
         ("handstack", "ur-sim", "dev", false),
@@ -305,6 +331,25 @@ fn publish_flags_follow_the_kind_and_every_crate_is_documented() {
         bad.iter()
             .any(|b| b.contains("`hand-sim`") && b.contains("publish = false"))
     );
+    // A simulator is published, and documented as a product crate is.
+    let bad = after(|p| {
+        let dxl = p.iter_mut().find(|p| p.name == "dxl-sim").expect("dxl-sim");
+        dxl.unpublished = true;
+    });
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`dxl-sim` is a simulator but publish = false")),
+        "{bad:?}"
+    );
+    let bad = after(|p| {
+        let dxl = p.iter_mut().find(|p| p.name == "dxl-sim").expect("dxl-sim");
+        dxl.docs_rs_all_features = false;
+    });
+    assert!(
+        bad.iter()
+            .any(|b| b.contains("`dxl-sim` is a simulator without")),
+        "{bad:?}"
+    );
     let bad = after(|p| p.push(package("stray", false, &[])));
     assert!(
         bad.iter().any(|b| b.contains("`stray` is not in")),
@@ -335,19 +380,21 @@ fn a_product_crate_naming_a_repository_path_fails() {
 }
 
 #[test]
-fn the_packaged_crates_are_the_tables_product_crates_and_simulators() {
+fn the_packaged_crates_are_the_tables_published_crates() {
     let crates = xtask::package::published_crates(&xtask::workspace_root()).expect("the table");
     assert_eq!(
         crates,
         [
             "aot-locate",
             "baro-drivers",
+            "dxl-sim",
             "fuzzy-mamdani",
             "hand-control",
             "hand-traits",
             "hand-zenoh",
             "handstack",
             "imu-icm20789",
+            "sim-clock",
             "tactile-nets",
             "ur-bridge",
             "ur-sim",
@@ -357,10 +404,10 @@ fn the_packaged_crates_are_the_tables_product_crates_and_simulators() {
 
 #[test]
 fn a_product_crate_on_the_simulator_is_named_as_such() {
-    let bad = after(|p| add(p, "hand-control", "hand-sim", "normal", false));
+    let bad = after(|p| add(p, "hand-control", "dxl-sim", "normal", false));
     assert!(
         bad.iter()
-            .any(|b| b.contains("`hand-control` → `hand-sim` (normal)")
+            .any(|b| b.contains("`hand-control` → `dxl-sim` (normal)")
                 && b.contains("never depends on a simulator")),
         "{bad:?}"
     );
@@ -440,9 +487,10 @@ fn the_drawn_graph_is_the_one_cargo_metadata_declares() {
     let experiments = row("paper-experiments");
     for edge in [
         "`baro-drivers`",
-        "`hand-traits[sim]`",
+        "`sim-clock`",
+        "`dxl-sim`",
         "`imu-icm20789[sim]`",
-        "`hand-control[sim]`",
+        "`hand-control[sim-clock]`",
         "`ur-bridge` (optional: default feature `arm`)",
         "`ur-sim` (optional: default feature `arm`)",
     ] {
@@ -466,7 +514,7 @@ fn an_edited_drawing_differs_from_the_generated_one() {
     let generated = drawn(&doc).expect("markers").to_string();
     let edited = splice(
         &doc,
-        &generated.replace("`hand-control[sim]`", "`hand-control`"),
+        &generated.replace("`hand-control[sim-clock]`", "`hand-control`"),
     )
     .expect("splice");
     assert_ne!(drawn(&edited).expect("markers"), generated);
@@ -481,21 +529,15 @@ fn an_edited_drawing_differs_from_the_generated_one() {
 /// A small graph with every kind of edge the drawing distinguishes.
 fn stand_in_graph() -> (BTreeMap<String, Rule>, Vec<Package>) {
     let rules = rules();
-    let mut traits = package("hand-traits", false, &[("hand-traits", "dev", false)]);
-    traits.features.insert("sim".into(), vec![]);
-    let mut baro = package("baro-drivers", false, &[("hand-traits", "normal", true)]);
+    let mut clock = package("sim-clock", false, &[("sim-clock", "dev", false)]);
+    clock.features.insert("embedded-hal-async".into(), vec![]);
+    let mut baro = package("baro-drivers", false, &[("sim-clock", "normal", true)]);
     baro.features.insert(
         "sim".into(),
-        vec![
-            "dep:rand".into(),
-            "dep:hand-traits".into(),
-            "hand-traits/embedded-hal".into(),
-        ],
+        vec!["dep:rand".into(), "dep:sim-clock".into()],
     );
-    baro.features.insert(
-        "async".into(),
-        vec!["hand-traits?/embedded-hal-async".into()],
-    );
+    baro.features
+        .insert("async".into(), vec!["sim-clock?/embedded-hal-async".into()]);
     let mut sim = package(
         "hand-sim",
         true,
@@ -521,10 +563,12 @@ fn stand_in_graph() -> (BTreeMap<String, Rule>, Vec<Package>) {
         ur_sim,
         sim,
         package("ur-bridge", false, &[]),
+        package("dxl-sim", false, &[("hand-control", "normal", false)]),
         package("xtask", true, &[("paper-fixtures", "normal", false)]),
         package("paper-fixtures", true, &[]),
         baro,
-        traits,
+        package("hand-control", false, &[]),
+        clock,
     ];
     (rules, packages)
 }
@@ -540,8 +584,8 @@ fn the_drawing_is_grouped_sorted_and_names_features() {
 
 | crate | uses | tests, examples and benches also use |
 |---|---|---|
-| `baro-drivers` | `hand-traits` (optional: `sim`; `async` → `[embedded-hal-async]`; `sim` → `[embedded-hal]`) | — |
-| `hand-traits` | — | — |
+| `baro-drivers` | `sim-clock` (optional: `sim`; `async` → `[embedded-hal-async]`) | — |
+| `hand-control` | — | — |
 | `handstack` | `baro-drivers` (no default features; on `cfg(unix)` only) | — |
 | `ur-bridge` | — | — |
 
@@ -550,6 +594,7 @@ fn the_drawing_is_grouped_sorted_and_names_features() {
 | crate | uses | tests, examples and benches also use |
 |---|---|---|
 | `ur-sim` | `ur-bridge` (no default features) | `ur-bridge[rtde-client]` |
+| `sim-clock` | — | — |
 
 **Reproduction crates (publish = false)**
 

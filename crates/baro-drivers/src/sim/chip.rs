@@ -15,7 +15,7 @@ use crate::compensation::Calibration;
 use crate::interface::Address;
 use crate::osr::Osr;
 use crate::prom::Prom;
-use hand_traits::sim::SimClock;
+use sim_clock::SimClock;
 
 /// The coefficients of the datasheet's worked example (MS5611-01BA03, p. 7), which the model
 /// holds unless given another PROM.

@@ -1,6 +1,6 @@
 //! Simulation (feature `sim`): an MS5611 chip model speaking the real command set over
 //! embedded-hal I2C and SPI and a TCA9548A switch model, on the stack's one simulated clock
-//! ([`SimClock`], `hand-traits`' type, re-exported here).
+//! ([`SimClock`], the `sim-clock` crate's, re-exported here).
 //!
 //! ```
 //! use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock};
@@ -29,9 +29,9 @@ mod timing;
 pub use chip::{ConversionTime, DATASHEET_COEFFICIENTS, Ms5611Sim};
 pub use environment::{Conditions, Environment};
 pub use error::SimError;
-/// The stack's one simulated clock (`hand-traits`' `sim`), re-exported: the chip models run on
-/// it, so their users need no other import.
-pub use hand_traits::sim::{SimClock, SimDelay};
 pub use i2c::I2cTarget;
 pub use mux::Tca9548aSim;
+/// The stack's one simulated clock (the `sim-clock` crate), re-exported: the chip models run on
+/// it, so their users need no other import.
+pub use sim_clock::{SimClock, SimDelay};
 pub use timing::BusTiming;

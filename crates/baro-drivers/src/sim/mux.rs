@@ -8,7 +8,7 @@ use embedded_hal::i2c::{ErrorType, I2c, Operation, SevenBitAddress};
 use super::error::SimError;
 use super::i2c::I2cTarget;
 use super::timing::BusTiming;
-use hand_traits::sim::SimClock;
+use sim_clock::SimClock;
 
 /// A TCA9548A with up to eight downstream channels of simulated I2C targets.
 #[derive(Debug)]

@@ -1,4 +1,4 @@
-//! MX-28 with Protocol 2.0 firmware — the servo of the paper's hand (seed 000, Table 4).
+//! MX-28 with Protocol 2.0 firmware — the servo of the grasping paper's hand (Table 4).
 //!
 //! Source: ROBOTIS e-Manual, "MX-28(2.0)" control table,
 //! <https://emanual.robotis.com/docs/en/dxl/mx/mx-28-2/#control-table> (source

@@ -1,5 +1,5 @@
 //! ROBOTIS RH-P12-RN gripper (original firmware, DYNAMIXEL-PRO-style table) — the gripper the
-//! paper used to press its test contacts (seed 000 §3, Figure 9).
+//! grasping paper used to press its test contacts (§3, Figure 9).
 //!
 //! Source: ROBOTIS e-Manual, "RH-P12-RN" control table,
 //! <https://emanual.robotis.com/docs/en/platform/rh_p12_rn/#control-table> (source

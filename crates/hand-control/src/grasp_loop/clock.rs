@@ -58,13 +58,14 @@ impl LoopClock for StdClock {
     }
 }
 
-/// The stack's simulated clock (feature `sim`), on which waiting is advancing: the loop runs
-/// on the same time as the simulated chips and buses that share the clock, as fast as the CPU
-/// allows. Another thread holding a clone sees the loop's time.
+/// The `sim-clock` crate's simulated clock (feature `sim-clock`), on which waiting is
+/// advancing: the loop runs on the same time as the simulated chips that share the clock (the
+/// MS5611 and ICM-20789 chip models run on it), as fast as the CPU allows. Another thread
+/// holding a clone sees the loop's time.
 ///
 /// ```
 /// use hand_control::grasp_loop::{FixedRate, LoopClock};
-/// use hand_traits::sim::SimClock;
+/// use sim_clock::SimClock;
 ///
 /// let mut clock = SimClock::new();
 /// let chip = clock.clone(); // e.g. given to a chip model
@@ -74,11 +75,11 @@ impl LoopClock for StdClock {
 /// }
 /// assert_eq!(chip.now_us(), 20_000);
 /// ```
-#[cfg(feature = "sim")]
-impl LoopClock for hand_traits::sim::SimClock {
+#[cfg(feature = "sim-clock")]
+impl LoopClock for sim_clock::SimClock {
     fn now_us(&mut self) -> u64 {
         // The inherent method (path resolution prefers it over this trait's).
-        hand_traits::sim::SimClock::now_us(self)
+        sim_clock::SimClock::now_us(self)
     }
 
     fn wait_until_us(&mut self, t_us: u64) {
@@ -156,10 +157,10 @@ impl FixedRate {
     }
 }
 
-#[cfg(all(test, feature = "sim"))]
+#[cfg(all(test, feature = "sim-clock"))]
 mod tests {
     use super::*;
-    use hand_traits::sim::SimClock;
+    use sim_clock::SimClock;
 
     #[test]
     fn the_simulated_clock_waits_by_advancing_and_never_goes_back() {

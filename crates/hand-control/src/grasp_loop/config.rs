@@ -4,7 +4,7 @@ use hand_traits::{Effort, SafeAction};
 
 use super::end::EndAction;
 
-/// The torque-limit band a grasp may use, on the MX-28's 0…1023 scale (seed 000 §7).
+/// The torque-limit band a grasp may use, on the MX-28's 0…1023 scale (the grasping paper's §7).
 ///
 /// Table 5 gives one per object: below `min_raw` the object slips, above `max_raw` it is crushed
 /// or released. The loop clamps every effort into the band before it is sent.
@@ -25,7 +25,7 @@ impl TorqueBand {
     ///
     /// ```
     /// # use hand_control::grasp_loop::TorqueBand;
-    /// let cube = TorqueBand::new(80, 400)?; // seed 000 Table 5
+    /// let cube = TorqueBand::new(80, 400)?; // the grasping paper's Table 5
     /// assert_eq!(cube.clamp_raw(1023), 400);
     /// assert!(TorqueBand::new(400, 80).is_err());
     /// assert!(TorqueBand::new(0, 2000).is_err());
@@ -123,7 +123,8 @@ impl LoopConfig {
     /// The default control period, µs: 100 Hz, the rate the fingertips are read at.
     pub const DEFAULT_PERIOD_US: u64 = 10_000;
 
-    /// 100 Hz, 500 Pa target (about the seed 000 fingertip's mean rise under a 5 N whole-pad grip), 50 Pa contact threshold, 2 Hz rate filter, 10 tare cycles,
+    /// 100 Hz, 500 Pa target (about the mean rise of the grasping paper's fingertip under a 5 N
+    /// whole-pad grip), 50 Pa contact threshold, 2 Hz rate filter, 10 tare cycles,
     /// goal 0.2 rad within 0…0.5 rad, the full band, hold last safe effort on a fault, manual
     /// recovery, release at the end (at most 3 s to open: an MX-28 at a third of its PWM opens
     /// π rad in about 1.6 s), a log of 65 536 cycles (10.9 min at 100 Hz, ≈ 6 MB for a

@@ -1,5 +1,6 @@
-//! The closed grasp loop of seed 000 §5–7: tactile pressures → contact estimate → fuzzy grasp
-//! policy → torque-limited position command, at a fixed rate, with a defined safe state.
+//! The closed grasp loop of the grasping paper (§5–7): tactile pressures → contact estimate →
+//! fuzzy grasp policy → torque-limited position command, at a fixed rate, with a defined safe
+//! state.
 //!
 //! - [`estimate`]: tare, mean contact pressure, low-pass-filtered rate, contact flag;
 //! - [`config`]: rate, target, per-object [`TorqueBand`] (Table 5), safe action, [`Recovery`];

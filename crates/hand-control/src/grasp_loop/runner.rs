@@ -18,7 +18,7 @@ pub type FaultOf<S, P, A> = LoopFault<
     <A as GripperActuator>::Error,
 >;
 
-/// The closed grasp loop of seed 000 §5, generic over the `hand-traits` parts.
+/// The closed grasp loop of the grasping paper (§5), generic over the `hand-traits` parts.
 ///
 /// Each cycle, on the fixed-rate grid: read a frame, estimate the contact pressure and its
 /// filtered rate, ask the policy for an effort, clamp it into the torque band, send it with the
@@ -356,7 +356,7 @@ where
     }
 
     /// Each sensor's zero from the loop's tare, Pa (`None` while taring): what a per-sensor
-    /// estimator beside the loop (seed 000's force DNN) reads its rises against.
+    /// estimator beside the loop (the grasping paper's force DNN) reads its rises against.
     pub fn zero_pa(&self) -> Option<[f64; N]> {
         self.estimator.zero_pa()
     }

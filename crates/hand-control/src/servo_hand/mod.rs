@@ -1,5 +1,5 @@
 //! A hand of Dynamixel servos on one Protocol 2.0 bus, closed by position control under an
-//! effort limit (seed 000 §6–7), through `dynamixel2`.
+//! effort limit (the grasping paper's §6–7), through `dynamixel2`.
 
 mod actuator;
 mod goal_packets;
@@ -107,8 +107,8 @@ impl ServoHand {
     }
 
     /// As [`ServoHand::new`], allowing each status packet `latency` beyond its wire time (from
-    /// the identifying pings on). A simulated bus on a loaded machine wants more than a real
-    /// servo's [`DEFAULT_REPLY_LATENCY`]: see `sim::REPLY_LATENCY`.
+    /// the identifying pings on). A USB adapter, or a simulated bus on a loaded machine, may
+    /// want more than a real servo's [`DEFAULT_REPLY_LATENCY`] (`dxl-sim` advises 250 ms).
     ///
     /// # Errors
     /// As [`ServoHand::new`].
@@ -408,17 +408,14 @@ impl ServoHand {
     /// packets are framed in buffers the hand keeps. Size `out` once (an array, or a `Vec`
     /// kept between calls) and reuse it every cycle.
     ///
-    /// ```
-    /// use hand_control::sim::{SimBus, SimConfig, REPLY_LATENCY};
+    /// ```no_run
     /// use hand_control::{RawServoState, ServoHand};
     ///
-    /// let (_sim, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2]))?;
-    /// let mut hand = ServoHand::with_reply_latency(port, &[1, 2], REPLY_LATENCY)?;
+    /// let mut hand = ServoHand::open("/dev/ttyUSB0", 1_000_000, &[1, 2])?;
     /// let mut states = [RawServoState::default(); 2]; // on the stack, reused every cycle
     /// let n = hand.read_states_into(&mut states)?;
     /// assert_eq!(n, 2);
     /// assert_eq!(states.map(|s| s.id), [1, 2]);
-    /// assert_eq!(states[0].position, 2048); // the simulator starts every servo at π rad
     /// // A buffer shorter than the hand is a typed error, and nothing is sent.
     /// assert!(matches!(
     ///     hand.read_states_into(&mut states[..1]),

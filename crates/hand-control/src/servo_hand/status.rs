@@ -280,10 +280,26 @@ fn outcome(slots: &mut [Slot], expect: &[u8], stray: Option<Error>) -> Result<()
 /// One servo's answer in [`decode_replies`]: its ID, the alert bit and its data.
 pub type DecodedAnswer = (u8, bool, Vec<u8>);
 
-/// What the driver makes of `input` arriving, in `chunks` of at most that many bytes, as the
+/// What the driver makes of `input` arriving, in `chunk`s of at most that many bytes, as the
 /// replies to an instruction that expects status packets from `expect` with `count` data bytes
-/// each: the same framing, matching and checks as a real exchange, without a port. For the
-/// fuzzer and its corpus replay.
+/// each: the same framing, matching and checks as a real exchange, without a port — for
+/// checking a capture of bus traffic, or fuzzing the driver's reply handling.
+///
+/// ```
+/// use hand_control::protocol::{encode, instruction_id};
+/// use hand_control::{Error, decode_replies};
+///
+/// // Two servos answer a 2-byte read; servo 2's status has its alert bit set.
+/// let mut wire = Vec::new();
+/// encode(&mut wire, 1, instruction_id::STATUS, &[0x00, 0x34, 0x12]);
+/// encode(&mut wire, 2, instruction_id::STATUS, &[0x80, 0x00, 0x08]);
+/// let answers = decode_replies(&wire, 5, &[1, 2], 2)?;
+/// assert_eq!(answers, [(1, false, vec![0x34, 0x12]), (2, true, vec![0x00, 0x08])]);
+/// // Servo 2 never answers: its timeout, as on the bus.
+/// let one = &wire[..wire.len() / 2];
+/// assert!(matches!(decode_replies(one, 64, &[1, 2], 2), Err(Error::Timeout { id: Some(2) })));
+/// # Ok::<(), hand_control::Error>(())
+/// ```
 ///
 /// # Errors
 /// The error the exchange would return.

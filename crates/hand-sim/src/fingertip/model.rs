@@ -10,10 +10,10 @@ use crate::SimError;
 use crate::scene::Model;
 use baro_drivers::sim::{Conditions, Environment, Ms5611Sim};
 use baro_drivers::{Measurement, Ms5611, Osr, Ready, Scheduler, SpiInterface};
-use hand_traits::sim::SimClock;
 use hand_traits::{PressureFrame, TactileSource};
 use rand::Rng;
 use serde::Deserialize;
+use sim_clock::SimClock;
 use std::cell::{RefCell, RefMut};
 use std::rc::Rc;
 

@@ -3,7 +3,7 @@
 
 use super::object::ObjectParams;
 use super::rig::RigParams;
-use hand_control::sim::Load;
+use dxl_sim::Load;
 
 use crate::fingertip::ContactPatch;
 use crate::fingertip::geometry::{Cell, CellSet, HEIGHT_MM};

@@ -16,7 +16,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use hand_control::sim::MX28_STALL_TORQUE_NM as STALL_TORQUE_NM;
+use dxl_sim::MX28_STALL_TORQUE_NM as STALL_TORQUE_NM;
 
 use super::servo::TORQUE_LIMIT_MAX;
 

@@ -5,7 +5,7 @@
 //! exposes the servo's position, velocity, load, current and overload bit, the pad force, slip,
 //! damage and the [`ContactPatch`](crate::fingertip::ContactPatch) on the fingertip.
 //!
-//! - [`servo`]: how the hand tunes its MX-28s (the motor is `hand_control::sim::SimServo`);
+//! - [`servo`]: how the hand tunes its MX-28s (the motor is `dxl_sim::SimServo`);
 //! - [`plant`]: the object as the servo's load ([`GraspPlant`]);
 //! - [`linkage`]: torque-limit counts → pad force;
 //! - [`object`]: the six objects, their assumed materials and the parameters derived from Table 5;

@@ -1,12 +1,12 @@
 //! The grasp physics as the MX-28's load: the object between the pads, its friction, crushing
 //! and sliding, and the patch it presses on the fingertip. It knows nothing of the motor: it is
 //! a [`Plant`] the servo simulator steps, in process ([`super::GraspRig`]) or behind the
-//! Protocol 2.0 bus (`hand_control::sim::SimBus::set_plant`).
+//! Protocol 2.0 bus (`dxl_sim::SimBus::set_plant`).
 
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::Duration;
 
-use hand_control::sim::{Load, Plant};
+use dxl_sim::{Load, Plant};
 
 use super::contact::{self, PAD_SLIDE_LIMIT_M};
 use super::object::{G, ObjectParams};

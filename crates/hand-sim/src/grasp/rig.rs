@@ -1,12 +1,12 @@
 //! One grasp: two opposing fingers, each on an MX-28, squeezing one object, then lifting it.
 //! The plain API an open-loop sweep drives in process: set the torque limit and goal, step,
-//! read. The motor is [`hand_control::sim::SimServo`] (the bus simulator's), the object its
+//! read. The motor is [`dxl_sim::SimServo`] (the bus simulator's), the object its
 //! [`GraspPlant`]; by symmetry one servo stands for both fingers.
 
 use std::time::Duration;
 
+use dxl_sim::SimServo;
 use hand_control::control_table::MX_28;
-use hand_control::sim::SimServo;
 use hand_traits::Faults;
 use serde::{Deserialize, Serialize};
 

@@ -1,16 +1,16 @@
 //! How the grasp hand tunes its MX-28s, and the paper's torque-limit scale.
 //!
 //! The motor itself is not modelled here: the one MX-28 of the workspace is
-//! [`hand_control::sim::SimServo`] (e-Manual constants cited there once), and the grasp physics
-//! drives it through its [`hand_control::sim::Plant`] ([`super::plant::GraspPlant`]), in process
+//! [`dxl_sim::SimServo`] (e-Manual constants cited there once), and the grasp physics
+//! drives it through its [`dxl_sim::Plant`] ([`super::plant::GraspPlant`]), in process
 //! ([`super::GraspRig`]) or behind the Protocol 2.0 bus simulator.
 //!
 //! Seed 000 §5: "to control the grasping force with the given output torque values, position
 //! control is implemented"; §7: the limit runs 0 (0 %)…1023 (100 %), the Protocol 1.0 Torque
 //! Limit. On the MX-28(2.0) the same fraction is Goal PWM 0…885 ([`MX_28`]`.effort_raw`).
 
+use dxl_sim::ServoParams;
 use hand_control::control_table::MX_28;
-use hand_control::sim::ServoParams;
 use serde::{Deserialize, Serialize};
 
 use crate::SimError;

@@ -8,11 +8,11 @@ use crate::imu_pad::config::{ImuPadConfig, TapTiming};
 use crate::imu_pad::tap::{PadTruth, RealisedTap};
 use crate::scene::Model;
 use crate::seed;
-use hand_traits::sim::SimDelay;
 use hand_traits::{ImuFrame, TactileSource};
 use imu_icm20789::sim::ChipModel;
 use imu_icm20789::{BaroMode, Icm20789, ImuSettings};
 use rand::Rng;
+use sim_clock::SimDelay;
 
 /// The ICM-20789 pad of seed 002: taps on a 3 × 24 grid, read through the chip model.
 ///

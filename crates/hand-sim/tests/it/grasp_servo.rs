@@ -1,5 +1,5 @@
 //! The rig's plain API over the bus simulator's MX-28 (the motor's own tests are
-//! hand-control's `sim::servo` tests).
+//! dxl-sim's `servo` tests).
 
 use hand_sim::grasp::{GraspRig, ObjectKind, ObjectParams, RigParams};
 

@@ -102,7 +102,7 @@ fn full_torque_overloads_and_releases_rigid_objects() {
         .unwrap();
         assert!(o.overloaded && o.dropped, "{kind:?}: {o:?}");
         // The current rose to (nearly) the stall current before the shutdown cut it to zero.
-        let stall = hand_control::sim::MX28_STALL_CURRENT_A;
+        let stall = dxl_sim::MX28_STALL_CURRENT_A;
         assert!(
             peak_current > 0.9 * stall,
             "{kind:?}: peak {peak_current} A"
@@ -119,9 +119,9 @@ fn full_torque_holds_compliant_objects() {
     for (kind, _, _, obj) in objects().into_iter().filter(|o| o.2 == 1023) {
         let o = run_hold(&obj, &rig, 1023, &HoldTest::default()).unwrap();
         assert!(o.held(), "{kind:?}: {o:?}");
-        let load = o.final_current_a / hand_control::sim::MX28_STALL_CURRENT_A;
+        let load = o.final_current_a / dxl_sim::MX28_STALL_CURRENT_A;
         assert!(
-            load < hand_control::sim::ServoParams::default().overload_threshold,
+            load < dxl_sim::ServoParams::default().overload_threshold,
             "{kind:?}: {load}"
         );
     }

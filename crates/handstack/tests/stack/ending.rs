@@ -194,6 +194,10 @@ fn sigterm_mid_grasp_releases_the_hand_then_turns_the_torque_off_through_a_secon
             && err.ends_with("rad), then torque off\n"),
         "{err}"
     );
+    // dxl-sim prints its trace as it goes: the run may end before the last line is read.
+    servos
+        .trace
+        .wait_for("torque off", |l| l.iter().any(|l| is_torque_off(l)));
     let trace = servos.trace.snapshot();
     let cycles = cycles_until(&trace, sent_at, is_opening);
     assert!(
@@ -255,6 +259,10 @@ fn a_normal_run_holds_from_its_first_command_and_ends_released() {
         stdout.contains("  hand released (opened to ") && stdout.contains("then torque off"),
         "{stdout}"
     );
+    // dxl-sim prints its trace as it goes: the run may end before the last line is read.
+    servos
+        .trace
+        .wait_for("torque off", |l| l.iter().any(|l| is_torque_off(l)));
     let trace = servos.trace.snapshot();
     // hold_s = 1 from the first command: the loop's torque limits span one second of the
     // servos' time (the simulator keeps wall time), whatever opening and taring took.

@@ -1,20 +1,25 @@
 //! Naming real hardware really opens it: a grasp scene (its `serial_port` the pty of a running
-//! bus simulator) reads its pressure frames from the fingertip buses it names (here a
+//! `dxl-sim`, its own process) reads its pressure frames from the fingertip buses it names (here a
 //! substitute platform's: MS5611 chip models, nothing else behind them) and fails before any
 //! servo command when they are missing or cannot be opened; a scene whose `host` is a started
 //! UR controller simulator connects to it; a pad on a named bus is read through the driver; a
 //! missing I2C bus, serial port or host is a typed "cannot open …" error naming the path.
 
-use baro_drivers::sim::{Conditions, Ms5611Sim};
+use crate::process::{Lines, built};
+use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock};
 use embedded_hal::delay::DelayNs;
+use hand_control::ServoHand;
+use hand_control::control_table::MX_28;
 use hand_control::grasp_loop::LoopClock;
 use handstack::progress::Quiet;
 use handstack::runs::{RunContext, run};
 use handstack::scene::{Scene, SceneError};
 use handstack::stack::platform::{I2cBus, Platform};
 use handstack::{Plot, RunError};
+use std::process::{Child, Command, Stdio};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Duration;
 
 fn run_text(text: &str) -> Result<handstack::Outcome, RunError> {
     let scene = Scene::parse("hw.toml", text)?;
@@ -37,7 +42,7 @@ fn grasp_scene(path: &str, sensors: &str, hold_s: f64) -> String {
 /// run, so a test sees the frames came from here. Its bus `pad` holds an ICM-20789 chip model
 /// (no noise) reading [`PAD_TRUTH`].
 struct Substitute {
-    clock: hand_traits::sim::SimClock,
+    clock: SimClock,
     conversions: Arc<AtomicUsize>,
 }
 
@@ -92,16 +97,16 @@ impl Platform for Substitute {
 
 #[test]
 fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_servos() {
-    let (mut bus, path) = servo_bus();
+    let bus = ServoBus::start();
     let text = grasp_scene(
-        &path,
+        &bus.path,
         "i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n",
         1.0,
     );
     let scene = Scene::parse("hw.toml", &text).expect("valid scene");
     let conversions = Arc::new(AtomicUsize::new(0));
     let cx = RunContext::new(&Quiet).with_platform(Substitute {
-        clock: hand_traits::sim::SimClock::new(),
+        clock: SimClock::new(),
         conversions: Arc::clone(&conversions),
     });
     let o = run(&scene, &cx).unwrap_or_else(|e| panic!("{e}"));
@@ -133,17 +138,11 @@ fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_serv
     // And the controller acted on it over Protocol 2.0: both servos hold a Goal PWM the loop
     // (or its release) wrote, no longer the power-on value; the run ended with the default
     // end action, release then torque off.
-    let table = &hand_control::control_table::MX_28;
-    // The torque off is a broadcast: nothing answers it to wait for.
-    bus.sync().expect("the bus runs");
-    for id in [1, 2] {
-        let (on, pwm) = bus
-            .with_servo(id, |s| {
-                (s.torque_enabled(), s.get(table.goal_effort.address))
-            })
-            .expect("servo");
+    // Read back after the torque off, a broadcast nothing answers: the servos execute what
+    // arrives on the bus in order.
+    for (id, (on, pwm)) in [1, 2].into_iter().zip(bus.torque_and_goal_pwm()) {
         assert!(!on, "servo {id} torque left on");
-        assert_ne!(pwm, table.effort_limit.default, "servo {id} Goal PWM");
+        assert_ne!(pwm, MX_28.effort_limit.default, "servo {id} Goal PWM");
     }
     assert!(
         o.notes
@@ -154,34 +153,64 @@ fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_serv
     );
 }
 
-/// Two simulated MX-28s on a pty, and the pty's path: a scene opens it by its path, as it
-/// would /dev/ttyUSB0.
-fn servo_bus() -> (hand_control::sim::SimBus, String) {
-    use hand_control::sim::{SimBus, SimConfig};
-    let (bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
-    drop(port);
-    let path = bus.client_path().display().to_string();
-    (bus, path)
+/// Two simulated MX-28s (IDs 1 and 2) on a pty: `dxl-sim` as its own process, as a user runs
+/// it. A scene opens the pty by its path, as it would /dev/ttyUSB0.
+struct ServoBus {
+    child: Child,
+    path: String,
 }
 
-/// The servos of `bus` have had no command: torque off, Goal PWM at its power-on value.
-fn untouched(bus: &hand_control::sim::SimBus, ids: &[u8]) {
-    let table = &hand_control::control_table::MX_28;
-    for &id in ids {
-        let (on, pwm) = bus
-            .with_servo(id, |s| {
-                (s.torque_enabled(), s.get(table.goal_effort.address))
+impl ServoBus {
+    fn start() -> ServoBus {
+        let mut child = Command::new(built("dxl-sim"))
+            .args(["--servo", "mx28:1", "--servo", "mx28:2"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("dxl-sim starts");
+        let lines = Lines::read(child.stdout.take().expect("stdout"));
+        lines.wait_for("pty path", |l| !l.is_empty());
+        let path = lines.snapshot()[0].clone();
+        assert!(path.starts_with("/dev/"), "{path}");
+        ServoBus { child, path }
+    }
+
+    /// Each servo's Torque Enable (on?) and Goal PWM, read back over Protocol 2.0: after every
+    /// byte sent before, a broadcast included.
+    fn torque_and_goal_pwm(&self) -> Vec<(bool, i32)> {
+        let port = serial2::SerialPort::open(&self.path, 1_000_000).expect("pty");
+        let mut hand = ServoHand::with_reply_latency(port, &[1, 2], Duration::from_millis(250))
+            .expect("both servos answer");
+        [1, 2]
+            .iter()
+            .map(|&id| {
+                let on = hand.read_register(id, MX_28.torque_enable.address);
+                let pwm = hand.read_register(id, MX_28.goal_effort.address);
+                (on.expect("torque") != 0, pwm.expect("Goal PWM"))
             })
-            .expect("servo");
-        assert!(!on, "servo {id} torque");
-        assert_eq!(pwm, table.effort_limit.default, "servo {id} Goal PWM");
+            .collect()
+    }
+
+    /// The servos have had no command: torque off, Goal PWM at its power-on value.
+    fn untouched(&self) {
+        for (id, (on, pwm)) in [1, 2].into_iter().zip(self.torque_and_goal_pwm()) {
+            assert!(!on, "servo {id} torque");
+            assert_eq!(pwm, MX_28.effort_limit.default, "servo {id} Goal PWM");
+        }
+    }
+}
+
+impl Drop for ServoBus {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
     }
 }
 
 #[test]
 fn a_hardware_grasp_never_reads_a_simulated_fingertip_and_fails_before_any_servo_command() {
-    let (bus, path) = servo_bus();
-    let scene = |sensors: &str| grasp_scene(&path, sensors, 0.3);
+    let bus = ServoBus::start();
+    let scene = |sensors: &str| grasp_scene(&bus.path, sensors, 0.3);
     // Real servos, no sensor buses named: refused as a scene error (this binary has no
     // simulated fingertip to fall back on), and nothing reached the servos.
     let e = run_text(&scene("")).expect_err("a hardware hand needs its fingertip's buses");
@@ -192,7 +221,7 @@ fn a_hardware_grasp_never_reads_a_simulated_fingertip_and_fails_before_any_servo
         ) && e.to_string().contains("i2c_buses"),
         "{e}"
     );
-    untouched(&bus, &[1, 2]);
+    bus.untouched();
     // Buses that cannot be opened: the error names the device and the path, before any servo
     // command.
     let e = run_text(&scene(
@@ -203,7 +232,7 @@ fn a_hardware_grasp_never_reads_a_simulated_fingertip_and_fails_before_any_servo
         matches!(e, RunError::Open { device: "sensors.fingertip", ref path, .. } if path == "/dev/i2c-99"),
         "{e:?}"
     );
-    untouched(&bus, &[1, 2]);
+    bus.untouched();
 }
 
 #[test]
@@ -237,7 +266,7 @@ fn a_missing_i2c_bus_is_a_cannot_open_error() {
 #[test]
 fn a_real_pad_is_read_through_the_driver_from_the_bus_it_names() {
     use hand_traits::TactileSource;
-    let clock = hand_traits::sim::SimClock::new();
+    let clock = SimClock::new();
     let platform = Substitute {
         clock: clock.clone(),
         conversions: Arc::default(),
@@ -269,7 +298,8 @@ fn a_real_pad_is_read_through_the_driver_from_the_bus_it_names() {
 
 #[test]
 fn servos_of_another_model_than_the_scenes_are_refused_before_any_command() {
-    let (bus, path) = servo_bus();
+    let bus = ServoBus::start();
+    let path = bus.path.clone();
     let text = grasp_scene(
         &path,
         "i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n",
@@ -286,7 +316,7 @@ fn servos_of_another_model_than_the_scenes_are_refused_before_any_command() {
              (XM430-W350)"
         )
     );
-    untouched(&bus, &[1, 2]);
+    bus.untouched();
 }
 
 #[test]
@@ -328,7 +358,7 @@ fn a_scene_naming_a_started_ur_simulator_connects_to_it() {
     );
     // A node's scene opens it: every device first, the arm by its host.
     let substitute = || Substitute {
-        clock: hand_traits::sim::SimClock::new(),
+        clock: SimClock::new(),
         conversions: Arc::new(AtomicUsize::new(0)),
     };
     let open = |text: &str| {

@@ -6,6 +6,5 @@ mod cell_arm;
 mod cli;
 mod ending;
 mod hardware;
-mod hold;
 mod process;
 mod scenes;

@@ -3,7 +3,7 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use hand_traits::sim::SimClock;
+use sim_clock::SimClock;
 
 /// I2C bit time at 400 kHz, ns.
 pub const BIT_NS_400KHZ: u64 = 2_500;

@@ -4,7 +4,7 @@
 use std::boxed::Box;
 
 use embedded_hal::i2c::{ErrorKind, ErrorType, NoAcknowledgeSource, Operation};
-use hand_traits::sim::{SimClock, SimDelay};
+use sim_clock::{SimClock, SimDelay};
 
 use crate::baro::BARO_ADDRESS;
 use crate::baro::otp::Calibration;

@@ -1,5 +1,5 @@
 //! Feature `sim`: a model of the ICM-20789 on the embedded-hal I2C traits, on the stack's one
-//! simulated clock ([`SimClock`], `hand-traits`' type, re-exported here) with a delay that
+//! simulated clock ([`SimClock`], the `sim-clock` crate's, re-exported here) with a delay that
 //! advances it, and the account of its bus bits ([`BusAccount`]). The driver talks to it
 //! exactly as to a chip: the model answers the register map at 0x68 / 0x69 and the barometer
 //! command set at 0x63 (behind the bypass), makes pressure codes with the driver's own inverse
@@ -16,7 +16,7 @@ mod noise;
 pub use bus::{BIT_NS_400KHZ, BusAccount};
 pub use chip::{ChipModel, DEFAULT_BARO_ID, DEFAULT_OTP, SimError};
 pub use environment::{Environment, TrueState, Truth};
-/// The stack's one simulated clock (`hand-traits`' `sim`), re-exported: the chip model runs on
-/// it, so its users need no other import.
-pub use hand_traits::sim::{SimClock, SimDelay};
 pub use noise::SimNoise;
+/// The stack's one simulated clock (the `sim-clock` crate), re-exported: the chip model runs on
+/// it, so its users need no other import.
+pub use sim_clock::{SimClock, SimDelay};

@@ -1,5 +1,6 @@
 //! paper-scenes' tests, one binary: the papers' scenes run as written against the committed
-//! figures, bad scenes, the command line, the report, the devices, the full hand and the cell.
+//! figures, bad scenes, the command line, the report, the devices, the full hand and the cell;
+//! and handstack's grasp hold on simulated devices.
 
 mod bad_scenes;
 mod cell;
@@ -13,5 +14,6 @@ mod hand_loop_faults;
 mod report_render;
 mod scene_props;
 mod softness;
+mod stack_hold;
 mod tap_to_ur3;
 mod weight_estimation;

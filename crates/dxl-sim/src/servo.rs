@@ -3,8 +3,10 @@
 
 use std::time::Duration;
 
-use crate::InstructionError;
-use crate::control_table::{Access, Area, ControlTable, LimitBy, MX_28, Register, hardware_error};
+use hand_control::InstructionError;
+use hand_control::control_table::{
+    Access, Area, ControlTable, LimitBy, MX_28, Register, hardware_error,
+};
 
 /// Physical parameters of the simulated servo: the one MX-28 model of the workspace (hand-sim's
 /// grasp physics drives this motor through a [`Plant`]).
@@ -16,8 +18,9 @@ use crate::control_table::{Access, Area, ControlTable, LimitBy, MX_28, Register,
 ///
 /// The overload trip (Hardware Error bit 5, "persistent load that exceeds maximum output") is
 /// not documented either: the servo trips when |Present Load| stays at or above
-/// `overload_threshold` (90 %) for `overload_time` (1 s). Against the paper's evidence (seed 000
-/// §7, Table 5): a limit below 90 % can never trip it, so 400/1023 holds for more than 2 min;
+/// `overload_threshold` (90 %) for `overload_time` (1 s). Against the evidence of the grasping
+/// paper whose hand has these servos (Kim et al., *Artificial Intelligence-Based Optimal
+/// Grasping Control*, 2020: §7, Table 5): a limit below 90 % can never trip it, so 400/1023 holds for more than 2 min;
 /// 1023 on an object that resists at full output stalls the motor at 100 % load, trips and
 /// lets go (§7), while a compliant object the servo reaches unsaturated (cone, paper cup) is
 /// held at 1023 (Table 5). `docs/sim-calibration/grasp.md` works this through.

@@ -1,5 +1,5 @@
-//! `dxl-sim`: simulated Dynamixel Protocol 2.0 servos on a pseudo-terminal (feature `sim`), for
-//! tests of code that drives a Dynamixel bus (the ROBOTIS SDK, this crate's `ServoHand`, …).
+//! `dxl-sim`: simulated Dynamixel Protocol 2.0 servos on a pseudo-terminal, for tests of code
+//! that drives a Dynamixel bus (the ROBOTIS SDK, `hand-control`'s `ServoHand`, …).
 //!
 //! Prints the pty's path (`/dev/pts/N`) on one line, then serves the servos in real time until
 //! SIGINT or SIGTERM, and exits 0. With `--trace`, every instruction the servos execute follows
@@ -15,9 +15,9 @@ use std::process::ExitCode;
 use std::str::FromStr;
 
 use clap::Parser;
+use dxl_sim::{Pace, SIMULATED_MODELS, SimBus, SimConfig};
 use hand_control::control_table::ControlTable;
 use hand_control::protocol::MAX_ID;
-use hand_control::sim::{Pace, SIMULATED_MODELS, SimBus, SimConfig};
 use signal_hook::consts::{SIGINT, SIGTERM};
 use signal_hook::iterator::Signals;
 

@@ -8,9 +8,9 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use dxl_sim::{REPLY_LATENCY, SimBus, SimConfig};
 use hand_control::ServoHand;
 use hand_control::protocol::{encode, instruction_id, packet_id};
-use hand_control::sim::{REPLY_LATENCY, SimBus, SimConfig};
 use hand_traits::{Effort, GripperActuator, GripperCommand};
 
 const BAUD: u64 = 1_000_000;

@@ -1,23 +1,4 @@
-//! Simulated time (feature `sim`): one nanosecond counter that chip models, their delays and
-//! simulation loops share, so a simulation measures time deterministically and never sleeps.
-//!
-//! Every simulated device of the stack runs on this one type: the MS5611 and ICM-20789 chip
-//! models advance it as their buses carry bits and their conversions run, a driver's delay
-//! ([`SimDelay`]) advances it instead of sleeping, and a control loop waits on it. Clones share
-//! the counter, and it is `Send + Sync`, so a loop on another thread can read and advance the
-//! same time as the chips it drives.
-//!
-//! ```
-//! use hand_traits::sim::SimClock;
-//! use embedded_hal::delay::DelayNs;
-//!
-//! let clock = SimClock::new();
-//! let mut delay = clock.delay(); // what a driver is given instead of a hardware timer
-//! let ((), took_ns) = clock.time(|| delay.delay_ms(9));
-//! assert_eq!(took_ns, 9_000_000);
-//! clock.advance_to_ns(5_000_000); // in the past: time never goes back
-//! assert_eq!(clock.now_us(), 9_000);
-//! ```
+//! The clock and its delay.
 
 use alloc::sync::Arc;
 use core::sync::atomic::{AtomicU64, Ordering};
@@ -52,7 +33,7 @@ impl SimClock {
     /// Moves time forward by `ns`.
     ///
     /// ```
-    /// let clock = hand_traits::sim::SimClock::new();
+    /// let clock = sim_clock::SimClock::new();
     /// clock.advance_ns(2_500);
     /// clock.advance_ns(u64::MAX); // saturates
     /// assert_eq!(clock.now_ns(), u64::MAX);
@@ -69,7 +50,7 @@ impl SimClock {
     /// Moves time forward to `t_ns`; a time not after now changes nothing.
     ///
     /// ```
-    /// let clock = hand_traits::sim::SimClock::new();
+    /// let clock = sim_clock::SimClock::new();
     /// clock.advance_to_ns(40);
     /// clock.advance_to_ns(10);
     /// assert_eq!(clock.now_ns(), 40);
@@ -91,12 +72,11 @@ impl SimClock {
     }
 }
 
-/// A delay provider (embedded-hal's `DelayNs`, blocking with feature `embedded-hal` and async
-/// with `embedded-hal-async`) that advances a [`SimClock`] by the time asked for and returns
-/// at once.
+/// A delay provider (embedded-hal's `DelayNs`; the async one too with feature
+/// `embedded-hal-async`) that advances a [`SimClock`] by the time asked for and returns at once.
 ///
 /// ```
-/// use hand_traits::sim::{SimClock, SimDelay};
+/// use sim_clock::{SimClock, SimDelay};
 /// use embedded_hal::delay::DelayNs;
 ///
 /// let clock = SimClock::new();
@@ -122,7 +102,6 @@ impl SimDelay {
     }
 }
 
-#[cfg(feature = "embedded-hal")]
 impl embedded_hal::delay::DelayNs for SimDelay {
     fn delay_ns(&mut self, ns: u32) {
         self.clock.advance_ns(u64::from(ns));

@@ -1,15 +1,15 @@
-//! The grasp hold's endings in simulated time, cycle by cycle: a fault ends the hold in the
-//! cycle it is seen (unless the scene's recovery clears it), a stop before the next cycle, and
-//! the hand gets its end action either way. The servos are `ServoHand` over Protocol 2.0 to the
-//! simulated bus on a pty; the fingertip three MS5611 chip models behind the real driver, on
-//! the loop's simulated clock.
+//! handstack's grasp hold (`handstack::runs::grasp::hold`) and its endings in simulated time,
+//! cycle by cycle: a fault ends the hold in the cycle it is seen (unless the scene's recovery
+//! clears it), a stop before the next cycle, and the hand gets its end action either way. The
+//! servos are `ServoHand` over Protocol 2.0 to `dxl-sim`'s bus on a pty, in this process so a
+//! test injects a fault at the cycle of its choosing; the fingertip three MS5611 chip models
+//! behind the real driver, on the loop's simulated clock.
 
-use baro_drivers::sim::{Conditions, Ms5611Sim};
+use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock};
 use baro_drivers::{Address, I2cInterface, Ms5611, Osr, Ready, Scheduler};
+use dxl_sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
 use hand_control::ServoHand;
 use hand_control::grasp_loop::LoopConfig;
-use hand_control::sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
-use hand_traits::sim::SimClock;
 use hand_traits::{PressureFrame, TactileSource};
 use handstack::runs::grasp::{HoldFor, Plan, hold};
 use handstack::scene::experiment::Recover;

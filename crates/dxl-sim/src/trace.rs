@@ -18,8 +18,8 @@
 use std::fmt::Write as _;
 use std::time::Duration;
 
-use crate::control_table::ControlTable;
-use crate::protocol::{Packet, instruction_id as ins};
+use hand_control::control_table::ControlTable;
+use hand_control::protocol::{Packet, instruction_id as ins};
 
 /// The register at `address` by name, or `@address` where the table has none.
 fn register(table: &ControlTable, address: u16) -> String {
@@ -111,8 +111,8 @@ pub(crate) fn line(table: &ControlTable, now: Duration, p: &Packet) -> String {
 #[cfg(test)]
 mod tests {
     use super::line;
-    use crate::control_table::MX_28;
-    use crate::protocol::{Packet, instruction_id as ins, packet_id};
+    use hand_control::control_table::MX_28;
+    use hand_control::protocol::{Packet, instruction_id as ins, packet_id};
     use std::time::Duration;
 
     fn packet(id: u8, instruction: u8, params: &[u8]) -> Packet {

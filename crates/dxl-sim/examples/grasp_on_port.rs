@@ -38,7 +38,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (Some(port), Some(reading)) = (args.next(), args.next()) else {
         return Err("usage: grasp_on_port PORT PRESSURE_FILE".into());
     };
-    // Two MX-28s at 1 Mbps (seed 000's hand), in position mode under a torque limit.
+    // Two MX-28s at 1 Mbps (the grasping paper's hand), in position mode under a torque limit.
     let mut hand = ServoHand::open(&port, 1_000_000, &[1, 2])?;
     // A USB adapter, or a simulator on a busy machine, can answer later than a servo's 34 ms.
     hand.set_reply_latency(Duration::from_millis(250));

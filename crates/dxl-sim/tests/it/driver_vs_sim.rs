@@ -3,7 +3,7 @@
 
 use std::time::Duration;
 
-use hand_control::sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
+use dxl_sim::{Fault, REPLY_LATENCY, SimBus, SimConfig};
 use hand_control::{Error, InstructionError, RawServoState, ServoHand};
 use hand_traits::{Effort, Faults, GripperActuator, GripperCommand, SafeAction};
 
@@ -72,7 +72,7 @@ fn reg_write_waits_for_action() {
     hand.reg_write(2, 65, 1).unwrap();
     assert_eq!(hand.read_register(1, 69).unwrap(), 1); // Registered Instruction
     assert_eq!(hand.read_register(1, 65).unwrap(), 0);
-    hand.action(dynamixel2::instructions::packet_id::BROADCAST)
+    hand.action(hand_control::protocol::packet_id::BROADCAST)
         .unwrap();
     assert_eq!(hand.read_register(1, 65).unwrap(), 1);
     assert_eq!(hand.read_register(2, 65).unwrap(), 1);
@@ -225,6 +225,25 @@ fn sync_read_into_a_caller_buffer() {
     ));
     assert_eq!(out, before);
     assert_eq!(hand.read_states_into(&mut out).unwrap(), 3);
+}
+
+/// `ServoHand::read_states_into`'s documented use: a buffer on the stack, reused every cycle.
+#[test]
+fn read_states_into_a_stack_buffer_reads_the_start_position() {
+    let (_sim, mut hand) = hand(&[1, 2]);
+    let mut states = [RawServoState::default(); 2];
+    let n = hand.read_states_into(&mut states).unwrap();
+    assert_eq!(n, 2);
+    assert_eq!(states.map(|s| s.id), [1, 2]);
+    assert_eq!(states[0].position, 2048); // the simulator starts every servo at π rad
+    // A buffer shorter than the hand is a typed error, and nothing is sent.
+    assert!(matches!(
+        hand.read_states_into(&mut states[..1]),
+        Err(Error::OutOfRange {
+            what: "state buffer length",
+            ..
+        })
+    ));
 }
 
 /// An object 0.1 rad ahead of servo 1 (a 200 N·m/rad spring), stiff enough to stall the finger;

@@ -1,11 +1,13 @@
-//! A simulated Protocol 2.0 servo bus on a pseudo-terminal (feature `sim`).
+//! Simulated Dynamixel Protocol 2.0 servos on a pseudo-terminal: a servo bus for tests of code
+//! that drives one (the official ROBOTIS SDK, `hand-control`'s `ServoHand`, your own).
 //!
 //! [`SimBus::spawn`] opens a pty pair (`serial2::SerialPort::pair`), runs the servos on one end
-//! in a thread and hands back the other end: give it to [`crate::ServoHand::with_reply_latency`] (with [`REPLY_LATENCY`]), or open
-//! [`SimBus::client_path`] from another process (the ROBOTIS Python SDK does). The simulator
-//! answers PING, READ, WRITE, REG_WRITE, ACTION, FACTORY RESET, REBOOT, SYNC READ / WRITE and
-//! BULK READ / WRITE with real status packets (CRC-16, byte stuffing, error codes), keeps the
-//! MX-28(2.0) control table per servo, drives each motor (see [`SimServo::step`]) and latches
+//! in a thread and hands back the other end: give it to `hand_control::ServoHand::with_reply_latency`
+//! (with [`REPLY_LATENCY`]), or open [`SimBus::client_path`] from another process (the ROBOTIS
+//! Python SDK does; the `dxl-sim` binary prints it). The simulator answers PING, READ, WRITE,
+//! REG_WRITE, ACTION, FACTORY RESET, REBOOT, SYNC READ / WRITE and BULK READ / WRITE with real
+//! status packets (CRC-16, byte stuffing, error codes), keeps the MX-28(2.0) control table per
+//! servo (`hand-control`'s, as data), drives each motor (see [`SimServo::step`]) and latches
 //! the overload shutdown until REBOOT.
 //!
 //! # Simulated time
@@ -26,13 +28,13 @@
 //! its bus so.
 //!
 //! ```
+//! use dxl_sim::{SimBus, SimConfig};
 //! use hand_control::ServoHand;
-//! use hand_control::sim::{SimBus, SimConfig};
 //! use hand_traits::{Effort, GripperActuator, GripperCommand};
 //! use std::time::Duration;
 //!
 //! let (mut sim, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2]))?;
-//! let mut hand = ServoHand::with_reply_latency(port, &[1, 2], hand_control::sim::REPLY_LATENCY)?;
+//! let mut hand = ServoHand::with_reply_latency(port, &[1, 2], dxl_sim::REPLY_LATENCY)?;
 //! assert_eq!(hand.table().name, "MX-28(2.0)");
 //! hand.set_torque(true)?;
 //! hand.command(&GripperCommand { position_rad: 2.0, effort: Effort::from_torque_limit_raw(400) })?;
@@ -41,6 +43,35 @@
 //! assert!((s.position_rad - 2.0).abs() < 0.01, "{s:?}");
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! Faults are injected per servo, and the driver sees each as a typed error:
+//!
+//! ```
+//! use dxl_sim::{Fault, SimBus, SimConfig};
+//! use hand_control::{Error, ServoHand};
+//! use hand_traits::{Effort, GripperActuator, GripperCommand, SafeAction};
+//! use std::time::Duration;
+//!
+//! let (mut sim, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2]))?;
+//! // Pings both and identifies MX-28(2.0); the simulator gets a generous reply allowance.
+//! let mut hand = ServoHand::with_reply_latency(port, &[1, 2], dxl_sim::REPLY_LATENCY)?;
+//! hand.set_torque(true)?;
+//! // The grasping paper's torque limit 400 of 0…1023, closing towards 3.5 rad.
+//! let cmd = GripperCommand { position_rad: 3.5, effort: Effort::from_torque_limit_raw(400) };
+//! hand.command(&cmd)?; // two sync writes: Goal PWM 346 of 885, Goal Position
+//! sim.advance(Duration::from_millis(500))?; // simulated time, no sleeping
+//! assert!(hand.state()?.faults.is_empty()); // one sync read
+//! // A servo that stops answering is a typed error; the broadcast torque-off still reaches it.
+//! sim.inject(2, Fault::Mute);
+//! assert!(matches!(hand.state(), Err(Error::Timeout { id: Some(2) })));
+//! hand.safe_stop(SafeAction::TorqueOff)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! The README follows (its examples run as this crate's doctests).
+//!
+#![doc = include_str!("../README.md")]
+#![deny(unsafe_code)]
 
 mod servo;
 mod trace;
@@ -57,11 +88,13 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use dynamixel2::serial2::SerialPort;
+use serial2::SerialPort;
 
-use crate::InstructionError;
-use crate::control_table::{ControlTable, MX_28};
-use crate::protocol::{FrameError, Packet, Parser, encode, instruction_id as ins, packet_id};
+use hand_control::InstructionError;
+use hand_control::control_table::{ControlTable, MX_28};
+use hand_control::protocol::{
+    FrameError, Packet, Parser, encode, instruction_id as ins, packet_id,
+};
 
 /// The instruction of the simulator-only clock packet (undefined in Protocol 2.0).
 pub const CLOCK_INSTRUCTION: u8 = 0xF0;
@@ -72,8 +105,8 @@ const STATUS: u8 = 0x55;
 /// Longest an `advance` waits for the simulator thread (a bound, not a delay).
 const ACK_TIMEOUT: Duration = Duration::from_secs(10);
 
-/// The servo models the simulator runs; the other tables of [`crate::control_table::MODELS`]
-/// serve the driver only.
+/// The servo models the simulator runs; the other tables of `hand-control`'s
+/// [`MODELS`](hand_control::control_table::MODELS) serve the driver only.
 pub const SIMULATED_MODELS: [&ControlTable; 1] = [&MX_28];
 
 /// What moves the simulator's clock besides the bytes on the bus.
@@ -87,7 +120,7 @@ pub enum Pace {
     WallClock,
 }
 
-/// The reply allowance to give a [`crate::ServoHand`] on the simulated bus.
+/// The reply allowance to give a [`ServoHand`](hand_control::ServoHand) on the simulated bus.
 ///
 /// The simulator answers in microseconds, but it is a thread on a shared machine: under load it
 /// can be descheduled for longer than a real servo's 34 ms allowance, and a test would see a
@@ -264,7 +297,7 @@ impl World {
     /// What the bus does with one frame the parser found: a clock packet advances time (by at
     /// most `max_clock_step`) and reports its sequence number to `ack`; a good packet is
     /// executed; a frame with a bad CRC gets its servo's CRC-error status. Returns the bytes to
-    /// send back. The simulator thread and the fuzz entry point ([`fuzzing`]) share it.
+    /// send back. The simulator thread and [`answer_bytes`] share it.
     fn on_frame(
         &mut self,
         frame: Result<Packet, FrameError>,
@@ -298,7 +331,9 @@ impl World {
                 }
                 out
             }
-            Err(FrameError::BadLength) => Vec::new(),
+            // A bad length (or a framing problem of a kind `hand-control` adds later): the frame
+            // names no servo to answer.
+            Err(_) => Vec::new(),
         }
     }
 
@@ -623,11 +658,25 @@ impl Drop for SimBus {
     }
 }
 
-/// The bytes a bus of `config`'s servos answers to `input`, fed in `chunks` of at most that
-/// many bytes through the simulator thread's own parse → execute path ([`World::on_frame`]),
-/// with clock packets capped at `max_clock_step` so that one packet cannot ask for years of
-/// physics. For the fuzzer and its corpus replay (`hand_control::fuzzing`).
-pub(crate) fn answer_bytes(
+/// The bytes a bus of `config`'s servos answers to `input`, fed in `chunk`s of at most that
+/// many bytes through the simulator thread's own parse → execute path, without a pty or a
+/// thread; clock packets advance at most `max_clock_step`, so that one packet cannot ask for
+/// years of physics. What a fuzzer (and its corpus replay) drives the simulator with.
+///
+/// ```
+/// use dxl_sim::{SimConfig, answer_bytes};
+/// use hand_control::protocol::{Parser, encode, instruction_id};
+/// use std::time::Duration;
+///
+/// let mut ping = Vec::new();
+/// encode(&mut ping, 2, instruction_id::PING, &[]);
+/// let answer = answer_bytes(&SimConfig::with_ids(&[1, 2]), &ping, 3, Duration::from_millis(100));
+/// let mut parser = Parser::default();
+/// parser.push(&answer);
+/// let status = parser.next_packet().expect("one packet").expect("a good CRC");
+/// assert_eq!((status.id, status.params), (2, vec![0, 30, 0, 45])); // MX-28(2.0), firmware 45
+/// ```
+pub fn answer_bytes(
     config: &SimConfig,
     input: &[u8],
     chunk: usize,

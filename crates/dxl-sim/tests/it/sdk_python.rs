@@ -10,7 +10,7 @@ use std::process::{Child, Command, ExitStatus, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use hand_control::sim::{SimBus, SimConfig};
+use dxl_sim::{SimBus, SimConfig};
 
 /// A bound on the script's run (it takes well under a second).
 const SCRIPT_TIMEOUT: Duration = Duration::from_secs(60);
@@ -145,7 +145,7 @@ fn readme_names_the_example_and_shows_the_ci_job_this_test_runs() {
     );
     let job = fenced("yaml", 0);
     for line in [
-        "cargo install hand-control --features sim --locked",
+        "cargo install dxl-sim --locked",
         "python ci/test_dxl_sim.py \"$(cat dxl-sim.out)\"",
     ] {
         assert!(job.contains(line), "README's job lacks {line:?}");
