@@ -53,7 +53,7 @@ pub const TARGETS: [Target; 11] = [
     },
     Target {
         name: "dxl_sim",
-        about: "the simulated servo bus's request handling (hand-control `sim`)",
+        about: "the simulated servo bus's request handling (dxl-sim)",
         run: dxl::sim,
     },
     Target {
