@@ -578,7 +578,7 @@ fn the_drawing_is_grouped_sorted_and_names_features() {
     let (rules, packages) = stand_in_graph();
     let drawing = graph(&rules, &packages).expect("draws");
     let expected = "\
-8 workspace crates; 5 edges between them, and 2 more in tests, examples and benches (`cargo metadata`).
+10 workspace crates; 6 edges between them, and 2 more in tests, examples and benches (`cargo metadata`).
 
 **Product crates (published)**
 
@@ -587,14 +587,15 @@ fn the_drawing_is_grouped_sorted_and_names_features() {
 | `baro-drivers` | `sim-clock` (optional: `sim`; `async` → `[embedded-hal-async]`) | — |
 | `hand-control` | — | — |
 | `handstack` | `baro-drivers` (no default features; on `cfg(unix)` only) | — |
+| `sim-clock` | — | — |
 | `ur-bridge` | — | — |
 
 **Simulators (published)**
 
 | crate | uses | tests, examples and benches also use |
 |---|---|---|
+| `dxl-sim` | `hand-control` | — |
 | `ur-sim` | `ur-bridge` (no default features) | `ur-bridge[rtde-client]` |
-| `sim-clock` | — | — |
 
 **Reproduction crates (publish = false)**
 
