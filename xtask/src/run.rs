@@ -132,7 +132,9 @@ pub fn tested_binary(
         .lines()
         .filter_map(|line| serde_json::from_str::<serde_json::Value>(line).ok())
         .filter(|m| m["reason"] == "compiler-artifact")
+        // The binary itself, not its unit-test harness (also a `bin` target, `profile.test`).
         .filter(|m| m["target"]["name"] == name && m["target"]["kind"][0] == "bin")
+        .filter(|m| m["profile"]["test"] == false)
         .filter(|m| m["package_id"].as_str().and_then(package_name) == Some(package))
         .find_map(|m| m["executable"].as_str().map(PathBuf::from))
         .with_context(|| format!("the test build made no `{name}` binary of {package}"))
