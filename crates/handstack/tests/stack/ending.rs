@@ -7,57 +7,20 @@
 //! "Within two control cycles" is counted on the bus: the state reads (one SYNC READ a cycle)
 //! the simulator executed after the signal was sent and before the end action's first packet.
 
-use crate::process::{Lines, built, finish, signal, text};
-use hand_control::ServoHand;
+use crate::process::{DxlSim, built, finish, signal, text};
 use hand_control::control_table::MX_28;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-/// `dxl-sim` with two MX-28 (IDs 1 and 2), tracing every instruction.
-struct Servos {
-    child: Child,
-    path: String,
-    trace: Arc<Lines>,
+/// The servos of these runs: [`DxlSim`] with its bus trace, read back as (Torque Enable, Present
+/// Position).
+fn servos() -> DxlSim {
+    DxlSim::start(&["--trace"])
 }
 
-impl Servos {
-    fn start() -> Servos {
-        let mut child = Command::new(built("dxl-sim"))
-            .args(["--servo", "mx28:1", "--servo", "mx28:2", "--trace"])
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("dxl-sim starts");
-        let trace = Lines::read(child.stdout.take().expect("stdout"));
-        trace.wait_for("pty path", |l| !l.is_empty());
-        let path = trace.snapshot()[0].clone();
-        assert!(path.starts_with("/dev/"), "{path}");
-        Servos { child, path, trace }
-    }
-
-    /// The servos' (torque enable, present position) read back over the bus.
-    fn read_back(&self) -> Vec<(i32, i32)> {
-        let port = serial2::SerialPort::open(&self.path, 1_000_000).expect("pty");
-        let mut hand = ServoHand::with_reply_latency(port, &[1, 2], Duration::from_millis(250))
-            .expect("both servos answer");
-        [1, 2]
-            .iter()
-            .map(|&id| {
-                let torque = hand.read_register(id, MX_28.torque_enable.address);
-                let position = hand.read_register(id, MX_28.present_position.address);
-                (torque.expect("torque"), position.expect("position"))
-            })
-            .collect()
-    }
-}
-
-impl Drop for Servos {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
+fn read_back(servos: &DxlSim) -> Vec<(i32, i32)> {
+    servos.read_back(MX_28.torque_enable.address, MX_28.present_position.address)
 }
 
 /// Trace lines that are a cycle's state read, a loop command's torque limit, and the two
@@ -122,11 +85,11 @@ fn start_run(scene: &Path, press: &str) -> Child {
 
 /// Waits for 50 of the loop's commands (half a second of grasping), sends `sig`, and returns
 /// the trace's length when it was sent.
-fn grasp_then_signal(servos: &Servos, run: &Child, sig: &str) -> usize {
-    servos.trace.wait_for("50 loop commands", |l| {
+fn grasp_then_signal(servos: &DxlSim, run: &Child, sig: &str) -> usize {
+    servos.lines.wait_for("50 loop commands", |l| {
         l.iter().filter(|l| is_torque_limit(l)).count() >= 50
     });
-    let sent_at = servos.trace.snapshot().len();
+    let sent_at = servos.lines.snapshot().len();
     signal(run.id(), sig);
     sent_at
 }
@@ -143,7 +106,7 @@ fn cycles_until(trace: &[String], from: usize, end: impl Fn(&str) -> bool) -> us
 
 #[test]
 fn ctrl_c_mid_grasp_turns_the_torque_off_within_two_cycles() {
-    let servos = Servos::start();
+    let servos = servos();
     let dir = dir("sigint");
     let run = start_run(&scene(&dir, &servos.path, Some("torque_off"), 20.0), "0.3");
     let sent_at = grasp_then_signal(&servos, &run, "INT");
@@ -159,14 +122,14 @@ fn ctrl_c_mid_grasp_turns_the_torque_off_within_two_cycles() {
         "Debug text: {err}"
     );
     servos
-        .trace
+        .lines
         .wait_for("torque off", |l| l.iter().any(|l| is_torque_off(l)));
-    let cycles = cycles_until(&servos.trace.snapshot(), sent_at, is_torque_off);
+    let cycles = cycles_until(&servos.lines.snapshot(), sent_at, is_torque_off);
     assert!(
         cycles <= 2,
         "{cycles} cycles after SIGINT before torque off"
     );
-    for (torque, _) in servos.read_back() {
+    for (torque, _) in read_back(&servos) {
         assert_eq!(torque, 0, "torque left on");
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -174,13 +137,13 @@ fn ctrl_c_mid_grasp_turns_the_torque_off_within_two_cycles() {
 
 #[test]
 fn sigterm_mid_grasp_releases_the_hand_then_turns_the_torque_off_through_a_second_signal() {
-    let servos = Servos::start();
+    let servos = servos();
     let dir = dir("sigterm");
     let run = start_run(&scene(&dir, &servos.path, None, 20.0), "0.3");
     let sent_at = grasp_then_signal(&servos, &run, "TERM");
     // A second signal while the hand opens (a user pressing Ctrl-C again) does not cut the
     // release short.
-    servos.trace.wait_for("the release", |l| {
+    servos.lines.wait_for("the release", |l| {
         l[sent_at..].iter().any(|l| is_opening(l))
     });
     signal(run.id(), "INT");
@@ -196,9 +159,9 @@ fn sigterm_mid_grasp_releases_the_hand_then_turns_the_torque_off_through_a_secon
     );
     // dxl-sim prints its trace as it goes: the run may end before the last line is read.
     servos
-        .trace
+        .lines
         .wait_for("torque off", |l| l.iter().any(|l| is_torque_off(l)));
-    let trace = servos.trace.snapshot();
+    let trace = servos.lines.snapshot();
     let cycles = cycles_until(&trace, sent_at, is_opening);
     assert!(
         cycles <= 2,
@@ -206,7 +169,7 @@ fn sigterm_mid_grasp_releases_the_hand_then_turns_the_torque_off_through_a_secon
     );
     assert!(trace.iter().any(|l| is_torque_off(l)), "no torque off");
     // Open where the run found them (2048 = π rad), powered down.
-    for (torque, position) in servos.read_back() {
+    for (torque, position) in read_back(&servos) {
         assert_eq!(torque, 0, "torque left on");
         assert!((position - 2048).abs() <= 40, "not opened: {position}");
     }
@@ -215,10 +178,10 @@ fn sigterm_mid_grasp_releases_the_hand_then_turns_the_torque_off_through_a_secon
 
 #[test]
 fn a_servo_bus_that_dies_mid_hold_ends_the_run_at_once_saying_so() {
-    let servos = Servos::start();
+    let servos = servos();
     let dir = dir("bus");
     let run = start_run(&scene(&dir, &servos.path, None, 20.0), "0.3");
-    servos.trace.wait_for("50 loop commands", |l| {
+    servos.lines.wait_for("50 loop commands", |l| {
         l.iter().filter(|l| is_torque_limit(l)).count() >= 50
     });
     signal(servos.child.id(), "KILL");
@@ -249,7 +212,7 @@ fn a_servo_bus_that_dies_mid_hold_ends_the_run_at_once_saying_so() {
 
 #[test]
 fn a_normal_run_holds_from_its_first_command_and_ends_released() {
-    let servos = Servos::start();
+    let servos = servos();
     let dir = dir("normal");
     let run = start_run(&scene(&dir, &servos.path, None, 1.0), "0.3");
     let out = finish(run);
@@ -261,9 +224,9 @@ fn a_normal_run_holds_from_its_first_command_and_ends_released() {
     );
     // dxl-sim prints its trace as it goes: the run may end before the last line is read.
     servos
-        .trace
+        .lines
         .wait_for("torque off", |l| l.iter().any(|l| is_torque_off(l)));
-    let trace = servos.trace.snapshot();
+    let trace = servos.lines.snapshot();
     // hold_s = 1 from the first command: the loop's torque limits span one second of the
     // servos' time (the simulator keeps wall time), whatever opening and taring took.
     let limits: Vec<&String> = trace.iter().filter(|l| is_torque_limit(l)).collect();
@@ -276,7 +239,7 @@ fn a_normal_run_holds_from_its_first_command_and_ends_released() {
     let held = time_s(last_loop) - time_s(limits[0]);
     assert!((0.97..=1.05).contains(&held), "held {held} s");
     assert!(trace[release..].iter().any(|l| is_torque_off(l)));
-    for (torque, position) in servos.read_back() {
+    for (torque, position) in read_back(&servos) {
         assert_eq!(torque, 0, "torque left on");
         assert!((position - 2048).abs() <= 40, "not opened: {position}");
     }
@@ -285,7 +248,7 @@ fn a_normal_run_holds_from_its_first_command_and_ends_released() {
 
 #[test]
 fn closing_on_nothing_is_a_failed_grasp_not_a_met_target() {
-    let servos = Servos::start();
+    let servos = servos();
     let dir = dir("empty");
     let run = start_run(&scene(&dir, &servos.path, None, 20.0), "never");
     let out = finish(run);
@@ -296,7 +259,7 @@ fn closing_on_nothing_is_a_failed_grasp_not_a_met_target() {
         "{err}"
     );
     assert!(!stdout.contains("yes"), "{stdout}");
-    for (torque, _) in servos.read_back() {
+    for (torque, _) in read_back(&servos) {
         assert_eq!(torque, 0, "torque left on");
     }
     let _ = std::fs::remove_dir_all(&dir);

@@ -5,10 +5,9 @@
 //! UR controller simulator connects to it; a pad on a named bus is read through the driver; a
 //! missing I2C bus, serial port or host is a typed "cannot open …" error naming the path.
 
-use crate::process::{Lines, built};
+use crate::process::DxlSim;
 use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock};
 use embedded_hal::delay::DelayNs;
-use hand_control::ServoHand;
 use hand_control::control_table::MX_28;
 use hand_control::grasp_loop::LoopClock;
 use handstack::progress::Quiet;
@@ -16,10 +15,8 @@ use handstack::runs::{RunContext, run};
 use handstack::scene::{Scene, SceneError};
 use handstack::stack::platform::{I2cBus, Platform};
 use handstack::{Plot, RunError};
-use std::process::{Child, Command, Stdio};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::Duration;
 
 fn run_text(text: &str) -> Result<handstack::Outcome, RunError> {
     let scene = Scene::parse("hw.toml", text)?;
@@ -153,41 +150,26 @@ fn a_hardware_grasp_reads_its_frames_from_the_buses_it_names_and_drives_the_serv
     );
 }
 
-/// Two simulated MX-28s (IDs 1 and 2) on a pty: `dxl-sim` as its own process, as a user runs
-/// it. A scene opens the pty by its path, as it would /dev/ttyUSB0.
-struct ServoBus {
-    child: Child,
-    path: String,
+/// The servo bus of these scenes ([`DxlSim`]), read back as Torque Enable and Goal PWM.
+struct ServoBus(DxlSim);
+
+impl std::ops::Deref for ServoBus {
+    type Target = DxlSim;
+    fn deref(&self) -> &DxlSim {
+        &self.0
+    }
 }
 
 impl ServoBus {
     fn start() -> ServoBus {
-        let mut child = Command::new(built("dxl-sim"))
-            .args(["--servo", "mx28:1", "--servo", "mx28:2"])
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("dxl-sim starts");
-        let lines = Lines::read(child.stdout.take().expect("stdout"));
-        lines.wait_for("pty path", |l| !l.is_empty());
-        let path = lines.snapshot()[0].clone();
-        assert!(path.starts_with("/dev/"), "{path}");
-        ServoBus { child, path }
+        ServoBus(DxlSim::start(&[]))
     }
 
-    /// Each servo's Torque Enable (on?) and Goal PWM, read back over Protocol 2.0: after every
-    /// byte sent before, a broadcast included.
+    /// Each servo's Torque Enable (on?) and Goal PWM.
     fn torque_and_goal_pwm(&self) -> Vec<(bool, i32)> {
-        let port = serial2::SerialPort::open(&self.path, 1_000_000).expect("pty");
-        let mut hand = ServoHand::with_reply_latency(port, &[1, 2], Duration::from_millis(250))
-            .expect("both servos answer");
-        [1, 2]
-            .iter()
-            .map(|&id| {
-                let on = hand.read_register(id, MX_28.torque_enable.address);
-                let pwm = hand.read_register(id, MX_28.goal_effort.address);
-                (on.expect("torque") != 0, pwm.expect("Goal PWM"))
-            })
+        self.read_back(MX_28.torque_enable.address, MX_28.goal_effort.address)
+            .into_iter()
+            .map(|(on, pwm)| (on != 0, pwm))
             .collect()
     }
 
@@ -197,13 +179,6 @@ impl ServoBus {
             assert!(!on, "servo {id} torque");
             assert_eq!(pwm, MX_28.effort_limit.default, "servo {id} Goal PWM");
         }
-    }
-}
-
-impl Drop for ServoBus {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
     }
 }
 

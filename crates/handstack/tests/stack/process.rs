@@ -112,6 +112,56 @@ impl Drop for UrSim {
     }
 }
 
+/// Two simulated MX-28s (IDs 1 and 2) on a pty: the workspace's `dxl-sim` as its own process, as
+/// a user runs it. A scene opens the pty by its path, as it would /dev/ttyUSB0; `lines` is what
+/// the simulator prints after the path (its bus trace, with `--trace`).
+pub(crate) struct DxlSim {
+    pub(crate) child: Child,
+    pub(crate) path: String,
+    pub(crate) lines: Arc<Lines>,
+}
+
+impl DxlSim {
+    /// Starts `dxl-sim --servo mx28:1 --servo mx28:2 EXTRA…` and waits for its pty path.
+    pub(crate) fn start(extra: &[&str]) -> DxlSim {
+        let mut child = Command::new(built("dxl-sim"))
+            .args(["--servo", "mx28:1", "--servo", "mx28:2"])
+            .args(extra)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("dxl-sim starts");
+        let lines = Lines::read(child.stdout.take().expect("stdout"));
+        lines.wait_for("pty path", |l| !l.is_empty());
+        let path = lines.snapshot()[0].clone();
+        assert!(path.starts_with("/dev/"), "{path}");
+        DxlSim { child, path, lines }
+    }
+
+    /// Registers `a` and `b` (control-table addresses) of each servo, read back over Protocol
+    /// 2.0: after every byte sent before, a broadcast included.
+    pub(crate) fn read_back(&self, a: u16, b: u16) -> Vec<(i32, i32)> {
+        let port = serial2::SerialPort::open(&self.path, 1_000_000).expect("pty");
+        let mut hand =
+            hand_control::ServoHand::with_reply_latency(port, &[1, 2], Duration::from_millis(250))
+                .expect("both servos answer");
+        [1, 2]
+            .iter()
+            .map(|&id| {
+                let first = hand.read_register(id, a).expect("register a");
+                (first, hand.read_register(id, b).expect("register b"))
+            })
+            .collect()
+    }
+}
+
+impl Drop for DxlSim {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
 /// Waits for `child` to end (bounded), with what it printed.
 pub(crate) fn finish(child: Child) -> Output {
     let pid = child.id();
