@@ -1,8 +1,9 @@
 //! The consumer test: a scratch crate outside the workspace (`target/consumer/`) that depends
-//! only on the `.crate` files `cargo package` wrote, unpacked afresh, and runs every published
-//! crate's README (product crates and simulators) as its own doctests — what a user who added
-//! the crates from crates.io would run. Third-party versions come from the workspace's
-//! `Cargo.lock`, copied in.
+//! only on the `.crate` files `cargo package` wrote, unpacked afresh. It builds every published
+//! crate's library and binaries from those files (cargo's package verify, for all of them in one
+//! build) and runs every published crate's README (product crates and simulators) as its own
+//! doctests — what a user who added the crates from crates.io would run. Third-party versions
+//! come from the workspace's `Cargo.lock`, copied in.
 
 use crate::package::published_crates;
 use crate::run::{cargo, step, workspace_test_profile};
@@ -43,17 +44,43 @@ pub fn run(root: &Path, python: &Path) -> Result<()> {
     std::fs::write(consumer.join("src/lib.rs"), readmes(&packages)?)?;
     std::fs::copy(root.join("Cargo.lock"), consumer.join("Cargo.lock"))
         .context("copy Cargo.lock")?;
-    let mut cmd = cargo(root);
-    workspace_test_profile(&mut cmd, root)?;
-    cmd.args(["test", "--doc", "--manifest-path"])
-        .arg(consumer.join("Cargo.toml"))
-        // Shares compiled third-party crates with the workspace build.
-        .env("CARGO_TARGET_DIR", root.join("target"))
-        .env("HANDSTACK_PYTHON", python);
+    let mut build = consumer_cargo(root, &consumer, &packages, &["build", "--lib", "--bins"])?;
+    for p in &packages {
+        build.args(["-p", &p.name]);
+    }
+    step(
+        "consumer build: every package's library and binaries from its packaged files",
+        &mut build,
+    )?;
+    let mut test = consumer_cargo(root, &consumer, &packages, &["test", "--doc"])?;
+    test.env("HANDSTACK_PYTHON", python);
     step(
         "consumer test: every README against the packaged crates",
-        &mut cmd,
+        &mut test,
     )
+}
+
+/// `cargo ARGS` (a subcommand and its options) for the consumer crate at `consumer`: the workspace's test profile, so that
+/// third-party crates are the test build's own (same settings, same `target/`), with the
+/// packaged crates themselves unoptimised — they are built here only to be compiled and to run
+/// the READMEs' short examples, and their code differs from the workspace's anyway.
+fn consumer_cargo(
+    root: &Path,
+    consumer: &Path,
+    packages: &[Packaged],
+    args: &[&str],
+) -> Result<Command> {
+    let mut cmd = cargo(root);
+    workspace_test_profile(&mut cmd, root)?;
+    for p in packages {
+        cmd.arg("--config")
+            .arg(format!("profile.dev.package.\"{}\".opt-level=0", p.name));
+    }
+    cmd.args(args)
+        .arg("--manifest-path")
+        .arg(consumer.join("Cargo.toml"))
+        .env("CARGO_TARGET_DIR", root.join("target"));
+    Ok(cmd)
 }
 
 /// Unpacks `target/package/NAME-VERSION.crate` (the newest of NAME's) into `into`.

@@ -10,6 +10,9 @@ use std::process::Command;
 /// Cortex-M3 (seed 000's fingertip MCUs), and Cortex-M4F.
 pub const TARGETS: [&str; 2] = ["thumbv7m-none-eabi", "thumbv7em-none-eabihf"];
 
+/// The builds' directory, from the workspace root.
+const TARGET_DIR: &str = "target/embedded";
+
 /// The crates that say `#![no_std]`, and the features a firmware may turn on.
 pub const NO_STD: [(&str, &[&str]); 6] = [
     ("hand-traits", &[]),
@@ -43,10 +46,15 @@ pub fn ensure_targets() -> Result<()> {
 pub fn build(root: &Path) -> Result<()> {
     ensure_targets()?;
     for t in TARGETS {
+        // A build directory of its own: these builds run beside the workspace's (a lane of
+        // `cargo xtask test`), which would otherwise wait for each other's lock.
         let mut bare = cargo(root);
-        bare.args(["build", "--target", t, "--no-default-features"]);
+        bare.args(["build", "--target", t, "--no-default-features"])
+            .env("CARGO_TARGET_DIR", root.join(TARGET_DIR));
         let mut featured = cargo(root);
-        featured.args(["build", "--target", t, "--no-default-features"]);
+        featured
+            .args(["build", "--target", t, "--no-default-features"])
+            .env("CARGO_TARGET_DIR", root.join(TARGET_DIR));
         let mut features = Vec::new();
         for (name, extra) in NO_STD {
             bare.args(["-p", name]);

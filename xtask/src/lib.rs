@@ -54,6 +54,7 @@ pub mod firmware;
 pub mod fixtures;
 pub mod fuzz;
 pub mod fuzzy_peers;
+pub mod lane;
 pub mod msrv;
 pub mod package;
 pub mod run;

@@ -66,8 +66,16 @@ fn test_profile_as_dev(manifest: &str) -> Vec<String> {
     settings
 }
 
-/// Runs `cmd` as the step `name`, printing its name and wall time; fails if it fails.
+/// Runs `cmd` as the step `name`, printing its name and wall time; fails if it fails. In a
+/// [`lane`](crate::lane), the name says so and the child's output goes to the lane's log.
 pub fn step(name: &str, cmd: &mut Command) -> Result<()> {
+    let name = match crate::lane::current()? {
+        Some((lane, log)) => {
+            cmd.stdout(log.try_clone()?).stderr(log);
+            format!("{lane}: {name}")
+        }
+        None => name.to_owned(),
+    };
     println!("==> {name}");
     let start = Instant::now();
     let status = cmd

@@ -1,21 +1,64 @@
 //! `cargo xtask test`: everything CI checks, in the order that fails fastest.
 
+use crate::lane::Lane;
 use crate::run::{cargo, step, test_build};
 use crate::{chromium, consumer, embedded, firmware, fixtures, msrv, package, venv};
 use anyhow::Result;
 use std::path::Path;
 
 /// Sets up `.venv` and Chromium (the report render test), then runs fmt check, clippy `-D warnings`,
-/// the `no_std` builds for the thumb targets ([`embedded::build`]), the fingertip firmware
-/// linked for both and run on the host ([`firmware::check`]), the MSRV check ([`msrv::check`]),
-/// `cargo package` of every
-/// published crate ([`package::run`]) and every README against the packages ([`consumer::run`]),
-/// every test with every feature, the instruction-count gate (`bench --check`),
-/// the docs with warnings denied, and `fixtures --check` (again with numpy's widest SIMD kernels off).
+/// `cargo package` of every published crate ([`package::run`]) and the consumer build and test of
+/// every README against the packages ([`consumer::run`]), every test with every feature, the
+/// instruction-count gate (`bench --check`), the docs with warnings denied, and `fixtures
+/// --check` (again with numpy's widest SIMD kernels off).
+///
+/// Beside clippy, the packages and the consumer test, in a [`Lane`] (their own build
+/// directories): the `no_std` builds for the thumb targets ([`embedded::build`]), the fingertip
+/// firmware linked for both and run on the host ([`firmware::check`]) and the MSRV check
+/// ([`msrv::check`]). Once the test build is made, the tests run in a lane and the fixtures
+/// (Python and the tested `papers` binary) in another, beside the instruction-count gate and
+/// the docs: cargo holds no lock on the build directory while tests run.
 pub fn run(root: &Path) -> Result<()> {
     let python = venv::ensure(root)?;
     let chromium = chromium::ensure()?;
     step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
+    std::thread::scope(|scope| {
+        let builds = Lane::start(scope, root, "builds", || {
+            embedded::build(root)?;
+            firmware::check(root)?;
+            msrv::check(root)
+        })?;
+        let main = clippy(root)
+            .and_then(|()| package::run(root))
+            .and_then(|()| consumer::run(root, &python));
+        let lane = builds.finish();
+        main.and(lane)
+    })?;
+    let env = [
+        ("HANDSTACK_PYTHON", python.as_path()),
+        ("HANDSTACK_CHROMIUM", chromium.as_path()),
+    ];
+    step("test build", test_build(root, &env).arg("--no-run"))?;
+    let papers = fixtures::tested_papers(root, &env)?;
+    // Nothing below builds: the tests, the gate, the docs and the fixtures share the machine.
+    std::thread::scope(|scope| {
+        let tests = Lane::start(scope, root, "tests", || {
+            step("test", &mut test_build(root, &env))
+        })?;
+        let fixtures = Lane::start(scope, root, "fixtures", || {
+            fixtures::check_with(root, papers)?;
+            println!("==> fixtures --check, numpy's widest SIMD kernels off");
+            fixtures::check_with_numpy_narrowed(root)
+        })?;
+        let main = crate::bench::instructions(root, "check").and_then(|()| doc(root));
+        let tests = tests.finish();
+        let fixtures = fixtures.finish();
+        main.and(tests).and(fixtures)
+    })
+}
+
+/// clippy on every target and feature, warnings denied.
+fn clippy(root: &Path) -> Result<()> {
     step(
         "clippy",
         cargo(root).args([
@@ -27,26 +70,15 @@ pub fn run(root: &Path) -> Result<()> {
             "-D",
             "warnings",
         ]),
-    )?;
-    embedded::build(root)?;
-    firmware::check(root)?;
-    msrv::check(root)?;
-    package::run(root)?;
-    consumer::run(root, &python)?;
-    let env = [
-        ("HANDSTACK_PYTHON", python.as_path()),
-        ("HANDSTACK_CHROMIUM", chromium.as_path()),
-    ];
-    step("test", &mut test_build(root, &env))?;
-    crate::bench::instructions(root, "check")?;
+    )
+}
+
+/// The docs of every workspace crate, warnings denied.
+fn doc(root: &Path) -> Result<()> {
     step(
         "doc",
         cargo(root)
             .args(["doc", "--workspace", "--no-deps", "--all-features"])
             .env("RUSTDOCFLAGS", "-D warnings"),
-    )?;
-    println!("==> fixtures --check");
-    fixtures::run_with_tested_papers(root, fixtures::Mode::Check, &env)?;
-    println!("==> fixtures --check, numpy's widest SIMD kernels off");
-    fixtures::check_with_numpy_narrowed(root)
+    )
 }
