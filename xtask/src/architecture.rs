@@ -433,10 +433,6 @@ pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
     ("crates/aot-locate/src/label.rs", 2),
     ("crates/aot-locate/src/locator.rs", 1),
     ("crates/aot-locate/src/score.rs", 2),
-    // hand-traits: the contact-pressure estimate.
-    ("crates/hand-traits/src/estimate.rs", 1),
-    // hand-zenoh: the force topic.
-    ("crates/hand-zenoh/src/force.rs", 2),
     // handstack: scene parts, experiments, devices and the cell's tap-to-move.
     ("crates/handstack/src/cell/coordinator.rs", 1),
     ("crates/handstack/src/cell/file.rs", 1),
