@@ -436,15 +436,6 @@ pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
     // imu-icm20789: the pad's operating point.
     ("crates/imu-icm20789/src/baro/mode.rs", 3),
     ("crates/imu-icm20789/src/driver.rs", 3),
-    // tactile-nets: each model's provenance.
-    ("crates/tactile-nets/src/cnn_layers.rs", 1),
-    ("crates/tactile-nets/src/contact_cnn.rs", 1),
-    ("crates/tactile-nets/src/contact_mlp/mod.rs", 5),
-    ("crates/tactile-nets/src/force_dnn/mod.rs", 2),
-    ("crates/tactile-nets/src/lib.rs", 6),
-    ("crates/tactile-nets/src/pretrained.rs", 9),
-    ("crates/tactile-nets/src/softness.rs", 3),
-    ("crates/tactile-nets/src/softness_train.rs", 1),
 ];
 
 /// Where the known exceptions live, for the messages.
