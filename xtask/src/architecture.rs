@@ -433,37 +433,9 @@ pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
     ("crates/aot-locate/src/label.rs", 2),
     ("crates/aot-locate/src/locator.rs", 1),
     ("crates/aot-locate/src/score.rs", 2),
-    // hand-traits: the contact-pressure estimate.
-    ("crates/hand-traits/src/estimate.rs", 1),
-    // hand-zenoh: the force topic.
-    ("crates/hand-zenoh/src/force.rs", 2),
-    // handstack: scene parts, experiments, devices and the cell's tap-to-move.
-    ("crates/handstack/src/cell/coordinator.rs", 1),
-    ("crates/handstack/src/cell/file.rs", 1),
-    ("crates/handstack/src/cell/mod.rs", 1),
-    ("crates/handstack/src/cell/pad.rs", 1),
-    ("crates/handstack/src/cell/real.rs", 1),
-    ("crates/handstack/src/cli.rs", 1),
-    ("crates/handstack/src/outcome.rs", 1),
-    ("crates/handstack/src/runs/grasp.rs", 2),
-    ("crates/handstack/src/scene/experiment.rs", 2),
-    ("crates/handstack/src/scene/parts.rs", 11),
-    ("crates/handstack/src/scene/validate.rs", 2),
-    ("crates/handstack/src/stack/arm.rs", 1),
-    ("crates/handstack/src/stack/hand.rs", 1),
-    ("crates/handstack/src/stack/pad.rs", 1),
     // imu-icm20789: the pad's operating point.
     ("crates/imu-icm20789/src/baro/mode.rs", 3),
     ("crates/imu-icm20789/src/driver.rs", 3),
-    // tactile-nets: each model's provenance.
-    ("crates/tactile-nets/src/cnn_layers.rs", 1),
-    ("crates/tactile-nets/src/contact_cnn.rs", 1),
-    ("crates/tactile-nets/src/contact_mlp/mod.rs", 5),
-    ("crates/tactile-nets/src/force_dnn/mod.rs", 2),
-    ("crates/tactile-nets/src/lib.rs", 6),
-    ("crates/tactile-nets/src/pretrained.rs", 9),
-    ("crates/tactile-nets/src/softness.rs", 3),
-    ("crates/tactile-nets/src/softness_train.rs", 1),
 ];
 
 /// Where the known exceptions live, for the messages.

@@ -3,8 +3,8 @@
 //! `hand-control`, so that a fingertip's firmware (`no_std`) and the host's grasp loop estimate
 //! alike.
 //!
-//! Seed 000 §5: "the difference between the average of the contact pressure values […] and its
-//! differential value are entered into the fuzzy controller". A raw difference of two MS5611
+//! The fuzzy grasp controller of Kim et al. 2020, §5, takes "the difference between the average
+//! of the contact pressure values […] and its differential value". A raw difference of two MS5611
 //! readings 10 ms apart carries their noise ×√2 / 10 ms (≈ 500 Pa/s at OSR 1024's 3.6 Pa RMS,
 //! 5 % of the controller's rate scale), so the rate goes through a first-order low-pass.
 

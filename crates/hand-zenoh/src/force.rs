@@ -1,10 +1,10 @@
 //! A force estimate as a topic: `force` (`geometry_msgs/WrenchStamped`) under the device's
 //! namespace, from any [`ForceEstimator`] over the tared pressure rises of a fingertip (hPa,
-//! as seed 000's force DNN reads them).
+//! the unit of the force DNN of Kim et al. 2020, §2.2).
 //!
 //! The wrench is the load pressing on the pad along its normal, the fingertip frame's `z`
-//! (positive into the pad, as Table 1's weight); a barometric fingertip measures neither
-//! shear nor torque, so those stay zero.
+//! (positive into the pad, as the weight in that paper's Table 1); a barometric fingertip
+//! measures neither shear nor torque, so those stay zero.
 //!
 //! ```no_run
 //! use hand_traits::{ForceEstimate, ForceEstimator};
@@ -101,7 +101,8 @@ impl ForceTopic {
     }
 }
 
-/// Each sensor's rise over `zero_pa`, in hPa (the unit seed 000's force DNN reads).
+/// Each sensor's rise over `zero_pa`, in hPa (the unit of the force DNN of Kim et al. 2020,
+/// §2.2).
 pub fn rise_hpa<const N: usize>(pressure_pa: &[f32; N], zero_pa: &[f32]) -> [f32; N] {
     core::array::from_fn(|k| (pressure_pa[k] - zero_pa.get(k).copied().unwrap_or(0.0)) / 100.0)
 }

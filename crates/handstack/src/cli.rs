@@ -52,7 +52,7 @@ enum Command {
     #[cfg(feature = "cell")]
     Node(crate::cell::cli::NodeCommand),
     /// Start a Zenoh router, the nodes a cell file names (each its own process) and the
-    /// coordinator of seed 002's tap-to-move across them.
+    /// coordinator of tap-to-move across them (Al & Martinez-Hernandez, §IV-B).
     #[cfg(feature = "cell")]
     Cell(crate::cell::cli::CellCommand),
 }

@@ -74,7 +74,8 @@ pub enum Plot {
         /// Counts, row = true class, column = predicted class.
         counts: Vec<Vec<u32>>,
     },
-    /// A value per cell of a rows × cols grid, row-major (contact maps as seed 000 Figure 11).
+    /// A value per cell of a rows × cols grid, row-major (contact maps as in Kim et al. 2020,
+    /// Figure 11).
     Grid {
         /// Plot title.
         title: String,

@@ -4,8 +4,9 @@
 //! `Linear<9, F>` over all patches; [`PoolFlatten`] reshapes the conv map so each 2 × 2 pool
 //! window lies on one axis and takes its max, then flattens.
 //!
-//! Geometry (seed 002 §IV-A's 4 × 38 image, MATLAB's default `Padding` 0, i.e. a *valid*
-//! convolution): 3 × 3 conv → 2 × 36 map; 2 × 2 max-pool, stride 2 → 1 × 18 per filter.
+//! Geometry (the 4 × 38 image of Al & Martinez-Hernandez, §IV-A; MATLAB's default `Padding`
+//! 0, i.e. a *valid* convolution): 3 × 3 conv → 2 × 36 map; 2 × 2 max-pool, stride 2 → 1 × 18
+//! per filter.
 //!
 //! Patch rows are ordered `[sample][pool slot 0..4][pooled column 0..18]`, the pool slot being
 //! (conv row `r`, column parity `dc`), so the four members of a pool window are

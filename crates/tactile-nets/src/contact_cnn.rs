@@ -1,5 +1,5 @@
-//! The contact CNN of seed 002 §IV-A: a 4 × 38 ICM-20789 window (acc x, acc y, gyro x,
-//! gyro y) → which of the pad's 9 regions was touched.
+//! The contact CNN of Al & Martinez-Hernandez, §IV-A: a 4 × 38 ICM-20789 window (acc x,
+//! acc y, gyro x, gyro y) → which of the pad's 9 regions was touched.
 //!
 //! # Architecture ([`Variant::Paper`]; ours: [`Variant::Small`], [`Variant::Wide`])
 //! The paper's Figure 8B: one 3 × 3 convolution, ReLU, 2 × 2 max-pool, flatten, a dense layer

@@ -1,8 +1,12 @@
 //! Learned tactile models on [dfdx](https://docs.rs/dfdx) (CPU, stable Rust): the force / weight
-//! DNN (seed 000 §2.2), the contact-area MLP (seed 000 §4), the contact CNN of an IMU pad
-//! (seed 002 §IV-A) and the Levenberg–Marquardt softness network (seed 001). Data in, weights
-//! and metrics out: the crate reads no dataset and prints nothing of its own (training shows
-//! an indicatif progress bar only when [`train::TrainConfig::progress`] asks for one).
+//! DNN and the contact-area MLP of a barometric fingertip (Kim, Lee, Chung & Lee, "Artificial
+//! Intelligence-Based Optimal Grasping Control", Sensors 2020, §2.2 and §4), the contact CNN of
+//! an IMU pad (Al & Martinez-Hernandez, "Multimodal barometric and inertial measurement unit
+//! based tactile sensor for robot control", §IV-A) and the Levenberg–Marquardt softness network
+//! of an underactuated hand ("Distinguish the Textures of Grasped Objects by Robotic Hand Using
+//! Artificial Neural-Network", §3.3; below, the underactuated-hand softness paper). Data in,
+//! weights and metrics out: the crate reads no dataset and prints nothing of its own (training
+//! shows an indicatif progress bar only when [`train::TrainConfig::progress`] asks for one).
 //!
 //! The trained models are built in ([`pretrained`]). Without the default `std` feature the
 //! crate is `no_std` and allocation-free: the built-in force DNN and contact MLPs run from
@@ -22,8 +26,10 @@
 //!   and its eq. 4 labels are `aot-locate`'s);
 //! - [`cnn_layers`], [`cnn_frozen`]: im2col convolution and max-pool on stable dfdx, and the
 //!   plain-array inference path;
-//! - [`contact_cnn`]: the contact CNN of seed 002 §IV-A and its [`hand_traits::ContactLocator`];
-//! - [`softness`]: the 8 → 4 → 4 → 3 softness classifier (seed 001) and its
+//! - [`contact_cnn`]: the contact CNN of Al & Martinez-Hernandez, §IV-A, and its
+//!   [`hand_traits::ContactLocator`];
+//! - [`softness`]: the 8 → 4 → 4 → 3 softness classifier (the underactuated-hand softness
+//!   paper, §3.3) and its
 //!   [`hand_traits::SoftnessClassifier`];
 //! - [`softness_train`]: its Levenberg–Marquardt (and Adam) training;
 //! - [`softness_features`]: our variant's finger-order-invariant inputs.

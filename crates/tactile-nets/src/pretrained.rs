@@ -3,11 +3,11 @@
 //!
 //! | model | what | built in as |
 //! |---|---|---|
-//! | force DNN, [`ForceModel::Sim`] | hand-sim's weight series, OSR 4096 (seed 000 §2.2) | [`FORCE_DNN_SIM`]; with `std` also [`force_dnn`] |
-//! | force DNN, [`ForceModel::Table1`] | seed 000 Table 1 | [`FORCE_DNN_TABLE1`]; [`force_dnn`] |
-//! | contact MLP, cell-set head, per OSR in [`CONTACT_MLP_OSRS`] | the validation-chosen model (seed 000 §4) | [`contact_mlp_static`]; [`contact_mlp`] |
-//! | contact CNN, every [`Variant`] | seed 002 §IV-A and our variants | [`contact_cnn`] (`std`) |
-//! | softness net | seed 001 §3.3, Levenberg–Marquardt, the selected seed | [`softness`] (`std`) |
+//! | force DNN, [`ForceModel::Sim`] | hand-sim's weight series, OSR 4096 (Kim et al. 2020, §2.2) | [`FORCE_DNN_SIM`]; with `std` also [`force_dnn`] |
+//! | force DNN, [`ForceModel::Table1`] | Kim et al. 2020, Table 1 | [`FORCE_DNN_TABLE1`]; [`force_dnn`] |
+//! | contact MLP, cell-set head, per OSR in [`CONTACT_MLP_OSRS`] | the validation-chosen model (Kim et al. 2020, §4) | [`contact_mlp_static`]; [`contact_mlp`] |
+//! | contact CNN, every [`Variant`] | Al & Martinez-Hernandez, §IV-A, and our variants | [`contact_cnn`] (`std`) |
+//! | softness net | the underactuated-hand softness paper ("Distinguish the Textures of Grasped Objects…"), §3.3: Levenberg–Marquardt, the selected training seed | [`softness`] (`std`) |
 //!
 //! Without `std` the force DNN and the contact MLPs are `'static` arrays (flash on a
 //! microcontroller) behind [`StaticForceDnn`] and [`StaticContactMlp`]; with `std` every model
@@ -19,7 +19,8 @@
 //! use hand_traits::ForceEstimator;
 //! use tactile_nets::pretrained::{FORCE_DNN_TABLE1, contact_mlp_static};
 //!
-//! // Seed 000 Table 1: 100 gf on the pad raises the three sensors by 0.71, 0.53, 0.63 hPa.
+//! // Kim et al. 2020, Table 1: 100 gf on the pad raises the three sensors by 0.71, 0.53 and
+//! // 0.63 hPa.
 //! let mut dnn = FORCE_DNN_TABLE1;
 //! let f = dnn.estimate_force(&[0.71, 0.53, 0.63])?;
 //! assert!((f.gram_force() - 100.0).abs() < 5.0, "{}", f.gram_force());
@@ -108,7 +109,7 @@ macro_rules! contact_mlp {
 
 /// The force DNN trained on hand-sim's weight series (OSR 4096, 0–200 gf).
 pub static FORCE_DNN_SIM: StaticForceDnn = force_dnn!(force_dnn_sim);
-/// The force DNN trained on seed 000 Table 1 (0–200 gf).
+/// The force DNN trained on Table 1 of Kim et al. 2020 (0–200 gf).
 pub static FORCE_DNN_TABLE1: StaticForceDnn = force_dnn!(force_dnn_table1);
 
 /// The oversampling ratios with a built-in contact MLP.
@@ -146,7 +147,7 @@ pub fn contact_mlp_static(osr: u16) -> Option<&'static StaticContactMlp> {
 pub enum ForceModel {
     /// Trained on hand-sim's weight series ([`FORCE_DNN_SIM`]).
     Sim,
-    /// Trained on seed 000 Table 1 ([`FORCE_DNN_TABLE1`]).
+    /// Trained on Table 1 of Kim et al. 2020 ([`FORCE_DNN_TABLE1`]).
     Table1,
 }
 
@@ -229,7 +230,7 @@ pub fn contact_mlp(osr: u16) -> Result<ContactMlp, NetError> {
     )
 }
 
-/// The built-in contact CNN of `variant` (seed 002 §IV-A's, or one of ours).
+/// The built-in contact CNN of `variant` (Al & Martinez-Hernandez's, §IV-A, or one of ours).
 #[cfg(feature = "std")]
 pub fn contact_cnn(variant: Variant) -> Result<ContactCnn, NetError> {
     built_in(

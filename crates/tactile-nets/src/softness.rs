@@ -1,4 +1,5 @@
-//! The softness classifier of seed 001 §3.3: an 8 → 4 → 4 → 3 network (two hidden layers of 4
+//! The softness classifier of the underactuated-hand softness paper ("Distinguish the Textures
+//! of Grasped Objects…"), §3.3: an 8 → 4 → 4 → 3 network (two hidden layers of 4
 //! logistic-sigmoid neurons, a linear "purelin" output), in nalgebra, trained by
 //! Levenberg–Marquardt ([`crate::softness_train`]).
 //!
@@ -40,14 +41,14 @@ use hand_traits::{Softness, SoftnessClassifier};
 use nalgebra::{RealField, SMatrix, SVector};
 use std::path::Path;
 
-/// Readings per sample: `f1_n..f4_n`, then `a1_deg..a4_deg` (seed 001 §3.1's 8 variables).
+/// Readings per sample: `f1_n..f4_n`, then `a1_deg..a4_deg` (the paper's 8 variables, §3.1).
 pub const N_VARIABLES: usize = 8;
 /// Names of the 8 variables, in sample order.
 pub const VARIABLE_NAMES: [&str; N_VARIABLES] = [
     "f1_n", "f2_n", "f3_n", "f4_n", "a1_deg", "a2_deg", "a3_deg", "a4_deg",
 ];
 
-/// Neurons per hidden layer (seed 001 §3.3: two hidden layers of four).
+/// Neurons per hidden layer (the paper's §3.3: two hidden layers of four).
 pub const HIDDEN: usize = 4;
 /// Classes (soft, moderate, hard).
 pub const CLASSES: usize = 3;

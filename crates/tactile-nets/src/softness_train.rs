@@ -70,7 +70,8 @@ impl Default for AdamConfig {
 /// Which optimiser fits the weights.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Optimiser {
-    /// Levenberg–Marquardt (seed 001 §3.3).
+    /// Levenberg–Marquardt, as in the underactuated-hand softness paper ("Distinguish the
+    /// Textures of Grasped Objects…"), §3.3.
     Lm(LmConfig),
     /// Adam, for comparison.
     Adam(AdamConfig),

@@ -1,4 +1,5 @@
-//! Seed 002 §IV-B across processes: the pad node locates a tap and publishes the contact; the
+//! Tap-to-move (Al & Martinez-Hernandez, §IV-B) across processes: the pad node locates a tap
+//! and publishes the contact; the
 //! coordinator names the region's grid pose as the arm node's goal, waits until the arm's
 //! `tcp_pose` is there, sends it home again, and waits for the next contact.
 //!

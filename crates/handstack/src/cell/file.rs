@@ -143,7 +143,8 @@ pub struct TapToMoveEntry {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CoordinatorEntry {
-    /// Seed 002's tap-to-move.
+    /// Tap-to-move (Al & Martinez-Hernandez, §IV-B): a tap on the pad sends the arm to that
+    /// region's grid pose.
     pub tap_to_move: TapToMoveEntry,
 }
 

@@ -1,6 +1,7 @@
 //! A cell beyond one process (feature `cell`): each part of a scene as a ROS 2 node on Zenoh
 //! (hand-zenoh, rmw_zenoh's conventions), and a cell file that starts a router, the nodes as
-//! separate processes, and a coordinator that runs seed 002's tap-to-move across them:
+//! separate processes, and a coordinator that runs tap-to-move (Al & Martinez-Hernandez,
+//! §IV-B) across them:
 //! pad node → contact → coordinator → arm node.
 //!
 //! ```text

@@ -1,7 +1,7 @@
 //! An ICM-20789 pad as a node (`/pad0`): `imu` (`sensor_msgs/Imu`, every frame),
 //! `tactile/raw` (the barometer, every frame) and `tactile/contact` (one `ContactArray` per
-//! tap: the pressure trigger of seed 002 §IV-B, the window around it, the contact locator, when
-//! the node has one).
+//! tap: the pressure trigger of Al & Martinez-Hernandez, §IV-B, the window around it, the
+//! contact locator, when the node has one).
 
 use super::error::CellError;
 use super::pace::Pacer;

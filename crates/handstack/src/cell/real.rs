@@ -14,7 +14,8 @@ use crate::tap_to_move::TapToMoveConfig;
 use hand_zenoh::node::Node;
 use hand_zenoh::tactile::TactileInfo;
 
-/// The fingertip's frame rate as a node (seed 000 reads its fingertips at 100 Hz).
+/// The fingertip's frame rate as a node: the grasp loop's default rate (100 Hz), the rate it
+/// reads its fingertips at.
 pub const FINGERTIP_RATE_HZ: f32 =
     1e6 / hand_control::grasp_loop::LoopConfig::DEFAULT_PERIOD_US as f32;
 

@@ -1,8 +1,8 @@
-//! The grasp hold (seed 000 §6–7): hand-control's grasp loop (fingertip → contact estimate →
-//! the paper's Mamdani controller → torque limit) closes the hand and keeps the grip for
-//! `hold_s` from its first command, its torque limit inside the scene's band. [`run`] opens the
-//! scene's real devices; [`hold`], [`summarise`] and [`plots`] take opened ones, so the papers'
-//! Table 5 grasp runs the same loop on its simulated rig.
+//! The grasp hold (Kim et al. 2020, §5 and §7): hand-control's grasp loop (fingertip → contact
+//! estimate → the paper's Mamdani controller → torque limit) closes the hand and keeps the grip
+//! for `hold_s` from its first command, its torque limit inside the scene's band. [`run`] opens
+//! the scene's real devices; [`hold`], [`summarise`] and [`plots`] take opened ones, so a
+//! reproduction of the paper's Table 5 runs the same loop on its simulated rig.
 //!
 //! Every way a hold ends goes through one path: the hand gets the scene's end action
 //! (`[hand] on_end`, hand-control's [`GraspLoop::end`]) in the cycle the ending is seen —
@@ -604,7 +604,8 @@ fn surface() -> Result<Plot, RunError> {
         })
         .collect();
     Ok(Plot::Surface {
-        title: "Seed 000 fuzzy grasp controller: control surface (center average)".into(),
+        title: "Fuzzy grasp controller (Kim et al. 2020, §5): control surface (center average)"
+            .into(),
         x_label: "pressure error (normalised)".into(),
         y_label: "error rate (normalised)".into(),
         z_label: "torque limit (0…1023)".into(),

@@ -18,12 +18,12 @@ pub struct Experiments {
 }
 
 /// Closes the hand on what it holds and keeps the grip for `hold_s` with the fuzzy grasp loop
-/// (seed 000 §6–7), its torque limit inside `torque_band`.
+/// (Kim et al. 2020, §5 and §7), its torque limit inside `torque_band`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Grasp {
-    /// The least and greatest torque limit the loop may send, counts of 0…1023 (seed 000
-    /// Table 5 gives one band per object).
+    /// The least and greatest torque limit the loop may send, counts of 0…1023 (Kim et al.
+    /// 2020, Table 5, give one band per object).
     pub torque_band: Spanned<[u16; 2]>,
     /// How long to hold, s (0.1…600).
     pub hold_s: Spanned<f64>,

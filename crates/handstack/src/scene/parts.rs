@@ -13,11 +13,12 @@ use toml::Spanned;
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Sensors {
-    /// `[sensors.fingertip]`: three MS5611 under the silicone pad (seed 000).
+    /// `[sensors.fingertip]`: three MS5611 under the silicone pad (Kim et al. 2020, §2.1).
     pub fingertip: Option<Spanned<Fingertip>>,
-    /// `[sensors.imu_pad]`: the ICM-20789 under Ecoflex (seed 002).
+    /// `[sensors.imu_pad]`: the ICM-20789 under Ecoflex (Al & Martinez-Hernandez, §III-A–B).
     pub imu_pad: Option<Spanned<ImuPad>>,
-    /// `[sensors.underactuated]`: FSR + distal potentiometer per finger (seed 001).
+    /// `[sensors.underactuated]`: FSR + distal potentiometer per finger (the underactuated-hand
+    /// softness paper ("Distinguish the Textures of Grasped Objects…"), §2.2–2.3).
     pub underactuated: Option<Spanned<Underactuated>>,
 }
 
@@ -60,8 +61,9 @@ fn low_noise() -> BaroMode {
     BaroMode::LowNoise
 }
 
-/// The underactuated hand's FSRs and potentiometers (simulated only: seed 001 does not name
-/// its ADC board, so there is no real driver to open).
+/// The underactuated hand's FSRs and potentiometers (simulated only: the underactuated-hand
+/// softness paper reads them through an Arduino's analog inputs (§3.2) and names no ADC chip,
+/// so there is no real driver to open).
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Underactuated {}
@@ -70,11 +72,12 @@ pub struct Underactuated {}
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Estimators {
-    /// `[estimators.force]`: the force / weight DNN (seed 000 §2.2).
+    /// `[estimators.force]`: the force / weight DNN (Kim et al. 2020, §2.2).
     pub force: Option<Spanned<Force>>,
     /// `[estimators.contact]`: contact locators.
     pub contact: Option<Spanned<Contact>>,
-    /// `[estimators.softness]`: the softness classifier (seed 001).
+    /// `[estimators.softness]`: the softness classifier (the underactuated-hand softness paper,
+    /// §3.3).
     pub softness: Option<Spanned<Softness>>,
 }
 
@@ -110,13 +113,13 @@ pub struct Force {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Locator {
-    /// Arrival-of-Time, seed 000 eq. 3, on the 3 × 3 grid (fingertip).
+    /// Arrival-of-Time (Kim et al. 2020, §3, eq. 3), on the 3 × 3 grid (fingertip).
     Aot,
     /// Arrival-of-Time ranging scorer (aot-locate), 3 × 3 (fingertip).
     Ranging,
-    /// The contact-area MLP, 4 × 6 (fingertip, seed 000 §4).
+    /// The contact-area MLP, 4 × 6 (fingertip; Kim et al. 2020, §4).
     Mlp,
-    /// The contact CNN, 9 regions (ICM-20789 pad, seed 002 §IV-A).
+    /// The contact CNN, 9 regions (ICM-20789 pad; Al & Martinez-Hernandez, §IV-A).
     Cnn,
 }
 
@@ -149,8 +152,8 @@ pub struct Softness {}
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Controller {
-    /// `grasp`: the Mamdani preset of seed 000 §6 (9 MFs NH…PH, 9 × 9 rules, Wang's center
-    /// average defuzzifier as the paper).
+    /// `grasp`: the Mamdani preset of Kim et al. 2020, §5 (9 MFs NH…PH, 9 × 9 rules, Wang's
+    /// center average defuzzifier, as in the paper).
     pub preset: Spanned<String>,
 }
 
@@ -235,7 +238,7 @@ fn default_ids() -> Vec<u8> {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Arm {
-    /// `ur3` (seed 002's arm).
+    /// `ur3` (the arm of Al & Martinez-Hernandez, §III-C and §IV-B).
     pub model: Spanned<String>,
     /// The controller's host name or address. Absent: a simulated arm.
     pub host: Option<Spanned<String>>,

@@ -150,7 +150,7 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
                 c_ref.preset.span(),
                 "controller.preset",
                 format!("is \"{}\"", c_ref.preset.get_ref()),
-                "\"grasp\" (seed 000 §6)",
+                "\"grasp\" (the Mamdani grasp controller of Kim et al. 2020, §5)",
             ));
         }
         if scene.hand.is_none() {
@@ -200,7 +200,7 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
                 m.span(),
                 "arm.model",
                 format!("is \"{}\"", m.get_ref()),
-                "\"ur3\" (seed 002's arm)",
+                "\"ur3\" (the arm of Al & Martinez-Hernandez's tap-to-move, §IV-B)",
             ));
         }
     }

@@ -4,8 +4,8 @@ use crate::error::RunError;
 use std::time::Duration;
 use ur_bridge::{UrArm, UrConfig};
 
-/// How long one move may take before the client gives up (a grid move of seed 002 takes
-/// about 2 s at the default speed; a loaded machine's simulator needs more).
+/// How long one move may take before the client gives up (a tap-to-move grid move takes about
+/// 2 s at the default speed; a loaded machine's simulator needs more).
 pub const MOVE_TIMEOUT: Duration = Duration::from_secs(20);
 
 /// Connects to the controller at `host` (ur_rtde's control and receive interfaces).

@@ -6,7 +6,8 @@ use crate::scene::parts::Hand;
 use hand_control::{DEFAULT_REPLY_LATENCY, ServoHand};
 use std::time::Duration;
 
-/// The paper's bus speed (seed 000 §6: RS-485 at 1 Mbps).
+/// The default bus speed, 1 Mbps. Kim et al. 2020 (§6, Table 4) drive their hand's MX-28
+/// servos over RS-485 but give no speed.
 pub const DEFAULT_BAUD: u32 = 1_000_000;
 
 /// Opens `port` and identifies the servos `hand` names; position mode, torque on.

@@ -1,7 +1,7 @@
 //! A real ICM-20789 pad on an I2C bus of the run's [`Platform`]: opened and identified
 //! (WHO_AM_I, barometer OTP) when a scene names `i2c_bus`, so a wrong bus or a missing chip is a
-//! typed error before any experiment starts; then read as seed 002's pad is, one frame (IMU
-//! burst during a barometer conversion) per call.
+//! typed error before any experiment starts; then read one frame per call (an IMU burst during
+//! a barometer conversion), over I2C as Al & Martinez-Hernandez read theirs (§III-A).
 
 use super::platform::{I2cBus, Platform};
 use crate::error::RunError;

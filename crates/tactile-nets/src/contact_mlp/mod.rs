@@ -1,5 +1,5 @@
-//! The contact-area MLP of seed 000 §4: three pressures (and arrival times) → where on the
-//! 4 × 6 pad the fingertip was touched.
+//! The contact-area MLP of Kim et al. 2020, §4: three pressures (and arrival times) → where on
+//! the 4 × 6 pad the fingertip was touched.
 //!
 //! # Inputs
 //! [`N_FEATURES`] raw values per tap, in the order of [`FEATURE_NAMES`], all taken relative to
@@ -142,11 +142,11 @@ pub const FEATURE_NAMES: [&str; N_FEATURES] = [
 ];
 /// Arrival feature of a sensor that never rose (past the 90 ms series window).
 pub const NO_ARRIVAL_MS: f32 = 120.0;
-/// Hidden layer widths (seed 000 §4).
+/// Hidden layer widths (Kim et al. 2020, §4).
 pub const HIDDEN: [usize; 2] = [64, 32];
-/// Dropout rate after each hidden layer (seed 000 §4).
+/// Dropout rate after each hidden layer (Kim et al. 2020, §4).
 pub const DROPOUT: f32 = 0.3;
-/// L2 regularisation (seed 000 §4).
+/// L2 regularisation (Kim et al. 2020, §4).
 pub const L2: f64 = 0.001;
 /// What a contact MLP is built as, beyond its training loop's [`crate::train::TrainConfig`]:
 /// what [`ContactMlp::train_with`] takes (feature `std`). The default is the paper's network.
@@ -191,8 +191,8 @@ pub enum Head {
 impl Head {
     /// Every head.
     pub const ALL: [Head; 3] = [Head::AverageArea, Head::CellSet, Head::Centroid];
-    /// The heads of seed 000's recipe: its eq. 4 regression, and the cell-set head that
-    /// decodes into the same catalogue.
+    /// The heads of the paper's recipe (Kim et al. 2020, §4): its eq. 4 regression, and the
+    /// cell-set head that decodes into the same catalogue.
     pub const PAPER: [Head; 2] = [Head::AverageArea, Head::CellSet];
 
     /// File and metrics name: `average_area`, `cell_set` or `centroid`.

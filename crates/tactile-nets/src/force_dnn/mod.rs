@@ -1,5 +1,5 @@
-//! The force / weight DNN of seed 000 §2.2: three tared fingertip pressures → the weight on
-//! the pad, in gram-force.
+//! The force / weight DNN of Kim et al. 2020, §2.2: three tared fingertip pressures → the
+//! weight on the pad, in gram-force.
 //!
 //! # Network
 //! The paper: "sigmoid is used as the activation function for the input and output layers,
@@ -21,7 +21,7 @@
 //! use tactile_nets::force_dnn::{ForceDnn, tared_table};
 //! use tactile_nets::train::TrainConfig;
 //!
-//! // Three rows of seed 000 Table 1: weight (gf) and the three pressures (hPa).
+//! // Three rows of Table 1 of Kim et al. 2020: weight (gf) and the three pressures (hPa).
 //! let rows = [(0.0, [1191.25, 1199.02, 1018.04]), (100.0, [1191.96, 1199.55, 1018.67]),
 //!             (200.0, [1192.47, 1200.06, 1019.18])];
 //! let samples = tared_table(&rows)?; // rises above the 0 gf row
