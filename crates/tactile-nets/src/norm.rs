@@ -31,18 +31,3 @@ pub fn mean_and_scale<const N: usize>(rows: &[[f32; N]]) -> ([f32; N], [f32; N])
 pub fn standardise<const N: usize>(x: &[f32; N], mean: &[f32; N], scale: &[f32; N]) -> [f32; N] {
     core::array::from_fn(|j| (x[j] - mean[j]) / scale[j])
 }
-
-#[cfg(all(test, feature = "std"))]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn mean_and_scale_of_rows() {
-        let (m, s) = mean_and_scale(&[[1.0, 5.0], [3.0, 5.0]]);
-        assert_eq!((m, s), ([2.0, 5.0], [1.0, 1.0]));
-        assert_eq!(standardise(&[4.0, 5.0], &m, &s), [2.0, 0.0]);
-        let (m, s) = mean_and_scale(&[[0.0], [4.0]]);
-        assert_eq!((m, s), ([2.0], [2.0]));
-        assert_eq!(mean_and_scale::<2>(&[]), ([0.0; 2], [1.0; 2]));
-    }
-}

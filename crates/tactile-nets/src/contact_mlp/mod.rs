@@ -564,19 +564,6 @@ mod tests {
     }
 
     #[test]
-    fn the_centroid_head_reads_log_rises() {
-        let raw = [10.0, 0.0, -3.0, 0.5, 0.0, 0.5, 0.0, 12.0, 3.0];
-        let x = head_inputs(Head::Centroid, raw);
-        assert!((x[0] - 10.0f32.ln()).abs() < 1e-6);
-        assert_eq!(x[1], LOG_RISE_FLOOR_HPA.ln());
-        assert_eq!(x[2], LOG_RISE_FLOOR_HPA.ln());
-        assert_eq!(x[3..], raw[3..]);
-        for head in Head::PAPER {
-            assert_eq!(head_inputs(head, raw), raw);
-        }
-    }
-
-    #[test]
     fn decode_edge_cases() {
         let mut z = [0.0f32; CELLS];
         z[3] = 5.0;

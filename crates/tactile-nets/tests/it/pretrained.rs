@@ -1,0 +1,187 @@
+//! The built-in models: the `'static` and the full models agree bit for bit, damaged files are
+//! typed errors naming file and tensor, every model loads within the size budget, and the
+//! README quotes the committed metrics.
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use tactile_nets::NetError;
+use tactile_nets::contact_cnn::Variant;
+use tactile_nets::contact_mlp::{N_FEATURES, TapReading, features};
+use tactile_nets::force_dnn::ForceDnn;
+use tactile_nets::pretrained::{
+    CONTACT_MLP_OSRS, FORCE_DNN_SIM, FORCE_DNN_TABLE1, ForceModel, SIZE_BUDGET_BYTES,
+    built_in_bytes, contact_cnn, contact_mlp, contact_mlp_static, force_dnn, metrics, softness,
+};
+
+/// The Levenberg–Marquardt seed the softness metrics file selects.
+fn softness_seed() -> Result<u64, NetError> {
+    metrics("softness")?
+        .row("selected")
+        .and_then(|r| r.values.get("lm_seed"))
+        .map(|&s| s as u64)
+        .ok_or_else(|| NetError::Metrics("softness: no selected `lm_seed`".into()))
+}
+
+#[test]
+fn static_and_full_models_agree_bit_for_bit() -> Result<(), NetError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    for (model, fast) in [
+        (ForceModel::Sim, &FORCE_DNN_SIM),
+        (ForceModel::Table1, &FORCE_DNN_TABLE1),
+    ] {
+        let full = force_dnn(model)?;
+        assert_eq!(full.range_gf(), fast.range_gf());
+        for _ in 0..200 {
+            let rise: [f32; 3] = core::array::from_fn(|_| rng.random_range(-0.5..3.0));
+            let (a, b) = (full.estimate_gf(&rise)?, fast.estimate_gf(&rise)?);
+            assert_eq!(a.to_bits(), b.to_bits(), "{model:?} {rise:?}: {a} vs {b}");
+        }
+    }
+    for osr in CONTACT_MLP_OSRS {
+        let full = contact_mlp(osr)?;
+        let fast = contact_mlp_static(osr).ok_or(NetError::EmptyCatalogue)?;
+        assert!(full.catalogue().iter().copied().eq(fast.catalogue()));
+        for _ in 0..200 {
+            let r = TapReading {
+                baseline_pa: [101_000.0; 3],
+                held_pa: core::array::from_fn(|_| rng.random_range(100_900.0..108_000.0)),
+                arrival_ms: core::array::from_fn(|_| {
+                    rng.random_bool(0.8).then(|| rng.random_range(0.0..60.0))
+                }),
+            };
+            let x: [f32; N_FEATURES] = features(&r);
+            assert_eq!(full.predict(&x)?, fast.predict(&x)?, "osr {osr}");
+        }
+    }
+    assert!(contact_mlp_static(300).is_none());
+    assert!(contact_mlp(300).is_err());
+    Ok(())
+}
+
+#[test]
+fn damaged_files_are_typed_errors_naming_file_and_tensor() -> Result<(), NetError> {
+    let good = force_dnn(ForceModel::Table1)?.to_file()?;
+    let dir = std::env::temp_dir().join(format!("tactile-nets-damaged-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    let load = |name: &str, bytes: &[u8]| -> String {
+        let path = dir.join(name);
+        std::fs::write(&path, bytes)
+            .map_err(NetError::from)
+            .and_then(|()| ForceDnn::load(&path).map(|_| ()))
+            .map_or_else(|e| e.to_string(), |()| "loaded".into())
+    };
+    let bytes = good.to_bytes()?;
+    let truncated = load("truncated.safetensors", &bytes[..bytes.len() - 7]);
+    assert!(
+        truncated.starts_with(&format!("{}", dir.join("truncated.safetensors").display())),
+        "{truncated}"
+    );
+    let mut shape = good.clone();
+    shape.insert("input.mean", &[4], &[0.0; 4])?;
+    let shape = load("shape.safetensors", &shape.to_bytes()?);
+    assert!(
+        shape.contains("shape.safetensors: tensor `input.mean`: stored [4]"),
+        "{shape}"
+    );
+    let mut nan = good.clone();
+    let w = nan.get("net.1.0.weight", &[16, 16])?.to_vec();
+    let mut w2 = w.clone();
+    w2[37] = f32::NAN;
+    nan.insert("net.1.0.weight", &[16, 16], &w2)?;
+    let nan = load("nan.safetensors", &nan.to_bytes()?);
+    assert!(
+        nan.contains("nan.safetensors: tensor `net.1.0.weight`: value 37 is not finite"),
+        "{nan}"
+    );
+    let missing = ForceDnn::load(&dir.join("none.safetensors")).map(|_| ());
+    let missing = missing.map_or_else(|e| e.to_string(), |()| "loaded".into());
+    assert!(missing.contains("none.safetensors: io:"), "{missing}");
+    assert_eq!(load("good.safetensors", &bytes), "loaded");
+    std::fs::remove_dir_all(&dir)?;
+    Ok(())
+}
+
+#[test]
+fn every_built_in_model_loads_within_the_budget() -> Result<(), NetError> {
+    for v in Variant::ALL {
+        assert_eq!(contact_cnn(v)?.variant(), v);
+    }
+    let net = softness()?;
+    assert!(net.sample_outputs(&[1.0; 8]).is_ok());
+    for kind in ["force_dnn", "contact_mlp", "contact_cnn", "softness"] {
+        assert!(!metrics(kind)?.rows.is_empty(), "{kind}");
+    }
+    assert!(metrics("nothing").is_err());
+    let bytes = built_in_bytes();
+    assert!(bytes <= SIZE_BUDGET_BYTES, "{bytes} B");
+    Ok(())
+}
+
+/// The README's table of built-in models quotes their metrics files: a retrained model
+/// must not leave it stale.
+#[test]
+fn the_readme_quotes_the_built_in_metrics() -> Result<(), NetError> {
+    let readme = include_str!("../../README.md");
+    let value = |kind: &str, row: &str, key: &str| -> Result<f64, NetError> {
+        metrics(kind)?
+            .row(row)
+            .and_then(|r| r.values.get(key).copied())
+            .ok_or_else(|| NetError::Metrics(format!("{kind}: {row}/{key}")))
+    };
+    let pct = |v: f64| format!("{:.1}", 100.0 * v);
+    let mlp: Vec<String> = CONTACT_MLP_OSRS
+        .iter()
+        .map(|o| value("contact_mlp", &format!("osr{o}/chosen"), "area_accuracy").map(pct))
+        .collect::<Result<_, _>>()?;
+    let cnn: Vec<String> = Variant::ALL
+        .iter()
+        .map(|v| {
+            value(
+                "contact_cnn",
+                &format!("committed/{}", v.name()),
+                "accuracy",
+            )
+            .map(pct)
+        })
+        .collect::<Result<_, _>>()?;
+    let seed = softness_seed()?;
+    let quoted = [
+        format!(
+            "fit RMSE {:.3} gf",
+            value("force_dnn", "table1/fit", "rmse_gf")?
+        ),
+        format!(
+            "leave-one-out RMSE {:.1} gf",
+            value("force_dnn", "table1/loocv", "rmse_gf")?
+        ),
+        format!(
+            "RMSE {:.2} gf per frame",
+            value("force_dnn", "sim/frames", "rmse_gf")?
+        ),
+        format!(
+            "{:.2} gf per held step",
+            value("force_dnn", "sim/steps", "rmse_gf")?
+        ),
+        format!("area accuracy {} %", mlp.join(" / ")).replace("100.0", "100"),
+        format!("{} % on the held-out taps", cnn.join(" / ")),
+        format!(
+            "regular objects {} %, irregular {} %",
+            pct(value(
+                "softness",
+                &format!("lm/seed{seed}"),
+                "regular_accuracy"
+            )?),
+            pct(value(
+                "softness",
+                &format!("lm/seed{seed}"),
+                "irregular_accuracy"
+            )?)
+        )
+        .replace("100.0", "100"),
+        format!("take {} KiB", (built_in_bytes() as f64 / 1024.0).round()),
+    ];
+    for q in quoted {
+        assert!(readme.contains(&q), "README does not say `{q}`");
+    }
+    Ok(())
+}
