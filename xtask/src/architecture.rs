@@ -428,11 +428,6 @@ pub const KNOWN_PRODUCT_BINS: &[(&str, &str)] = &[];
 /// printing the line to change or delete: the list shrinks with every file rewritten in the
 /// code's own terms.
 pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
-    // aot-locate: the pad and eq. 3 / eq. 4 of the barometric fingertip's paper.
-    ("crates/aot-locate/src/geometry.rs", 2),
-    ("crates/aot-locate/src/label.rs", 2),
-    ("crates/aot-locate/src/locator.rs", 1),
-    ("crates/aot-locate/src/score.rs", 2),
     // hand-traits: the contact-pressure estimate.
     ("crates/hand-traits/src/estimate.rs", 1),
     // hand-zenoh: the force topic.
@@ -452,9 +447,6 @@ pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
     ("crates/handstack/src/stack/arm.rs", 1),
     ("crates/handstack/src/stack/hand.rs", 1),
     ("crates/handstack/src/stack/pad.rs", 1),
-    // imu-icm20789: the pad's operating point.
-    ("crates/imu-icm20789/src/baro/mode.rs", 3),
-    ("crates/imu-icm20789/src/driver.rs", 3),
     // tactile-nets: each model's provenance.
     ("crates/tactile-nets/src/cnn_layers.rs", 1),
     ("crates/tactile-nets/src/contact_cnn.rs", 1),
