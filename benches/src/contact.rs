@@ -13,9 +13,8 @@
 
 use crate::CycleError;
 use crate::fingertip::{Press, PressSchedule, PressedFingertip, rect};
-use aot_locate::{
-    AotLocator, ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, Ranging, Scorer,
-};
+use aot_locate::{AotLocator, ArrivalDetector, ArrivalEvent, DetectorConfig, Ranging, Scorer};
+use hand_sim::fingertip::geometry::aot_geometry;
 use hand_traits::{Contact, ContactLocator, PressureFrame};
 use paper_experiments::contact_eval::{MODEL_DIR, SELECTION_OSR, chosen_file};
 use paper_experiments::data::fingertip::TapReading;
@@ -82,8 +81,8 @@ impl ContactCycle {
         Ok(ContactCycle {
             tip: PressedFingertip::new(SELECTION_OSR, 12, schedule)?,
             detector: ArrivalDetector::new(DetectorConfig::DEFAULT),
-            eq3: AotLocator::default(),
-            ranging: AotLocator::with_scorer(Geometry::simulated_pad(), Scorer::Ranging(model)),
+            eq3: AotLocator::new(aot_geometry()),
+            ranging: AotLocator::with_scorer(aot_geometry(), Scorer::Ranging(model)),
             mlp: ContactMlp::load(&root.join(MODEL_DIR).join(chosen_file(SELECTION_OSR)))?,
         })
     }

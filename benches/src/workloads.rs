@@ -16,7 +16,8 @@ use crate::replay::Replay;
 use crate::softness::SoftnessCycle;
 use crate::tap::TapCycle;
 use crate::weight::WeightCycle;
-use aot_locate::{AotLocator, Geometry, Ranging, Scorer};
+use aot_locate::{AotLocator, Ranging, Scorer};
+use hand_sim::fingertip::geometry::aot_geometry;
 use hand_traits::ContactLocator;
 use std::hint::black_box;
 
@@ -370,7 +371,7 @@ fn kernels() -> Result<Vec<Workload>, CycleError> {
     };
 
     let ranging = Ranging::new(3_000.0, 2_500.0, 25_000.0, 30.0).map_err(CycleError::Ranging)?;
-    let mut ranging = AotLocator::with_scorer(Geometry::simulated_pad(), Scorer::Ranging(ranging));
+    let mut ranging = AotLocator::with_scorer(aot_geometry(), Scorer::Ranging(ranging));
 
     let reference = crate::fuzzy_reference::reference_201::<f32>();
     let mut reference_scratch = reference.scratch();

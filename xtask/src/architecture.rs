@@ -427,16 +427,7 @@ pub const KNOWN_PRODUCT_BINS: &[(&str, &str)] = &[];
 /// over its count, and on a count that is now too high or a file that no longer names one,
 /// printing the line to change or delete: the list shrinks with every file rewritten in the
 /// code's own terms.
-pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[
-    // aot-locate: the pad and eq. 3 / eq. 4 of the barometric fingertip's paper.
-    ("crates/aot-locate/src/geometry.rs", 2),
-    ("crates/aot-locate/src/label.rs", 2),
-    ("crates/aot-locate/src/locator.rs", 1),
-    ("crates/aot-locate/src/score.rs", 2),
-    // imu-icm20789: the pad's operating point.
-    ("crates/imu-icm20789/src/baro/mode.rs", 3),
-    ("crates/imu-icm20789/src/driver.rs", 3),
-];
+pub const KNOWN_SEED_MENTIONS: &[(&str, usize)] = &[];
 
 /// Where the known exceptions live, for the messages.
 const LISTS: &str = "xtask/src/architecture.rs";

@@ -1,5 +1,7 @@
 //! Pad geometry as data: the three sensor positions, the nine Arrival-of-Time area centres and
-//! the distances `r_{n,k}` between them (seed 000 §3, Figure 5).
+//! the distances `r_{n,k}` between them (Kim et al. 2020, "Artificial Intelligence-Based
+//! Optimal Grasping Control", §3 and Figure 5). The user gives their pad's dimensions and
+//! sensor positions; this crate assumes none.
 //!
 //! Coordinates are millimetres in the pad plane, x to the right, y up, origin at the pad
 //! centre. Areas are numbered 0…8 row-major from the top-left (the paper's `Arr_1…Arr_9`
@@ -8,13 +10,20 @@
 use crate::label::{COLS, Cell, ROWS};
 use crate::trilateration::Trilateration;
 
-/// Sensors on a fingertip (seed 000 §3: three MS5611 in an inverted triangle).
+/// Sensors on a fingertip (three barometers, in Kim et al. 2020 §3 an inverted triangle).
 pub const SENSORS: usize = 3;
 /// Areas of the 3 × 3 Arrival-of-Time grid.
 pub const AREAS: usize = 9;
 
 /// The pad rectangle the 3 × 3 areas divide into equal parts (§3: "nine equal-sized
 /// rectangles"), centred on the origin.
+///
+/// ```
+/// use aot_locate::AreaGrid;
+/// // An 18 × 12 mm pad: 3 mm cells on the 4 × 6 grid, 6 × 4 mm areas on the 3 × 3 one.
+/// let pad = AreaGrid { width_mm: 18.0, height_mm: 12.0 };
+/// assert_eq!(pad.centres_mm()[0], [-6.0, 4.0]);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AreaGrid {
     /// Pad width along x, mm.
@@ -24,13 +33,6 @@ pub struct AreaGrid {
 }
 
 impl AreaGrid {
-    /// The simulated pad of `hand-sim`: 4 × 6 cells of 3 mm, 18 × 12 mm. The paper gives no
-    /// dimensions; this is our assumption (a robot fingertip's size).
-    pub const SIMULATED_PAD: AreaGrid = AreaGrid {
-        width_mm: 18.0,
-        height_mm: 12.0,
-    };
-
     /// The nine area centres, row-major from the top-left.
     pub fn centres_mm(&self) -> [[f32; 2]; AREAS] {
         let (w, h) = (self.width_mm / 3.0, self.height_mm / 3.0);
@@ -45,7 +47,7 @@ impl AreaGrid {
     ///
     /// ```
     /// use aot_locate::AreaGrid;
-    /// let pad = AreaGrid::SIMULATED_PAD; // 3 mm cells
+    /// let pad = AreaGrid { width_mm: 18.0, height_mm: 12.0 }; // 3 mm cells
     /// assert_eq!(pad.grid_point_mm([1.0, 1.0]), [-7.5, 4.5]);
     /// assert_eq!(pad.grid_point_mm([2.5, 3.5]), [0.0, 0.0]);
     /// ```
@@ -66,7 +68,7 @@ impl AreaGrid {
     ///
     /// ```
     /// use aot_locate::AreaGrid;
-    /// let pad = AreaGrid::SIMULATED_PAD;
+    /// let pad = AreaGrid { width_mm: 18.0, height_mm: 12.0 };
     /// assert_eq!(pad.grid_point_of([-7.5, 4.5]), [1.0, 1.0]);
     /// let [row, col] = pad.grid_point_of([0.6, -0.3]);
     /// assert!((row - 2.6).abs() < 1e-6 && (col - 3.7).abs() < 1e-6);
@@ -87,8 +89,9 @@ impl AreaGrid {
     ///
     /// ```
     /// use aot_locate::{AreaGrid, Cell};
+    /// let pad = AreaGrid { width_mm: 18.0, height_mm: 12.0 };
     /// let cell = Cell::new(4, 6).unwrap();
-    /// assert_eq!(AreaGrid::SIMULATED_PAD.cell_centre_mm(cell), [7.5, -4.5]);
+    /// assert_eq!(pad.cell_centre_mm(cell), [7.5, -4.5]);
     /// ```
     pub fn cell_centre_mm(&self, cell: Cell) -> [f32; 2] {
         self.grid_point_mm([f32::from(cell.row()), f32::from(cell.col())])
@@ -143,6 +146,16 @@ impl core::fmt::Display for GeometryError {
 }
 
 /// Sensor positions, area centres and the precomputed `1 / r_{n,k}` of eq. 3.
+///
+/// ```
+/// use aot_locate::{AreaGrid, Geometry, GeometryError};
+/// // Sensors in an inverted triangle under an 18 × 12 mm pad.
+/// let sensors = [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]];
+/// let pad = Geometry::new(sensors, AreaGrid { width_mm: 18.0, height_mm: 12.0 })?;
+/// // Area 7 (bottom centre, (0, −4) mm) is 0.5 mm from sensor 2.
+/// assert!((pad.distance_mm(7, 1).unwrap() - 0.5).abs() < 1e-12);
+/// # Ok::<(), GeometryError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Geometry {
     sensors_mm: [[f32; 2]; SENSORS],
@@ -155,10 +168,6 @@ pub struct Geometry {
 }
 
 impl Geometry {
-    /// The simulated fingertip's sensors (`hand-sim`'s calibrated law): sensor 1 at
-    /// (4.5, 1.5) mm, sensor 2 at (0, −4.5) mm, sensor 3 at (−4.5, 1.5) mm.
-    pub const SIMULATED_SENSORS_MM: [[f32; 2]; SENSORS] = [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]];
-
     /// Geometry from sensor positions and the pad rectangle divided 3 × 3.
     pub fn new(sensors_mm: [[f32; 2]; SENSORS], grid: AreaGrid) -> Result<Geometry, GeometryError> {
         if !(grid.width_mm.is_finite() && grid.height_mm.is_finite()) {
@@ -189,16 +198,6 @@ impl Geometry {
             }
         }
         Ok(g)
-    }
-
-    /// The simulated pad (`hand-sim`'s fingertip): [`Geometry::SIMULATED_SENSORS_MM`] over
-    /// [`AreaGrid::SIMULATED_PAD`]. Our assumption: the paper gives no dimensions.
-    pub fn simulated_pad() -> Geometry {
-        // Known valid (no sensor on an area centre, all finite): no validation path needed.
-        Geometry::compute(
-            Geometry::SIMULATED_SENSORS_MM,
-            AreaGrid::SIMULATED_PAD.centres_mm(),
-        )
     }
 
     fn compute(sensors_mm: [[f32; 2]; SENSORS], centres_mm: [[f32; 2]; AREAS]) -> Geometry {
@@ -258,13 +257,6 @@ impl Geometry {
     }
 }
 
-impl Default for Geometry {
-    /// [`Geometry::simulated_pad`].
-    fn default() -> Geometry {
-        Geometry::simulated_pad()
-    }
-}
-
 fn distance(a: [f32; 2], b: [f32; 2]) -> f64 {
     let dx = f64::from(a[0]) - f64::from(b[0]);
     let dy = f64::from(a[1]) - f64::from(b[1]);
@@ -275,20 +267,32 @@ fn distance(a: [f32; 2], b: [f32; 2]) -> f64 {
 mod tests {
     use super::*;
 
+    /// A test pad: 18 × 12 mm (3 mm cells on the 4 × 6 grid).
+    const PAD: AreaGrid = AreaGrid {
+        width_mm: 18.0,
+        height_mm: 12.0,
+    };
+    /// Its sensors: an inverted triangle, none on an area centre.
+    const SENSORS_MM: [[f32; 2]; SENSORS] = [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]];
+
+    fn pad() -> Geometry {
+        Geometry::new(SENSORS_MM, PAD).unwrap()
+    }
+
     #[test]
-    fn simulated_centres_are_the_3x3_rectangles_of_an_18_by_12_pad() {
-        let c = AreaGrid::SIMULATED_PAD.centres_mm();
+    fn centres_are_the_3x3_rectangles_of_an_18_by_12_pad() {
+        let c = PAD.centres_mm();
         assert_eq!(c[0], [-6.0, 4.0]);
         assert_eq!(c[4], [0.0, 0.0]);
         assert_eq!(c[8], [6.0, -4.0]);
         for (n, p) in c.iter().enumerate() {
-            assert_eq!(AreaGrid::SIMULATED_PAD.area_at(*p), n);
+            assert_eq!(PAD.area_at(*p), n);
         }
     }
 
     #[test]
     fn distances_follow_pythagoras() {
-        let g = Geometry::simulated_pad();
+        let g = pad();
         // Area 7 (bottom centre, (0, −4)) to sensor 2 (0, −4.5): 0.5 mm.
         assert!((g.distance_mm(7, 1).unwrap() - 0.5).abs() < 1e-12);
         // Area 2 (top right, (6, 4)) to sensor 1 (4.5, 1.5): √(1.5² + 2.5²).
@@ -300,27 +304,24 @@ mod tests {
     fn a_sensor_on_an_area_centre_is_a_typed_error() {
         let sensors = [[0.0, 0.0], [0.0, -4.5], [-4.5, 1.5]];
         assert_eq!(
-            Geometry::new(sensors, AreaGrid::SIMULATED_PAD),
+            Geometry::new(sensors, PAD),
             Err(GeometryError::ZeroDistance { area: 4, sensor: 0 })
         );
         let bad = [[f32::NAN, 0.0], [0.0, -4.5], [-4.5, 1.5]];
-        assert_eq!(
-            Geometry::new(bad, AreaGrid::SIMULATED_PAD),
-            Err(GeometryError::NonFinite)
-        );
+        assert_eq!(Geometry::new(bad, PAD), Err(GeometryError::NonFinite));
         let flat = AreaGrid {
             width_mm: 0.0,
             height_mm: 12.0,
         };
         assert_eq!(
-            Geometry::new(Geometry::SIMULATED_SENSORS_MM, flat),
+            Geometry::new(SENSORS_MM, flat),
             Err(GeometryError::EmptyGrid)
         );
     }
 
     #[test]
     fn points_off_the_pad_fall_in_edge_areas() {
-        let g = AreaGrid::SIMULATED_PAD;
+        let g = PAD;
         assert_eq!(g.area_at([-100.0, 100.0]), 0);
         assert_eq!(g.area_at([100.0, -100.0]), 8);
         assert_eq!(g.area_at([f32::NAN, f32::NAN]), 4);
@@ -328,7 +329,7 @@ mod tests {
 
     #[test]
     fn permutation_must_be_a_permutation() {
-        let g = Geometry::simulated_pad();
+        let g = pad();
         assert!(g.permuted([0, 0, 1]).is_none());
         assert!(g.permuted([0, 1, 3]).is_none());
         let p = g.permuted([2, 0, 1]).unwrap();

@@ -1,10 +1,12 @@
-//! Eq. 4's "average area" labels on the 4 × 6 grid (seed 000 §4, Table 2).
+//! Eq. 4's "average area" labels on the 4 × 6 grid (Kim et al. 2020, "Artificial
+//! Intelligence-Based Optimal Grasping Control", §4 and Table 2).
 //!
 //! Each cell has a unique number `row.col` (`Arr_1 = 1.1`, `Arr_6 = 1.6`, `Arr_24 = 4.6`); a
 //! contact's label is the mean of its cells' numbers, `Σ Arr_i / n` (eq. 4), 0 for no contact.
 //! Since a column never exceeds 6, the mean is `row̄ + col̄ / 10`: the label encodes the
-//! patch's centroid, so two patches with the same centroid share a label. Among Figure 7's
-//! shapes that happens (see [`FIGURE7_SHAPES`]); [`decode`] returns every candidate.
+//! patch's centroid, so two patches with the same centroid share a label (a 3 × 3 square and
+//! the cell at its centre); [`decode_among`] returns every candidate of a vocabulary of
+//! contact sets (the placements of a list of [`Shape`]s, for instance).
 
 /// Rows of the fine grid.
 pub const ROWS: u8 = 4;
@@ -288,10 +290,30 @@ impl PartialEq for AverageArea {
 
 impl Eq for AverageArea {}
 
-/// A Figure 7 contact shape: its name and the rectangle it covers.
+/// A rectangular contact shape: its name and the rows × columns it covers. Its
+/// [`placements`](Shape::placements) are a label vocabulary for [`decode_among`].
+///
+/// ```
+/// use aot_locate::{CellSet, DECODE_TOLERANCE, Shape, decode_among};
+/// // A user's contact shapes: one cell, a 2 × 2 square and a 3 × 3 square.
+/// let shapes = [
+///     Shape { name: "1", rows: 1, cols: 1 },
+///     Shape { name: "4", rows: 2, cols: 2 },
+///     Shape { name: "9", rows: 3, cols: 3 },
+/// ];
+/// assert_eq!(shapes[1].placements().count(), 15); // 3 rows × 5 columns of positions
+/// let vocabulary = || shapes.into_iter().flat_map(Shape::placements);
+/// // 2.2 is cell 2.2 alone and the 3 × 3 square around it: both are candidates.
+/// let both = decode_among(2.2, DECODE_TOLERANCE, vocabulary()).unwrap();
+/// let (cell, square) = (CellSet::rect(2, 2, 1, 1), CellSet::rect(1, 1, 3, 3));
+/// assert_eq!(both.as_slice(), [cell.unwrap(), square.unwrap()]);
+/// // 1.65 is only the 2 × 2 square at the top left.
+/// let square = decode_among(1.65, DECODE_TOLERANCE, vocabulary()).unwrap();
+/// assert_eq!(square.unique(), CellSet::rect(1, 1, 2, 2));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Shape {
-    /// Figure 7's name: `1`, `4-1`, `9`, `16`, `12`, `4-2`.
+    /// The shape's name, for reports.
     pub name: &'static str,
     /// Rows it covers.
     pub rows: u8,
@@ -299,44 +321,9 @@ pub struct Shape {
     pub cols: u8,
 }
 
-/// Figure 7's shapes (seed 000 §4). The figure is lost in the text we have; like `hand-sim`
-/// we take 4-1 as a 2 × 2 square, 4-2 as a 1 × 4 bar and 12 as 3 × 4.
-pub const FIGURE7_SHAPES: [Shape; 6] = [
-    Shape {
-        name: "1",
-        rows: 1,
-        cols: 1,
-    },
-    Shape {
-        name: "4-1",
-        rows: 2,
-        cols: 2,
-    },
-    Shape {
-        name: "9",
-        rows: 3,
-        cols: 3,
-    },
-    Shape {
-        name: "16",
-        rows: 4,
-        cols: 4,
-    },
-    Shape {
-        name: "12",
-        rows: 3,
-        cols: 4,
-    },
-    Shape {
-        name: "4-2",
-        rows: 1,
-        cols: 4,
-    },
-];
-
 impl Shape {
-    /// Every placement on the grid, moved right one cell at a time, then down (§4), as
-    /// top-left (row, col) and cell set.
+    /// Every placement on the grid, moved right one cell at a time, then down (as Kim et al.
+    /// 2020 §4 move their contacts), as cell sets.
     pub fn placements(self) -> impl Iterator<Item = CellSet> {
         (1..=ROWS).flat_map(move |r| {
             (1..=COLS).filter_map(move |c| CellSet::rect(r, c, self.rows, self.cols))
@@ -344,13 +331,9 @@ impl Shape {
     }
 }
 
-/// Every Figure 7 placement plus the empty set: the label vocabulary [`decode`] searches.
-pub fn figure7_placements() -> impl Iterator<Item = CellSet> {
-    core::iter::once(CellSet::EMPTY).chain(FIGURE7_SHAPES.into_iter().flat_map(Shape::placements))
-}
-
-/// Most cell sets one Figure 7 label can stand for. Two is what the shapes give (a shape and
-/// a larger one around the same centroid); four leaves room for a custom vocabulary.
+/// Most cell sets [`decode_among`] returns for one label. Rectangles share a label when they
+/// share a centroid, so a vocabulary of shapes nested around one centre (a cell and the
+/// 3 × 3 square around it) gives more than one candidate; four leaves room.
 pub const MAX_CANDIDATES: usize = 4;
 
 /// The cell sets a label decodes to, in vocabulary order.
@@ -394,17 +377,13 @@ impl core::fmt::Display for LabelError {
     }
 }
 
-/// Half the spacing of Figure 7 labels: their values are multiples of 0.05 (`row̄` and `col̄`
-/// are whole or half), so a value within 0.025 of a label is that label.
+/// Half the spacing of rectangles' labels: a rectangle's mean row and column are whole or
+/// half, so its eq. 4 value is a multiple of 0.05, and a value within 0.025 of a rectangle's
+/// label is that label.
 pub const DECODE_TOLERANCE: f32 = 0.025;
 
-/// Every Figure 7 placement (or the empty set) whose eq. 4 label is within
-/// [`DECODE_TOLERANCE`] of `value`.
-pub fn decode(value: f32) -> Result<Candidates, LabelError> {
-    decode_among(value, DECODE_TOLERANCE, figure7_placements())
-}
-
-/// Every set of `vocabulary` whose eq. 4 label is strictly within `tolerance` of `value`.
+/// Every set of `vocabulary` whose eq. 4 label is strictly within `tolerance` of `value`
+/// (include [`CellSet::EMPTY`] in the vocabulary to decode 0 as no contact).
 pub fn decode_among(
     value: f32,
     tolerance: f32,
@@ -435,6 +414,25 @@ pub fn decode_among(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The test's vocabulary: six rectangles (Kim et al. 2020's Figure 7 contact shapes, read
+    /// as 1 × 1, 2 × 2, 3 × 3, 4 × 4, 3 × 4 and 1 × 4) at every position, and the empty set.
+    fn placements() -> impl Iterator<Item = CellSet> {
+        let shape = |name, rows, cols| Shape { name, rows, cols };
+        let shapes = [
+            shape("1", 1, 1),
+            shape("4-1", 2, 2),
+            shape("9", 3, 3),
+            shape("16", 4, 4),
+            shape("12", 3, 4),
+            shape("4-2", 1, 4),
+        ];
+        core::iter::once(CellSet::EMPTY).chain(shapes.into_iter().flat_map(Shape::placements))
+    }
+
+    fn decode(value: f32) -> Result<Candidates, LabelError> {
+        decode_among(value, DECODE_TOLERANCE, placements())
+    }
 
     #[test]
     fn unique_numbers_match_the_paper() {
@@ -499,10 +497,14 @@ mod tests {
 
     #[test]
     fn aot_areas_are_the_grids_areas_of_the_centroid() {
-        let pad = crate::AreaGrid::SIMULATED_PAD;
-        // Every Figure 7 placement: centroids on area borders included (a 2 × 2 square over
-        // columns 2–3 sits on the border of area columns 0 and 1; f32 holds those exactly).
-        for set in figure7_placements().skip(1) {
+        // An 18 × 12 mm pad of 3 mm cells.
+        let pad = crate::AreaGrid {
+            width_mm: 18.0,
+            height_mm: 12.0,
+        };
+        // Every placement: centroids on area borders included (a 2 × 2 square over columns
+        // 2–3 sits on the border of area columns 0 and 1; f32 holds those exactly).
+        for set in placements().skip(1) {
             let centroid = set.centroid().map(|c| pad.grid_point_mm(c));
             assert_eq!(set.aot_area(), centroid.map(|c| pad.area_at(c)), "{set:?}");
         }
@@ -519,7 +521,7 @@ mod tests {
     #[test]
     fn decode_errors() {
         assert_eq!(decode(f32::NAN), Err(LabelError::NonFinite));
-        // 1.15 would be row 1, column 1.5: no Figure 7 shape is centred there.
+        // 1.15 would be row 1, column 1.5: no shape of the vocabulary is centred there.
         assert_eq!(decode(1.15), Err(LabelError::NoMatch));
         assert_eq!(decode(-1.0), Err(LabelError::NoMatch));
         assert_eq!(decode(0.0).unwrap().unique(), Some(CellSet::EMPTY));

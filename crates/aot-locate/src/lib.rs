@@ -17,8 +17,8 @@ pub use geometry::{AREAS, AreaGrid, Geometry, GeometryError, SENSORS};
 /// a user needs no other crate.
 pub use hand_traits::{Contact, ContactLocator};
 pub use label::{
-    AverageArea, CELLS, COLS, Candidates, Cell, CellSet, DECODE_TOLERANCE, FIGURE7_SHAPES,
-    LabelError, MAX_CANDIDATES, ROWS, Shape, decode, decode_among, figure7_placements,
+    AverageArea, CELLS, COLS, Candidates, Cell, CellSet, DECODE_TOLERANCE, LabelError,
+    MAX_CANDIDATES, ROWS, Shape, decode_among,
 };
 pub use locator::{AotLocator, Scorer};
 pub use ranging::{Ranging, RangingError, RangingFit};

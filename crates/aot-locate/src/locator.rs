@@ -8,16 +8,17 @@ use hand_traits::{Contact, ContactLocator};
 /// Which area scores a locator ranks.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Scorer {
-    /// Seed 000's eq. 3 exactly as written ([`eq3`]).
+    /// Kim et al. 2020's eq. 3 exactly as written ([`eq3`]).
     #[default]
     Eq3,
     /// Arrival times as ranges ([`Ranging::scores`]): translation-aware, fitted.
     Ranging(Ranging),
 }
 
-/// Locates a contact on the 3 × 3 grid: the area of largest score (eq. 3's `Arr_n` by
-/// default), with the normalised margin of [`crate::Scores::confidence`].
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// Locates a contact on the 3 × 3 grid of a pad's [`Geometry`]: the area of largest score
+/// (eq. 3's `Arr_n` unless built [`with_scorer`](AotLocator::with_scorer)), with the
+/// normalised margin of [`crate::Scores::confidence`].
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AotLocator {
     geometry: Geometry,
     scorer: Scorer,
@@ -71,8 +72,14 @@ mod tests {
 
     #[test]
     fn locates_near_the_earliest_loudest_sensor() {
+        // An 18 × 12 mm pad, sensors in an inverted triangle.
+        let pad = crate::AreaGrid {
+            width_mm: 18.0,
+            height_mm: 12.0,
+        };
+        let sensors = [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]];
         // Sensor 2 (bottom centre, 0.5 mm from area 7's centre) first and loudest.
-        let mut loc = AotLocator::default();
+        let mut loc = AotLocator::new(Geometry::new(sensors, pad).unwrap());
         let c = loc
             .locate(&ArrivalEvent {
                 pressure_pa: [100.0, 2000.0, 100.0],

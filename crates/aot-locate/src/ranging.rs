@@ -24,10 +24,10 @@ use crate::score::{AotError, ArrivalEvent, Scores};
 use crate::trilateration::BOUND_MM;
 
 /// Gauss–Newton steps from the pad centre (fewer than three ranges, or collinear sensors):
-/// six converge on the simulated pad.
+/// six converge on a fingertip-sized pad (18 × 12 mm, 3 mm cells).
 const ITERATIONS_FROM_CENTRE: usize = 6;
 /// Gauss–Newton steps from the closed-form start (three ranges): one reaches the held-out
-/// accuracy of two (and of six from the centre) on the simulated taps, and each step is
+/// accuracy of two (and of six from the centre) on simulated taps of that pad, and each step is
 /// about a third of a localisation's cost (a square root and two divisions in series).
 const ITERATIONS_FROM_LINEAR: usize = 1;
 /// Levenberg damping of the 2 × 2 normal matrix: keeps a step defined when fewer than two
@@ -74,7 +74,10 @@ impl Ranging {
     /// A model `t = delay_us + us_per_mm·r + lag_us·L` for a detector threshold `threshold_pa`.
     ///
     /// ```
-    /// use aot_locate::{ArrivalEvent, Geometry, Ranging};
+    /// use aot_locate::{AreaGrid, ArrivalEvent, Geometry, Ranging};
+    /// // An 18 × 12 mm pad with its sensors in an inverted triangle.
+    /// let sensors = [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]];
+    /// let pad = Geometry::new(sensors, AreaGrid { width_mm: 18.0, height_mm: 12.0 }).unwrap();
     /// // 2 ms until the front leaves, 2.5 ms per mm, no threshold lag.
     /// let model = Ranging::new(2_000.0, 2_500.0, 0.0, 30.0).unwrap();
     /// // A press at (0, −4) mm, the bottom-middle area: sensor 2 is 0.5 mm away, sensors 1
@@ -83,9 +86,9 @@ impl Ranging {
     ///     pressure_pa: [500.0, 2_000.0, 500.0],
     ///     arrival_us: [Some(19_770), Some(3_250), Some(19_770)],
     /// };
-    /// let p = model.position_mm(&Geometry::simulated_pad(), &e).unwrap();
+    /// let p = model.position_mm(&pad, &e).unwrap();
     /// assert!(p[0].abs() < 0.05 && (p[1] + 4.0).abs() < 0.05, "{p:?}");
-    /// assert_eq!(model.scores(&Geometry::simulated_pad(), &e).unwrap().argmax(), 7);
+    /// assert_eq!(model.scores(&pad, &e).unwrap().argmax(), 7);
     /// assert!(Ranging::new(0.0, 0.0, 0.0, 30.0).is_err());
     /// ```
     pub fn new(

@@ -1,4 +1,5 @@
-//! Eq. 3 of seed 000 §3 and the area scores built on it.
+//! Eq. 3 of Kim et al. 2020, "Artificial Intelligence-Based Optimal Grasping Control", §3,
+//! and the area scores built on it.
 //!
 //! `Arr_n = Σ_k (P_k / r_{n,k}) · (Σ_x t_x / t_k)`: each sensor's pressure, divided by its
 //! distance to area `n`, weighted by how early it sensed the contact relative to the total.
@@ -169,7 +170,7 @@ pub(crate) mod tests {
     fn eq3_by_hand_centre_area() {
         // Area 4 (centre, (0, 0)): r = 3, 3, 3 for every sensor.
         // P = (30, 60, 90) Pa, t = (1, 2, 3) ms → Σt = 6 ms, ratios 6, 3, 2.
-        // Arr_5 (seed 000 eq. 3) = 30/3·6 + 60/3·3 + 90/3·2 = 60 + 60 + 60 = 180.
+        // Arr_5 (eq. 3) = 30/3·6 + 60/3·3 + 90/3·2 = 60 + 60 + 60 = 180.
         let e = ArrivalEvent {
             pressure_pa: [30.0, 60.0, 90.0],
             arrival_us: [Some(1000), Some(2000), Some(3000)],

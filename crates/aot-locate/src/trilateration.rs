@@ -166,10 +166,19 @@ mod tests {
     use super::*;
     use crate::geometry::AreaGrid;
 
+    /// The area centres of an 18 × 12 mm test pad.
+    fn centres() -> [[f32; 2]; AREAS] {
+        AreaGrid {
+            width_mm: 18.0,
+            height_mm: 12.0,
+        }
+        .centres_mm()
+    }
+
     #[test]
     fn order_is_by_position_and_the_fix_inverts_exact_ranges() {
         let sensors = [[3.0, 0.0], [0.0, -3.0], [-3.0, 0.0]];
-        let t = Trilateration::new(&sensors, &AreaGrid::SIMULATED_PAD.centres_mm());
+        let t = Trilateration::new(&sensors, &centres());
         // By x: (−3, 0), (0, −3), (3, 0).
         assert_eq!(t.order(&sensors, &[None; 3], &[0.0; 3]), [2, 1, 0]);
         assert_eq!(t.centre, [0.0, 0.0]);
@@ -188,21 +197,15 @@ mod tests {
     #[test]
     fn collinear_or_shared_positions_have_no_fix_and_an_input_order() {
         let line = [[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]];
-        assert_eq!(
-            Trilateration::new(&line, &AreaGrid::SIMULATED_PAD.centres_mm()).linear,
-            None
-        );
+        assert_eq!(Trilateration::new(&line, &centres()).linear, None);
         let shared = [[1.0, 1.0], [0.0, 0.0], [1.0, 1.0]];
-        let t = Trilateration::new(&shared, &AreaGrid::SIMULATED_PAD.centres_mm());
+        let t = Trilateration::new(&shared, &centres());
         assert_eq!(t.linear, None);
         // Sensors 0 and 2 share (1, 1): the earlier arrival goes first.
         let arrivals = [Some(9), Some(1), Some(5)];
         assert_eq!(t.order(&shared, &arrivals, &[0.0; 3]), [1, 2, 0]);
         // Ranges far beyond the pad give a clamped, finite fix or none.
-        let far = Trilateration::new(
-            &[[3.0, 0.0], [0.0, -3.0], [-3.0, 0.0]],
-            &AreaGrid::SIMULATED_PAD.centres_mm(),
-        );
+        let far = Trilateration::new(&[[3.0, 0.0], [0.0, -3.0], [-3.0, 0.0]], &centres());
         let q = far.linear.unwrap().solve([1e150, 0.0, 0.0]);
         assert!(q.is_none_or(|q| q.iter().all(|v| v.abs() <= BOUND_MM)));
     }

@@ -58,10 +58,19 @@ pub struct ChipFrame {
     pub baro: BaroSample,
 }
 
-/// Frames per second seed 002 reads its tap pad at (§III-C: 30 Hz, Low Noise mode).
-pub const TAP_PAD_RATE_HZ: f64 = 30.0;
-
-/// The IMU settings a tactile pad is read with ([`Icm20789::configure_imu`]).
+/// The IMU settings applied in one call ([`Icm20789::configure_imu`]): the full scales and the
+/// gyro low-pass, chosen by the application (a tactile pad, say, takes the finest scales).
+///
+/// ```
+/// use imu_icm20789::{AccelScale, GyroDlpf, GyroScale, ImuSettings};
+/// // Small taps: the finest scales, and a gyro low-pass above a 30 Hz frame rate's band.
+/// let pad = ImuSettings {
+///     accel_scale: AccelScale::G2,
+///     gyro_scale: GyroScale::Dps250,
+///     gyro_dlpf: GyroDlpf::Hz41,
+/// };
+/// # let _ = pad;
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ImuSettings {
     /// Accelerometer full scale.
@@ -70,17 +79,6 @@ pub struct ImuSettings {
     pub gyro_scale: GyroScale,
     /// Gyroscope low-pass filter.
     pub gyro_dlpf: GyroDlpf,
-}
-
-impl ImuSettings {
-    /// The tap pad's (seed 002 names none; ours): ±2 g and ±250 °/s, the finest scales, since a
-    /// 0.2–1.6 mm tap moves the pad by far less than either; a 41 Hz gyro low-pass, above the
-    /// 30 Hz frame rate's 15 Hz Nyquist band and well below the 1 kHz output rate.
-    pub const TAP_PAD: ImuSettings = ImuSettings {
-        accel_scale: AccelScale::G2,
-        gyro_scale: GyroScale::Dps250,
-        gyro_dlpf: GyroDlpf::Hz41,
-    };
 }
 
 /// CONFIG, GYRO_CONFIG, ACCEL_CONFIG, ACCEL_CONFIG2 (0x1A…0x1D) as last written, so that a
@@ -391,8 +389,9 @@ impl<I2C: I2cBus> Icm20789<I2C> {
         self.set_gyro_dlpf(settings.gyro_dlpf).await
     }
 
-    /// One frame of the whole chip, as seed 002's pad is read: start a pressure conversion
-    /// in `mode` (pressure first), read the IMU burst while it runs, wait the conversion's
+    /// One frame of the whole chip, as a multimodal tactile pad reads it (Al &
+    /// Martinez-Hernandez, "Multimodal barometric and inertial measurement unit based tactile
+    /// sensor for robot control", §III): start a pressure conversion in `mode` (pressure first), read the IMU burst while it runs, wait the conversion's
     /// worst-case time, read the pressure. Needs [`Self::init_barometer`] first.
     pub async fn read_frame<D: Delay>(
         &mut self,

@@ -1,6 +1,8 @@
 //! `no_std` embedded-hal 1.0 driver for the TDK InvenSense **ICM-20789**: a 3-axis
 //! accelerometer, 3-axis gyroscope and capacitive barometer in one package, the sensing element
-//! of the multimodal tactile pad (seed paper 002, §III-A: I2C at 400 kHz, Low Noise mode, 30 Hz).
+//! of a multimodal tactile pad (Al & Martinez-Hernandez, "Multimodal barometric and inertial
+//! measurement unit based tactile sensor for robot control", §III-A: I2C at 400 kHz, Low
+//! Noise mode, 30 Hz).
 //!
 //! * IMU at 0x68 / 0x69: WHO_AM_I check, reset and wake-up, full scales, DLPFs, sample-rate
 //!   divider, one 14-byte burst scaled to m/s², rad/s and °C, optional FIFO.
@@ -21,7 +23,8 @@
 //! | [`BaroMode::UltraLowNoise`] | 83.2 / 94.5 ms | 0.4 Pa | 10.4 µA |
 //!
 //! Conversion times: ICM-20789 datasheet DS-000169 rev 1.4, §10 (pressure sensor operation
-//! modes). Noise and current: the same table, and seed paper 002 §III-A. Range 30…110 kPa.
+//! modes). Noise and current: the same table, and Al & Martinez-Hernandez §III-A. Range
+//! 30…110 kPa.
 //!
 //! # Example: one fingertip sample, overlapping the IMU read with the pressure conversion
 //!
@@ -74,7 +77,7 @@ pub use baro::otp::Calibration;
 pub use crc8::crc8;
 #[cfg(feature = "async")]
 pub use driver::Icm20789Async;
-pub use driver::{BaroConversion, BaroSample, ChipFrame, Icm20789, ImuSettings, TAP_PAD_RATE_HZ};
+pub use driver::{BaroConversion, BaroSample, ChipFrame, Icm20789, ImuSettings};
 pub use error::{ConversionError, Error};
 pub use imu::config::{AccelDlpf, AccelScale, GyroDlpf, GyroScale};
 pub use imu::{ImuAddress, ImuSample, RawImu};

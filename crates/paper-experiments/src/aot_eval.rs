@@ -197,7 +197,7 @@ impl Border {
     }
 
     fn add(&mut self, tap: &Tap, centroid: [f32; 2], holding: &[usize], ranging: Option<[f64; 2]>) {
-        let grid = aot_locate::AreaGrid::SIMULATED_PAD;
+        let grid = hand_sim::fingertip::geometry::PAD;
         let centres = grid.centres_mm();
         let (a, b) = (holding[0], holding[1]);
         self.taps += 1;
@@ -225,7 +225,7 @@ impl Border {
 
 /// The areas (0…8) whose closed rectangle on the simulated pad holds the point `c` (mm).
 pub fn areas_holding(c: [f32; 2]) -> Vec<usize> {
-    let g = aot_locate::AreaGrid::SIMULATED_PAD;
+    let g = hand_sim::fingertip::geometry::PAD;
     let (hw, hh) = (g.width_mm / 6.0, g.height_mm / 6.0);
     g.centres_mm()
         .iter()
@@ -241,7 +241,7 @@ pub const TRAIN_REPEAT: u32 = 0;
 /// Each sensor's distance to the patch centroid of `mask`, mm (`None` for an empty mask).
 pub fn distances_mm(mask: u32) -> Option<[f32; 3]> {
     let c = centroid_mm(mask)?;
-    let s = Geometry::SIMULATED_SENSORS_MM;
+    let s = hand_sim::fingertip::geometry::AOT_SENSORS_MM;
     Some(std::array::from_fn(|k| {
         ((c[0] - s[k][0]).powi(2) + (c[1] - s[k][1]).powi(2)).sqrt()
     }))
@@ -356,7 +356,7 @@ fn score(
 /// The patch centroid in pad millimetres (x right, y up, origin at the centre; 3 mm cells).
 pub fn centroid_mm(mask: u32) -> Option<[f32; 2]> {
     let centroid = aot_locate::CellSet::from_bits(mask)?.centroid()?;
-    Some(aot_locate::AreaGrid::SIMULATED_PAD.grid_point_mm(centroid))
+    Some(hand_sim::fingertip::geometry::PAD.grid_point_mm(centroid))
 }
 
 #[cfg(test)]

@@ -132,7 +132,7 @@ pub fn evaluate(model: &ContactMlp, records: &[&TapRecord]) -> Result<Evaluation
 /// The cell (0–23, row-major) of the simulated pad whose rectangle holds `p_mm` (a point on a
 /// border goes to the cell towards +x / −y); `None` off the pad.
 pub fn cell_at(p_mm: [f32; 2]) -> Option<usize> {
-    let pad = aot_locate::AreaGrid::SIMULATED_PAD;
+    let pad = hand_sim::fingertip::geometry::PAD;
     let (rows, cols) = (f32::from(aot_locate::ROWS), f32::from(aot_locate::COLS));
     let col = ((p_mm[0] + pad.width_mm / 2.0) / (pad.width_mm / cols)).floor();
     let row = ((pad.height_mm / 2.0 - p_mm[1]) / (pad.height_mm / rows)).floor();

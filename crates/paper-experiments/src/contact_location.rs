@@ -27,10 +27,11 @@ use crate::contact_bound::{self, Sampling, SetBound};
 use crate::contact_eval::{self, Evaluation};
 use crate::data::fingertip::{self, TapSet};
 use crate::jobs::JobError;
-use aot_locate::{DetectorConfig, Geometry};
+use aot_locate::DetectorConfig;
 use hand_sim::fingertip::dataset::{
     SINGLE_CELL_DRAWS, SINGLE_CELL_OSR256, SINGLE_CELL_OSR256_DRAWS, TAP_FORCES_KGF,
 };
+use hand_sim::fingertip::geometry::aot_geometry;
 use std::collections::BTreeMap;
 use std::collections::btree_map::Entry;
 use std::fmt::Write as _;
@@ -93,7 +94,7 @@ impl ContactLocation {
         jittered.retain(|t| keep(t.osr));
         single_cell.retain(|t| keep(t.osr));
         single_cell_256.retain(|t| keep(t.osr));
-        let (geometry, config) = (Geometry::simulated_pad(), DetectorConfig::DEFAULT);
+        let (geometry, config) = (aot_geometry(), DetectorConfig::DEFAULT);
         let mut out = ContactLocation {
             lattice: aot_eval::evaluate(&lattice, &geometry, config),
             jittered: aot_eval::evaluate_held_out(&lattice, &jittered, &geometry, config),

@@ -16,6 +16,7 @@ use baro_drivers::sim::{BusTiming, Conditions, Ms5611Sim, SimClock, Tca9548aSim}
 use baro_drivers::{Address, Ms5611, SampleError};
 use embedded_hal::i2c::{ErrorKind, ErrorType, I2c, Operation};
 use fingertip::{Config, Error, Fingertip, OSR, frame};
+use hand_sim::fingertip::geometry::{AOT_SENSORS_MM, PAD, aot_geometry};
 use hand_sim::fingertip::{CellSet, ContactPatch, FingertipPhysics, LawParams};
 
 #[global_allocator]
@@ -59,6 +60,16 @@ fn presses() -> Result<Vec<(CellSet, f64)>, String> {
 }
 
 fn run(check: bool) -> Result<(), String> {
+    // The board's pad is the simulated fingertip's: the pad pressed here, and the one the
+    // built-in contact MLP was trained on.
+    if (fingertip::PAD, fingertip::SENSORS_MM) != (PAD, AOT_SENSORS_MM) {
+        return Err(format!(
+            "the board's pad ({:?}, sensors {:?} mm) is not hand-sim's ({PAD:?}, sensors \
+             {AOT_SENSORS_MM:?} mm)",
+            fingertip::PAD,
+            fingertip::SENSORS_MM
+        ));
+    }
     let presses = presses()?;
     let mut physics = FingertipPhysics::new(LawParams::CALIBRATED, [1013.2, 1012.9, 1013.4], 0.0)
         .map_err(|e| e.to_string())?;
@@ -103,7 +114,7 @@ fn run(check: bool) -> Result<(), String> {
     let mut delay = clock.delay();
 
     let profiler = dhat::Profiler::builder().testing().build();
-    let mut tip = Fingertip::new(sensors, &mut delay, Config::DEFAULT)
+    let mut tip = Fingertip::new(sensors, &mut delay, Config::DEFAULT, aot_geometry())
         .map_err(|e| format!("start-up: {e:?}"))?;
     let startup = dhat::HeapStats::get();
 

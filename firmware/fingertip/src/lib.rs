@@ -18,7 +18,7 @@
 pub mod frame;
 mod pipeline;
 
-pub use pipeline::{Config, Error, Estimate, Fingertip, OSR, SENSORS};
+pub use pipeline::{Config, Error, Estimate, Fingertip, OSR, PAD, SENSORS, SENSORS_MM};
 
 /// Heap the board binary gives the start-up allocations (the fuzzy engine): the host harness
 /// measures 4–5 KiB on a 64-bit host, less with 32-bit pointers.

@@ -25,10 +25,11 @@ fn main() {
 
 #[cfg(target_os = "none")]
 mod board {
+    use aot_locate::Geometry;
     use cortex_m::peripheral::{DCB, DWT};
     use embedded_alloc::LlffHeap as Heap;
     use embedded_io::Write;
-    use fingertip::{Config, Fingertip, STARTUP_HEAP_BYTES, frame};
+    use fingertip::{Config, Fingertip, PAD, SENSORS_MM, STARTUP_HEAP_BYTES, frame};
     use panic_halt as _;
 
     #[global_allocator]
@@ -95,7 +96,11 @@ mod board {
         let parts = switch.split();
         let sensors = [parts.i2c0, parts.i2c1, parts.i2c2]
             .map(|port| baro_drivers::Ms5611::new_with_i2c(port, baro_drivers::Address::CsbLow));
-        let Ok(mut tip) = Fingertip::new(sensors, delay, Config::DEFAULT) else {
+        let Ok(pad) = Geometry::new(SENSORS_MM, PAD) else {
+            // A sensor on an area centre: not the board's pad (a constant; never here).
+            halt();
+        };
+        let Ok(mut tip) = Fingertip::new(sensors, delay, Config::DEFAULT, pad) else {
             // A sensor missing or a PROM failing its CRC: nothing to measure with.
             halt();
         };

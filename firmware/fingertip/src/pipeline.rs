@@ -1,6 +1,6 @@
 //! One fingertip's cycle: read → tare / estimate → force → contact → grasp torque.
 
-use aot_locate::{AotError, AotLocator, ArrivalDetector, DetectorConfig};
+use aot_locate::{AotError, AotLocator, AreaGrid, ArrivalDetector, DetectorConfig, Geometry};
 use baro_drivers::{Measurement, Ms5611, Osr, Ready, SampleError, Scheduler, Transport, Uninit};
 use embedded_hal::delay::DelayNs;
 use fuzzy_mamdani::{EvalError, GraspController};
@@ -12,6 +12,21 @@ use tactile_nets::pretrained::{CONTACT_MLP_OSR1024, FORCE_DNN_SIM};
 
 /// MS5611s per fingertip (seed 000 §2).
 pub const SENSORS: usize = 3;
+
+/// The board's pad: 4 × 6 cells of 3 mm, 18 × 12 mm. The paper gives no dimensions; this is
+/// the simulated fingertip's pad (`hand_sim::fingertip::geometry::PAD`), the one the built-in
+/// contact MLP was trained on, so a fingertip is built to it. The host harness
+/// (`examples/host_cycles.rs`) fails if the two differ.
+pub const PAD: AreaGrid = AreaGrid {
+    width_mm: 18.0,
+    height_mm: 12.0,
+};
+
+/// Where the board's three MS5611 sit under [`PAD`], mm from its centre (x right, y up):
+/// sensor 1 top right, sensor 2 bottom centre, sensor 3 top left, an inverted triangle; the
+/// simulated fingertip's (`hand_sim::fingertip::geometry::AOT_SENSORS_MM`), checked by the
+/// host harness like [`PAD`].
+pub const SENSORS_MM: [[f32; 2]; SENSORS] = [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]];
 
 /// The oversampling ratio: two conversions of 2.28 ms per cycle for all three sensors, and the
 /// OSR of the contact MLP built in below.
@@ -120,11 +135,13 @@ where
     DI: Transport<Error = E>,
 {
     /// Resets each sensor and checks its PROM, then builds the estimators (the fuzzy engine's
-    /// tables are the only allocation, here, once).
+    /// tables are the only allocation, here, once); Arrival-of-Time locates on `pad` (the
+    /// board's: [`SENSORS_MM`] over [`PAD`]).
     pub fn new<D: DelayNs>(
         sensors: [Ms5611<DI, Uninit>; SENSORS],
         delay: &mut D,
         config: Config,
+        pad: Geometry,
     ) -> Result<Self, Error<E>> {
         let [a, b, c] = sensors;
         let init = |s: Ms5611<DI, Uninit>, sensor, delay: &mut D| {
@@ -147,7 +164,7 @@ where
             tare_left: config.tare_frames.max(1),
             estimator: PressureEstimator::new(config.contact_threshold_pa, config.rate_cutoff_hz),
             detector: ArrivalDetector::new(DetectorConfig::DEFAULT),
-            aot: AotLocator::default(),
+            aot: AotLocator::new(pad),
             force: &FORCE_DNN_SIM,
             mlp: CONTACT_MLP,
             grasp: fuzzy_mamdani::grasp_controller(),

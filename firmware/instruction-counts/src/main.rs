@@ -16,7 +16,7 @@
 use core::hint::black_box;
 use core::sync::atomic::{AtomicU32, Ordering};
 
-use aot_locate::{AotLocator, ArrivalEvent};
+use aot_locate::{AotLocator, AreaGrid, ArrivalEvent, Geometry};
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::{SCB, SYST};
 use cortex_m_rt::{entry, exception};
@@ -145,7 +145,17 @@ fn main() -> ! {
     let t0 = now();
     let mut grasp = fuzzy_mamdani::grasp_controller();
     let construction = now() - t0;
-    let mut aot = AotLocator::default();
+    // The fingertip firmware's pad (`fingertip::PAD`, `fingertip::SENSORS_MM`: 18 × 12 mm, an
+    // inverted triangle of sensors): eq. 3's work per call does not depend on where the
+    // sensors sit, but these are the numbers the firmware computes with.
+    let pad = AreaGrid {
+        width_mm: 18.0,
+        height_mm: 12.0,
+    };
+    let Ok(geometry) = Geometry::new([[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]], pad) else {
+        panic!("a sensor on an area centre");
+    };
+    let mut aot = AotLocator::new(geometry);
 
     // The check: a loop of 1000 instructions (plus the call) measured like a stage.
     measure("check-spin-1000", &mut || {

@@ -1,18 +1,63 @@
-//! Eq. 4 (seed 000 §4) round trips for every Figure 7 shape at every position, and the
-//! uniqueness of the labels among them.
+//! Eq. 4 (Kim et al. 2020 §4) round trips for every contact shape of the paper's Figure 7 at
+//! every position, and the uniqueness of the labels among them. The shapes are the test's
+//! vocabulary (the crate holds none).
 
-use aot_locate::{AverageArea, CellSet, FIGURE7_SHAPES, decode, figure7_placements};
+use aot_locate::{
+    AverageArea, Candidates, CellSet, DECODE_TOLERANCE, LabelError, Shape, decode_among,
+};
+
+/// Figure 7's six contact shapes, read as rectangles: 1 × 1, a 2 × 2 square ("4-1"), 3 × 3,
+/// 4 × 4, 3 × 4 and a 1 × 4 bar ("4-2").
+const SHAPES: [Shape; 6] = [
+    Shape {
+        name: "1",
+        rows: 1,
+        cols: 1,
+    },
+    Shape {
+        name: "4-1",
+        rows: 2,
+        cols: 2,
+    },
+    Shape {
+        name: "9",
+        rows: 3,
+        cols: 3,
+    },
+    Shape {
+        name: "16",
+        rows: 4,
+        cols: 4,
+    },
+    Shape {
+        name: "12",
+        rows: 3,
+        cols: 4,
+    },
+    Shape {
+        name: "4-2",
+        rows: 1,
+        cols: 4,
+    },
+];
+
+/// Every placement of [`SHAPES`] and the empty set.
+fn placements() -> impl Iterator<Item = CellSet> {
+    std::iter::once(CellSet::EMPTY).chain(SHAPES.into_iter().flat_map(Shape::placements))
+}
+
+/// `value` decoded among [`placements`].
+pub(crate) fn decode(value: f32) -> Result<Candidates, LabelError> {
+    decode_among(value, DECODE_TOLERANCE, placements())
+}
 
 #[test]
-fn every_figure7_placement_round_trips() {
-    // Figure 7 placements: 24 singles, 15 squares 2 × 2, 8 of 3 × 3, 3 of 4 × 4, 6 of 3 × 4,
-    // 12 bars 1 × 4.
-    let counts: Vec<usize> = FIGURE7_SHAPES
-        .iter()
-        .map(|s| s.placements().count())
-        .collect();
+fn every_placement_round_trips() {
+    // Placements: 24 singles, 15 squares 2 × 2, 8 of 3 × 3, 3 of 4 × 4, 6 of 3 × 4, 12 bars
+    // 1 × 4.
+    let counts: Vec<usize> = SHAPES.iter().map(|s| s.placements().count()).collect();
     assert_eq!(counts, [24, 15, 8, 3, 6, 12]);
-    for shape in FIGURE7_SHAPES {
+    for shape in SHAPES {
         for set in shape.placements() {
             assert_eq!(set.len(), u32::from(shape.rows) * u32::from(shape.cols));
             let label = set.average_area();
@@ -29,7 +74,7 @@ fn every_figure7_placement_round_trips() {
 
 #[test]
 fn ambiguous_labels_are_exactly_the_shared_centroids() {
-    let all: Vec<CellSet> = figure7_placements().collect();
+    let all: Vec<CellSet> = placements().collect();
     let mut ambiguous = 0;
     for set in &all {
         let sharing: Vec<&CellSet> = all

@@ -1,5 +1,6 @@
-//! aot-locate's integration tests, one binary: eq. 4 labels of every Figure 7 placement, and
-//! properties of the scorer, the detector and the locator over arbitrary input.
+//! aot-locate's integration tests, one binary: eq. 4 labels of every placement of a set of
+//! contact shapes, and properties of the scorer, the detector and the locator over arbitrary
+//! input.
 
 mod labels;
 mod props;

@@ -1,11 +1,22 @@
 //! proptest: finite scores for any finite input, sensor-order invariance, no panics.
 
 use aot_locate::{
-    AotLocator, ArrivalDetector, ArrivalEvent, DetectorConfig, Geometry, Ranging, Scorer, decode,
-    eq3,
+    AotLocator, AreaGrid, ArrivalDetector, ArrivalEvent, DECODE_TOLERANCE, DetectorConfig,
+    Geometry, Ranging, Scorer, eq3,
 };
 use hand_traits::ContactLocator;
 use proptest::prelude::*;
+
+/// The test pad: 18 × 12 mm (3 mm cells).
+const PAD: AreaGrid = AreaGrid {
+    width_mm: 18.0,
+    height_mm: 12.0,
+};
+
+/// An eq. 3 locator on [`PAD`] with sensors in an inverted triangle.
+fn locator() -> AotLocator {
+    AotLocator::new(Geometry::new([[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]], PAD).unwrap())
+}
 
 fn finite() -> impl Strategy<Value = f32> {
     prop_oneof![
@@ -40,9 +51,7 @@ fn event() -> impl Strategy<Value = ArrivalEvent> {
 
 fn geometry() -> impl Strategy<Value = Geometry> {
     prop::array::uniform3(prop::array::uniform2(-20f32..20f32))
-        .prop_filter_map("a sensor on an area centre", |s| {
-            Geometry::new(s, aot_locate::AreaGrid::SIMULATED_PAD).ok()
-        })
+        .prop_filter_map("a sensor on an area centre", |s| Geometry::new(s, PAD).ok())
 }
 
 /// Any valid ranging model: delays, slopes and lags across and beyond the fitted ones.
@@ -145,7 +154,7 @@ proptest! {
             Ok(c) => c.region < 9 && c.regions == 9 && (0.0..=1.0).contains(&c.confidence),
             Err(_) => true,
         };
-        let r = AotLocator::default().locate(&e);
+        let r = locator().locate(&e);
         prop_assert_eq!(r.is_ok(), p.iter().all(|v| v.is_finite()) && t.iter().any(Option::is_some));
         prop_assert!(sane(r));
         let mut d = ArrivalDetector::new(DetectorConfig { threshold_pa: threshold, baseline_alpha: alpha, debounce });
@@ -153,13 +162,13 @@ proptest! {
             d.push(ts, f);
         }
         let ev = d.event(onset, p);
-        prop_assert!(sane(AotLocator::default().locate(&ev)));
-        if let Ok(c) = decode(label) {
+        prop_assert!(sane(locator().locate(&ev)));
+        if let Ok(c) = crate::labels::decode(label) {
             for set in c.as_slice() {
-                prop_assert!((set.average_area().value() - label).abs() < aot_locate::DECODE_TOLERANCE);
+                prop_assert!((set.average_area().value() - label).abs() < DECODE_TOLERANCE);
             }
         }
-        if let Ok(g) = Geometry::new(sensors, aot_locate::AreaGrid::SIMULATED_PAD) {
+        if let Ok(g) = Geometry::new(sensors, PAD) {
             if let Ok(s) = eq3(&g, &e) {
                 prop_assert!(s.values().iter().all(|v| v.is_finite()));
             }

@@ -1,11 +1,10 @@
 //! Seeded fingertip datasets for the learned models, as CSV text.
 //!
-//! - [`taps`]: every contact shape of seed 000 Figure 7 ([`FIGURE7_SHAPES`], shared with
-//!   `aot-locate`) at every position (moved right, then
-//!   down, as §4 describes), at 5 / 7 / 9 kgf, two repeats, at every MS5611 OSR: the raw
-//!   driver readings around contact onset (for arrival times) and the held pressures (for the
-//!   contact-area MLP). Two files: `taps.csv` (one row per tap) and `series.csv` (one row per
-//!   frame).
+//! - [`taps`]: every contact shape of seed 000 Figure 7 ([`FIGURE7_SHAPES`]) at every
+//!   position (moved right, then down, as §4 describes), at 5 / 7 / 9 kgf, two repeats, at
+//!   every MS5611 OSR: the raw driver readings around contact onset (for arrival times) and
+//!   the held pressures (for the contact-area MLP). Two files: `taps.csv` (one row per tap)
+//!   and `series.csv` (one row per frame).
 //! - [`jittered_taps`]: a held-out set of the same contacts shifted off the lattice by seeded
 //!   offsets within ± half a cell, in the same two schemas.
 //! - [`single_cell_taps`]: a larger held-out set of one-cell contacts shifted the same way,
@@ -26,7 +25,43 @@ use crate::scene::Model;
 use hand_traits::TactileSource;
 use serde::{Deserialize, Serialize};
 
-pub use aot_locate::{FIGURE7_SHAPES, Shape};
+pub use aot_locate::Shape;
+
+/// Figure 7's contact shapes (seed 000 §4), the one copy: every tap dataset presses their
+/// placements. The figure is lost in the text we have; we take 4-1 as a 2 × 2 square, 4-2 as
+/// a 1 × 4 bar and 12 as 3 × 4.
+pub const FIGURE7_SHAPES: [Shape; 6] = [
+    Shape {
+        name: "1",
+        rows: 1,
+        cols: 1,
+    },
+    Shape {
+        name: "4-1",
+        rows: 2,
+        cols: 2,
+    },
+    Shape {
+        name: "9",
+        rows: 3,
+        cols: 3,
+    },
+    Shape {
+        name: "16",
+        rows: 4,
+        cols: 4,
+    },
+    Shape {
+        name: "12",
+        rows: 3,
+        cols: 4,
+    },
+    Shape {
+        name: "4-2",
+        rows: 1,
+        cols: 4,
+    },
+];
 
 /// The forces of Figure 9 / Table 2, kgf.
 pub const TAP_FORCES_KGF: [u32; 3] = [5, 7, 9];

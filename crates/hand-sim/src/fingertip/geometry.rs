@@ -6,9 +6,11 @@
 //! the pad centre. Row 1 is the top row, column 1 the left column, so cell `r.c` carries the
 //! paper's unique area number `r.c` (`Arr_1 = 1.1`, `Arr_6 = 1.6`, `Arr_24 = 4.6`).
 //!
-//! The paper gives no dimensions. A 3 mm cell pitch (an 18 × 12 mm pad) is our assumption,
-//! the size of a robot fingertip, and `aot-locate`'s [`AreaGrid::SIMULATED_PAD`]; the sensor
-//! positions are [`super::LawParams::CALIBRATED`]'s.
+//! The paper gives no dimensions. A 3 mm cell pitch (an 18 × 12 mm pad, [`PAD`]) is our
+//! assumption, the size of a robot fingertip; the sensor positions ([`SENSORS_MM`]) are
+//! [`super::LawParams::CALIBRATED`]'s. This module is their one owner: the Arrival-of-Time
+//! evaluation, the scenes and the benches take the pad from here ([`aot_geometry`]), since
+//! `aot-locate` holds no pad of its own.
 //!
 //! ```
 //! use hand_sim::fingertip::{Cell, CellSet};
@@ -22,8 +24,11 @@ use aot_locate::{AreaGrid, Geometry};
 
 pub use aot_locate::{CELLS, COLS, CellSet, ROWS, SENSORS};
 
-/// The simulated pad: 4 × 6 cells of 3 mm (see the module docs).
-pub const PAD: AreaGrid = AreaGrid::SIMULATED_PAD;
+/// The simulated pad: 4 × 6 cells of 3 mm, 18 × 12 mm (see the module docs).
+pub const PAD: AreaGrid = AreaGrid {
+    width_mm: 18.0,
+    height_mm: 12.0,
+};
 /// Pad width (x), mm.
 pub const WIDTH_MM: f64 = PAD.width_mm as f64;
 /// Pad height (y), mm.
@@ -31,18 +36,35 @@ pub const HEIGHT_MM: f64 = PAD.height_mm as f64;
 /// Cell pitch, mm (assumed; see the module docs).
 pub const PITCH_MM: f64 = WIDTH_MM / COLS as f64;
 
-/// The three sensors, mm, in the paper's numbering: sensor 1 top right, sensor 2 bottom
-/// centre, sensor 3 top left (an inverted triangle; which top corner is 1 follows from Table 2,
-/// where area 1.1 rises sensor 3 more and area 1.5 sensor 1 more). `aot-locate`'s
-/// [`Geometry::SIMULATED_SENSORS_MM`] in `f64` (exact: whole and half millimetres).
+/// The three sensors, mm, in the paper's numbering, as `aot-locate` takes them (`f32`):
+/// sensor 1 top right, sensor 2 bottom centre, sensor 3 top left (an inverted triangle; which
+/// top corner is 1 follows from Table 2, where area 1.1 rises sensor 3 more and area 1.5
+/// sensor 1 more).
+pub const AOT_SENSORS_MM: [[f32; 2]; SENSORS] = [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]];
+
+/// [`AOT_SENSORS_MM`] in `f64` for the physics (exact: whole and half millimetres).
 pub const SENSORS_MM: [[f64; 2]; SENSORS] = {
-    let s = Geometry::SIMULATED_SENSORS_MM;
+    let s = AOT_SENSORS_MM;
     [
         [s[0][0] as f64, s[0][1] as f64],
         [s[1][0] as f64, s[1][1] as f64],
         [s[2][0] as f64, s[2][1] as f64],
     ]
 };
+
+/// The simulated pad for Arrival-of-Time: [`AOT_SENSORS_MM`] over [`PAD`]'s 3 × 3 areas.
+///
+/// ```
+/// use hand_sim::fingertip::geometry::{AOT_SENSORS_MM, aot_geometry};
+/// let pad = aot_geometry();
+/// assert_eq!(pad.sensors_mm(), &AOT_SENSORS_MM);
+/// // Area 7 (bottom centre, (0, −4) mm) is 0.5 mm from sensor 2.
+/// assert!((pad.distance_mm(7, 1).unwrap() - 0.5).abs() < 1e-12);
+/// ```
+pub fn aot_geometry() -> Geometry {
+    // Constants, all finite, no sensor on an area centre (a unit test holds it): never fails.
+    Geometry::new(AOT_SENSORS_MM, PAD).expect("the simulated pad is a valid geometry")
+}
 
 /// One cell of the pad where the skin's physics sees it: `aot-locate`'s grid cell (row,
 /// column, index, eq. 4 number and Arrival-of-Time area, through `Deref`) and its centre on
@@ -129,7 +151,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_skin_is_the_3_mm_pad_of_aot_locate() {
+    fn the_skin_is_the_3_mm_pad() {
         assert_eq!((WIDTH_MM, HEIGHT_MM, PITCH_MM), (18.0, 12.0, 3.0));
         // Corner cells sit half a pitch in from the pad's corners.
         let first = Cell::from_index(0).unwrap().centre_mm();
@@ -144,8 +166,14 @@ mod tests {
     }
 
     #[test]
-    fn sensors_are_aot_locates() {
+    fn sensors_are_the_aot_geometrys() {
         assert_eq!(SENSORS_MM, [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5]]);
+        assert!(Geometry::new(AOT_SENSORS_MM, PAD).is_ok());
+        let g = aot_geometry();
+        assert_eq!(g.centres_mm(), &PAD.centres_mm());
+        for (k, s) in g.sensors_mm().iter().enumerate() {
+            assert_eq!(s.map(f64::from), SENSORS_MM[k]);
+        }
     }
 
     #[test]

@@ -7,8 +7,8 @@
 //! 1018 hPa). The script works in kgf; the law in newton. Residuals are listed in
 //! docs/sim-calibration.md and held by tests/it/fingertip_calibration.rs.
 //!
-//! The sensor positions are fixed, not fitted ([`super::geometry::SENSORS_MM`], `aot-locate`'s
-//! simulated pad): an inverted triangle (§3, Figure 5) with the two upper sensors level with
+//! The sensor positions are fixed, not fitted ([`super::geometry::SENSORS_MM`], the simulated
+//! pad's): an inverted triangle (§3, Figure 5) with the two upper sensors level with
 //! row 2 and 4.5 mm either side of the centre, sensor 2 on the bottom row's centre line. Freeing them lets the optimiser pile all three sensors into one corner,
 //! which fits slightly better and would wreck Arrival-of-Time geometry.
 //!

@@ -325,7 +325,7 @@ impl Default for ImuPadConfig {
                 depth_mm: 1.2,
             }],
             timing: TapTiming::default(),
-            sample_rate_hz: imu_icm20789::TAP_PAD_RATE_HZ,
+            sample_rate_hz: 30.0,
             baro_mode: BaroMode::LowNoise,
             ambient_pa: 101_325.0,
             temperature_c: 25.0,

@@ -32,5 +32,5 @@ mod window;
 
 pub use config::{ImuPadConfig, TapSpec, TapTiming};
 pub use grid::TapPosition;
-pub use model::ImuPad;
+pub use model::{IMU_SETTINGS, ImuPad};
 pub use window::{TapWindow, WINDOW_SAMPLES, WINDOW_SIGNALS, pressure_peak_pa};

@@ -107,7 +107,7 @@ pub fn run_node(
             let mut source = crate::stack::pad::open(platform, bus.get_ref(), pad.pressure_mode)?;
             let node = Node::open(args.options())?;
             let config = PadNodeConfig {
-                rate_hz: imu_icm20789::TAP_PAD_RATE_HZ,
+                rate_hz: crate::stack::pad::FRAME_RATE_HZ,
                 frame_id,
                 trigger: TapToMoveConfig::default(),
                 max_frames: None,

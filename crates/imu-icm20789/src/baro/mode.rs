@@ -9,8 +9,10 @@
 //!
 //! Sources: ICM-20789 datasheet DS-000169 rev 1.4, §10 (pressure sensor measurement commands
 //! and the operation-mode table: conversion time, noise, current); noise and current also in
-//! the multimodal-pad paper (seed 002, §III-A: "Low Power (3.2 Pa noise, 1.3 µA), Normal
-//! (1.6 Pa, 2.6 µA), Low Noise (0.8 Pa, 5.2 µA), Ultra Low Noise (0.4 Pa, 10.4 µA)"). The
+//! the multimodal-pad paper (Al & Martinez-Hernandez, "Multimodal barometric and inertial
+//! measurement unit based tactile sensor for robot control", §III-A: "Low Power (3.2 Pa
+//! noise, 1.3 µA), Normal (1.6 Pa, 2.6 µA), Low Noise (0.8 Pa, 5.2 µA), Ultra Low Noise
+//! (0.4 Pa, 10.4 µA)"). The
 //! command codes agree with TDK's and ArduPilot's reference drivers (`0x401A`, `0x5059`,
 //! `0x609C`, `0x70DF` appear there verbatim). The maximum conversion times equal the waits
 //! (1800 / 6300 / 23800 / 94500 µs) that TDK InvenSense's own Linux IIO driver for the same
@@ -93,7 +95,7 @@ impl BaroMode {
         }
     }
 
-    /// Pressure noise in pascal rms (DS-000169 §10; paper seed 002 §III-A).
+    /// Pressure noise in pascal rms (DS-000169 §10; Al & Martinez-Hernandez §III-A).
     pub const fn noise_pa_rms(self) -> f32 {
         match self {
             BaroMode::LowPower => 3.2,
@@ -136,7 +138,7 @@ mod tests {
 
     #[test]
     fn each_slower_mode_halves_noise_and_doubles_current() {
-        // The paper's four figures (seed 002 §III-A) follow this ladder exactly.
+        // Al & Martinez-Hernandez's four figures (§III-A) follow this ladder exactly.
         for pair in BaroMode::ALL.windows(2) {
             assert_eq!(pair[0].noise_pa_rms(), 2.0 * pair[1].noise_pa_rms());
             assert_eq!(

@@ -54,7 +54,7 @@ impl Tap {
     /// cells): the cells' centroid plus the shift. `None` for an empty mask.
     pub fn centroid_mm(&self) -> Option<[f32; 2]> {
         let centroid = aot_locate::CellSet::from_bits(self.mask)?.centroid()?;
-        let [x, y] = aot_locate::AreaGrid::SIMULATED_PAD.grid_point_mm(centroid);
+        let [x, y] = hand_sim::fingertip::geometry::PAD.grid_point_mm(centroid);
         Some([x + self.offset_mm[0], y + self.offset_mm[1]])
     }
 
@@ -62,7 +62,7 @@ impl Tap {
     /// [`Tap::centroid_mm`] on the 4 × 6 grid (the contact MLP's centroid target). `None` for
     /// an empty mask.
     pub fn centroid(&self) -> Option<[f32; 2]> {
-        Some(aot_locate::AreaGrid::SIMULATED_PAD.grid_point_of(self.centroid_mm()?))
+        Some(hand_sim::fingertip::geometry::PAD.grid_point_of(self.centroid_mm()?))
     }
 }
 

@@ -11,8 +11,9 @@ use crate::cnn_eval;
 use crate::contact_eval::{self, Trained};
 use crate::data::fingertip::TapSet;
 use crate::data::{fingertip, imu_pad};
-use aot_locate::{DetectorConfig, Geometry};
+use aot_locate::DetectorConfig;
 use baro_drivers::{Osr, Scheduler};
+use hand_sim::fingertip::geometry::aot_geometry;
 use std::path::Path;
 use tactile_nets::contact_cnn::{ContactCnn, Variant};
 use tactile_nets::contact_mlp::features;
@@ -127,12 +128,8 @@ pub(crate) fn aot_accuracy(root: &Path) -> Result<AotRun, TradeError> {
     let load =
         |set| fingertip::load_set(root, set).map_err(|e| TradeError::input("fingertip dataset", e));
     let (lattice, data) = (load(TapSet::Lattice)?, load(TapSet::Jittered)?);
-    let report = aot_eval::evaluate_held_out(
-        &lattice,
-        &data,
-        &Geometry::simulated_pad(),
-        DetectorConfig::DEFAULT,
-    );
+    let report =
+        aot_eval::evaluate_held_out(&lattice, &data, &aot_geometry(), DetectorConfig::DEFAULT);
     let rows = report
         .by_osr
         .iter()
@@ -217,7 +214,7 @@ pub fn points(root: &Path) -> Result<Vec<Point>, TradeError> {
             pareto: false,
         });
     }
-    let geometry = Geometry::simulated_pad();
+    let geometry = aot_geometry();
     for rule in [aot_eval::Rule::Eq3Rise, aot_eval::Rule::Ranging] {
         // The best OSR; the cheapest of equals (the rows run in ascending OSR).
         let best = aot.iter().filter(|r| r.0 == rule.name()).fold(

@@ -1,7 +1,8 @@
 //! Drift check: re-runs the evaluator on one OSR's taps and compares with the table that
 //! `docs/contact-location.md` states (regenerate it with the `aot_eval` example on change).
 
-use aot_locate::{DetectorConfig, Geometry};
+use aot_locate::DetectorConfig;
+use hand_sim::fingertip::geometry::aot_geometry;
 use paper_experiments::aot_eval as eval;
 use paper_experiments::data::fingertip;
 use std::path::PathBuf;
@@ -47,7 +48,7 @@ fn doc_table_matches_a_rerun_of_one_osr() {
     let stated = doc_row(&doc, OSR).expect("the doc has an AoT row for OSR 4096");
     let mut data = fingertip::load(&root).unwrap();
     data.retain(|t| t.osr == OSR);
-    let rep = eval::evaluate(&data, &Geometry::simulated_pad(), DetectorConfig::DEFAULT);
+    let rep = eval::evaluate(&data, &aot_geometry(), DetectorConfig::DEFAULT);
     let measured: Vec<(u32, u32)> = eval::Rule::ALL
         .iter()
         .map(|r| {

@@ -37,6 +37,7 @@ use aot_locate::{AotLocator, ArrivalDetector, DetectorConfig};
 use hand_control::grasp_loop::{
     ConfigError, GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator,
 };
+use hand_sim::fingertip::geometry::aot_geometry;
 use hand_traits::{
     ContactLocator, GraspPolicy, ImuFrame, LinearMotion, Pose, PressureFrame, TactileSource,
 };
@@ -101,7 +102,7 @@ impl Estimators {
             force,
             mlp,
             detector: ArrivalDetector::new(DetectorConfig::DEFAULT),
-            aot: AotLocator::default(),
+            aot: AotLocator::new(aot_geometry()),
             tare: LiveTare::new(tare_frames),
         }
     }

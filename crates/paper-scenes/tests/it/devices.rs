@@ -67,3 +67,13 @@ fn a_real_hand_never_grasps_from_a_simulated_fingertip() {
     assert_eq!(e.key(), Some("experiment.grasp"), "{e}");
     assert!(e.to_string().contains("from a simulated fingertip"), "{e}");
 }
+
+/// A paper scene's real pad (handstack's) is read as its simulated one (hand-sim's, which
+/// recorded the datasets the contact CNN learned): the same IMU settings and frame rate.
+#[test]
+fn a_real_pad_is_read_as_the_simulated_one() {
+    use hand_sim::imu_pad::{IMU_SETTINGS, ImuPadConfig};
+    use handstack::stack::pad;
+    assert_eq!(pad::IMU_SETTINGS, IMU_SETTINGS);
+    assert_eq!(pad::FRAME_RATE_HZ, ImuPadConfig::default().sample_rate_hz);
+}
