@@ -29,9 +29,9 @@
 //! - no published crate's `src/` names a paper seed (`seed 000`…`seed 002`, `seed000`…:
 //!   [`seed_mentions`]).
 //!
-//! The last two have known exceptions, listed in [`KNOWN_PRODUCT_BINS`] and
-//! [`KNOWN_SEED_MENTIONS`]: a new violation fails, and so does an exception that is gone, with
-//! the line of the list to delete or change, so the lists only shrink.
+//! The last two take lists of known exceptions, [`KNOWN_PRODUCT_BINS`] and
+//! [`KNOWN_SEED_MENTIONS`], both empty: a new violation fails, and so does a listed exception
+//! that is gone, with the line of the list to delete or change.
 
 use anyhow::{Context, Result, bail};
 use serde_json::Value;
