@@ -19,6 +19,29 @@ const README_NEEDS: [(&str, &[&str]); 2] = [("baro-drivers", &["sim"]), ("imu-ic
 /// Crates the README examples use that are not ours: a driver user has embedded-hal.
 const EXTRA_DEPENDENCIES: [(&str, &str); 1] = [("embedded-hal", "1.0.0")];
 
+/// Third-party crates the consumer builds with fewer features than the workspace's test build
+/// turns on (its dev-dependencies and unpublished crates add them), with those features: asked
+/// for here too, they hash as the test build's do, so that neither they nor what is built on
+/// them (`serde_core` and `rand` are under nearly everything) is compiled twice. Found by
+/// comparing `cargo tree -e features` of the two builds; a crate missing here costs build time
+/// only.
+const TEST_BUILD_FEATURES: [(&str, &str, &[&str]); 14] = [
+    ("anyhow", "1", &["default"]),
+    ("bytemuck", "1", &["extern_crate_alloc"]),
+    ("cast", "0.3", &["default"]),
+    ("crc32fast", "1", &["default"]),
+    ("embedded-hal-nb", "1", &["default"]),
+    ("filetime", "0.2", &["default"]),
+    ("getrandom", "0.4", &["sys_rng"]),
+    ("linux-embedded-hal", "0.5", &["spi", "spidev"]),
+    ("matrixmultiply", "0.3", &["cgemm"]),
+    ("rand", "0.10", &["sys_rng"]),
+    ("regex-automata", "0.4", &["meta", "nfa-pikevm"]),
+    ("regex-syntax", "0.8", &["default"]),
+    ("serde_core", "1", &["default"]),
+    ("simd-adler32", "0.3", &["default", "const-generics"]),
+];
+
 /// One packaged crate: its name, version and the directory its `.crate` was unpacked to.
 struct Packaged {
     name: String,
@@ -138,6 +161,19 @@ fn manifest(packages: &[Packaged]) -> Result<String> {
     }
     for (name, version) in EXTRA_DEPENDENCIES {
         writeln!(deps, "{name} = \"{version}\"")?;
+    }
+    for (name, version, features) in TEST_BUILD_FEATURES {
+        // `default` as `cargo tree` shows it: the default features asked for (declared or not).
+        let default = features.contains(&"default");
+        let features: Vec<&str> = features
+            .iter()
+            .copied()
+            .filter(|f| *f != "default")
+            .collect();
+        writeln!(
+            deps,
+            "{name} = {{ version = \"{version}\", default-features = {default}, features = {features:?} }}"
+        )?;
     }
     Ok(format!(
         "[package]\nname = \"handstack-consumer\"\nversion = \"0.0.0\"\nedition = \"2024\"\n\
