@@ -249,9 +249,10 @@ pub fn softness() -> Result<SoftnessNet, NetError> {
     )
 }
 
-/// The Levenberg–Marquardt seed the softness metrics file selects.
+/// The Levenberg–Marquardt seed of the built-in softness net ([`softness`]): the one its
+/// metrics file selects.
 #[cfg(feature = "std")]
-fn softness_seed() -> Result<u64, NetError> {
+pub fn softness_seed() -> Result<u64, NetError> {
     metrics("softness")?
         .row("selected")
         .and_then(|r| r.values.get("lm_seed"))

@@ -11,16 +11,8 @@ use tactile_nets::force_dnn::ForceDnn;
 use tactile_nets::pretrained::{
     CONTACT_MLP_OSRS, FORCE_DNN_SIM, FORCE_DNN_TABLE1, ForceModel, SIZE_BUDGET_BYTES,
     built_in_bytes, contact_cnn, contact_mlp, contact_mlp_static, force_dnn, metrics, softness,
+    softness_seed,
 };
-
-/// The Levenberg–Marquardt seed the softness metrics file selects.
-fn softness_seed() -> Result<u64, NetError> {
-    metrics("softness")?
-        .row("selected")
-        .and_then(|r| r.values.get("lm_seed"))
-        .map(|&s| s as u64)
-        .ok_or_else(|| NetError::Metrics("softness: no selected `lm_seed`".into()))
-}
 
 #[test]
 fn static_and_full_models_agree_bit_for_bit() -> Result<(), NetError> {
