@@ -2,8 +2,9 @@
 //! linked for both thumb targets, its flash and RAM read from the ELF, and its pipeline run on
 //! the host against the chip models (`examples/host_cycles.rs --check`).
 //!
-//! `cargo xtask test` runs [`check`]: both links, the host check, and the sizes against
-//! `docs/embedded.md` within [`SIZE_TOLERANCE`]. `cargo xtask firmware --write` ([`write()`])
+//! `cargo xtask test` runs [`check`]: both links, the host check (in its `host-check` profile:
+//! the release profile without LTO), and the sizes against `docs/embedded.md` within
+//! [`SIZE_TOLERANCE`]. `cargo xtask firmware --write` ([`write()`])
 //! regenerates that file's figures, with the instruction counts per cycle that callgrind
 //! measures on the host (valgrind is installed with `apt-get` when missing and run as root).
 
@@ -123,16 +124,15 @@ pub fn elf_size(elf: &[u8]) -> Result<Size> {
     Ok(size)
 }
 
-/// The host harness's output (`--check`: it fails unless the pipeline sees every press, the
-/// MLP mostly hits and the estimates allocate nothing).
-fn host_run(root: &Path, check: bool) -> Result<String> {
+/// The host harness's output, built with the firmware's cargo `profile` (`--check`: it fails
+/// unless the pipeline sees every press, the MLP mostly hits and the estimates allocate
+/// nothing).
+fn host_run(root: &Path, profile: &str) -> Result<String> {
     let mut cmd = cargo_firmware(root);
-    cmd.args(["run", "--quiet", "--release", "--locked", "--manifest-path"])
+    cmd.args(["run", "--quiet", "--locked", "--profile", profile])
+        .arg("--manifest-path")
         .arg(root.join(MANIFEST))
-        .args(["--example", "host_cycles"]);
-    if check {
-        cmd.args(["--", "--check"]);
-    }
+        .args(["--example", "host_cycles", "--", "--check"]);
     println!("==> firmware pipeline on the host (examples/host_cycles)");
     let out = cmd.output().context("run the host harness")?;
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
@@ -200,7 +200,7 @@ pub fn check(root: &Path) -> Result<()> {
             }
         }
     }
-    host_run(root, true).map(|_| ())
+    host_run(root, "host-check").map(|_| ())
 }
 
 /// The committed [`Size`] of `target` in the generated table of `doc`.
@@ -237,7 +237,7 @@ pub fn write(root: &Path) -> Result<()> {
             spaced(size.ram)
         )?;
     }
-    let run = host_run(root, true)?;
+    let run = host_run(root, "release")?;
     let costs = instruction_counts(root, &run)?;
     let generated = format!(
         "{BEGIN}\n\n{table}\n{costs}\nThe host run (`cargo run --release --example host_cycles`, \
