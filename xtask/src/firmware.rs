@@ -62,13 +62,11 @@ fn cargo_firmware(root: &Path) -> Command {
     cargo_in(root, "firmware/fingertip", "target/firmware")
 }
 
-/// `cargo` for `firmware/instruction-counts`, the QEMU counter.
+/// `cargo` for `firmware/instruction-counts`, the QEMU counter: in the firmware's build
+/// directory, where the crates both link (same versions, features, profile and flags) are
+/// compiled once.
 fn cargo_counts(root: &Path) -> Command {
-    cargo_in(
-        root,
-        "firmware/instruction-counts",
-        "target/firmware-counts",
-    )
+    cargo_in(root, "firmware/instruction-counts", "target/firmware")
 }
 
 /// Links the release firmware for `target`; the ELF's path.
