@@ -2,10 +2,12 @@
 //! criterion's options never reach a library's test harness) and prints one summary table.
 
 use crate::run::{cargo, step};
+use crate::test_binaries::{Executable, test_build};
 use anyhow::{Context, Result, bail};
 use serde_json::Value;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::process::Command;
 use std::time::SystemTime;
 
 /// One bench target: a package and the name of its `[[bench]]`.
@@ -100,18 +102,26 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
 /// (same profile and features), so in CI it adds the valgrind runs only; valgrind is installed
 /// with `apt-get` when missing.
 pub fn instructions(root: &Path, mode: &str) -> Result<()> {
+    let mut cmd = test_build(root, &[]);
+    cmd.args(["--test", INSTRUCTIONS.1]);
+    instructions_with(cmd, mode)
+}
+
+/// [`instructions`] through `exe`, the test build's `instructions` binary, run directly (no
+/// cargo, so no lock on the build directory): what `cargo xtask test` runs beside its tests.
+pub fn instructions_of(exe: &Executable, mode: &str) -> Result<()> {
+    instructions_with(exe.command(), mode)
+}
+
+/// The test build's instruction-count test: its package and name.
+pub const INSTRUCTIONS: (&str, &str) = ("handstack-benches", "instructions");
+
+/// Runs `cmd` (the instruction-count test) in `mode`.
+fn instructions_with(mut cmd: Command, mode: &str) -> Result<()> {
     crate::firmware::ensure_apt("valgrind", "valgrind", "the instruction-count benchmarks")?;
     step(
         &format!("bench --{mode} (instructions per call, callgrind)"),
-        cargo(root)
-            .args([
-                "test",
-                "--workspace",
-                "--all-features",
-                "--test",
-                "instructions",
-            ])
-            .env("HANDSTACK_INSTRUCTIONS", mode),
+        cmd.env("HANDSTACK_INSTRUCTIONS", mode),
     )
 }
 

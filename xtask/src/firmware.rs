@@ -9,7 +9,7 @@
 //! measures on the host (valgrind is installed with `apt-get` when missing and run as root).
 
 use crate::embedded::{TARGETS, ensure_targets};
-use crate::run::{cargo, step};
+use crate::run::{cargo, step, step_output};
 use anyhow::{Context, Result, bail};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -131,18 +131,10 @@ fn host_run(root: &Path, profile: &str) -> Result<String> {
         .arg("--manifest-path")
         .arg(root.join(MANIFEST))
         .args(["--example", "host_cycles", "--", "--check"]);
-    println!("==> firmware pipeline on the host (examples/host_cycles)");
-    let out = cmd.output().context("run the host harness")?;
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    print!("{text}");
-    if !out.status.success() {
-        bail!(
-            "the host harness failed ({}): {}",
-            out.status,
-            String::from_utf8_lossy(&out.stderr)
-        );
-    }
-    Ok(text)
+    step_output(
+        &format!("firmware pipeline on the host (examples/host_cycles, {profile})"),
+        &mut cmd,
+    )
 }
 
 /// Its format, clippy `-D warnings` on both targets, both links, the host check, and the

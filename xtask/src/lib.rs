@@ -59,6 +59,7 @@ pub mod msrv;
 pub mod package;
 pub mod run;
 pub mod test;
+pub mod test_binaries;
 pub mod trade;
 pub mod train;
 pub mod venv;

@@ -2,8 +2,9 @@
 
 use anyhow::{Context, Result, bail};
 use std::ffi::OsStr;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::io::Write;
+use std::path::Path;
+use std::process::{Command, ExitStatus};
 use std::time::Instant;
 
 /// `cargo` as the running toolchain names it, started in the workspace root.
@@ -76,17 +77,46 @@ pub fn step(name: &str, cmd: &mut Command) -> Result<()> {
         }
         None => name.to_owned(),
     };
+    timed(&name, cmd, |cmd| cmd.status().map(|status| (status, ())))
+}
+
+/// [`step`] for a command whose standard output the caller reads: returned, and also written
+/// to the lane's log or the terminal.
+pub fn step_output(name: &str, cmd: &mut Command) -> Result<String> {
+    let (name, mut sink): (String, Box<dyn Write>) = match crate::lane::current()? {
+        Some((lane, log)) => {
+            cmd.stderr(log.try_clone()?);
+            (format!("{lane}: {name}"), Box::new(log))
+        }
+        None => (name.to_owned(), Box::new(std::io::stdout())),
+    };
+    timed(&name, cmd, |cmd| {
+        let out = cmd.output()?;
+        sink.write_all(&out.stdout)?;
+        Ok((
+            out.status,
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+        ))
+    })
+}
+
+/// Announces the step `name`, runs `cmd` through `run` (its exit status and what the caller
+/// keeps of it) and prints its wall time; fails if the command does.
+fn timed<T>(
+    name: &str,
+    cmd: &mut Command,
+    run: impl FnOnce(&mut Command) -> std::io::Result<(ExitStatus, T)>,
+) -> Result<T> {
     println!("==> {name}");
     let start = Instant::now();
-    let status = cmd
-        .status()
-        .with_context(|| format!("{name}: could not start {cmd:?}"))?;
+    let program = cmd.get_program().to_string_lossy().into_owned();
+    let (status, value) = run(cmd).with_context(|| format!("{name}: could not run {program}"))?;
     let secs = start.elapsed().as_secs_f64();
     if !status.success() {
         bail!("{name} failed after {secs:.1} s ({status})");
     }
     println!("    {name}: ok in {secs:.1} s");
-    Ok(())
+    Ok(value)
 }
 
 /// The lines `rustup ARGS` prints (what is installed), trimmed; `why` says what needs rustup.
@@ -106,56 +136,6 @@ pub fn rustup_lines(args: &[&str], why: &str) -> Result<Vec<String>> {
         .lines()
         .map(|l| l.trim().to_owned())
         .collect())
-}
-
-/// The test build's `cargo test --workspace --all-features` command, with `env` (what the test
-/// step sets: build scripts may read it, so it is part of what the build is).
-pub fn test_build(root: &Path, env: &[(&str, &Path)]) -> Command {
-    let mut cmd = cargo(root);
-    cmd.args(["test", "--workspace", "--all-features"]);
-    for (key, value) in env {
-        cmd.env(key, value);
-    }
-    cmd
-}
-
-/// The path of the binary `name` of `package` as the test build ([`test_build`]) made it for
-/// the package's integration tests: `--no-run` after the test step builds nothing and names it.
-pub fn tested_binary(
-    root: &Path,
-    env: &[(&str, &Path)],
-    package: &str,
-    name: &str,
-) -> Result<PathBuf> {
-    let out = test_build(root, env)
-        .args(["--no-run", "--message-format=json"])
-        .stderr(std::process::Stdio::inherit())
-        .output()
-        .context("cargo test --no-run")?;
-    if !out.status.success() {
-        bail!("the test build failed ({})", out.status);
-    }
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    stdout
-        .lines()
-        .filter_map(|line| serde_json::from_str::<serde_json::Value>(line).ok())
-        .filter(|m| m["reason"] == "compiler-artifact")
-        // The binary itself, not its unit-test harness (also a `bin` target, `profile.test`).
-        .filter(|m| m["target"]["name"] == name && m["target"]["kind"][0] == "bin")
-        .filter(|m| m["profile"]["test"] == false)
-        .filter(|m| m["package_id"].as_str().and_then(package_name) == Some(package))
-        .find_map(|m| m["executable"].as_str().map(PathBuf::from))
-        .with_context(|| format!("the test build made no `{name}` binary of {package}"))
-}
-
-/// The package name in a cargo package ID: `path+file:///…/NAME#VERSION` or
-/// `path+file:///…/DIR#NAME@VERSION`.
-fn package_name(id: &str) -> Option<&str> {
-    let (url, fragment) = id.rsplit_once('#')?;
-    match fragment.split_once('@') {
-        Some((name, _)) => Some(name),
-        None => url.rsplit('/').next(),
-    }
 }
 
 /// A workspace binary that a workflow runs through `cargo run`.
@@ -232,20 +212,5 @@ mod tests {
             settings.contains(&"profile.dev.incremental=false".to_owned()),
             "{settings:?}"
         );
-    }
-
-    #[test]
-    fn package_ids_name_their_package() {
-        let name = super::package_name;
-        assert_eq!(
-            name("path+file:///w/crates/hand-sim#0.1.0"),
-            Some("hand-sim")
-        );
-        assert_eq!(
-            name("path+file:///w/benches#handstack-benches@0.1.0"),
-            Some("handstack-benches")
-        );
-        assert_eq!(name("registry+https://x/index#serde@1.0.0"), Some("serde"));
-        assert_eq!(name("no fragment"), None);
     }
 }

@@ -608,7 +608,9 @@ impl SimBus {
         self.advance(Duration::ZERO)
     }
 
-    /// Simulated time since the bus started.
+    /// Simulated time since the bus started, as far as the simulator thread has got: bytes
+    /// sent and not yet handled (a write that gets no answer) are not counted until
+    /// [`SimBus::sync`] has returned.
     pub fn now(&self) -> Duration {
         self.world().now
     }
