@@ -1,11 +1,10 @@
 //! Lanes: a workflow's independent steps on a thread of their own, beside the main steps.
 //!
-//! A 2-core machine spends much of a sequential `cargo xtask test` with a core idle (pip
-//! downloading, a build ending on one crate, a test binary waiting on a simulated device that
-//! answers in real time). Steps that need none of the main steps' results meanwhile run in a
-//! lane, at idle priority (Linux's `SCHED_IDLE`, inherited by every process the lane starts): a
-//! lane gets only the CPU time the main steps leave, so those run as they would alone — the
-//! real-time tests among them — and the lane soaks up the idle cores. A lane's children write
+//! A 2-core machine spends part of a sequential `cargo xtask test` with a core idle (pip
+//! downloading, a build ending on one crate). Steps that need none of the main steps' results
+//! meanwhile run in a lane, at idle priority (Linux's `SCHED_IDLE`, inherited by every process
+//! the lane starts): a lane gets only the CPU time the main steps leave, so those keep their
+//! pace and the lane soaks up the idle cores. A lane's children write
 //! to its log file, not the terminal, so the two do not interleave; [`step`](crate::run::step)
 //! still announces each step and its time, and a failing lane prints the end of its log.
 

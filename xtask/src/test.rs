@@ -2,64 +2,72 @@
 
 use crate::lane::Lane;
 use crate::run::{PAPERS, cargo, step};
-use crate::test_binaries::{self, find_binary, find_test};
+use crate::test_binaries::{self, Executable, find_binary, find_test};
 use crate::{bench, chromium, consumer, embedded, firmware, fixtures, msrv, package, venv};
 use anyhow::Result;
-use std::path::Path;
-use std::thread::Scope;
+use std::path::{Path, PathBuf};
 
 /// fmt check, then the main steps: `.venv` and Chromium (the report render test), clippy `-D
 /// warnings`, `cargo package` of every published crate ([`package::run`]) and the consumer
-/// build and test of every README against the packages ([`consumer::run`]), the test build and
-/// every test with every feature ([`test_binaries`]).
+/// build and test of every README against the packages ([`consumer::run`]), the test build
+/// with every feature; then every test ([`test_binaries::run`]) alone; then the
+/// instruction-count gate (`bench --check`, on the test build's binary) and the docs with
+/// warnings denied.
 ///
-/// Beside them, in [`Lane`]s (idle priority: they take only the cores the main steps leave,
-/// so the real-time tests run as they would alone): from the start, the `no_std` builds for the
-/// thumb targets ([`embedded::build`]), the fingertip firmware linked for both and run on the
-/// host ([`firmware::check`]) and the MSRV check ([`msrv::check`]), each in its own build
-/// directory; once the test build is done, the instruction-count gate (`bench --check`, on
-/// the test build's binary), `fixtures --check` (again with numpy's widest SIMD kernels off)
-/// and the docs with warnings denied.
+/// Beside them, in [`Lane`]s (idle priority: they take only the cores the main steps leave):
+/// until the test build is done, the `no_std` builds for the thumb targets
+/// ([`embedded::build`]), the fingertip firmware linked for both and run on the host
+/// ([`firmware::check`]) and the MSRV check ([`msrv::check`]), each in its own build
+/// directory; after the tests, `fixtures --check` (again with numpy's widest SIMD kernels
+/// off). Nothing runs beside the tests: their simulated devices answer in real time, and on a
+/// loaded machine (even with the load at idle priority) servo buses missed their 250 ms
+/// reply timeout.
 pub fn run(root: &Path) -> Result<()> {
     step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
-    std::thread::scope(|scope| {
+    let (env, executables) = std::thread::scope(|scope| {
         let builds = Lane::start(scope, root, "builds", || {
             embedded::build(root)?;
             firmware::check(root)?;
             msrv::check(root)
         })?;
-        let main = main_steps(root, scope);
+        let main = build_steps(root);
         let lane = builds.finish();
-        main.and(lane)
+        main.and_then(|built| lane.map(|()| built))
+    })?;
+    let env: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
+    test_binaries::run(root, &executables, &env)?;
+    let papers = find_binary(&executables, PAPERS.package, PAPERS.name)?
+        .path
+        .clone();
+    let instructions = find_test(&executables, bench::INSTRUCTIONS.0, bench::INSTRUCTIONS.1)?;
+    std::thread::scope(|scope| {
+        let generated = Lane::start(scope, root, "generated", move || {
+            fixtures::check_with(root, papers)?;
+            println!("==> fixtures --check, numpy's widest SIMD kernels off");
+            fixtures::check_with_numpy_narrowed(root)
+        })?;
+        let main = bench::instructions_of(instructions, "check").and_then(|()| doc(root));
+        main.and(generated.finish())
     })
 }
 
-/// The steps after fmt, the `generated` lane started beside the test run.
-fn main_steps<'scope>(root: &'scope Path, scope: &'scope Scope<'scope, '_>) -> Result<()> {
+/// The variables the tests read (the venv's Python, Chromium) and the test build's executables.
+type Built = ([(&'static str, PathBuf); 2], Vec<Executable>);
+
+/// The main steps after fmt, up to the test build.
+fn build_steps(root: &Path) -> Result<Built> {
     let python = venv::ensure(root)?;
     let chromium = chromium::ensure()?;
     clippy(root)?;
     package::run(root)?;
     consumer::run(root, &python)?;
     let env = [
-        ("HANDSTACK_PYTHON", python.as_path()),
-        ("HANDSTACK_CHROMIUM", chromium.as_path()),
+        ("HANDSTACK_PYTHON", python),
+        ("HANDSTACK_CHROMIUM", chromium),
     ];
-    let executables = test_binaries::build(root, &env)?;
-    let papers = find_binary(&executables, PAPERS.package, PAPERS.name)?
-        .path
-        .clone();
-    let instructions =
-        find_test(&executables, bench::INSTRUCTIONS.0, bench::INSTRUCTIONS.1)?.clone();
-    let generated = Lane::start(scope, root, "generated", move || {
-        bench::instructions_of(&instructions, "check")?;
-        fixtures::check_with(root, papers)?;
-        println!("==> fixtures --check, numpy's widest SIMD kernels off");
-        fixtures::check_with_numpy_narrowed(root)?;
-        doc(root)
-    })?;
-    let tests = test_binaries::run(root, &executables, &env);
-    tests.and(generated.finish())
+    let borrowed: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
+    let executables = test_binaries::build(root, &borrowed)?;
+    Ok((env, executables))
 }
 
 /// clippy on every target and feature, warnings denied.

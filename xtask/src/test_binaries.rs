@@ -1,10 +1,9 @@
 //! The test build and its test binaries: `cargo test --workspace --all-features` split into its
 //! build (`--no-run`, whose JSON messages list every executable) and the runs, which xtask
 //! makes itself, one binary after another in cargo's order, each in its package's directory
-//! with the variables cargo gives it. `cargo test` holds the build directory's lock while its
-//! binaries run (several minutes of simulated devices answering in real time); run by xtask,
-//! they hold none, so a [lane](crate::lane)'s cargo commands (the docs, the instruction counts)
-//! proceed meanwhile.
+//! with the variables cargo gives it. So every binary runs even after one fails (the step
+//! names each that failed), and the steps after the tests take the executables they run (the
+//! `papers` binary, the instruction counter) from the same list, without another cargo call.
 
 use crate::run::{cargo, step};
 use anyhow::{Context, Result, bail};
@@ -145,8 +144,7 @@ pub fn find_test<'a>(
         .with_context(|| format!("the test build made no test `{name}` of {package}"))
 }
 
-/// Runs the doctests (`cargo test --doc`: first, while no lane needs cargo's lock) and then
-/// every test harness among `executables` with `env`, one after another (as `cargo test`
+/// Runs the doctests (`cargo test --doc`) and then every test harness among `executables` with `env`, one after another (as `cargo test`
 /// does: the tests' simulated devices answer in real time, so the binaries do not share the
 /// machine with one another). All of them run; the step fails at the end, naming each that
 /// failed.

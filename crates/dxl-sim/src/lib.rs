@@ -608,11 +608,16 @@ impl SimBus {
         self.advance(Duration::ZERO)
     }
 
-    /// Simulated time since the bus started, as far as the simulator thread has got: bytes
-    /// sent and not yet handled (a write that gets no answer) are not counted until
-    /// [`SimBus::sync`] has returned.
-    pub fn now(&self) -> Duration {
-        self.world().now
+    /// Simulated time since the bus started, once the simulator has handled every byte the
+    /// client sent so far ([`SimBus::sync`]): a write that gets no answer moves the time by its
+    /// wire time when the simulator thread reads it, so a bare read would race that thread
+    /// (and a loaded machine would change what a simulated run computes).
+    ///
+    /// # Errors
+    /// As [`SimBus::advance`].
+    pub fn now(&mut self) -> std::io::Result<Duration> {
+        self.sync()?;
+        Ok(self.world().now)
     }
 
     /// Runs `f` on servo `id` (e.g. to read its true angle); `None` if no such servo.

@@ -207,11 +207,7 @@ impl World {
 
     /// Steps the bus to `t_ns` and presses the pad with every patch change on the way.
     fn advance_to(&mut self, t_ns: u64) -> Result<(), RigError> {
-        // The bus's time once it has handled every byte sent (a goal write gets no answer to
-        // wait for): read before, it races the simulator thread, and a lagging thread (a
-        // loaded machine) made the step, and so the hold, differ.
-        self.bus.sync()?;
-        let now = self.bus.now();
+        let now = self.bus.now()?;
         let t = Duration::from_nanos(t_ns);
         if t > now {
             self.bus.advance(t - now)?;
@@ -320,15 +316,15 @@ impl LoopClock for Clock {
     fn now_us(&mut self) -> u64 {
         // One time for the world: the fingertip's clock, which its chips advance as their bus
         // carries bits. An exchange on the servo bus moves the bus's time by its wire time, so
-        // the clock catches up with it before anyone reads it.
-        // The bus's time is read once it has handled every byte sent (see `advance_to`).
+        // the clock catches up with it before anyone reads it. A bus that cannot tell its time
+        // stops the world as `wait_until_us` does.
         let mut w = self.0.borrow_mut();
-        if w.world_error.is_none() {
-            if let Err(e) = w.bus.sync() {
-                w.world_error = Some(e.into());
+        match w.bus.now() {
+            Ok(t) => w.clock.advance_to_ns(t.as_nanos() as u64),
+            Err(e) => {
+                w.world_error.get_or_insert(e.into());
             }
         }
-        w.clock.advance_to_ns(w.bus.now().as_nanos() as u64);
         w.clock.now_us()
     }
 

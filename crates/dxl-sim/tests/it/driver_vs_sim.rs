@@ -408,13 +408,24 @@ fn overheating_and_voltage_bits_reach_the_state_as_faults() {
 
 #[test]
 fn each_exchange_costs_its_wire_time_in_simulated_time() {
-    let (sim, mut hand) = hand(&[1]);
-    let before = sim.now();
+    let (mut sim, mut hand) = hand(&[1]);
+    let before = sim.now().unwrap();
     hand.ping(1).unwrap();
     // 1 Mbps, 10 bits a byte: PING 10 bytes + Return Delay Time 250 × 2 µs + status 14 bytes.
-    assert_eq!(sim.now() - before, Duration::from_micros(100 + 500 + 140));
+    assert_eq!(
+        sim.now().unwrap() - before,
+        Duration::from_micros(100 + 500 + 140)
+    );
     hand.write_register(1, 9, 0).unwrap(); // Return Delay Time 0
-    let before = sim.now();
+    let before = sim.now().unwrap();
     hand.ping(1).unwrap();
-    assert_eq!(sim.now() - before, Duration::from_micros(100 + 140));
+    assert_eq!(
+        sim.now().unwrap() - before,
+        Duration::from_micros(100 + 140)
+    );
+    // A write that gets no answer (a 16-byte SYNC WRITE): counted once the simulator has read
+    // it, however far behind its thread is.
+    let before = sim.now().unwrap();
+    hand.torque_off_all().unwrap();
+    assert_eq!(sim.now().unwrap() - before, Duration::from_micros(160));
 }
