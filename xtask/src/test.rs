@@ -2,7 +2,7 @@
 
 use crate::lane::Lane;
 use crate::run::{PAPERS, cargo, step};
-use crate::test_binaries::{self, Executable, find_binary, find_test};
+use crate::test_binaries::{self, Executable, find};
 use crate::{bench, chromium, consumer, embedded, firmware, fixtures, msrv, package, venv};
 use anyhow::Result;
 use std::path::{Path, PathBuf};
@@ -36,10 +36,15 @@ pub fn run(root: &Path) -> Result<()> {
     })?;
     let env: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
     test_binaries::run(root, &executables, &env)?;
-    let papers = find_binary(&executables, PAPERS.package, PAPERS.name)?
+    let papers = find(&executables, PAPERS.package, PAPERS.name, false)?
         .path
         .clone();
-    let instructions = find_test(&executables, bench::INSTRUCTIONS.0, bench::INSTRUCTIONS.1)?;
+    let instructions = find(
+        &executables,
+        bench::INSTRUCTIONS.0,
+        bench::INSTRUCTIONS.1,
+        true,
+    )?;
     std::thread::scope(|scope| {
         let generated = Lane::start(scope, root, "generated", move || {
             fixtures::check_with(root, papers)?;

@@ -120,28 +120,21 @@ fn package_name(id: &str) -> Option<&str> {
     }
 }
 
-/// The plain binary `name` of `package` among `executables` (the binary, not its unit tests).
-pub fn find_binary<'a>(
+/// The executable `name` of `package` among `executables`: its test harness (`test`) or, for
+/// a `[[bin]]`, the binary itself (not its unit tests, also a `bin` target).
+pub fn find<'a>(
     executables: &'a [Executable],
     package: &str,
     name: &str,
+    test: bool,
 ) -> Result<&'a Executable> {
+    let what = if test { "test" } else { "binary" };
     executables
         .iter()
-        .find(|e| e.package == package && e.target == name && e.kind == "bin" && !e.test)
-        .with_context(|| format!("the test build made no `{name}` binary of {package}"))
-}
-
-/// The test harness `name` of `package` among `executables`.
-pub fn find_test<'a>(
-    executables: &'a [Executable],
-    package: &str,
-    name: &str,
-) -> Result<&'a Executable> {
-    executables
-        .iter()
-        .find(|e| e.package == package && e.target == name && e.test)
-        .with_context(|| format!("the test build made no test `{name}` of {package}"))
+        .find(|e| {
+            e.package == package && e.target == name && e.test == test && (test || e.kind == "bin")
+        })
+        .with_context(|| format!("the test build made no {what} `{name}` of {package}"))
 }
 
 /// Runs the doctests (`cargo test --doc`) and then every test harness among `executables` with `env`, one after another (as `cargo test`
@@ -228,8 +221,8 @@ mod tests {
         assert_eq!(exe.src, Path::new("tests/it/main.rs"));
         assert_eq!(exe.path, Path::new("/w/target/debug/deps/it-0123"));
         let executables = [exe];
-        assert!(find_test(&executables, "ur-sim", "it").is_ok());
-        assert!(find_binary(&executables, "ur-sim", "it").is_err());
+        assert!(find(&executables, "ur-sim", "it", true).is_ok());
+        assert!(find(&executables, "ur-sim", "it", false).is_err());
     }
 
     #[test]
