@@ -1,5 +1,6 @@
 //! `cargo xtask test`: everything CI checks, in the order that fails fastest.
 
+use crate::architecture::workspace_packages;
 use crate::lane::Lane;
 use crate::run::{PAPERS, cargo, step};
 use crate::test_binaries::{self, Executable, find};
@@ -10,32 +11,38 @@ use std::path::{Path, PathBuf};
 /// fmt check, then the main steps: `.venv` and Chromium (the report render test), clippy `-D
 /// warnings`, `cargo package` of every published crate ([`package::run`]) and the consumer
 /// build and test of every README against the packages ([`consumer::run`]), the test build
-/// with every feature; then every test ([`test_binaries::run`]) alone; then the
-/// instruction-count gate (`bench --check`, on the test build's binary) and the docs with
-/// warnings denied.
+/// with every feature; then the doctests and every test harness ([`test_binaries::run`]).
 ///
 /// Beside them, in [`Lane`]s (idle priority: they take only the cores the main steps leave):
-/// until the test build is done, the `no_std` builds for the thumb targets
-/// ([`embedded::build`]), the fingertip firmware linked for both and run on the host
-/// ([`firmware::check`]) and the MSRV check ([`msrv::check`]), each in its own build
-/// directory; after the tests, `fixtures --check` (again with numpy's widest SIMD kernels
-/// off). Nothing runs beside the tests: their simulated devices answer in real time, and on a
-/// loaded machine (even with the load at idle priority) servo buses missed their 250 ms
-/// reply timeout.
+/// from the start, the `no_std` builds for the thumb targets ([`embedded::build`]), the
+/// fingertip firmware linked for both and run on the host ([`firmware::check`]) and the MSRV
+/// check ([`msrv::check`]), each in its own build directory; once the doctests are done (they
+/// hold the build directory's lock), the instruction-count gate (`bench --check`, on the test
+/// build's binary) and the docs with warnings denied, and `fixtures --check` (again with
+/// numpy's widest SIMD kernels off). The test harnesses' simulated devices answer in real
+/// time: the lanes only use the time the tests leave idle (most of it: they wait on their
+/// devices), and the servo buses allow for a loaded machine (`dxl_sim::REPLY_LATENCY`).
 pub fn run(root: &Path) -> Result<()> {
     step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
-    let (env, executables) = std::thread::scope(|scope| {
+    std::thread::scope(|scope| {
         let builds = Lane::start(scope, root, "builds", || {
             embedded::build(root)?;
             firmware::check(root)?;
             msrv::check(root)
         })?;
-        let main = build_steps(root);
-        let lane = builds.finish();
-        main.and_then(|built| lane.map(|()| built))
-    })?;
+        let tested = build_steps(root).and_then(|built| tests(scope, root, built));
+        all([tested, builds.finish()])
+    })
+}
+
+/// The doctests, then the harnesses with the lanes that need the test build beside them.
+fn tests<'scope>(
+    scope: &'scope std::thread::Scope<'scope, '_>,
+    root: &'scope Path,
+    (env, executables): Built,
+) -> Result<()> {
     let env: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
-    test_binaries::run(root, &executables, &env)?;
+    let doctests = test_binaries::doctests(root, &env);
     let papers = find(&executables, PAPERS.package, PAPERS.name, false)?
         .path
         .clone();
@@ -44,16 +51,36 @@ pub fn run(root: &Path) -> Result<()> {
         bench::INSTRUCTIONS.0,
         bench::INSTRUCTIONS.1,
         true,
-    )?;
-    std::thread::scope(|scope| {
-        let generated = Lane::start(scope, root, "generated", move || {
-            fixtures::check_with(root, papers)?;
-            println!("==> fixtures --check, numpy's widest SIMD kernels off");
-            fixtures::check_with_numpy_narrowed(root)
-        })?;
-        let main = bench::instructions_of(instructions, "check").and_then(|()| doc(root));
-        main.and(generated.finish())
-    })
+    )?
+    .clone();
+    let checks = Lane::start(scope, root, "checks", move || {
+        bench::instructions_of(&instructions, "check")?;
+        doc(root)
+    })?;
+    let generated = Lane::start(scope, root, "generated", move || {
+        fixtures::check_with(root, papers)?;
+        println!("==> fixtures --check, numpy's widest SIMD kernels off");
+        fixtures::check_with_numpy_narrowed(root)
+    })?;
+    let harnesses = test_binaries::run(&executables, &env);
+    all([doctests, harnesses, checks.finish(), generated.finish()])
+}
+
+/// Ok if every result is; else one error naming each failure.
+fn all<const N: usize>(results: [Result<()>; N]) -> Result<()> {
+    let failures: Vec<String> = results
+        .into_iter()
+        .filter_map(|r| r.err().map(|e| format!("{e:#}")))
+        .collect();
+    match failures.as_slice() {
+        [] => Ok(()),
+        [one] => Err(anyhow::anyhow!("{one}")),
+        many => Err(anyhow::anyhow!(
+            "{} steps failed:\n  {}",
+            many.len(),
+            many.join("\n  ")
+        )),
+    }
 }
 
 /// The variables the tests read (the venv's Python, Chromium) and the test build's executables.
@@ -94,13 +121,18 @@ fn clippy(root: &Path) -> Result<()> {
 /// The docs of every workspace crate, warnings denied: libraries, binaries and examples. With
 /// the examples, whose dev-dependencies turn on the features clippy's build has, the docs
 /// reuse clippy's checked third-party crates (without them, 19 were checked again, Zenoh's
-/// among them).
+/// among them). A binary named as its package's library is left out, as plain `cargo doc`
+/// leaves it out: both would be written to the same `target/doc/NAME/`.
 fn doc(root: &Path) -> Result<()> {
-    step(
-        "doc",
-        cargo(root)
-            .args(["doc", "--workspace", "--no-deps", "--all-features"])
-            .args(["--lib", "--bins", "--examples"])
-            .env("RUSTDOCFLAGS", "-D warnings"),
-    )
+    let mut cmd = cargo(root);
+    cmd.args(["doc", "--workspace", "--no-deps", "--all-features"])
+        .args(["--lib", "--examples"])
+        .env("RUSTDOCFLAGS", "-D warnings");
+    for package in workspace_packages(root)? {
+        let lib = package.name.replace('-', "_");
+        for bin in package.bins.iter().filter(|b| b.replace('-', "_") != lib) {
+            cmd.args(["--bin", bin]);
+        }
+    }
+    step("doc", &mut cmd)
 }

@@ -58,13 +58,52 @@ pub fn test_build(root: &Path, env: &[(&str, &Path)]) -> Command {
     cmd
 }
 
+/// The examples that tests run (`target/<profile>/examples/NAME`), by package. `cargo test`
+/// builds every example by default; the test build builds these only: clippy's and the docs'
+/// builds check that every example compiles, and the others took 40 CPU-s of the test build
+/// to compile and link at its optimisation. (`cargo test --example NAME` would build one as a
+/// test harness, not as the program a test starts: they are built with `cargo build
+/// --profile test`.) A test that starts an example missing here fails to find it.
+const EXAMPLES_TESTS_RUN: [&str; 3] = [
+    "grasp_on_port", // dxl-sim
+    "cell_latency",  // hand-zenoh
+    "bench_rig",     // handstack
+];
+
 /// Builds every test target (the step `test build`; cargo's progress and diagnostics on the
-/// terminal) and lists the executables it made, in cargo's order.
+/// terminal) and lists the executables it made, in cargo's order: the targets `cargo test`
+/// runs (`--tests`) and the binaries that integration tests start; then
+/// [`EXAMPLES_TESTS_RUN`].
 pub fn build(root: &Path, env: &[(&str, &Path)]) -> Result<Vec<Executable>> {
+    let executables = build_tests(root, env)?;
+    let mut examples = cargo(root);
+    examples.args([
+        "build",
+        "--profile",
+        "test",
+        "--workspace",
+        "--all-features",
+    ]);
+    for example in EXAMPLES_TESTS_RUN {
+        examples.args(["--example", example]);
+    }
+    for (key, value) in env {
+        examples.env(key, value);
+    }
+    step("the examples tests run", &mut examples)?;
+    Ok(executables)
+}
+
+/// The test build proper: `cargo test --no-run --tests`, its executables from its messages.
+fn build_tests(root: &Path, env: &[(&str, &Path)]) -> Result<Vec<Executable>> {
     println!("==> test build");
     let start = Instant::now();
     let mut child = test_build(root, env)
-        .args(["--no-run", "--message-format=json-render-diagnostics"])
+        .args([
+            "--tests",
+            "--no-run",
+            "--message-format=json-render-diagnostics",
+        ])
         .stdout(Stdio::piped())
         .spawn()
         .context("could not start the test build")?;
@@ -137,20 +176,23 @@ pub fn find<'a>(
         .with_context(|| format!("the test build made no {what} `{name}` of {package}"))
 }
 
-/// Runs the doctests (`cargo test --doc`) and then every test harness among `executables` with `env`, one after another (as `cargo test`
+/// Runs the doctests (`cargo test --doc`, which holds the build directory's lock while they
+/// run).
+pub fn doctests(root: &Path, env: &[(&str, &Path)]) -> Result<()> {
+    step(
+        "doctests",
+        test_build(root, env).args(["--doc", "--no-fail-fast"]),
+    )
+}
+
+/// Runs every test harness among `executables` with `env`, one after another (as `cargo test`
 /// does: the tests' simulated devices answer in real time, so the binaries do not share the
 /// machine with one another). All of them run; the step fails at the end, naming each that
-/// failed.
-pub fn run(root: &Path, executables: &[Executable], env: &[(&str, &Path)]) -> Result<()> {
+/// failed. No cargo command: the build directory stays free for others.
+pub fn run(executables: &[Executable], env: &[(&str, &Path)]) -> Result<()> {
     println!("==> test run");
     let start = Instant::now();
     let mut failed = Vec::new();
-    if let Err(e) = step(
-        "doctests",
-        test_build(root, env).args(["--doc", "--no-fail-fast"]),
-    ) {
-        failed.push(format!("{e:#}"));
-    }
     for exe in executables.iter().filter(|e| e.test) {
         println!(
             "     Running {} {} ({})",

@@ -6,7 +6,7 @@
 //! where Linux's IIO driver puts the fingertip barometer's reading, in kPa
 //! (`/sys/bus/iio/devices/iio:device0/in_pressure_input`), or any file holding one.
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use hand_control::ServoHand;
 use hand_control::grasp_loop::{GraspLoop, LoopConfig, StdClock};
@@ -41,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Two MX-28s at 1 Mbps (the grasping paper's hand), in position mode under a torque limit.
     let mut hand = ServoHand::open(&port, 1_000_000, &[1, 2])?;
     // A USB adapter, or a simulator on a busy machine, can answer later than a servo's 34 ms.
-    hand.set_reply_latency(Duration::from_millis(250));
+    hand.set_reply_latency(dxl_sim::REPLY_LATENCY);
     hand.set_torque(false)?;
     hand.set_position_mode()?;
     hand.set_torque(true)?;

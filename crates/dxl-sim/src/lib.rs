@@ -124,9 +124,10 @@ pub enum Pace {
 ///
 /// The simulator answers in microseconds, but it is a thread on a shared machine: under load it
 /// can be descheduled for longer than a real servo's 34 ms allowance, and a test would see a
-/// timeout the servo did not cause. Timeouts the tests inject (a muted servo) then cost this
-/// long each.
-pub const REPLY_LATENCY: Duration = Duration::from_millis(250);
+/// timeout the servo did not cause. On a 2-core machine running tests beside a compiler (even
+/// one at idle priority), 250 ms was not enough: one reply of a 105 s simulated grasp came
+/// later. Timeouts a test injects (a muted servo) cost this long each.
+pub const REPLY_LATENCY: Duration = Duration::from_secs(1);
 
 /// How to build a simulated bus.
 #[derive(Debug, Clone)]

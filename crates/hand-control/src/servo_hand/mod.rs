@@ -108,7 +108,7 @@ impl ServoHand {
 
     /// As [`ServoHand::new`], allowing each status packet `latency` beyond its wire time (from
     /// the identifying pings on). A USB adapter, or a simulated bus on a loaded machine, may
-    /// want more than a real servo's [`DEFAULT_REPLY_LATENCY`] (`dxl-sim` advises 250 ms).
+    /// want more than a real servo's [`DEFAULT_REPLY_LATENCY`] (`dxl-sim` advises 1 s).
     ///
     /// # Errors
     /// As [`ServoHand::new`].

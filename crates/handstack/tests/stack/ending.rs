@@ -7,7 +7,7 @@
 //! "Within two control cycles" is counted on the bus: the state reads (one SYNC READ a cycle)
 //! the simulator executed after the signal was sent and before the end action's first packet.
 
-use crate::process::{DxlSim, built, finish, signal, text};
+use crate::process::{DxlSim, SIM_REPLY_TIMEOUT_MS, built, finish, signal, text};
 use hand_control::control_table::MX_28;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -55,7 +55,7 @@ fn scene(dir: &Path, port: &str, on_end: Option<&str>, hold_s: f64) -> PathBuf {
         "title = \"bench rig\"\n[sensors.fingertip]\nosr = 256\n\
          i2c_buses = [\"rig-0\", \"rig-1\", \"rig-2\"]\n[controller]\npreset = \"grasp\"\n\
          [hand]\nmodel = \"mx28\"\nids = [1, 2]\nserial_port = \"{port}\"\n\
-         reply_timeout_ms = 250\n{on_end}[experiment.grasp]\ntorque_band = [250, 320]\n\
+         reply_timeout_ms = {SIM_REPLY_TIMEOUT_MS}\n{on_end}[experiment.grasp]\ntorque_band = [250, 320]\n\
          hold_s = {hold_s}\n"
     );
     let path = dir.join("rig.toml");

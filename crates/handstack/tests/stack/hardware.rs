@@ -5,7 +5,7 @@
 //! UR controller simulator connects to it; a pad on a named bus is read through the driver; a
 //! missing I2C bus, serial port or host is a typed "cannot open …" error naming the path.
 
-use crate::process::DxlSim;
+use crate::process::{DxlSim, SIM_REPLY_TIMEOUT_MS};
 use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock};
 use embedded_hal::delay::DelayNs;
 use hand_control::control_table::MX_28;
@@ -29,7 +29,7 @@ fn grasp_scene(path: &str, sensors: &str, hold_s: f64) -> String {
     format!(
         "title = \"pty hand\"\n[sensors.fingertip]\nosr = 1024\n{sensors}[controller]\n\
          preset = \"grasp\"\n[hand]\nmodel = \"mx28\"\nids = [1, 2]\nserial_port = \"{path}\"\n\
-         reply_timeout_ms = 250\n[experiment.grasp]\ntorque_band = [250, 320]\nhold_s = {hold_s}\n"
+         reply_timeout_ms = {SIM_REPLY_TIMEOUT_MS}\n[experiment.grasp]\ntorque_band = [250, 320]\nhold_s = {hold_s}\n"
     )
 }
 

@@ -10,6 +10,10 @@ use std::time::{Duration, Instant};
 /// Longest any wait here takes (a bound, not a delay: each returns at its event).
 pub(crate) const WAIT: Duration = Duration::from_secs(30);
 
+/// The reply allowance for the `dxl-sim` process's servos: its `REPLY_LATENCY` (a simulator
+/// on a loaded machine answers later than a real servo's 34 ms).
+pub(crate) const SIM_REPLY_TIMEOUT_MS: u64 = 1000;
+
 /// A binary the workspace's `cargo test` built beside this test (`dxl-sim`, `ur-sim`), or one
 /// of this package's examples (`examples/bench_rig`).
 pub(crate) fn built(name: &str) -> PathBuf {
@@ -142,9 +146,12 @@ impl DxlSim {
     /// 2.0: after every byte sent before, a broadcast included.
     pub(crate) fn read_back(&self, a: u16, b: u16) -> Vec<(i32, i32)> {
         let port = serial2::SerialPort::open(&self.path, 1_000_000).expect("pty");
-        let mut hand =
-            hand_control::ServoHand::with_reply_latency(port, &[1, 2], Duration::from_millis(250))
-                .expect("both servos answer");
+        let mut hand = hand_control::ServoHand::with_reply_latency(
+            port,
+            &[1, 2],
+            Duration::from_millis(SIM_REPLY_TIMEOUT_MS),
+        )
+        .expect("both servos answer");
         [1, 2]
             .iter()
             .map(|&id| {

@@ -156,12 +156,12 @@ fn corrupted_crc_is_a_typed_fault_and_safe() {
 
 #[test]
 fn servo_that_stops_answering_keeps_the_loop_safe_until_it_answers() {
-    // 0.3 s of silence: each cycle waits out the driver's reply allowance (250 ms of wall time
-    // on the simulated bus), so the window is kept short.
-    let l = with_injection(Injected::Silent, 4.0, 4.3, RESUME);
+    // 0.1 s of silence: each cycle waits out the driver's reply allowance
+    // (`dxl_sim::REPLY_LATENCY` of wall time), so the window is kept short.
+    let l = with_injection(Injected::Silent, 4.0, 4.1, RESUME);
     let i = common::first_fault(l.log());
     // Silent from 4 s: every cycle logged with the fault and in the safe state.
-    let silent = &l.log()[i..i + 30];
+    let silent = &l.log()[i..i + 10];
     assert!(
         silent
             .iter()
