@@ -1,6 +1,7 @@
 //! The microcontroller builds: the crates that claim `no_std` built for the paper's MCU class
-//! (Cortex-M3 without an FPU, Cortex-M4F), with and without their async drivers. rustup adds a
-//! missing target and says so.
+//! (Cortex-M3 without an FPU), with and without their async drivers; the firmware
+//! ([`crate::firmware`]) links them for both [`TARGETS`]. rustup adds a missing target and says
+//! so.
 
 use crate::run::{cargo, rustup_lines, step};
 use anyhow::Result;
@@ -41,29 +42,29 @@ pub fn ensure_targets() -> Result<()> {
     Ok(())
 }
 
-/// Builds every [`NO_STD`] crate for every [`TARGETS`] target: without default features, then
-/// with its firmware features.
+/// Builds every [`NO_STD`] crate for the first of [`TARGETS`] (Cortex-M3): without default
+/// features, then with its firmware features. One target is enough: none of these crates tells
+/// the thumb targets apart with a `cfg` (its only target `cfg`s are for x86-64), so the
+/// Cortex-M4F's build would compile the same code; the firmware links for both.
 pub fn build(root: &Path) -> Result<()> {
     ensure_targets()?;
-    for t in TARGETS {
-        // A build directory of its own: these builds run beside the workspace's (a lane of
-        // `cargo xtask test`), which would otherwise wait for each other's lock.
-        let mut bare = cargo(root);
-        bare.args(["build", "--target", t, "--no-default-features"])
-            .env("CARGO_TARGET_DIR", root.join(TARGET_DIR));
-        let mut featured = cargo(root);
-        featured
-            .args(["build", "--target", t, "--no-default-features"])
-            .env("CARGO_TARGET_DIR", root.join(TARGET_DIR));
-        let mut features = Vec::new();
-        for (name, extra) in NO_STD {
-            bare.args(["-p", name]);
-            featured.args(["-p", name]);
-            features.extend(extra.iter().map(|f| format!("{name}/{f}")));
-        }
-        featured.args(["--features", &features.join(",")]);
-        step(&format!("no_std build, {t}"), &mut bare)?;
-        step(&format!("no_std build with async, {t}"), &mut featured)?;
+    let t = TARGETS[0];
+    // A build directory of its own: these builds run beside the workspace's (a lane of
+    // `cargo xtask test`), which would otherwise wait for each other's lock.
+    let mut bare = cargo(root);
+    bare.args(["build", "--target", t, "--no-default-features"])
+        .env("CARGO_TARGET_DIR", root.join(TARGET_DIR));
+    let mut featured = cargo(root);
+    featured
+        .args(["build", "--target", t, "--no-default-features"])
+        .env("CARGO_TARGET_DIR", root.join(TARGET_DIR));
+    let mut features = Vec::new();
+    for (name, extra) in NO_STD {
+        bare.args(["-p", name]);
+        featured.args(["-p", name]);
+        features.extend(extra.iter().map(|f| format!("{name}/{f}")));
     }
-    Ok(())
+    featured.args(["--features", &features.join(",")]);
+    step(&format!("no_std build, {t}"), &mut bare)?;
+    step(&format!("no_std build with async, {t}"), &mut featured)
 }

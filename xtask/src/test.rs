@@ -14,14 +14,15 @@ use std::path::{Path, PathBuf};
 /// with every feature; then the doctests and every test harness ([`test_binaries::run`]).
 ///
 /// Beside them, in [`Lane`]s (idle priority: they take only the cores the main steps leave):
-/// from the start, the `no_std` builds for the thumb targets ([`embedded::build`]), the
-/// fingertip firmware linked for both and run on the host ([`firmware::check`]) and the MSRV
-/// check ([`msrv::check`]), each in its own build directory; once the doctests are done (they
-/// hold the build directory's lock), the instruction-count gate (`bench --check`, on the test
-/// build's binary) and the docs with warnings denied, and `fixtures --check` (again with
-/// numpy's widest SIMD kernels off). The test harnesses' simulated devices answer in real
-/// time: the lanes only use the time the tests leave idle (most of it: they wait on their
-/// devices), and the servo buses allow for a loaded machine (`dxl_sim::REPLY_LATENCY`).
+/// from the start, the `no_std` builds for the Cortex-M3 target ([`embedded::build`]), the
+/// fingertip firmware linked for both thumb targets and run on the host
+/// ([`firmware::check`]) and the MSRV check ([`msrv::check`]), each in its own build
+/// directory; once the doctests are done (they hold the build directory's lock), the
+/// instruction-count gate (`bench --check`, on the test build's binary) and the docs with
+/// warnings denied, and `fixtures --check` (again with numpy's widest SIMD kernels off). The
+/// test harnesses' simulated devices answer in real time: the lanes only use the time the
+/// tests leave idle (most of it: they wait on their devices), and the servo buses allow for a
+/// loaded machine (`dxl_sim::REPLY_LATENCY`).
 pub fn run(root: &Path) -> Result<()> {
     step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
     std::thread::scope(|scope| {

@@ -72,8 +72,8 @@ const EXAMPLES_TESTS_RUN: [&str; 3] = [
 
 /// Builds every test target (the step `test build`; cargo's progress and diagnostics on the
 /// terminal) and lists the executables it made, in cargo's order: the targets `cargo test`
-/// runs (`--tests`) and the binaries that integration tests start; then
-/// [`EXAMPLES_TESTS_RUN`].
+/// runs (`--tests`) and the binaries that integration tests start; then the examples that
+/// tests run.
 pub fn build(root: &Path, env: &[(&str, &Path)]) -> Result<Vec<Executable>> {
     let executables = build_tests(root, env)?;
     let mut examples = cargo(root);
