@@ -8,10 +8,16 @@ use crate::{bench, chromium, consumer, embedded, firmware, fixtures, msrv, packa
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 
+/// Packages whose test harness runs alone, after every lane: under load (lanes at idle
+/// priority beside it) the Python Zenoh client that one of its tests runs as a ROS 2 peer
+/// crashed (an allocation of 853 GB failed inside zenoh-python) while waiting for its samples.
+pub const RUN_ALONE: [&str; 1] = ["hand-zenoh"];
+
 /// fmt check, then the main steps: `.venv` and Chromium (the report render test), clippy `-D
 /// warnings`, `cargo package` of every published crate ([`package::run`]) and the consumer
 /// build and test of every README against the packages ([`consumer::run`]), the test build
-/// with every feature; then the doctests and every test harness ([`test_binaries::run`]).
+/// with every feature; then the doctests and the test harnesses ([`test_binaries::run`]);
+/// last, alone, the harnesses of [`RUN_ALONE`].
 ///
 /// Beside them, in [`Lane`]s (idle priority: they take only the cores the main steps leave):
 /// from the start, the `no_std` builds for the Cortex-M3 target ([`embedded::build`]), the
@@ -22,33 +28,46 @@ use std::path::{Path, PathBuf};
 /// warnings denied, and `fixtures --check` (again with numpy's widest SIMD kernels off). The
 /// test harnesses' simulated devices answer in real time: the lanes only use the time the
 /// tests leave idle (most of it: they wait on their devices), and the servo buses allow for a
-/// loaded machine (`dxl_sim::REPLY_LATENCY`).
+/// loaded machine (`dxl_sim::REPLY_LATENCY`; 250 ms was once too little).
 pub fn run(root: &Path) -> Result<()> {
     step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
-    std::thread::scope(|scope| {
+    let (env, executables) = std::thread::scope(|scope| {
         let builds = Lane::start(scope, root, "builds", || {
             embedded::build(root)?;
             firmware::check(root)?;
             msrv::check(root)
         })?;
-        let tested = build_steps(root).and_then(|built| tests(scope, root, built));
-        all([tested, builds.finish()])
-    })
+        let built = build_steps(root);
+        let tested = match &built {
+            Ok(built) => tests(scope, root, built),
+            Err(_) => Ok(()),
+        };
+        let lane = builds.finish();
+        let built = built?;
+        all([tested, lane]).map(|()| built)
+    })?;
+    let env: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
+    let alone: Vec<Executable> = executables
+        .into_iter()
+        .filter(|e| RUN_ALONE.contains(&e.package.as_str()))
+        .collect();
+    test_binaries::run("test run, alone", &alone, &env)
 }
 
-/// The doctests, then the harnesses with the lanes that need the test build beside them.
+/// The doctests, then the harnesses but [`RUN_ALONE`]'s with the lanes that need the test
+/// build beside them.
 fn tests<'scope>(
     scope: &'scope std::thread::Scope<'scope, '_>,
     root: &'scope Path,
-    (env, executables): Built,
+    (env, executables): &Built,
 ) -> Result<()> {
     let env: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
     let doctests = test_binaries::doctests(root, &env);
-    let papers = find(&executables, PAPERS.package, PAPERS.name, false)?
+    let papers = find(executables, PAPERS.package, PAPERS.name, false)?
         .path
         .clone();
     let instructions = find(
-        &executables,
+        executables,
         bench::INSTRUCTIONS.0,
         bench::INSTRUCTIONS.1,
         true,
@@ -63,7 +82,12 @@ fn tests<'scope>(
         println!("==> fixtures --check, numpy's widest SIMD kernels off");
         fixtures::check_with_numpy_narrowed(root)
     })?;
-    let harnesses = test_binaries::run(&executables, &env);
+    let beside: Vec<Executable> = executables
+        .iter()
+        .filter(|e| !RUN_ALONE.contains(&e.package.as_str()))
+        .cloned()
+        .collect();
+    let harnesses = test_binaries::run("test run", &beside, &env);
     all([doctests, harnesses, checks.finish(), generated.finish()])
 }
 

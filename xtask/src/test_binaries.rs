@@ -185,12 +185,12 @@ pub fn doctests(root: &Path, env: &[(&str, &Path)]) -> Result<()> {
     )
 }
 
-/// Runs every test harness among `executables` with `env`, one after another (as `cargo test`
+/// Runs every test harness among `executables` with `env` (the step `what`), one after another (as `cargo test`
 /// does: the tests' simulated devices answer in real time, so the binaries do not share the
 /// machine with one another). All of them run; the step fails at the end, naming each that
 /// failed. No cargo command: the build directory stays free for others.
-pub fn run(executables: &[Executable], env: &[(&str, &Path)]) -> Result<()> {
-    println!("==> test run");
+pub fn run(what: &str, executables: &[Executable], env: &[(&str, &Path)]) -> Result<()> {
+    println!("==> {what}");
     let start = Instant::now();
     let mut failed = Vec::new();
     for exe in executables.iter().filter(|e| e.test) {
@@ -214,12 +214,12 @@ pub fn run(executables: &[Executable], env: &[(&str, &Path)]) -> Result<()> {
     let secs = start.elapsed().as_secs_f64();
     if !failed.is_empty() {
         bail!(
-            "test run failed after {secs:.1} s: {} of them failed:\n  {}",
+            "{what} failed after {secs:.1} s: {} of them failed:\n  {}",
             failed.len(),
             failed.join("\n  ")
         );
     }
-    println!("    test run: ok in {secs:.1} s");
+    println!("    {what}: ok in {secs:.1} s");
     Ok(())
 }
 
