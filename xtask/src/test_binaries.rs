@@ -185,10 +185,11 @@ pub fn doctests(root: &Path, env: &[(&str, &Path)]) -> Result<()> {
     )
 }
 
-/// Runs every test harness among `executables` with `env` (the step `what`), one after another (as `cargo test`
-/// does: the tests' simulated devices answer in real time, so the binaries do not share the
-/// machine with one another). All of them run; the step fails at the end, naming each that
-/// failed. No cargo command: the build directory stays free for others.
+/// Runs every test harness among `executables` with `env` (the step `what`), one after
+/// another (as `cargo test` does: the tests' simulated devices answer in real time, so the
+/// binaries do not share the machine with one another). All of them run; the step fails at
+/// the end, naming each that failed. No cargo command: the build directory stays free for
+/// others.
 pub fn run(what: &str, executables: &[Executable], env: &[(&str, &Path)]) -> Result<()> {
     println!("==> {what}");
     let start = Instant::now();

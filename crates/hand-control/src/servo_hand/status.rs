@@ -185,7 +185,13 @@ impl Link {
                 .set_read_timeout(left.max(Duration::from_micros(100)))?;
             match self.reader.read(&mut buf) {
                 Ok(got) => self.rx.extend_from_slice(&buf[..got]),
-                Err(e) if e.kind() == std::io::ErrorKind::TimedOut => {}
+                // A signal arriving while the read waits (EINTR: the user's Ctrl-C, whose
+                // handler ends the run in order) is no fault of the bus: read on.
+                Err(e)
+                    if matches!(
+                        e.kind(),
+                        std::io::ErrorKind::TimedOut | std::io::ErrorKind::Interrupted
+                    ) => {}
                 Err(e) => return Err(Error::Io(e)),
             }
         }
