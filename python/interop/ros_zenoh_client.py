@@ -296,6 +296,10 @@ def parse_attachment(raw: bytes | None) -> tuple[int, int, bytes]:
     if looks_legacy(raw):
         raise AttachmentError(raw, f"attachment is the old keyed {len(raw)}-byte layout, not the "
                                    f"{ATTACHMENT_LEN}-byte one (rmw_zenoh <= 0.2.3 Jazzy / <= 0.1.1 Humble)")
+    # Checked before zenoh-ext reads it: its deserializer allocates the sequence's length as
+    # read (a timestamp's bytes there asked for 853 GB and aborted the process).
+    if len(raw) != ATTACHMENT_LEN or raw[16] != GID_LEN:
+        raise AttachmentError(raw, f"attachment is {len(raw)} bytes, not the {ATTACHMENT_LEN}-byte layout")
     try:
         seq, stamp, gid = z_deserialize(tuple[Int64, Int64, bytes], zenoh.ZBytes(raw))
     except (ZDeserializeError, ValueError, TypeError) as exc:
