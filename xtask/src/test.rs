@@ -20,10 +20,8 @@ use std::path::{Path, PathBuf};
 /// ([`embedded::build`]), the fingertip firmware linked for both thumb targets and run on the
 /// host ([`firmware::check`]) and the MSRV check ([`msrv::check`]), each in its own build
 /// directory; after the tests, `fixtures --check` (again with numpy's widest SIMD kernels
-/// off). Nothing runs beside the tests: their simulated devices answer in real time, and with
-/// lanes beside them (at idle priority) a servo bus missed a 250 ms reply allowance, a Python
-/// Zenoh client (a test's ROS 2 peer) crashed, and a second signal to `handstack` landed in a
-/// servo read (that one a bug, fixed: an interrupted read is retried).
+/// off). Nothing runs beside the tests: their simulated devices and peer processes answer in
+/// real time, and load beside them (even at idle priority) changes their timing.
 pub fn run(root: &Path) -> Result<()> {
     step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
     let (env, executables) = std::thread::scope(|scope| {
@@ -39,7 +37,7 @@ pub fn run(root: &Path) -> Result<()> {
     let env: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
     all([
         test_binaries::doctests(root, &env),
-        test_binaries::run("test run", &executables, &env),
+        test_binaries::run(&executables, &env),
     ])?;
     let papers = find(&executables, PAPERS.package, PAPERS.name, false)?
         .path

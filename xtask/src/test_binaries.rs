@@ -185,13 +185,13 @@ pub fn doctests(root: &Path, env: &[(&str, &Path)]) -> Result<()> {
     )
 }
 
-/// Runs every test harness among `executables` with `env` (the step `what`), one after
+/// Runs every test harness among `executables` with `env`, one after
 /// another (as `cargo test` does: the tests' simulated devices answer in real time, so the
 /// binaries do not share the machine with one another). All of them run; the step fails at
 /// the end, naming each that failed. No cargo command: the build directory stays free for
 /// others.
-pub fn run(what: &str, executables: &[Executable], env: &[(&str, &Path)]) -> Result<()> {
-    println!("==> {what}");
+pub fn run(executables: &[Executable], env: &[(&str, &Path)]) -> Result<()> {
+    println!("==> test run");
     let start = Instant::now();
     let mut failed = Vec::new();
     for exe in executables.iter().filter(|e| e.test) {
@@ -215,12 +215,12 @@ pub fn run(what: &str, executables: &[Executable], env: &[(&str, &Path)]) -> Res
     let secs = start.elapsed().as_secs_f64();
     if !failed.is_empty() {
         bail!(
-            "{what} failed after {secs:.1} s: {} of them failed:\n  {}",
+            "test run failed after {secs:.1} s: {} of them failed:\n  {}",
             failed.len(),
             failed.join("\n  ")
         );
     }
-    println!("    {what}: ok in {secs:.1} s");
+    println!("    test run: ok in {secs:.1} s");
     Ok(())
 }
 
