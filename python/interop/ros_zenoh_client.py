@@ -64,6 +64,8 @@ SELFTEST_COMMAND, SELFTEST_COMMAND_TYPE = "/hand0/gripper/command", "handstack_m
 GID_LEN = 16  # RMW_GID_STORAGE_SIZE
 ATTACHMENT_LEN = 8 + 8 + 1 + GID_LEN  # design.md: i64 LE, i64 LE, 1-byte GID length, GID = 33 bytes
 LEGACY_PREFIX = bytes([15]) + b"sequence_number"  # how the old keyed attachment starts
+# rmw_zenoh <= 0.2.3: three keyed fields, each key a length-prefixed string, the GID a counted sequence.
+LEGACY_LEN = len(LEGACY_PREFIX) + 8 + 1 + len("source_timestamp") + 8 + 1 + len("source_gid") + 1 + GID_LEN
 MAX_COUNT = 100_000  # upper bound on samples taken or published by one run
 
 
@@ -264,6 +266,10 @@ class AttachmentError(ValueError):
 
 def parse_legacy_attachment(raw: bytes) -> tuple[int, int, bytes]:
     """(sequence_number, source_timestamp, gid) of an old keyed attachment; ValueError otherwise."""
+    # Checked before zenoh-ext reads it: its deserializer allocates a string's or sequence's length
+    # as read, and a current attachment's timestamp bytes there asked for 853 GB and aborted.
+    if len(raw) != LEGACY_LEN or not raw.startswith(LEGACY_PREFIX):
+        raise ValueError("not the old layout")
     tup = tuple[str, Int64, str, Int64, str, bytes]
     try:
         k1, seq, k2, stamp, k3, gid = z_deserialize(tup, zenoh.ZBytes(raw))
@@ -296,8 +302,7 @@ def parse_attachment(raw: bytes | None) -> tuple[int, int, bytes]:
     if looks_legacy(raw):
         raise AttachmentError(raw, f"attachment is the old keyed {len(raw)}-byte layout, not the "
                                    f"{ATTACHMENT_LEN}-byte one (rmw_zenoh <= 0.2.3 Jazzy / <= 0.1.1 Humble)")
-    # Checked before zenoh-ext reads it: its deserializer allocates the sequence's length as
-    # read (a timestamp's bytes there asked for 853 GB and aborted the process).
+    # Checked before zenoh-ext reads it (see `parse_legacy_attachment`).
     if len(raw) != ATTACHMENT_LEN or raw[16] != GID_LEN:
         raise AttachmentError(raw, f"attachment is {len(raw)} bytes, not the {ATTACHMENT_LEN}-byte layout")
     try:
@@ -391,7 +396,8 @@ def cmd_encode(args: argparse.Namespace) -> str:
 
 
 def cmd_attachment(args: argparse.Namespace) -> dict[str, str]:
-    """Attachment bytes for --seq/--stamp/--gid via zenoh-ext (current layout; --legacy the old one)."""
+    """Attachment bytes for --seq/--stamp/--gid via zenoh-ext (current layout; --legacy the old one),
+    checked against the written-out layout and read back by this client's own parser."""
     gid = bytes.fromhex(args.gid)
     if len(gid) != GID_LEN:
         raise Failure(f"--gid needs {GID_LEN} bytes (32 hex digits), got {len(gid)}")
@@ -401,6 +407,9 @@ def cmd_attachment(args: argparse.Namespace) -> dict[str, str]:
     if raw != manual(args.seq, args.stamp, gid):  # zenoh-ext and the written-out layout must agree
         raise Failure("zenoh-ext's bytes differ from the documented layout", hex=raw.hex(),
                       expected_hex=manual(args.seq, args.stamp, gid).hex())
+    parse = parse_legacy_attachment if args.legacy else parse_attachment
+    if parse(raw) != (args.seq, args.stamp, gid):
+        raise Failure("the attachment does not read back", hex=raw.hex())
     return {"hex": raw.hex()}
 
 

@@ -18,7 +18,8 @@ use std::time::Duration;
 /// The attachments of the unit tests' vectors and the edges of each field, as the Python
 /// client makes them with zenoh-ext's `z_serialize((Int64, Int64, bytes))` — the serializer
 /// family zenoh-cpp's `ext::Serializer`, which rmw_zenoh's `attachment_helpers.cpp` uses, is
-/// built to match — in the current layout and the older one.
+/// built to match — in the current layout and the older one, each read back by the client's
+/// own parser.
 #[test]
 fn attachments_are_the_bytes_zenoh_ext_serializes() {
     let Some(py) = python() else { return };
@@ -29,6 +30,16 @@ fn attachments_are_the_bytes_zenoh_ext_serializes() {
         (i64::MAX, i64::MAX, [0xff; 16]),
         (-1, i64::MIN, [0x80; 16]),
         (16, 16, [16; 16]),
+        // Read as the old keyed layout, these bytes ask zenoh-ext for an 853 GB string: the
+        // client's parser must not hand them to that reader (it read every sample so, and aborted).
+        (
+            1,
+            1_796_005_909_256_858_376,
+            [
+                0xde, 0x20, 0xf8, 0x8b, 0x85, 0xea, 0xb4, 0xd0, 0x6c, 0x26, 0x9b, 0xfd, 0x85, 0x35,
+                0x37, 0x2a,
+            ],
+        ),
     ];
     for (seq, stamp, gid) in cases {
         let a = Attachment {
