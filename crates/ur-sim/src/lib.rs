@@ -36,7 +36,7 @@ use std::collections::HashMap;
 use std::io::Read;
 use std::net::{Ipv4Addr, Shutdown, SocketAddr, TcpListener, TcpStream};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -101,8 +101,17 @@ pub(crate) struct Shared {
     streams: Mutex<HashMap<u64, TcpStream>>,
     threads: Mutex<Vec<JoinHandle<()>>>,
     input_claims: Mutex<HashMap<String, u64>>,
+    /// Signalled when a connection's input claims are released.
+    claims_released: Condvar,
     next_id: AtomicU64,
 }
+
+/// How long a claim of RTDE input registers held by another connection waits for that
+/// connection to release them before the answer is `IN_USE`. A client that reconnects (as
+/// ur_rtde's control interface does when it finds its link down) has closed the old
+/// connection first, but the simulator reads that close on the old connection's own thread,
+/// which a loaded machine can run after the new connection's claim.
+pub(crate) const CLAIM_WAIT: Duration = Duration::from_secs(1);
 
 impl Shared {
     /// Simulator state without sockets: the controller at the configured start pose and mode.
@@ -116,6 +125,7 @@ impl Shared {
             streams: Mutex::new(HashMap::new()),
             threads: Mutex::new(Vec::new()),
             input_claims: Mutex::new(HashMap::new()),
+            claims_released: Condvar::new(),
             next_id: AtomicU64::new(1),
         }
     }
@@ -136,19 +146,41 @@ impl Shared {
         threads.push(handle);
     }
 
-    /// Claims RTDE input variables for connection `id`; false where another connection holds one.
+    /// Claims RTDE input variables for connection `id`; false where another connection still
+    /// holds one after [`CLAIM_WAIT`] (logged, naming the holder).
     pub(crate) fn claim_inputs(&self, id: u64, names: &[String]) -> Vec<bool> {
+        let deadline = Instant::now() + CLAIM_WAIT;
         let mut claims = self.input_claims.lock().unwrap_or_else(|e| e.into_inner());
-        let free: Vec<bool> = names
-            .iter()
-            .map(|n| claims.get(n).is_none_or(|owner| *owner == id))
-            .collect();
-        if free.iter().all(|f| *f) {
-            for n in names {
-                claims.insert(n.clone(), id);
+        loop {
+            let free: Vec<bool> = names
+                .iter()
+                .map(|n| claims.get(n).is_none_or(|owner| *owner == id))
+                .collect();
+            if free.iter().all(|f| *f) {
+                for n in names {
+                    claims.insert(n.clone(), id);
+                }
+                return free;
             }
+            let left = deadline.saturating_duration_since(Instant::now());
+            if left.is_zero() || self.stopped() {
+                let held = names
+                    .iter()
+                    .find_map(|n| claims.get(n).filter(|o| **o != id).map(|o| (n, *o)));
+                drop(claims);
+                if let Some((name, owner)) = held {
+                    self.lock().textmsg(format!(
+                        "rtde: connection {id} asked for {name}, held by connection {owner}: IN_USE"
+                    ));
+                }
+                return free;
+            }
+            claims = self
+                .claims_released
+                .wait_timeout(claims, left)
+                .unwrap_or_else(|e| e.into_inner())
+                .0;
         }
-        free
     }
 
     pub(crate) fn release_inputs(&self, id: u64) {
@@ -156,6 +188,7 @@ impl Shared {
             .lock()
             .unwrap_or_else(|e| e.into_inner())
             .retain(|_, owner| *owner != id);
+        self.claims_released.notify_all();
     }
 }
 
@@ -233,7 +266,8 @@ impl UrSim {
             .len()
     }
 
-    /// The script's `textmsg` lines and the safety events, oldest first.
+    /// The script's `textmsg` lines, the safety events and the RTDE input registers refused
+    /// as in use, oldest first.
     pub fn log(&self) -> Vec<String> {
         self.shared.lock().log.iter().cloned().collect()
     }
@@ -405,5 +439,37 @@ mod tests {
             "1 s of controller time took {wall} s of wall time"
         );
         assert!(sim_s <= 10.0 * wall + 0.008 + 1e-9, "{sim_s} s in {wall} s");
+    }
+
+    /// A claim that meets another connection's registers gets them when that connection's
+    /// thread releases them within [`CLAIM_WAIT`] (its close read late), and is refused when
+    /// it holds them on.
+    #[test]
+    fn a_claim_waits_for_a_closing_holder_and_is_refused_by_a_live_one() {
+        let shared = Arc::new(Shared::new(SimConfig::default()));
+        let names = [String::from("input_int_register_0")];
+        assert_eq!(shared.claim_inputs(1, &names), [true]);
+        let releaser = {
+            let shared = shared.clone();
+            std::thread::spawn(move || {
+                std::thread::sleep(CLAIM_WAIT / 5);
+                shared.release_inputs(1);
+            })
+        };
+        assert_eq!(
+            shared.claim_inputs(2, &names),
+            [true],
+            "{:?}",
+            shared.lock().log
+        );
+        releaser.join().expect("releaser");
+        let start = Instant::now();
+        assert_eq!(shared.claim_inputs(3, &names), [false]);
+        assert!(start.elapsed() >= CLAIM_WAIT);
+        let log = &shared.lock().log;
+        assert_eq!(
+            log.back().map(String::as_str),
+            Some("rtde: connection 3 asked for input_int_register_0, held by connection 2: IN_USE")
+        );
     }
 }

@@ -21,7 +21,7 @@ fn run_text(text: &str) -> Result<handstack::Outcome, Error> {
 fn a_scene_naming_a_started_ur_simulator_moves_it() {
     use ur_sim::{SimConfig, UrSim};
     let address = Ipv4Addr::new(127, 0, 0, 90);
-    let _sim = UrSim::start(SimConfig {
+    let sim = UrSim::start(SimConfig {
         address,
         ..SimConfig::default()
     })
@@ -30,7 +30,7 @@ fn a_scene_naming_a_started_ur_simulator_moves_it() {
         "title = \"real arm\"\n[sim]\nseed = 10\n[sensors.imu_pad]\n[estimators.contact]\nlocators = [\"cnn\"]\n\
          [arm]\nmodel = \"ur3\"\nhost = \"{address}\"\n[experiment.tap]\ntaps_per_region = 1\n"
     );
-    let o = run_text(&text).unwrap_or_else(|e| panic!("{e}"));
+    let o = run_text(&text).unwrap_or_else(|e| panic!("{e}; simulator log {:?}", sim.log()));
     assert_eq!(common::value(&o, "tap_count"), 9.0);
     let acc = o.figure("tap_accuracy_pct").expect("figure");
     assert!(acc.label.contains("127.0.0.90"), "{acc:?}");

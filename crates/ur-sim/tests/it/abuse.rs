@@ -2,7 +2,8 @@
 //! mid-move, garbage on every port. Raw TCP clients (bounded: a timeout on every read and
 //! write, a fixed number of connections), then a fresh `UrArm` to show the simulator is
 //! still up; a controller that accepts connections and never answers is a typed timeout, not a
-//! hang. Loopback addresses 127.0.0.23–24, 27–28 and 31–32 (off the other tests').
+//! hang; an input register is one open connection's at a time. Loopback addresses 127.0.0.23–24,
+//! 27–28 and 31–33 (off the other tests').
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{Ipv4Addr, Shutdown, SocketAddr, TcpStream};
@@ -496,4 +497,46 @@ fn a_controller_that_accepts_and_never_answers_is_a_timeout_not_a_hang() {
         ),
     }
     assert!(took < Duration::from_secs(10), "{took:?}");
+}
+
+/// Sets up an RTDE input recipe of `input_int_register_0` on a new raw connection to `rtde`;
+/// the recipe id the simulator answers (0: refused) and the variable types it lists.
+fn claim_register(rtde: SocketAddr) -> (TcpStream, u8, String) {
+    let mut r = connect(rtde);
+    r.write_all(&package(PROTOCOL_VERSION, &[0, 2])).unwrap();
+    assert_eq!(read_package(&mut r), (PROTOCOL_VERSION, vec![1]));
+    r.write_all(&package(SETUP_INPUTS, b"input_int_register_0"))
+        .unwrap();
+    let (kind, reply) = read_package(&mut r);
+    assert_eq!(kind, SETUP_INPUTS);
+    let listed = String::from_utf8_lossy(&reply[1..]).into_owned();
+    (r, reply[0], listed)
+}
+
+/// An input register is one connection's while it is open (the real controller answers
+/// `IN_USE` to a second client, and ur_rtde then throws), and free once that connection has
+/// closed: a client that drops its connection and sets up the same recipe on a new one at once
+/// gets it, however late the simulator reads the close.
+#[test]
+fn an_input_register_is_in_use_while_its_connection_is_open_and_free_once_closed() {
+    let sim = on_any_ports(33);
+    let [_, _, rtde]: [SocketAddr; 3] = sim.addresses().try_into().unwrap();
+    let (first, id, listed) = claim_register(rtde);
+    assert_eq!((id, listed.as_str()), (1, "INT32"));
+    let (_second, id, listed) = claim_register(rtde);
+    assert_eq!((id, listed.as_str()), (0, "IN_USE"));
+    assert!(
+        sim.log()
+            .iter()
+            .any(|l| l.contains("input_int_register_0") && l.ends_with("IN_USE")),
+        "{:?}",
+        sim.log()
+    );
+    // Closed, then claimed again at once from a new connection, twenty times over.
+    drop(first);
+    for round in 0..20 {
+        let (again, id, listed) = claim_register(rtde);
+        assert_eq!((id, listed.as_str()), (1, "INT32"), "round {round}");
+        again.shutdown(Shutdown::Both).unwrap();
+    }
 }
