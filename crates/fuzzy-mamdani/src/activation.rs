@@ -141,6 +141,37 @@ impl<T: Real> Activation<T> {
         }
     }
 
+    /// How the method visits its block's rules when it triggers each as it goes:
+    /// `Some(false)` in rule order (`General`, `First`, `Threshold`), `Some(true)` from the
+    /// last rule (`Last`); `None` when it compares every rule's degree before triggering any
+    /// (`Highest`, `Lowest`, `Proportional`). This decides which conclusions a chained
+    /// engine's rule sees ([`crate::Expr::Output`]), as in pyfuzzylite's `activate` methods.
+    pub(crate) fn rule_by_rule(&self) -> Option<bool> {
+        match self {
+            Activation::General | Activation::First { .. } | Activation::Threshold { .. } => {
+                Some(false)
+            }
+            Activation::Last { .. } => Some(true),
+            Activation::Highest { .. } | Activation::Lowest { .. } | Activation::Proportional => {
+                None
+            }
+        }
+    }
+
+    /// For a rule-by-rule method ([`Self::rule_by_rule`]): whether the next rule visited, of
+    /// degree `d`, is triggered; `taken` counts the rules triggered so far in the block.
+    pub(crate) fn triggers(&self, d: T, taken: &mut usize) -> bool {
+        let on = match *self {
+            Activation::First { rules, threshold } | Activation::Last { rules, threshold } => {
+                *taken < rules && d > T::zero() && d >= threshold
+            }
+            Activation::Threshold { comparison, value } => comparison.holds(d, value),
+            _ => true,
+        };
+        *taken += usize::from(on);
+        on
+    }
+
     /// Applies the method to `degree` (one per rule, in rule order): a rule left out gets
     /// [`UNTRIGGERED`]'s NaN, which no hedge turns into a number and no threshold passes.
     /// `chosen` is scratch for the ranking methods (capacity: the rule count).
@@ -149,19 +180,17 @@ impl<T: Real> Activation<T> {
         let zero = T::zero();
         match *self {
             Activation::General => {}
-            Activation::First { rules, threshold } | Activation::Last { rules, threshold } => {
+            Activation::First { .. } | Activation::Last { .. } | Activation::Threshold { .. } => {
                 let mut taken = 0usize;
                 let mut visit = |d: &mut T| {
-                    if taken < rules && *d > zero && *d >= threshold {
-                        taken += 1;
-                    } else {
+                    if !self.triggers(*d, &mut taken) {
                         *d = off;
                     }
                 };
-                if matches!(self, Activation::First { .. }) {
-                    degree.iter_mut().for_each(&mut visit);
-                } else {
+                if self.rule_by_rule() == Some(true) {
                     degree.iter_mut().rev().for_each(&mut visit);
+                } else {
+                    degree.iter_mut().for_each(&mut visit);
                 }
             }
             Activation::Highest { rules } | Activation::Lowest { rules } => {
@@ -201,13 +230,6 @@ impl<T: Real> Activation<T> {
                     .fold(zero, |s, &d| s + d);
                 for d in degree.iter_mut() {
                     *d = if *d > zero { *d / sum } else { off };
-                }
-            }
-            Activation::Threshold { comparison, value } => {
-                for d in degree.iter_mut() {
-                    if !comparison.holds(*d, value) {
-                        *d = off;
-                    }
                 }
             }
         }

@@ -374,34 +374,40 @@ fn check_rule<T: Real>(
         e: &crate::Expr,
         i: usize,
         inputs: &[InputVariable<T>],
+        outputs: &[OutputVariable<T>],
     ) -> Result<(), BuildError> {
-        match e {
-            crate::Expr::Any { input, .. } if *input >= inputs.len() => Err(BuildError::Unknown {
+        // A variable index and a term index within it, checked against `terms` (per variable).
+        let known = |what: &'static str, var: usize, term: Option<usize>, terms: Option<usize>| {
+            let (name, what) = match (terms, term) {
+                (None, _) => (var, what),
+                (Some(n), Some(t)) if t >= n => (t, "term"),
+                _ => return Ok(()),
+            };
+            Err(BuildError::Unknown {
                 rule: i,
-                what: "input",
-                name: input.to_string(),
-            }),
-            crate::Expr::Any { .. } => Ok(()),
-            crate::Expr::Is { input, term, .. } => match inputs.get(*input) {
-                None => Err(BuildError::Unknown {
-                    rule: i,
-                    what: "input",
-                    name: input.to_string(),
-                }),
-                Some(v) if *term >= v.terms.len() => Err(BuildError::Unknown {
-                    rule: i,
-                    what: "term",
-                    name: term.to_string(),
-                }),
-                Some(_) => Ok(()),
-            },
+                what,
+                name: name.to_string(),
+            })
+        };
+        let input_terms = |v: usize| inputs.get(v).map(|v| v.terms.len());
+        match e {
+            crate::Expr::Output { output, term, .. } => known(
+                "output",
+                *output,
+                Some(*term),
+                outputs.get(*output).map(|v| v.terms.len()),
+            ),
+            crate::Expr::Any { input, .. } => known("input", *input, None, input_terms(*input)),
+            crate::Expr::Is { input, term, .. } => {
+                known("input", *input, Some(*term), input_terms(*input))
+            }
             crate::Expr::And(a, b) | crate::Expr::Or(a, b) => {
-                check_expr(a, i, inputs)?;
-                check_expr(b, i, inputs)
+                check_expr(a, i, inputs, outputs)?;
+                check_expr(b, i, inputs, outputs)
             }
         }
     }
-    check_expr(&rule.antecedent, i, inputs)?;
+    check_expr(&rule.antecedent, i, inputs, outputs)?;
     if rule.antecedent.depth() > MAX_DEPTH {
         return Err(BuildError::BadRule {
             rule: i,
@@ -540,10 +546,19 @@ fn compile<T: Real>(
         input_mfs.extend(v.terms.iter().map(|t| t.mf.clone()));
     }
     input_offsets.push(input_mfs.len());
+    // A chained engine keeps each output term's conclusions so far after the input terms.
+    let chained = rules_.iter().any(|r| r.antecedent.reads_outputs());
+    let mut output_offsets = Vec::with_capacity(outputs.len() + 1);
+    let mut output_terms = 0;
+    for v in outputs {
+        output_offsets.push(input_mfs.len() + output_terms);
+        output_terms += v.terms.len();
+    }
+    output_offsets.push(input_mfs.len() + output_terms);
     let (mut ops, mut rule_ops, mut weights) = (Vec::new(), Vec::new(), Vec::new());
     for r in rules_ {
         let start = ops.len() as u32;
-        rules::compile(&r.antecedent, &input_offsets, &mut ops);
+        rules::compile(&r.antecedent, &input_offsets, &output_offsets, &mut ops);
         rule_ops.push((start, ops.len() as u32));
         weights.push(r.weight);
     }
@@ -568,6 +583,7 @@ fn compile<T: Real>(
         // other activation methods look at every rule.
         .filter(|_| {
             general
+                && !chained
                 && rules_
                     .iter()
                     .all(|r| r.consequents.iter().all(|c| c.hedges.is_empty()))
@@ -580,6 +596,7 @@ fn compile<T: Real>(
         .collect();
     let shape = ScratchShape {
         input_terms: input_mfs.len(),
+        output_terms: if chained { output_terms } else { 0 },
         rules: rules_.len(),
         acts: plans
             .iter()
@@ -596,6 +613,7 @@ fn compile<T: Real>(
     Compiled {
         input_offsets,
         input_mfs,
+        output_offsets: chained.then_some(output_offsets),
         ops,
         rule_ops,
         and_index,

@@ -3,6 +3,7 @@
 use alloc::string::String;
 use alloc::vec::Vec;
 
+use crate::activation;
 use crate::defuzz::{self, Grid, PieceStats, Statistic};
 use crate::exact::{self, Act, Frame};
 use crate::rules::{self, Op};
@@ -54,6 +55,9 @@ pub(crate) struct Compiled<T> {
     pub(crate) input_offsets: Vec<usize>,
     /// All input membership functions, flat.
     pub(crate) input_mfs: Vec<Mf<T>>,
+    /// A chained engine's ([`crate::Expr::Output`]): where each output's terms' conclusions
+    /// so far start in the scratch degrees, after the input terms; one extra entry at the end.
+    pub(crate) output_offsets: Option<Vec<usize>>,
     pub(crate) ops: Vec<Op>,
     /// `ops[start..end]` of each rule.
     pub(crate) rule_ops: Vec<(u32, u32)>,
@@ -106,6 +110,8 @@ pub(crate) struct OutputPlan<T> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) struct ScratchShape {
     pub(crate) input_terms: usize,
+    /// Output terms whose conclusions so far a chained engine's rules read (0 otherwise).
+    pub(crate) output_terms: usize,
     pub(crate) rules: usize,
     pub(crate) acts: usize,
     pub(crate) levels: usize,
@@ -187,7 +193,7 @@ impl<T: Real> Engine<T> {
         let s = self.compiled.shape;
         Scratch {
             shape: s,
-            mu: alloc::vec![T::zero(); s.input_terms],
+            mu: alloc::vec![T::zero(); s.input_terms + s.output_terms],
             strength: alloc::vec![T::zero(); s.rules],
             work: Work {
                 fired: Vec::with_capacity(s.rules),
@@ -244,6 +250,9 @@ impl<T: Real> Engine<T> {
     /// Every rule's weighted firing strength into `scratch.strength`.
     fn fire(&self, scratch: &mut Scratch<T>) {
         let c = &self.compiled;
+        if let Some(offsets) = &c.output_offsets {
+            return self.fire_chained(scratch, offsets);
+        }
         let Scratch {
             mu,
             strength,
@@ -286,6 +295,69 @@ impl<T: Real> Engine<T> {
                     c.weights[r] * rules::eval_ops(ops, mu, block.conjunction, block.disjunction);
             }
             block.activation.apply(&mut strength[rules], fired);
+        }
+    }
+
+    /// [`Self::fire`] for a chained engine: block by block, each rule's conclusions are
+    /// aggregated into the output-term degrees after the input memberships as soon as its
+    /// block's activation method triggers it, so that later rules read them (pyfuzzylite's
+    /// `Engine.process`: outputs cleared, then each block's `activate`).
+    fn fire_chained(&self, scratch: &mut Scratch<T>, offsets: &[usize]) {
+        let c = &self.compiled;
+        let Scratch {
+            mu,
+            strength,
+            work: Work { fired, .. },
+            ..
+        } = scratch;
+        mu[c.shape.input_terms..].fill(T::zero());
+        for block in &self.blocks {
+            let rules = block.rules.clone();
+            let degree = |r: usize, mu: &[T]| {
+                let (lo, hi) = c.rule_ops[r];
+                let ops = &c.ops[lo as usize..hi as usize];
+                c.weights[r] * rules::eval_ops(ops, mu, block.conjunction, block.disjunction)
+            };
+            match block.activation.rule_by_rule() {
+                Some(backwards) => {
+                    let mut taken = 0;
+                    let mut visit = |r: usize| {
+                        let d = degree(r, mu);
+                        if block.activation.triggers(d, &mut taken) {
+                            strength[r] = d;
+                            self.conclude(r, d, mu, offsets);
+                        } else {
+                            strength[r] = activation::untriggered();
+                        }
+                    };
+                    if backwards {
+                        rules.rev().for_each(&mut visit);
+                    } else {
+                        rules.for_each(&mut visit);
+                    }
+                }
+                None => {
+                    for r in rules.clone() {
+                        strength[r] = degree(r, mu);
+                    }
+                    block.activation.apply(&mut strength[rules.clone()], fired);
+                    for r in rules {
+                        self.conclude(r, strength[r], mu, offsets);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Aggregates rule `r`'s conclusions at activation degree `d` into the output-term
+    /// degrees of `mu` (one taking part in defuzzification: hedged, above the threshold).
+    fn conclude(&self, r: usize, d: T, mu: &mut [T], offsets: &[usize]) {
+        for c in &self.rules[r].consequents {
+            let w = c.hedges.apply(d);
+            if w > self.activation_threshold {
+                let slot = &mut mu[offsets[c.output] + c.term];
+                *slot = self.outputs[c.output].aggregation.apply(*slot, w);
+            }
         }
     }
 

@@ -42,7 +42,8 @@ pub enum BuildError {
     Unknown {
         /// The rule's index (0-based).
         rule: usize,
-        /// "input", "output" or "term".
+        /// "input" (an index out of range), "variable" (a name that is neither an input nor an
+        /// output), "output", "term" or "hedge".
         what: &'static str,
         /// The unknown name (or index, printed).
         name: String,

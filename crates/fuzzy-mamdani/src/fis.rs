@@ -606,6 +606,11 @@ pub fn to_fis<T: Real>(engine: &Engine<T>) -> Result<String, FileError> {
     }
     s += "\n[Rules]\n";
     for r in engine.rules() {
+        if r.antecedent.reads_outputs() {
+            return Err(unsupported(
+                "an output variable in an antecedent (a chained engine)",
+            ));
+        }
         let mut ante = std::vec![0i64; engine.inputs().len()];
         let or = flatten(&r.antecedent, &mut ante, None)
             .ok_or_else(|| unsupported("a nested or repeated antecedent"))?;
@@ -664,7 +669,7 @@ fn flatten(e: &Expr, row: &mut [i64], conn: Option<bool>) -> Option<Option<bool>
             flatten(a, row, Some(is_or))?;
             flatten(b, row, Some(is_or))
         }
-        Expr::Any { .. } => None,
+        Expr::Any { .. } | Expr::Output { .. } => None,
     }
 }
 

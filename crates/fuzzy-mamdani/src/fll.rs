@@ -7,8 +7,11 @@
 //! `conjunction: none` (and the other operators) is accepted where no rule needs the
 //! operator. `CenterAverage` is an extension of this crate (fuzzylite has none).
 //!
+//! Output variables in antecedents (chained engines) read the conclusions so far as fuzzylite
+//! does ([`crate::Expr::Output`]).
+//!
 //! What fuzzylite has and this crate does not is a typed [`FileError::Unsupported`] naming the
-//! feature and its line: output variables in antecedents (chained engines), the terms `Arc` and
+//! feature and its line: an output with `aggregation: none` read in an antecedent, the terms `Arc` and
 //! `SemiEllipse` (pyfuzzylite only) and Takagi–Sugeno's `Constant`, `Linear`, `Function`,
 //! weighted defuzzifiers (Takagi–Sugeno / Tsukamoto), term heights other than 1,
 //! `lock-previous`, output `lock-range`, disabled variables and blocks.
@@ -244,18 +247,8 @@ fn read_fll<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
                 last(&mut blocks, line)?.activation = activation_of(value, line).map_err(at)?
             }
             ("rule", Section::Rules) => {
-                let mut rule =
-                    parse_rule(value, rules.len(), &inputs, &outputs).map_err(|e| match e {
-                        crate::BuildError::Unknown {
-                            what: "input",
-                            ref name,
-                            ..
-                        } if outputs.iter().any(|o| o.name == *name) => unsupported(
-                            line,
-                            format!("output variable `{name}` in an antecedent (chained engines)"),
-                        ),
-                        e => rule_error(e, line, column),
-                    })?;
+                let mut rule = parse_rule(value, rules.len(), &inputs, &outputs)
+                    .map_err(|e| rule_error(e, line, column))?;
                 carry_hedges(&mut rule.consequents, line)?;
                 check_operators(&rule.antecedent, last(&mut blocks, line)?, line)?;
                 rules.push(rule);
@@ -273,6 +266,19 @@ fn read_fll<T: Real>(text: &str) -> Result<Engine<T>, FileError> {
                 .any(|r| r.consequents.iter().any(|c| c.output == o));
         if needs {
             return Err(missing(line, "aggregation", &outputs[o].name));
+        }
+        // fuzzylite groups such an output's terms by unbounded sum when a rule reads it.
+        if let Some(r) = rules
+            .iter()
+            .position(|r| r.antecedent.reads_output_where(&|x| x == o))
+        {
+            return Err(unsupported(
+                rule_lines[r],
+                format!(
+                    "output variable `{}` (aggregation none) in an antecedent",
+                    outputs[o].name
+                ),
+            ));
         }
     }
     let integral = |o: usize| outputs[o].defuzzifier.is_integral();
@@ -388,7 +394,7 @@ fn check_operators<T>(e: &Expr, ops: &Block<T>, line: usize) -> Result<(), FileE
             check_operators(a, ops, line)?;
             check_operators(b, ops, line)
         }
-        Expr::Is { .. } | Expr::Any { .. } => Ok(()),
+        Expr::Is { .. } | Expr::Any { .. } | Expr::Output { .. } => Ok(()),
     }
 }
 
@@ -853,6 +859,71 @@ RuleBlock: r
         for cut in 0..BASE.len() {
             let _ = from_fll::<f64>(&BASE[..cut]);
         }
+    }
+
+    /// A chained rule reads the conclusions before it; the edges of the syntax and of the
+    /// formats are typed.
+    #[test]
+    fn chained_rules_read_earlier_conclusions_and_their_edges_are_typed() -> Result<(), FileError> {
+        let chained = BASE.replace(
+            "rule: if x is lo or x is any then a is not t and b is very t",
+            "rule: if b is t then a is t\n  rule: if x is hi then b is t\n  rule: if b is very t then a is t with 0.5",
+        );
+        let e = from_fll::<f64>(&chained)?;
+        assert!(e.rules()[0].antecedent.reads_outputs());
+        assert_eq!(
+            e.rules()[2].antecedent,
+            crate::Expr::output(1, 0, Hedges::new(&[Hedge::Very]).expect("one hedge"))
+        );
+        let mut s = e.scratch();
+        // x = 0.8: rule 1 reads b before anything concluded it (0), rule 2 concludes b at 0.8,
+        // rule 3 reads very 0.8 = 0.64, weighted 0.5: a is t at 0.32, as `x is hi` (0.8)
+        // weighted 0.4 gives it.
+        let out = e.evaluate(&mut s, &[0.8]).expect("evaluates").to_vec();
+        let only_rule_3 = from_fll::<f64>(&chained.replace(
+            "rule: if b is very t then a is t with 0.5",
+            "rule: if x is hi then a is t with 0.4",
+        ))?;
+        let mut s3 = only_rule_3.scratch();
+        let want = only_rule_3.evaluate(&mut s3, &[0.8]).expect("evaluates");
+        assert!((out[0] - want[0]).abs() < 1e-12, "{out:?} vs {want:?}");
+        // Written and read back the same; MATLAB's format has no way to say it.
+        assert_eq!(from_fll::<f64>(&to_fll(&e)?)?.rules(), e.rules());
+        assert!(matches!(
+            crate::to_fis(&e),
+            Err(FileError::Unsupported { line: None, .. })
+        ));
+        // `output is any` has no meaning; a name that is no variable is unknown as such.
+        let any = chained.replace("if b is t then", "if b is any then");
+        assert!(matches!(
+            from_fll::<f64>(&any),
+            Err(FileError::Syntax { line: 19, .. })
+        ));
+        let nobody = chained.replace("if b is t then", "if c is t then");
+        assert_eq!(
+            from_fll::<f64>(&nobody).unwrap_err(),
+            FileError::Unknown {
+                line: 19,
+                what: "variable",
+                name: "c".into()
+            }
+        );
+        // fuzzylite groups an output without aggregation by unbounded sum when a rule reads
+        // it; refused, naming the rule's line.
+        let none = chained.replacen(
+            "OutputVariable: b\n  range: 0 1\n  defuzzifier: Centroid 100",
+            "OutputVariable: b\n  range: 0 1\n  aggregation: none\n  defuzzifier: CenterAverage",
+            1,
+        );
+        assert_ne!(none, chained);
+        match from_fll::<f64>(&none) {
+            Err(FileError::Unsupported { line, feature }) => {
+                assert_eq!(line, Some(20), "{feature}");
+                assert!(feature.contains("aggregation none"), "{feature}");
+            }
+            other => panic!("{other:?}"),
+        }
+        Ok(())
     }
 
     #[test]

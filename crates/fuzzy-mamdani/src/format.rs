@@ -23,7 +23,7 @@ pub enum FileError {
     Unknown {
         /// 1-based line number.
         line: usize,
-        /// `"input"`, `"output"`, `"term"` or `"hedge"`.
+        /// `"variable"`, `"output"`, `"term"` or `"hedge"`.
         what: &'static str,
         /// The name as written.
         name: String,

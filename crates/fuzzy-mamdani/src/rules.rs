@@ -7,7 +7,8 @@ use core::fmt::Write;
 
 use crate::{BuildError, Hedge, Hedges, InputVariable, OutputVariable, Real, SNorm, TNorm};
 
-/// An antecedent: propositions `input is [hedges] term` joined by AND / OR.
+/// An antecedent: propositions `input is [hedges] term` (and, in a chained engine,
+/// `output is [hedges] term`) joined by AND / OR.
 ///
 /// ```
 /// use fuzzy_mamdani::{Expr, Hedge, Hedges};
@@ -36,6 +37,22 @@ pub enum Expr {
         /// The hedges written before `any`.
         hedges: Hedges,
     },
+    /// `output is hedges term` (a chained engine, evaluated as fuzzylite does): the term's
+    /// activation degree so far in this evaluation, then the hedges. That degree is the
+    /// output's aggregation over the term's conclusions triggered before this rule is
+    /// evaluated — by earlier rule blocks and, where the block's [`crate::Activation`] triggers
+    /// rule by rule (`General`, `First`, `Threshold` in rule order; `Last` from the end), by
+    /// the rules evaluated before it in its block; 0 when there are none. A conclusion counts
+    /// with its activation degree (the rule's weighted strength, hedged) when that is above
+    /// the engine's activation threshold, as in defuzzification.
+    Output {
+        /// Output index.
+        output: usize,
+        /// Term index within that output.
+        term: usize,
+        /// The hedges as written (empty for `output is term`).
+        hedges: Hedges,
+    },
     /// Conjunction with the engine's T-norm.
     And(Box<Expr>, Box<Expr>),
     /// Disjunction with the engine's S-norm.
@@ -59,6 +76,14 @@ impl Expr {
             hedges,
         }
     }
+    /// `output is hedges term`: a proposition on a conclusion so far (a chained engine).
+    pub fn output(output: usize, term: usize, hedges: Hedges) -> Self {
+        Expr::Output {
+            output,
+            term,
+            hedges,
+        }
+    }
     /// `self and other`.
     pub fn and(self, other: Expr) -> Self {
         Expr::And(Box::new(self), Box::new(other))
@@ -70,8 +95,22 @@ impl Expr {
     /// How many values the postfix evaluation stack holds at most.
     pub fn depth(&self) -> usize {
         match self {
-            Expr::Is { .. } | Expr::Any { .. } => 1,
+            Expr::Is { .. } | Expr::Any { .. } | Expr::Output { .. } => 1,
             Expr::And(a, b) | Expr::Or(a, b) => a.depth().max(1 + b.depth()),
+        }
+    }
+    /// Whether a proposition reads an output variable (the engine is then chained).
+    pub fn reads_outputs(&self) -> bool {
+        self.reads_output_where(&|_| true)
+    }
+    /// Whether a proposition reads an output whose index satisfies `which`.
+    pub(crate) fn reads_output_where(&self, which: &impl Fn(usize) -> bool) -> bool {
+        match self {
+            Expr::Output { output, .. } => which(*output),
+            Expr::Is { .. } | Expr::Any { .. } => false,
+            Expr::And(a, b) | Expr::Or(a, b) => {
+                a.reads_output_where(which) || b.reads_output_where(which)
+            }
         }
     }
 }
@@ -120,7 +159,8 @@ pub(crate) const MAX_DEPTH: usize = 16;
 /// One step of a compiled (postfix) antecedent.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Op {
-    /// Push the membership at this flat input-term index, hedged.
+    /// Push the degree at this flat term index (input memberships, then the outputs'
+    /// conclusions so far), hedged.
     Term {
         mu: u32,
         hedges: Hedges,
@@ -133,7 +173,9 @@ pub(crate) enum Op {
     Or,
 }
 
-pub(crate) fn compile(expr: &Expr, offsets: &[usize], out: &mut Vec<Op>) {
+/// Compiles `expr` to postfix; `offsets` and `output_offsets` give where each input's and
+/// each output's terms start in the flat degrees [`eval_ops`] reads.
+pub(crate) fn compile(expr: &Expr, offsets: &[usize], output_offsets: &[usize], out: &mut Vec<Op>) {
     match expr {
         Expr::Is {
             input,
@@ -144,10 +186,18 @@ pub(crate) fn compile(expr: &Expr, offsets: &[usize], out: &mut Vec<Op>) {
             mu: (offsets[*input] + term) as u32,
             hedges: *hedges,
         }),
+        Expr::Output {
+            output,
+            term,
+            hedges,
+        } => out.push(Op::Term {
+            mu: (output_offsets[*output] + term) as u32,
+            hedges: *hedges,
+        }),
         Expr::Any { hedges, .. } => out.push(Op::Any { hedges: *hedges }),
         Expr::And(a, b) | Expr::Or(a, b) => {
-            compile(a, offsets, out);
-            compile(b, offsets, out);
+            compile(a, offsets, output_offsets, out);
+            compile(b, offsets, output_offsets, out);
             out.push(if matches!(expr, Expr::And(..)) {
                 Op::And
             } else {
@@ -157,7 +207,7 @@ pub(crate) fn compile(expr: &Expr, offsets: &[usize], out: &mut Vec<Op>) {
     }
 }
 
-/// Runs a compiled antecedent on the fuzzified inputs `mu`.
+/// Runs a compiled antecedent on the fuzzified inputs (and conclusions so far) `mu`.
 #[inline]
 pub(crate) fn eval_ops<T: Real>(ops: &[Op], mu: &[T], and: TNorm, or: SNorm) -> T {
     let term = |i: u32, hedges: Hedges| {
@@ -221,7 +271,8 @@ pub(crate) fn eval_ops<T: Real>(ops: &[Op], mu: &[T], and: TNorm, or: SNorm) -> 
 /// `if e is NH and (de is not PB or de is very ZO) then tau is PH and u is somewhat ZO with 0.5`
 ///
 /// `and` binds tighter than `or`; parentheses group; `with w` is optional (default 1). A
-/// proposition takes any [`Hedge`]s before its term; `input is any` has no term. Hedges in a
+/// proposition takes any [`Hedge`]s before its term; `input is any` has no term. A
+/// proposition on an output variable makes a chained engine ([`Expr::Output`]). Hedges in a
 /// conclusion modify the rule's activation degree (fuzzylite's meaning, see
 /// [`Consequent::hedges`]). Errors carry the 1-based column of the offending word.
 pub fn parse_rule<T: Real>(
@@ -250,6 +301,7 @@ pub fn parse_rule<T: Real>(
         rule: index,
         text,
         inputs,
+        outputs,
     };
     let antecedent = p.disjunction()?;
     if p.pos != p.tokens.len() {
@@ -387,6 +439,7 @@ struct Parser<'a, 't, T> {
     rule: usize,
     text: &'a str,
     inputs: &'t [InputVariable<T>],
+    outputs: &'t [OutputVariable<T>],
 }
 
 impl<'a, 't, T> Parser<'a, 't, T> {
@@ -456,11 +509,25 @@ impl<'a, 't, T> Parser<'a, 't, T> {
             self.err(at, reason)
         })?;
         self.pos = end;
-        let input = self
-            .inputs
-            .iter()
-            .position(|v| v.name == name)
-            .ok_or_else(|| unknown(self.rule, "input", name))?;
+        let Some(input) = self.inputs.iter().position(|v| v.name == name) else {
+            let output = self
+                .outputs
+                .iter()
+                .position(|v| v.name == name)
+                .ok_or_else(|| unknown(self.rule, "variable", name))?;
+            let term = term
+                .ok_or_else(|| self.err(end - 1, "a term, not `any`, after an output variable"))?;
+            let term = self.outputs[output]
+                .terms
+                .iter()
+                .position(|t| t.name == term.1)
+                .ok_or_else(|| unknown(self.rule, "term", term.1))?;
+            return Ok(Expr::Output {
+                output,
+                term,
+                hedges,
+            });
+        };
         let Some(term) = term else {
             return Ok(Expr::Any { input, hedges });
         };
@@ -494,7 +561,7 @@ pub fn rule_text<T: Real>(
     outputs: &[OutputVariable<T>],
 ) -> String {
     let mut s = String::from("if ");
-    write_expr(&mut s, &rule.antecedent, inputs, true);
+    write_expr(&mut s, &rule.antecedent, inputs, outputs, true);
     s.push_str(" then ");
     for (i, c) in rule.consequents.iter().enumerate() {
         if i > 0 {
@@ -511,7 +578,13 @@ pub fn rule_text<T: Real>(
     s
 }
 
-fn write_expr<T>(s: &mut String, e: &Expr, inputs: &[InputVariable<T>], top: bool) {
+fn write_expr<T>(
+    s: &mut String,
+    e: &Expr,
+    inputs: &[InputVariable<T>],
+    outputs: &[OutputVariable<T>],
+    top: bool,
+) {
     match e {
         Expr::Is {
             input,
@@ -519,9 +592,15 @@ fn write_expr<T>(s: &mut String, e: &Expr, inputs: &[InputVariable<T>], top: boo
             hedges,
         } => {
             let v = &inputs[*input];
-            let _ = write!(s, "{} is ", v.name);
-            write_hedges(s, *hedges);
-            let _ = write!(s, "{}", v.terms[*term].name);
+            write_proposition(s, &v.name, *hedges, &v.terms[*term].name);
+        }
+        Expr::Output {
+            output,
+            term,
+            hedges,
+        } => {
+            let v = &outputs[*output];
+            write_proposition(s, &v.name, *hedges, &v.terms[*term].name);
         }
         Expr::Any { input, hedges } => {
             let _ = write!(s, "{} is ", inputs[*input].name);
@@ -533,18 +612,25 @@ fn write_expr<T>(s: &mut String, e: &Expr, inputs: &[InputVariable<T>], top: boo
             if !top {
                 s.push('(');
             }
-            write_expr(s, a, inputs, false);
+            write_expr(s, a, inputs, outputs, false);
             s.push_str(if matches!(e, Expr::And(..)) {
                 " and "
             } else {
                 " or "
             });
-            write_expr(s, b, inputs, false);
+            write_expr(s, b, inputs, outputs, false);
             if !top {
                 s.push(')');
             }
         }
     }
+}
+
+/// `variable is [hedges] term`.
+fn write_proposition(s: &mut String, variable: &str, hedges: Hedges, term: &str) {
+    let _ = write!(s, "{variable} is ");
+    write_hedges(s, hedges);
+    s.push_str(term);
 }
 
 fn write_hedges(s: &mut String, hedges: Hedges) {

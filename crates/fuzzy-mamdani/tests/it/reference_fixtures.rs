@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use fuzzy_mamdani::{Activation, Engine, EngineBuilder, Resolution, from_fis, from_fll};
 
 /// Relative tolerance of the exact path against the references (scale: max(|reference|, 1)).
-const TOLERANCE: f64 = 1e-6;
+pub(crate) const TOLERANCE: f64 = 1e-6;
 
 /// scikit-fuzzy's mean of maximum is the mean of its *grid points* at the maximum, so it is
 /// only as exact as its output grid (step 0.005): the exact path must agree within one step,
@@ -20,12 +20,12 @@ fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/fuzzy")
 }
 
-struct Dataset {
-    names: Vec<String>,
-    rows: Vec<Vec<f64>>,
+pub(crate) struct Dataset {
+    pub(crate) names: Vec<String>,
+    pub(crate) rows: Vec<Vec<f64>>,
 }
 
-fn read_fld(path: &Path) -> Dataset {
+pub(crate) fn read_fld(path: &Path) -> Dataset {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut lines = text
         .lines()
@@ -48,7 +48,7 @@ fn read_fld(path: &Path) -> Dataset {
 
 /// The worst relative error per output column of `engine` on the dataset; `grid_mom` judges a
 /// `_mom` column in steps of scikit-fuzzy's grid ([`MOM_GRID_STEP`]).
-fn replay(engine: &Engine<f64>, data: &Dataset, grid_mom: bool) -> Vec<(String, f64)> {
+pub(crate) fn replay(engine: &Engine<f64>, data: &Dataset, grid_mom: bool) -> Vec<(String, f64)> {
     let n_in = engine.inputs().len();
     let mut scratch = engine.scratch();
     let mut worst: Vec<(String, f64)> = engine
@@ -148,6 +148,7 @@ fn fuzzylite_semantics(path: &Path) -> bool {
 fn fuzzylite_semantics_replay_as_imported() {
     let mut names: Vec<String> = Vec::new();
     let (mut failures, mut activations, mut blocks) = (Vec::new(), Vec::new(), 0);
+    let mut chained = Vec::new();
     let mut entries: Vec<PathBuf> = std::fs::read_dir(dir())
         .expect("fixtures/fuzzy exists")
         .flatten()
@@ -169,6 +170,9 @@ fn fuzzylite_semantics_replay_as_imported() {
             fld.display()
         );
         activations.push(engine.activation().name());
+        if engine.rules().iter().any(|r| r.antecedent.reads_outputs()) {
+            chained.extend(engine.rule_blocks().iter().map(|b| b.activation.name()));
+        }
         blocks = blocks.max(engine.rule_blocks().len());
         // What is read is what is written: the engine survives its own `.fll`.
         let again =
@@ -203,6 +207,11 @@ fn fuzzylite_semantics_replay_as_imported() {
         assert!(activations.contains(&a), "no engine under activation {a}");
     }
     assert!(blocks >= 2, "no engine with several rule blocks");
+    // Chained engines under each way of visiting a block's rules: in order, from the end, and
+    // all compared first.
+    for a in ["General", "First", "Last", "Highest"] {
+        assert!(chained.contains(&a), "no chained engine under {a}");
+    }
     for d in ["centroid", "bisector", "mom", "som", "lom"] {
         assert!(
             names.iter().any(|n| n.ends_with(d)),
