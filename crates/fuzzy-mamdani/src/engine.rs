@@ -523,14 +523,25 @@ impl<T: Real> Engine<T> {
 }
 
 fn admit<T: Real>(var: &InputVariable<T>, x: T, input: usize) -> Result<T, EvalError> {
-    if x.is_nan() || (x.is_infinite() && var.out_of_range != OutOfRange::Clamp) {
+    admit_to(var.min, var.max, var.out_of_range, x, input)
+}
+
+/// Input `input`'s value `x` as evaluation takes it, for a universe `[min, max]` and `policy`.
+pub(crate) fn admit_to<T: Real>(
+    min: T,
+    max: T,
+    policy: OutOfRange,
+    x: T,
+    input: usize,
+) -> Result<T, EvalError> {
+    if x.is_nan() || (x.is_infinite() && policy != OutOfRange::Clamp) {
         return Err(EvalError::NonFiniteInput { input });
     }
-    if x >= var.min && x <= var.max {
+    if x >= min && x <= max {
         return Ok(x);
     }
-    match var.out_of_range {
-        OutOfRange::Clamp => Ok(x.max(var.min).min(var.max)),
+    match policy {
+        OutOfRange::Clamp => Ok(x.max(min).min(max)),
         OutOfRange::Evaluate => Ok(x),
         OutOfRange::Error => Err(EvalError::OutOfRange { input }),
     }
@@ -538,7 +549,7 @@ fn admit<T: Real>(var: &InputVariable<T>, x: T, input: usize) -> Result<T, EvalE
 
 /// `num / den` for a positive `den`; where `num` overflowed (centres near the largest float),
 /// `2 · halved()`, the mean of the halved centres recomputed with normalised weights.
-fn weighted_mean<T: Real>(num: T, den: T, halved: impl FnOnce() -> T) -> Option<T> {
+pub(crate) fn weighted_mean<T: Real>(num: T, den: T, halved: impl FnOnce() -> T) -> Option<T> {
     if !(den > T::zero()) {
         return None;
     }

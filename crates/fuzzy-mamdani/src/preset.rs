@@ -34,13 +34,17 @@
 //!   mean of row averages that grow with `i`, with weights shifting right as `e` grows.
 //!
 //! [`GraspController`] maps the torque to an [`Effort`], optionally inside an object's Table 5
-//! torque band (e.g. paper cup 50…1023, cube 80…400).
+//! torque band (e.g. paper cup 50…1023, cube 80…400). It evaluates the preset from fixed-size
+//! tables (18 input memberships, 81 rules, 9 centres) with the general engine's arithmetic, in
+//! the same order: the same values as [`grasp_engine`] (`tests/it/preset.rs` compares them on a
+//! grid), with no heap at all, so a fingertip's firmware needs no allocator.
 
 use alloc::format;
 
 use hand_traits::{Effort, GraspObservation, GraspPolicy};
 
-use crate::{Defuzzifier, Engine, EngineBuilder, EvalError, Mf, Real, Scratch, TNorm};
+use crate::engine::{admit_to, weighted_mean};
+use crate::{Defuzzifier, Engine, EngineBuilder, EvalError, Mf, OutOfRange, Real, TNorm};
 
 /// The paper's term names, most negative first (Table 3).
 pub const TERM_NAMES: [&str; 9] = ["NH", "NB", "NM", "NS", "ZO", "PS", "PM", "PB", "PH"];
@@ -60,36 +64,10 @@ pub const TORQUE_RAW_MAX: f64 = Effort::TORQUE_LIMIT_RAW_MAX as f64;
 /// # Ok::<(), fuzzy_mamdani::EvalError>(())
 /// ```
 pub fn grasp_engine<T: Real>() -> Engine<T> {
-    let centre = |i: usize| T::of(-1.0 + 0.25 * i as f64);
-    let edge_sigma = T::of(0.125 / num_traits::Float::sqrt(2.0 * core::f64::consts::LN_2));
-    let input_terms = || {
-        (0..9).map(move |i| {
-            let mf = match i {
-                0 | 8 => Mf::Gaussian {
-                    sigma: edge_sigma,
-                    mean: centre(i),
-                },
-                _ => Mf::Triangle {
-                    a: centre(i - 1),
-                    b: centre(i),
-                    c: centre(i + 1),
-                },
-            };
-            (TERM_NAMES[i], mf)
-        })
-    };
-    let step = TORQUE_RAW_MAX / 8.0;
-    let out_sigma = T::of(step / 2.0 / num_traits::Float::sqrt(2.0 * core::f64::consts::LN_2));
-    let output_terms = (0..9).map(|k| {
-        (
-            TERM_NAMES[k],
-            Mf::Gaussian {
-                sigma: out_sigma,
-                mean: T::of(step * k as f64),
-            },
-        )
-    });
+    let input_terms = || (0..9).map(|i| (TERM_NAMES[i], input_term(i)));
+    let output_terms = (0..9).map(|k| (TERM_NAMES[k], output_term(k)));
     let mut b = EngineBuilder::new("grasp")
+        .out_of_range(OUT_OF_RANGE)
         .input("e", -T::one(), T::one(), input_terms())
         .input("de", -T::one(), T::one(), input_terms())
         .conjunction(TNorm::AlgebraicProduct)
@@ -97,10 +75,9 @@ pub fn grasp_engine<T: Real>() -> Engine<T> {
         .output("torque", T::zero(), T::of(TORQUE_RAW_MAX), output_terms);
     for (i, ei) in TERM_NAMES.iter().enumerate() {
         for (j, dej) in TERM_NAMES.iter().enumerate() {
-            let k = (i + 4).saturating_sub(j).min(8);
             b = b.rule(format!(
                 "if e is {ei} and de is {dej} then torque is {}",
-                TERM_NAMES[k]
+                TERM_NAMES[consequent(i, j)]
             ));
         }
     }
@@ -109,6 +86,40 @@ pub fn grasp_engine<T: Real>() -> Engine<T> {
         Ok(e) => e,
         Err(e) => unreachable!("the grasp preset is valid: {e}"),
     }
+}
+
+/// Both inputs outside `[-1, 1]` saturate at the ends (and ±∞ with them).
+const OUT_OF_RANGE: OutOfRange = OutOfRange::Clamp;
+
+/// Input term `i` (of `e` and of `de`, the same partition): Gaussians at the ends, triangles
+/// between, centres every 0.25 from −1.
+fn input_term<T: Real>(i: usize) -> Mf<T> {
+    let centre = |i: usize| T::of(-1.0 + 0.25 * i as f64);
+    match i {
+        0 | 8 => Mf::Gaussian {
+            sigma: T::of(0.125 / num_traits::Float::sqrt(2.0 * core::f64::consts::LN_2)),
+            mean: centre(i),
+        },
+        _ => Mf::Triangle {
+            a: centre(i - 1),
+            b: centre(i),
+            c: centre(i + 1),
+        },
+    }
+}
+
+/// Output term `k`: a Gaussian at `k · 1023 / 8`, crossing its neighbours at 0.5.
+fn output_term<T: Real>(k: usize) -> Mf<T> {
+    let step = TORQUE_RAW_MAX / 8.0;
+    Mf::Gaussian {
+        sigma: T::of(step / 2.0 / num_traits::Float::sqrt(2.0 * core::f64::consts::LN_2)),
+        mean: T::of(step * k as f64),
+    }
+}
+
+/// The rule table: the output term of `e is T[i] and de is T[j]`.
+fn consequent(i: usize, j: usize) -> usize {
+    (i + 4).saturating_sub(j).min(8)
 }
 
 /// Physical full-scale values that map onto the normalised universes' ends.
@@ -129,11 +140,14 @@ impl Default for GraspScales {
     }
 }
 
-/// The paper's grasp controller as a [`GraspPolicy`]: owns its engine and scratch.
+/// The paper's grasp controller as a [`GraspPolicy`]: the preset's tables in fixed-size arrays
+/// (no heap), evaluated as [`grasp_engine`] evaluates them.
 #[derive(Debug, Clone)]
 pub struct GraspController {
-    engine: Engine<f32>,
-    scratch: Scratch<f32>,
+    /// The terms of `e` and of `de` (the same partition).
+    terms: [Mf<f32>; 9],
+    /// The output terms' centres (center average uses nothing else of them).
+    centres: [f32; 9],
     scales: GraspScales,
     torque_band: (u16, u16),
 }
@@ -154,13 +168,12 @@ pub fn grasp_controller() -> GraspController {
 }
 
 impl GraspController {
-    /// A controller with the given scales and the full torque band.
+    /// A controller with the given scales and the full torque band. Allocates nothing.
     pub fn new(scales: GraspScales) -> Self {
-        let engine = grasp_engine::<f32>();
-        let scratch = engine.scratch();
         GraspController {
-            engine,
-            scratch,
+            terms: core::array::from_fn(input_term),
+            // Every output term is a Gaussian: its centre is its mean.
+            centres: core::array::from_fn(|k| output_term(k).center().unwrap_or(0.0)),
             scales,
             torque_band: (0, 1023),
         }
@@ -175,16 +188,54 @@ impl GraspController {
         self
     }
 
-    /// The underlying engine (for surfaces, export, inspection).
-    pub fn engine(&self) -> &Engine<f32> {
-        &self.engine
+    /// The same controller as a general engine, built on each call (it allocates), for
+    /// surfaces, export and inspection: [`grasp_engine`].
+    pub fn engine(&self) -> Engine<f32> {
+        grasp_engine()
     }
 
-    /// The engine's torque (0…1023) for one observation, before the torque band.
+    /// The torque (0…1023) for one observation, before the torque band: what [`grasp_engine`]
+    /// gives for the normalised inputs. Allocates nothing.
+    ///
+    /// Errors: [`EvalError::NonFiniteInput`] for a NaN input (a scale of 0 makes one).
     pub fn torque_raw(&mut self, obs: &GraspObservation) -> Result<f32, EvalError> {
-        let e = obs.pressure_error_pa / self.scales.error_pa;
-        let de = obs.pressure_rate_pa_per_s / self.scales.rate_pa_per_s;
-        Ok(self.engine.evaluate(&mut self.scratch, &[e, de])?[0])
+        let (lo, hi) = (-1.0, 1.0);
+        let e = admit_to(
+            lo,
+            hi,
+            OUT_OF_RANGE,
+            obs.pressure_error_pa / self.scales.error_pa,
+            0,
+        )?;
+        let de_raw = obs.pressure_rate_pa_per_s / self.scales.rate_pa_per_s;
+        let de = admit_to(lo, hi, OUT_OF_RANGE, de_raw, 1)?;
+        let mu_e: [f32; 9] = core::array::from_fn(|i| self.terms[i].membership(e));
+        let mu_de: [f32; 9] = core::array::from_fn(|j| self.terms[j].membership(de));
+        // The engine's sum: rules `e is T[i] and de is T[j]` in rule order (i major), those
+        // with a zero membership skipped (they add 0), weight × product strength.
+        let (mut num, mut den) = (0.0_f32, 0.0_f32);
+        for (i, &a) in mu_e.iter().enumerate().filter(|(_, a)| **a != 0.0) {
+            for (j, &b) in mu_de.iter().enumerate().filter(|(_, b)| **b != 0.0) {
+                let w = a * b;
+                if w > 0.0 {
+                    num += w * self.centres[consequent(i, j)];
+                    den += w;
+                }
+            }
+        }
+        let halved = || {
+            let mut n = 0.0;
+            for (i, &a) in mu_e.iter().enumerate() {
+                for (j, &b) in mu_de.iter().enumerate() {
+                    let w = a * b;
+                    if w > 0.0 {
+                        n += w / den * (self.centres[consequent(i, j)] * 0.5);
+                    }
+                }
+            }
+            n
+        };
+        weighted_mean(num, den, halved).ok_or(EvalError::NoRuleFired { output: 0 })
     }
 }
 

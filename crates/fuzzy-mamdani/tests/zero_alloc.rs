@@ -1,5 +1,6 @@
-//! Evaluation allocates nothing once the engine and its scratch exist: dhat's counting global
-//! allocator proves it for every defuzzifier path.
+//! Evaluation allocates nothing once the engine and its scratch exist, and the grasp preset's
+//! controller allocates nothing at all: dhat's counting global allocator proves it for every
+//! defuzzifier path, chained engines and the controller.
 
 mod common;
 
@@ -66,6 +67,8 @@ fn no_evaluation_allocates() {
         "fl_none_ops",
         "fl_act_highest",
         "fl_act_proportional",
+        "fl_chained",
+        "fl_chained_blocks",
     ] {
         let fll = std::fs::read_to_string(dir.join(format!("{name}.fll"))).expect("fixture");
         engines.push(fuzzy_mamdani::from_fll(&fll).expect("imports"));
@@ -80,7 +83,6 @@ fn no_evaluation_allocates() {
         let before = dhat::HeapStats::get().total_blocks;
         let mut sum = 0.0;
         for x in &inputs {
-            // Inputs reach past the universe: the default clamp policy still answers.
             // Inputs reach past the universe: the default clamp policy still answers; fuzzylite's
             // engines evaluate them where they are, where no rule may fire.
             match engine.evaluate(&mut scratch, x) {
@@ -105,9 +107,31 @@ fn no_evaluation_allocates() {
     }
 }
 
+/// The grasp preset's controller is built and evaluated without a heap (a fingertip's firmware
+/// has no allocator).
+fn the_grasp_controller_never_allocates() {
+    use hand_traits::{GraspObservation, GraspPolicy};
+    let _profiler = dhat::Profiler::builder().testing().build();
+    let before = dhat::HeapStats::get().total_blocks;
+    let mut controller = fuzzy_mamdani::grasp_controller().with_torque_band(50, 1023);
+    let mut sum = 0.0;
+    for k in 0..50 {
+        let obs = GraspObservation {
+            pressure_error_pa: -3_000.0 + 120.0 * k as f32,
+            pressure_rate_pa_per_s: 12_000.0 - 500.0 * k as f32,
+        };
+        sum += controller.effort(&obs).expect("answers").fraction();
+    }
+    let after = dhat::HeapStats::get().total_blocks;
+    assert!(sum > 0.0);
+    assert_eq!(after - before, 0, "{} allocations", after - before);
+}
+
 // No libtest harness (`harness = false`): its main thread allocates (the running-test table, the
 // timeout queue) while a test thread runs, and dhat counts every thread's blocks.
 fn main() {
     no_evaluation_allocates();
     println!("no_evaluation_allocates: ok");
+    the_grasp_controller_never_allocates();
+    println!("the_grasp_controller_never_allocates: ok");
 }

@@ -4,10 +4,9 @@
 //! Arrival-of-Time on the 3 × 3 grid and the built-in contact MLP on the 4 × 6 pad; the paper's
 //! Mamdani grasp preset for the torque limit; one [`frame`] per cycle to a UART.
 //!
-//! Everything here is `no_std`. A cycle allocates nothing: the weights are `'static` arrays in
-//! flash and every buffer is the pipeline's own. The one heap use is at start-up — the fuzzy
-//! engine's term and rule tables, built once by [`Fingertip::new`] (`docs/embedded.md` gives the
-//! bytes; the board binary reserves a heap of [`STARTUP_HEAP_BYTES`]).
+//! Everything here is `no_std` and nothing allocates, at start-up or in a cycle: the weights are
+//! `'static` arrays in flash, the fuzzy preset's tables fixed-size, and every buffer the
+//! pipeline's own. The board binary has no heap (`docs/embedded.md` gives its flash and RAM).
 //!
 //! The same code runs on the host against the MS5611 chip model (`examples/host_cycles.rs`),
 //! which is how its results and its instruction count per cycle are measured.
@@ -19,7 +18,3 @@ pub mod frame;
 mod pipeline;
 
 pub use pipeline::{Config, Error, Estimate, Fingertip, OSR, PAD, SENSORS, SENSORS_MM};
-
-/// Heap the board binary gives the start-up allocations (the fuzzy engine): the host harness
-/// measures 4–5 KiB on a 64-bit host, less with 32-bit pointers.
-pub const STARTUP_HEAP_BYTES: usize = 40 * 1024;

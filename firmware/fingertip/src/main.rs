@@ -26,14 +26,31 @@ fn main() {
 #[cfg(target_os = "none")]
 mod board {
     use aot_locate::Geometry;
+    use core::alloc::{GlobalAlloc, Layout};
     use cortex_m::peripheral::{DCB, DWT};
-    use embedded_alloc::LlffHeap as Heap;
     use embedded_io::Write;
-    use fingertip::{Config, Fingertip, PAD, SENSORS_MM, STARTUP_HEAP_BYTES, frame};
+    use fingertip::{Config, Fingertip, PAD, SENSORS_MM, frame};
     use panic_halt as _;
 
+    /// No heap: the firmware allocates nothing, at start-up or after (the weights are
+    /// `'static`, the fuzzy preset's tables fixed-size, every buffer the pipeline's own). A
+    /// linked crate (fuzzy-mamdani's general engine, unused here) brings in `alloc`, which
+    /// needs an allocator to link; this one refuses every request, so an allocation would end
+    /// in the panic handler instead of taking RAM.
+    struct NoHeap;
+
+    // The one `unsafe` of the firmware: `GlobalAlloc` is an unsafe trait. Refusing (null) and
+    // freeing nothing meet its contract.
+    #[allow(unsafe_code)]
+    unsafe impl GlobalAlloc for NoHeap {
+        unsafe fn alloc(&self, _: Layout) -> *mut u8 {
+            core::ptr::null_mut()
+        }
+        unsafe fn dealloc(&self, _: *mut u8, _: Layout) {}
+    }
+
     #[global_allocator]
-    static HEAP: Heap = Heap::empty();
+    static HEAP: NoHeap = NoHeap;
 
     /// I2C clock to the TCA9548A and the MS5611s (both allow 400 kHz), kHz.
     const I2C_KHZ: u32 = 400;
@@ -75,16 +92,6 @@ mod board {
         }
     }
 
-    /// Gives the allocator its memory, once, before anything allocates.
-    fn init_heap() {
-        // The one `unsafe` of the firmware: handing a static buffer to the allocator, which
-        // embedded-alloc cannot do safely; it runs once, first thing in `main`.
-        #[allow(unsafe_code)]
-        unsafe {
-            embedded_alloc::init!(HEAP, STARTUP_HEAP_BYTES);
-        }
-    }
-
     /// The loop over a started board: `i2c` reaches the TCA9548A, `tx` the host.
     fn run<I2C, D, W>(i2c: I2C, delay: &mut D, tx: &mut W, clock: &mut Micros) -> !
     where
@@ -123,7 +130,6 @@ mod board {
         use stm32f1xx_hal::i2c::{DutyCycle, I2c, Mode};
         use stm32f1xx_hal::{pac, prelude::*, rcc, serial};
 
-        init_heap();
         let (Some(dp), Some(mut cp)) = (pac::Peripherals::take(), pac::CorePeripherals::take())
         else {
             halt();
@@ -157,7 +163,6 @@ mod board {
         use stm32f4xx_hal::i2c::{I2c, Mode};
         use stm32f4xx_hal::{pac, prelude::*, rcc};
 
-        init_heap();
         let (Some(dp), Some(mut cp)) = (pac::Peripherals::take(), pac::CorePeripherals::take())
         else {
             halt();

@@ -134,8 +134,8 @@ impl<DI, E> Fingertip<DI>
 where
     DI: Transport<Error = E>,
 {
-    /// Resets each sensor and checks its PROM, then builds the estimators (the fuzzy engine's
-    /// tables are the only allocation, here, once); Arrival-of-Time locates on `pad` (the
+    /// Resets each sensor and checks its PROM, then builds the estimators (allocating nothing);
+    /// Arrival-of-Time locates on `pad` (the
     /// board's: [`SENSORS_MM`] over [`PAD`]).
     pub fn new<D: DelayNs>(
         sensors: [Ms5611<DI, Uninit>; SENSORS],

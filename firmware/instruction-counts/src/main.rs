@@ -21,16 +21,25 @@ use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::{SCB, SYST};
 use cortex_m_rt::{entry, exception};
 use cortex_m_semihosting::{debug, hprintln};
-use embedded_alloc::LlffHeap as Heap;
 use hand_traits::{ContactLocator, GraspObservation, GraspPolicy};
 use tactile_nets::contact_mlp::{TapReading, features};
 use tactile_nets::pretrained::{CONTACT_MLP_OSR1024, FORCE_DNN_SIM};
 
-#[global_allocator]
-static HEAP: Heap = Heap::empty();
+/// No heap, as the firmware (`firmware/fingertip/src/main.rs`): nothing measured allocates,
+/// and `alloc`, which a linked crate brings in, needs an allocator to link.
+struct NoHeap;
 
-/// As the firmware's start-up heap (the fuzzy engine's tables).
-const HEAP_BYTES: usize = 40 * 1024;
+// `GlobalAlloc` is an unsafe trait; refusing (null) and freeing nothing meet its contract.
+#[allow(unsafe_code)]
+unsafe impl core::alloc::GlobalAlloc for NoHeap {
+    unsafe fn alloc(&self, _: core::alloc::Layout) -> *mut u8 {
+        core::ptr::null_mut()
+    }
+    unsafe fn dealloc(&self, _: *mut u8, _: core::alloc::Layout) {}
+}
+
+#[global_allocator]
+static HEAP: NoHeap = NoHeap;
 
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {
@@ -91,11 +100,6 @@ const K2: u32 = 101;
 
 #[entry]
 fn main() -> ! {
-    // Gives the allocator its memory once, before anything allocates.
-    #[allow(unsafe_code)]
-    unsafe {
-        embedded_alloc::init!(HEAP, HEAP_BYTES);
-    }
     let Some(mut cp) = cortex_m::Peripherals::take() else {
         panic!("core peripherals taken twice");
     };

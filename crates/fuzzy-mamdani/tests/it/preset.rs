@@ -106,3 +106,45 @@ fn policy_saturates_far_outside_and_respects_a_table_5_band() {
         370
     );
 }
+
+/// The controller's fixed-size tables give the general engine's torques, bit for bit (the same
+/// arithmetic in the same order), inside the universes, beyond them (clamped) and at ±∞; NaN
+/// is the same typed error.
+#[test]
+fn the_controllers_tables_give_the_engines_torques() {
+    use fuzzy_mamdani::EvalError;
+    let engine = grasp_engine::<f32>();
+    let mut s = engine.scratch();
+    let mut c = grasp_controller();
+    let scales = fuzzy_mamdani::GraspScales::default();
+    let mut values: Vec<f32> = (0..=96).map(|k| -1.2 + 0.025 * k as f32).collect();
+    values.extend([f32::INFINITY, f32::NEG_INFINITY, 1e-30, -1e-30]);
+    for &e in &values {
+        for &de in &values {
+            let obs = GraspObservation {
+                pressure_error_pa: e * scales.error_pa,
+                pressure_rate_pa_per_s: de * scales.rate_pa_per_s,
+            };
+            // The engine gets the inputs as the controller normalises them.
+            let normalised = [
+                obs.pressure_error_pa / scales.error_pa,
+                obs.pressure_rate_pa_per_s / scales.rate_pa_per_s,
+            ];
+            let want = engine.evaluate(&mut s, &normalised).expect("fires")[0];
+            let got = c.torque_raw(&obs).expect("fires");
+            assert_eq!(
+                got.to_bits(),
+                want.to_bits(),
+                "e={e} de={de}: {got} vs {want}"
+            );
+        }
+    }
+    let nan = GraspObservation {
+        pressure_error_pa: f32::NAN,
+        pressure_rate_pa_per_s: 0.0,
+    };
+    assert_eq!(
+        c.torque_raw(&nan),
+        Err(EvalError::NonFiniteInput { input: 0 })
+    );
+}
