@@ -1,8 +1,8 @@
 //! The fingertip firmware (`firmware/fingertip`, a workspace of its own with its own lockfile):
-//! linked for both thumb targets, its flash and RAM read from the ELF, and its pipeline run on
-//! the host against the chip models (`examples/host_cycles.rs --check`).
+//! linked for its three boards (both thumb targets), its flash and RAM read from the ELF, and
+//! its pipeline run on the host against the chip models (`examples/host_cycles.rs --check`).
 //!
-//! `cargo xtask test` runs [`check`]: both links, the host check (in its `host-check` profile:
+//! `cargo xtask test` runs [`check`]: every board's link, the host check (in its `host-check` profile:
 //! the release profile without LTO), and the sizes against `docs/embedded.md` within
 //! [`SIZE_TOLERANCE`]. `cargo xtask firmware --write` ([`write()`])
 //! regenerates that file's figures, with the instruction counts per cycle that callgrind
@@ -28,16 +28,32 @@ pub const SIZE_TOLERANCE: f64 = 0.10;
 /// few bytes more are not stale docs.
 const SIZE_FLOOR: u64 = 1024;
 
-/// Each target's board, for the table.
-const BOARDS: [(&str, &str); 2] = [
-    (
-        "thumbv7m-none-eabi",
-        "STM32F103RE (Cortex-M3, 512 KiB flash, 64 KiB RAM)",
-    ),
-    (
-        "thumbv7em-none-eabihf",
-        "STM32F411CE (Cortex-M4F, 512 KiB flash, 128 KiB RAM)",
-    ),
+/// A board the firmware links for: its target, the firmware's cargo features that pick its chip
+/// and memory map (none: the defaults), and its name in the table.
+struct Board {
+    target: &'static str,
+    features: &'static [&'static str],
+    name: &'static str,
+}
+
+/// Every board, in the table's order. The STM32F103C8's memory map (64 KiB flash, 20 KiB RAM)
+/// is the budget: a firmware that outgrows it fails to link.
+const BOARDS: [Board; 3] = [
+    Board {
+        target: "thumbv7m-none-eabi",
+        features: &[],
+        name: "STM32F103RE (Cortex-M3, 512 KiB flash, 64 KiB RAM)",
+    },
+    Board {
+        target: "thumbv7m-none-eabi",
+        features: &["stm32f103c8"],
+        name: "STM32F103C8 (Cortex-M3, 64 KiB flash, 20 KiB RAM)",
+    },
+    Board {
+        target: "thumbv7em-none-eabihf",
+        features: &[],
+        name: "STM32F411CE (Cortex-M4F, 512 KiB flash, 128 KiB RAM)",
+    },
 ];
 
 /// What the linked image takes: flash (code, constants, the initial values of `.data`) and
@@ -71,16 +87,22 @@ fn cargo_counts(root: &Path) -> Command {
     cargo_in(root, "firmware/instruction-counts", "target/firmware")
 }
 
-/// Links the release firmware for `target`; the ELF's path.
-pub fn link(root: &Path, target: &str) -> Result<PathBuf> {
-    step(
-        &format!("firmware, {target}"),
-        cargo_firmware(root)
-            .args(["build", "--release", "--locked", "--manifest-path"])
-            .arg(root.join(MANIFEST))
-            .args(["--target", target]),
-    )?;
-    Ok(root.join(format!("target/firmware/{target}/release/fingertip")))
+/// Links the release firmware for `board`; the ELF's path (the next link for its target
+/// overwrites it).
+fn link(root: &Path, board: &Board) -> Result<PathBuf> {
+    let mut cmd = cargo_firmware(root);
+    cmd.args(["build", "--release", "--locked", "--manifest-path"])
+        .arg(root.join(MANIFEST))
+        .args(["--target", board.target]);
+    if !board.features.is_empty() {
+        cmd.args(["--no-default-features", "--features"])
+            .arg(board.features.join(","));
+    }
+    step(&format!("firmware, {}", board.name), &mut cmd)?;
+    Ok(root.join(format!(
+        "target/firmware/{}/release/fingertip",
+        board.target
+    )))
 }
 
 /// [`Size`] of a 32-bit little-endian ELF from its section headers.
@@ -173,18 +195,19 @@ pub fn check(root: &Path) -> Result<()> {
         )?;
     }
     let doc = std::fs::read_to_string(root.join("docs/embedded.md")).context("docs/embedded.md")?;
-    for target in TARGETS {
-        let size = elf_size(&std::fs::read(link(root, target)?)?)?;
-        let committed = committed_size(&doc, target)?;
+    for board in &BOARDS {
+        let size = elf_size(&std::fs::read(link(root, board)?)?)?;
+        let committed = committed_size(&doc, board)?;
+        let name = board.name;
         for (what, now, then) in [
             ("flash", size.flash, committed.flash),
             ("RAM", size.ram, committed.ram),
         ] {
             let drift = (now as f64 - then as f64).abs() / then.max(SIZE_FLOOR) as f64;
-            println!("    {target} {what}: {now} B linked, {then} B in docs/embedded.md");
+            println!("    {name} {what}: {now} B linked, {then} B in docs/embedded.md");
             if drift > SIZE_TOLERANCE {
                 bail!(
-                    "{target}: {what} is {now} B, docs/embedded.md says {then} B ({:.0} % off, \
+                    "{name}: {what} is {now} B, docs/embedded.md says {then} B ({:.0} % off, \
                      more than {:.0} %): run `cargo xtask firmware --write`",
                     100.0 * drift,
                     100.0 * SIZE_TOLERANCE
@@ -195,12 +218,13 @@ pub fn check(root: &Path) -> Result<()> {
     host_run(root, "host-check").map(|_| ())
 }
 
-/// The committed [`Size`] of `target` in the generated table of `doc`.
-fn committed_size(doc: &str, target: &str) -> Result<Size> {
+/// The committed [`Size`] of `board` in the generated table of `doc`.
+fn committed_size(doc: &str, board: &Board) -> Result<Size> {
+    let target = board.target;
     let row = doc
         .lines()
-        .find(|l| l.starts_with(&format!("| `{target}` |")))
-        .with_context(|| format!("docs/embedded.md has no size row for {target}"))?;
+        .find(|l| l.starts_with(&format!("| `{target}` | {} |", board.name)))
+        .with_context(|| format!("docs/embedded.md has no size row for {}", board.name))?;
     let cells: Vec<&str> = row.split('|').map(str::trim).collect();
     let number = |i: usize| -> Result<u64> {
         let cell = cells.get(i).context("a short size row")?;
@@ -220,11 +244,13 @@ pub fn write(root: &Path) -> Result<()> {
     let mut table = String::from(
         "| target | board | flash, B | RAM, B (static; no heap) |\n|---|---|---:|---:|\n",
     );
-    for (target, board) in BOARDS {
-        let size = elf_size(&std::fs::read(link(root, target)?)?)?;
+    for board in &BOARDS {
+        let size = elf_size(&std::fs::read(link(root, board)?)?)?;
         writeln!(
             table,
-            "| `{target}` | {board} | {} | {} |",
+            "| `{}` | {} | {} | {} |",
+            board.target,
+            board.name,
             spaced(size.flash),
             spaced(size.ram)
         )?;

@@ -35,7 +35,7 @@ commands:
                             docs (--docs-only: redraw plots and docs from the committed metrics)
   package                   cargo package every published crate (verified), then run every README's
                             examples against the packages from a scratch crate (the consumer test)
-  firmware [--write]        link the fingertip firmware for both thumb targets, run it on the host;
+  firmware [--write]        link the fingertip firmware for its three boards, run it on the host;
                             --write: regenerate docs/embedded.md (sizes, callgrind counts)
   trade                     measure every speed / accuracy knob, write docs/trade.md (+ docs/trade/)
   demo [--screenshot]       run every scene (fixtures/scenes/) into target/demo/report.html

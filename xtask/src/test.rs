@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 ///
 /// Beside them, in [`Lane`]s (idle priority: they take only the cores the main steps leave):
 /// from the start, the `no_std` builds for the Cortex-M3 target ([`embedded::build`]), the
-/// fingertip firmware linked for both thumb targets and run on the host
+/// fingertip firmware linked for its three boards and run on the host
 /// ([`firmware::check`]) and the MSRV check ([`msrv::check`]), each in its own build
 /// directory; once the doctests are done (they hold the build directory's lock), the
 /// instruction-count gate (`bench --check`, on the test build's binary) and the docs with

@@ -7,6 +7,7 @@
 //! | target | MCU | I2C1 (to the TCA9548A at 0x70) | USART1 TX, 460 800 Bd |
 //! |---|---|---|---|
 //! | `thumbv7m-none-eabi` (Cortex-M3) | STM32F103RE, 72 MHz, 512 KiB flash, 64 KiB RAM | PB6 SCL, PB7 SDA, 400 kHz | PA9 |
+//! | the same, `--no-default-features --features stm32f103c8` | STM32F103C8 ("Blue Pill"), 72 MHz, 64 KiB flash, 20 KiB RAM | PB6 SCL, PB7 SDA, 400 kHz | PA9 |
 //! | `thumbv7em-none-eabihf` (Cortex-M4F) | STM32F411CE, 96 MHz, 512 KiB flash, 128 KiB RAM | PB6 SCL, PB7 SDA, 400 kHz | PA9 |
 //!
 //! Built on the host it is a stub that says so: the pipeline runs on the host through
