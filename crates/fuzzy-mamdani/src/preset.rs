@@ -211,31 +211,30 @@ impl GraspController {
         let de = admit_to(lo, hi, OUT_OF_RANGE, de_raw, 1)?;
         let mu_e: [f32; 9] = core::array::from_fn(|i| self.terms[i].membership(e));
         let mu_de: [f32; 9] = core::array::from_fn(|j| self.terms[j].membership(de));
-        // The engine's sum: rules `e is T[i] and de is T[j]` in rule order (i major), those
-        // with a zero membership skipped (they add 0), weight × product strength.
-        let (mut num, mut den) = (0.0_f32, 0.0_f32);
-        for (i, &a) in mu_e.iter().enumerate().filter(|(_, a)| **a != 0.0) {
-            for (j, &b) in mu_de.iter().enumerate().filter(|(_, b)| **b != 0.0) {
-                let w = a * b;
-                if w > 0.0 {
-                    num += w * self.centres[consequent(i, j)];
-                    den += w;
-                }
-            }
-        }
-        let halved = || {
-            let mut n = 0.0;
-            for (i, &a) in mu_e.iter().enumerate() {
-                for (j, &b) in mu_de.iter().enumerate() {
-                    let w = a * b;
-                    if w > 0.0 {
-                        n += w / den * (self.centres[consequent(i, j)] * 0.5);
-                    }
-                }
-            }
-            n
-        };
+        let fired = self.fired(&mu_e, &mu_de);
+        let (num, den) = fired
+            .clone()
+            .fold((0.0, 0.0), |(n, d), (w, c)| (n + w * c, d + w));
+        let halved = || fired.fold(0.0, |n, (w, c)| n + w / den * (c * 0.5));
         weighted_mean(num, den, halved).ok_or(EvalError::NoRuleFired { output: 0 })
+    }
+}
+
+impl GraspController {
+    /// Each fired rule's weight (its product strength; every rule weighs 1) and its conclusion's
+    /// centre, in the engine's order: rules `e is T[i] and de is T[j]` i major, those with a zero
+    /// membership or weight left out (they add nothing).
+    fn fired<'a>(
+        &'a self,
+        mu_e: &'a [f32; 9],
+        mu_de: &'a [f32; 9],
+    ) -> impl Iterator<Item = (f32, f32)> + Clone + 'a {
+        let nonzero = |mu: &'a [f32; 9]| mu.iter().copied().enumerate().filter(|(_, m)| *m != 0.0);
+        nonzero(mu_e)
+            .flat_map(move |(i, a)| {
+                nonzero(mu_de).map(move |(j, b)| (a * b, self.centres[consequent(i, j)]))
+            })
+            .filter(|(w, _)| *w > 0.0)
     }
 }
 
