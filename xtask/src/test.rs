@@ -11,40 +11,35 @@ use std::path::{Path, PathBuf};
 /// fmt check, then the main steps: `.venv` and Chromium (the report render test), clippy `-D
 /// warnings`, `cargo package` of every published crate ([`package::run`]) and the consumer
 /// build and test of every README against the packages ([`consumer::run`]), the test build
-/// with every feature; then the doctests and every test harness ([`test_binaries::run`]).
+/// with every feature; then the doctests and every test harness ([`test_binaries::run`])
+/// alone; then the instruction-count gate (`bench --check`, on the test build's binary) and
+/// the docs with warnings denied.
 ///
 /// Beside them, in [`Lane`]s (idle priority: they take only the cores the main steps leave):
-/// from the start, the `no_std` builds for the Cortex-M3 target ([`embedded::build`]), the
-/// fingertip firmware linked for its three boards and run on the host
-/// ([`firmware::check`]) and the MSRV check ([`msrv::check`]), each in its own build
-/// directory; once the doctests are done (they hold the build directory's lock), the
-/// instruction-count gate (`bench --check`, on the test build's binary) and the docs with
-/// warnings denied, and `fixtures --check` (again with numpy's widest SIMD kernels off). The
-/// test harnesses spend most of their time waiting on simulated devices that answer in real
-/// time; the lanes use those idle cores, and every device allowance is set for a loaded
-/// machine (`dxl_sim::REPLY_LATENCY`: a pty round trip beside an idle-priority build took
-/// at most 96 ms).
+/// until the test build is done, the `no_std` builds for the Cortex-M3 target
+/// ([`embedded::build`]), the fingertip firmware linked for its three boards and run on the
+/// host ([`firmware::check`]) and the MSRV check ([`msrv::check`]), each in its own build
+/// directory; after the tests, `fixtures --check` (again with numpy's widest SIMD kernels
+/// off). Nothing runs beside the tests: their simulated devices and peer processes answer in
+/// real time, and load beside them (even at idle priority) changes their timing (with it,
+/// ur_rtde's control interface was refused its RTDE registers in 2 of 4 runs).
 pub fn run(root: &Path) -> Result<()> {
     step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
-    std::thread::scope(|scope| {
+    let (env, executables) = std::thread::scope(|scope| {
         let builds = Lane::start(scope, root, "builds", || {
             embedded::build(root)?;
             firmware::check(root)?;
             msrv::check(root)
         })?;
-        let tested = build_steps(root).and_then(|built| tests(scope, root, built));
-        all([tested, builds.finish()])
-    })
-}
-
-/// The doctests, then the harnesses with the lanes that need the test build beside them.
-fn tests<'scope>(
-    scope: &'scope std::thread::Scope<'scope, '_>,
-    root: &'scope Path,
-    (env, executables): Built,
-) -> Result<()> {
+        let main = build_steps(root);
+        let lane = builds.finish();
+        main.and_then(|built| lane.map(|()| built))
+    })?;
     let env: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
-    let doctests = test_binaries::doctests(root, &env);
+    all([
+        test_binaries::doctests(root, &env),
+        test_binaries::run(&executables, &env),
+    ])?;
     let papers = find(&executables, PAPERS.package, PAPERS.name, false)?
         .path
         .clone();
@@ -53,19 +48,16 @@ fn tests<'scope>(
         bench::INSTRUCTIONS.0,
         bench::INSTRUCTIONS.1,
         true,
-    )?
-    .clone();
-    let checks = Lane::start(scope, root, "checks", move || {
-        bench::instructions_of(&instructions, "check")?;
-        doc(root)
-    })?;
-    let generated = Lane::start(scope, root, "generated", move || {
-        fixtures::check_with(root, papers)?;
-        println!("==> fixtures --check, numpy's widest SIMD kernels off");
-        fixtures::check_with_numpy_narrowed(root)
-    })?;
-    let harnesses = test_binaries::run(&executables, &env);
-    all([doctests, harnesses, checks.finish(), generated.finish()])
+    )?;
+    std::thread::scope(|scope| {
+        let generated = Lane::start(scope, root, "generated", move || {
+            fixtures::check_with(root, papers)?;
+            println!("==> fixtures --check, numpy's widest SIMD kernels off");
+            fixtures::check_with_numpy_narrowed(root)
+        })?;
+        let main = bench::instructions_of(instructions, "check").and_then(|()| doc(root));
+        all([main, generated.finish()])
+    })
 }
 
 /// Ok if every result is; else one error naming each failure.
