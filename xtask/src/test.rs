@@ -21,8 +21,7 @@ use std::path::{Path, PathBuf};
 /// host ([`firmware::check`]) and the MSRV check ([`msrv::check`]), each in its own build
 /// directory; after the tests, `fixtures --check` (again with numpy's widest SIMD kernels
 /// off). Nothing runs beside the tests: their simulated devices and peer processes answer in
-/// real time, and load beside them (even at idle priority) changes their timing (with it,
-/// ur_rtde's control interface was refused its RTDE registers in 2 of 4 runs).
+/// real time, and load beside them (even at idle priority) changes their timing.
 pub fn run(root: &Path) -> Result<()> {
     step("fmt", cargo(root).args(["fmt", "--all", "--", "--check"]))?;
     let (env, executables) = std::thread::scope(|scope| {
