@@ -29,6 +29,12 @@ pub enum CycleError {
     Config(String),
 }
 
+impl From<tactile_nets::RunError> for CycleError {
+    fn from(e: tactile_nets::RunError) -> Self {
+        CycleError::Net(e.into())
+    }
+}
+
 impl From<aot_locate::AotError> for CycleError {
     fn from(e: aot_locate::AotError) -> Self {
         CycleError::Aot(e)

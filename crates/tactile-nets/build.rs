@@ -1,5 +1,6 @@
 //! The models built into the crate: each shipped weights file becomes `'static` `f32` arrays
-//! (the force DNN and the contact MLPs, which run without `std`) and, with `std`, an
+//! (the force DNN, the contact MLPs and the selected softness net, which run without `std`)
+//! and, with `std`, an
 //! `include_bytes!` entry any model type can load; each model kind's metrics file an
 //! `include_str!` entry. The output is `$OUT_DIR/pretrained.rs`, included by
 //! `src/pretrained/mod.rs`.
@@ -53,6 +54,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "#[cfg(feature = \"std\")]\npub(crate) static FILES: [(&str, &[u8]); {}] = [\n{files}];",
         SHIPPED.len()
     )?;
+    // The softness net the metrics file selects (lowest training MSE of the Levenberg–Marquardt
+    // seeds), as `'static` arrays.
+    let selected = models.join("softness/metrics.json");
+    let seed = softness_seed(&selected).map_err(|e| format!("{}: {e}", selected.display()))?;
+    let path = models.join(format!("softness/lm-seed{seed}.safetensors"));
+    let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    out += &arrays_module("softness/selected", &bytes)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    writeln!(out, "pub(crate) const SOFTNESS_SEED: u64 = {seed};")?;
     let mut metrics = String::new();
     for kind in KINDS {
         let path = models.join(kind).join("metrics.json");
@@ -73,6 +83,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         out,
     )?;
     Ok(())
+}
+
+/// The `lm_seed` of the `selected` row of the softness metrics file at `path`.
+fn softness_seed(path: &Path) -> Result<u64, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    json["rows"]
+        .as_array()
+        .and_then(|rows| rows.iter().find(|r| r["label"] == "selected"))
+        .and_then(|r| r["values"]["lm_seed"].as_f64())
+        .filter(|s| s.fract() == 0.0 && *s >= 1.0)
+        .map(|s| s as u64)
+        .ok_or_else(|| "no `selected` row with a whole `lm_seed`".to_owned())
 }
 
 fn path_str(path: &Path) -> Result<&str, String> {

@@ -193,7 +193,7 @@ pub fn evaluate(net: &SoftnessNet, grasps: &[Grasp]) -> Result<Evaluation, NetEr
     let train = labelled(grasps, GraspSet::Train);
     scored(
         grasps,
-        |g| net.predict(g.series.as_flattened()),
+        |g| Ok(net.predict(g.series.as_flattened())?),
         training_mse(net, &refs(&train))?,
     )
 }
@@ -426,7 +426,9 @@ pub struct Pooled {
 impl Pooled {
     /// The class of one grasp's series.
     pub fn predict(&self, series: &[[f32; N_VARIABLES]]) -> Result<Softness, NetError> {
-        self.net.predict(self.features.rows(series).as_flattened())
+        Ok(self
+            .net
+            .predict(self.features.rows(series).as_flattened())?)
     }
 }
 

@@ -20,6 +20,7 @@ use ur_bridge::{UrArm, UrConfig, UrError};
 use ur_sim::{SimConfig, TimeScale, UrSim};
 
 use crate::cnn_eval::{self, Committed};
+use tactile_nets::contact_cnn;
 
 /// The 4 × 38 window of §IV-A: acc x, acc y (m/s²), gyro x, gyro y (rad/s).
 pub type Window = [[f32; WINDOW_SAMPLES]; WINDOW_SIGNALS];
@@ -73,11 +74,11 @@ pub fn window(frames: &[ImuFrame]) -> Window {
         .unwrap_or([[f32::NAN; WINDOW_SAMPLES]; WINDOW_SIGNALS])
 }
 
-/// The window as the CNN reads it: channel-major, acc in mm/s², gyro in mrad/s (the units of
-/// hand-sim's tap dataset it was trained on).
+/// The window as the CNN reads it: channel-major, acc in mm/s², gyro in mrad/s
+/// ([`contact_cnn::SI_TO_INPUT`]).
 pub fn cnn_window(frames: &[ImuFrame]) -> [f32; WINDOW_SAMPLES * WINDOW_SIGNALS] {
     let w = window(frames);
-    core::array::from_fn(|i| w[i / WINDOW_SAMPLES][i % WINDOW_SAMPLES] * 1e3)
+    core::array::from_fn(|i| w[i / WINDOW_SAMPLES][i % WINDOW_SAMPLES] * contact_cnn::SI_TO_INPUT)
 }
 
 /// Frames from the trigger to the centre hand-sim's training windows are cut around (the middle

@@ -8,7 +8,7 @@ use crate::devices;
 use crate::runs::RunContext;
 use crate::scene::PaperScene;
 use crate::scene::experiments::WindowPlacement;
-use hand_traits::{ContactLocator as _, ImuFrame};
+
 use hand_zenoh::node::Node;
 use hand_zenoh::tactile::TactileInfo;
 use handstack::Outcome;
@@ -72,10 +72,7 @@ pub fn run_node(
                 max_frames: None,
             };
             let node = Node::open(args.options())?;
-            let mut locate = |w: &[ImuFrame]| {
-                cnn.locate(&tap_run::cnn_window(w))
-                    .map_err(|e| failed("contact locator", e))
-            };
+            let mut locate = pad::cnn_locator(&mut cnn);
             let report = pad::run(&node, &mut source, Some(&mut locate), &config, stop)?;
             Ok(report.to_string())
         }

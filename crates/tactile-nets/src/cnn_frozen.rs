@@ -1,28 +1,27 @@
-//! The contact CNN's inference on plain arrays: the same arithmetic as the dfdx graph
-//! (valid 3 × 3 conv, ReLU, 2 × 2 max-pool, dense + ReLU, dense), without dfdx's per-call
-//! tensor allocations — the single-sample path the 50 µs budget is measured on.
+//! The contact CNN's inference on plain arrays: valid 3 × 3 conv, ReLU, 2 × 2 max-pool, a dense
+//! layer with ReLU, a dense layer — the arithmetic of the dfdx graph it was trained as, without
+//! dfdx and without an allocation per call.
 //!
 //! The conv kernel is copied patch-element-major and computed four columns at a time; the
 //! dense head reads ReLU outputs, so both its layers are [`crate::frozen::SparseDense`]
 //! (input-major, zeros skipped). The tests check it against dfdx's forward to 1e-5.
 
-use crate::cnn_layers::{CONV_COLS, CONV_ROWS, KERNEL, PATCH, POOLED};
+use crate::contact_cnn::{
+    CONV_COLS, CONV_ROWS, KERNEL, PATCH, POOLED, REGIONS, WINDOW, WINDOW_VALUES,
+};
+use crate::error::NetError;
+use crate::frozen::{Dense, SparseDense};
+use crate::io::TensorFile;
 
 /// Conv columns computed together (it divides the 36 columns).
 const GROUP: usize = 4;
 const _: () = assert!(CONV_COLS.is_multiple_of(GROUP));
-use crate::contact_cnn::{REGIONS, WINDOW, WINDOW_VALUES};
-use crate::error::NetError;
-use crate::frozen::{Freeze, SparseDense};
-use dfdx::nn::modules::Linear;
-use dfdx::prelude::{Cpu, ReLU};
 
-/// The dense head `(Linear<FLAT, H>, ReLU, Linear<H, 9>)` as dfdx builds it.
-pub type Head<const FLAT: usize, const H: usize> = (
-    Linear<FLAT, H, f32, Cpu>,
-    ReLU,
-    Linear<H, REGIONS, f32, Cpu>,
-);
+/// The weights file's tensor names (dfdx's names for the training graph: the conv kernel is
+/// layer 1 of block 0, the dense layers 0 and 2 of block 1).
+const CONV: &str = "net.0.1";
+const HIDDEN: &str = "net.1.0";
+const OUT: &str = "net.1.2";
 
 /// A contact CNN with `F` filters, `FLAT = 18 · F` pooled features and a dense width `H`, as
 /// plain arrays.
@@ -39,29 +38,70 @@ pub struct FrozenCnn<const F: usize, const FLAT: usize, const H: usize> {
 impl<const F: usize, const FLAT: usize, const H: usize> FrozenCnn<F, FLAT, H> {
     const SIZES_AGREE: () = assert!(FLAT == POOLED * F, "FrozenCnn: FLAT must be 18 · F");
 
-    /// Freezes a trained net's conv kernel (`Linear<9, F>`) and dense head.
-    pub fn new(conv: &Linear<PATCH, F, f32, Cpu>, head: &Head<FLAT, H>) -> Result<Self, NetError> {
+    /// A network from its layers as a weights file stores them: the conv kernel row-major
+    /// `F × 9` with `F` biases, the dense layers row-major (outputs × inputs).
+    ///
+    /// Errors: [`NetError::TensorMismatch`] when a length is wrong.
+    pub fn from_rows(
+        conv: &[f32],
+        conv_bias: &[f32],
+        hidden: &Dense<FLAT, H>,
+        out: &Dense<H, REGIONS>,
+    ) -> Result<Self, NetError> {
         let () = Self::SIZES_AGREE;
-        let w = conv.weight.as_vec();
-        let b = conv.bias.as_vec();
-        if w.len() != F * PATCH || b.len() != F {
+        if conv.len() != F * PATCH || conv_bias.len() != F {
             return Err(NetError::TensorMismatch {
-                name: "conv".to_owned(),
-                stored: format!("{} weights, {} biases", w.len(), b.len()),
+                name: CONV.to_owned(),
+                stored: format!("{} weights, {} biases", conv.len(), conv_bias.len()),
                 expected: format!("[{F}, {PATCH}] and [{F}]"),
             });
         }
-        let (dense, _, out) = head.freeze()?;
         Ok(FrozenCnn {
             conv: Box::new(core::array::from_fn(|k| {
-                core::array::from_fn(|f| w[f * PATCH + k])
+                core::array::from_fn(|f| conv[f * PATCH + k])
             })),
-            conv_bias: core::array::from_fn(|f| b[f]),
+            conv_bias: core::array::from_fn(|f| conv_bias[f]),
             head: (
-                SparseDense::from_dense(&dense),
-                SparseDense::from_dense(&out),
+                SparseDense::from_dense(hidden),
+                SparseDense::from_dense(out),
             ),
         })
+    }
+
+    /// The network stored in `file` under dfdx's names (`net.0.1.weight`, …).
+    ///
+    /// Errors: [`NetError::MissingTensor`] / [`NetError::TensorMismatch`] for a tensor the
+    /// file lacks or stores in another shape.
+    pub fn from_file(file: &TensorFile) -> Result<Self, NetError> {
+        let layer = |name: &str, o: usize, i: usize| -> Result<(&[f32], &[f32]), NetError> {
+            Ok((
+                file.get(&format!("{name}.weight"), &[o, i])?,
+                file.get(&format!("{name}.bias"), &[o])?,
+            ))
+        };
+        let (conv, conv_bias) = layer(CONV, F, PATCH)?;
+        let (hw, hb) = layer(HIDDEN, H, FLAT)?;
+        let (ow, ob) = layer(OUT, REGIONS, H)?;
+        Self::from_rows(conv, conv_bias, &Dense::new(hw, hb)?, &Dense::new(ow, ob)?)
+    }
+
+    /// Adds the network's tensors to `file` under the names [`FrozenCnn::from_file`] reads.
+    pub fn to_file(&self, file: &mut TensorFile) -> Result<(), NetError> {
+        let conv: Vec<f32> = (0..F * PATCH)
+            .map(|i| self.conv[i % PATCH][i / PATCH])
+            .collect();
+        file.insert(&format!("{CONV}.weight"), &[F, PATCH], &conv)?;
+        file.insert(&format!("{CONV}.bias"), &[F], &self.conv_bias)?;
+        let (hidden, out) = &self.head;
+        file.insert(
+            &format!("{HIDDEN}.weight"),
+            &[H, FLAT],
+            &hidden.weight_rows(),
+        )?;
+        file.insert(&format!("{HIDDEN}.bias"), &[H], hidden.bias())?;
+        file.insert(&format!("{OUT}.weight"), &[REGIONS, H], &out.weight_rows())?;
+        file.insert(&format!("{OUT}.bias"), &[REGIONS], out.bias())?;
+        Ok(())
     }
 
     /// Logits of a standardised window (channel-major 4 × 38).
@@ -132,7 +172,7 @@ fn pool_avx<const F: usize, const FLAT: usize>(
     pool::<F, FLAT>(conv, conv_bias, z)
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "train"))]
 mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};

@@ -12,27 +12,11 @@
 //! (conv row `r`, column parity `dc`), so the four members of a pool window are
 //! [`POOLED`] rows apart and one reshape puts them on an axis of their own.
 
-use crate::contact_cnn::{CHANNELS, WINDOW, WINDOW_VALUES};
+use crate::contact_cnn::{WINDOW, WINDOW_VALUES};
 use dfdx::nn::modules::{Module, NonMutableModule, ZeroSizedModule};
 use dfdx::prelude::*;
 
-/// Kernel side.
-pub const KERNEL: usize = 3;
-/// Values per patch (3 × 3).
-pub const PATCH: usize = KERNEL * KERNEL;
-/// Rows of the conv map (valid convolution over 4 signals).
-pub const CONV_ROWS: usize = CHANNELS - KERNEL + 1;
-/// Columns of the conv map (valid convolution over 38 samples).
-pub const CONV_COLS: usize = WINDOW - KERNEL + 1;
-/// Members of a 2 × 2 pool window.
-pub const POOL_SLOTS: usize = 4;
-/// Columns after the 2 × 2, stride-2 max-pool (the single pooled row is 1 high).
-pub const POOLED: usize = CONV_COLS / 2;
-/// Conv positions per sample (2 × 36).
-pub const POSITIONS: usize = POOL_SLOTS * POOLED;
-
-// The pool consumes the whole conv map: 2 rows, an even number of columns.
-const _: () = assert!(CONV_ROWS == 2 && CONV_COLS.is_multiple_of(2));
+pub use crate::contact_cnn::{CONV_COLS, CONV_ROWS, KERNEL, PATCH, POOL_SLOTS, POOLED, POSITIONS};
 
 /// Index into a channel-major window of patch element `k` (row-major 3 × 3) of patch row `p`
 /// (see the module docs for the row order).

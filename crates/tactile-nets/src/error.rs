@@ -151,7 +151,7 @@ impl From<RunError> for NetError {
     }
 }
 
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 impl From<dfdx::tensor::CpuError> for NetError {
     fn from(e: dfdx::tensor::CpuError) -> Self {
         NetError::Device(format!("{e:?}"))

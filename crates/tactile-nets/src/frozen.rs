@@ -12,7 +12,7 @@
 //! compiler, and a call only touches the stack and the weights.
 //!
 //! ```
-//! # #[cfg(feature = "std")] {
+//! # #[cfg(feature = "train")] {
 //! use dfdx::prelude::*;
 //! use tactile_nets::frozen::{Freeze, Layer};
 //!
@@ -30,7 +30,7 @@ use crate::activations::sigmoid;
 #[cfg(feature = "std")]
 use crate::error::NetError;
 use crate::error::{RunError, check_input};
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 use dfdx::prelude::{Cpu, Dropout, ReLU, Sigmoid, Tanh};
 
 /// One inference step on a value of type `X` (an `[f32; N]` array for every layer here).
@@ -42,7 +42,7 @@ pub trait Layer<X> {
 }
 
 /// A trained dfdx module that has a frozen inference form.
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 pub trait Freeze {
     /// The frozen form.
     type Frozen;
@@ -146,13 +146,31 @@ impl<const I: usize, const O: usize> SparseDense<I, O> {
         let mut weights = vec![0.0f32; O.div_ceil(width) * I * width].into_boxed_slice();
         for (o, row) in dense.weight.iter().enumerate() {
             for (j, &w) in row.iter().enumerate() {
-                weights[((o / width) * I + j) * width + o % width] = w;
+                weights[Self::at(o, j)] = w;
             }
         }
         SparseDense {
             weights,
             bias: dense.bias.clone(),
         }
+    }
+
+    /// The weights back in row-major `O × I` order (as a weights file stores them).
+    pub fn weight_rows(&self) -> Vec<f32> {
+        (0..O * I)
+            .map(|k| self.weights[Self::at(k / I, k % I)])
+            .collect()
+    }
+
+    /// Where `W[o][j]` is stored (see the field's comment).
+    fn at(o: usize, j: usize) -> usize {
+        let width = Self::WIDTH;
+        ((o / width) * I + j) * width + o % width
+    }
+
+    /// The bias.
+    pub fn bias(&self) -> &[f32; O] {
+        &self.bias
     }
 }
 
@@ -328,7 +346,7 @@ fn dot(w: &[f32], x: &[f32]) -> f32 {
     acc.iter().sum::<f32>() + tail
 }
 
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 impl<const I: usize, const O: usize> Freeze for dfdx::nn::modules::Linear<I, O, f32, Cpu> {
     type Frozen = Dense<I, O>;
 
@@ -356,7 +374,7 @@ macro_rules! activation {
             }
         }
 
-        $(#[cfg(feature = "std")]
+        $(#[cfg(feature = "train")]
         impl Freeze for $dfdx {
             type Frozen = $name;
 
@@ -388,7 +406,7 @@ activation!(
 /// after the first is named with the one before it, whose output it reads.
 macro_rules! tuple {
     ($first:ident . $fi:tt $(, $t:ident . $i:tt : $prev:ident)* ; $last:ident) => {
-        #[cfg(feature = "std")]
+        #[cfg(feature = "train")]
         impl<$first: Freeze $(, $t: Freeze)*> Freeze for ($first, $($t,)*) {
             type Frozen = ($first::Frozen, $($t::Frozen,)*);
 
@@ -428,7 +446,7 @@ pub fn input<const N: usize>(input: &[f32]) -> Result<[f32; N], RunError> {
     Ok(core::array::from_fn(|i| input[i]))
 }
 
-#[cfg(all(test, feature = "std"))]
+#[cfg(all(test, feature = "train"))]
 mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};

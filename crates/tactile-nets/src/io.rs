@@ -1,6 +1,7 @@
 //! Weights files: named `f32` tensors in the safetensors format, written and read with the
-//! `safetensors` crate (dfdx's own `safetensors` feature pins an older copy of that crate and
-//! memory-maps files with `unsafe`; this module walks any dfdx module with its visitor instead).
+//! `safetensors` crate, no ML framework. With the `train` feature a file also takes and fills
+//! any dfdx module (dfdx's own `safetensors` feature pins an older copy of that crate and
+//! memory-maps files with `unsafe`; this module walks the module with its visitor instead).
 //!
 //! A [`TensorFile`] holds a model's parameters (under a prefix, e.g. `net.0.0.weight`), any
 //! extra tensors a model needs (input normalisation, label catalogues) and one metadata entry,
@@ -8,8 +9,6 @@
 //! the same bytes.
 
 use crate::error::NetError;
-use dfdx::prelude::*;
-use num_traits::NumCast;
 use safetensors::{Dtype, SafeTensors};
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
@@ -99,36 +98,6 @@ impl TensorFile {
     /// Sets the metadata JSON string.
     pub fn set_metadata(&mut self, json: String) {
         self.metadata = json;
-    }
-
-    /// Adds every tensor of a dfdx `module` under `prefix` (scalars such as a dropout rate
-    /// become rank-0 tensors).
-    pub fn add_module<M: TensorCollection<f32, Cpu>>(
-        &mut self,
-        prefix: &str,
-        module: &M,
-    ) -> Result<(), NetError> {
-        let mut collect = Collect { file: self, prefix };
-        M::iter_tensors(&mut RecursiveWalker {
-            m: (module, String::new()),
-            f: &mut collect,
-        })?;
-        Ok(())
-    }
-
-    /// Overwrites every tensor of a dfdx `module` with the tensors stored under `prefix`;
-    /// each must exist with the module's shape.
-    pub fn load_module<M: TensorCollection<f32, Cpu>>(
-        &self,
-        prefix: &str,
-        module: &mut M,
-    ) -> Result<(), NetError> {
-        let mut fill = Fill { file: self, prefix };
-        M::iter_tensors(&mut RecursiveWalker {
-            m: (module, String::new()),
-            f: &mut fill,
-        })?;
-        Ok(())
     }
 
     /// The safetensors bytes (little-endian `F32` tensors, name order).
@@ -224,80 +193,121 @@ impl TensorFile {
     }
 }
 
-/// Copies a module's tensors into a [`TensorFile`].
-struct Collect<'a> {
-    file: &'a mut TensorFile,
-    prefix: &'a str,
-}
+/// Weights files and dfdx modules (feature `train`).
+#[cfg(feature = "train")]
+mod modules {
+    use super::TensorFile;
+    use crate::error::NetError;
+    use dfdx::prelude::*;
+    use num_traits::NumCast;
 
-impl TensorVisitor<f32, Cpu> for Collect<'_> {
-    type Viewer = (ViewTensorRef, ViewTensorName);
-    type Err = NetError;
-    type E2 = f32;
-    type D2 = Cpu;
+    impl TensorFile {
+        /// Adds every tensor of a dfdx `module` under `prefix` (scalars such as a dropout rate
+        /// become rank-0 tensors).
+        pub fn add_module<M: TensorCollection<f32, Cpu>>(
+            &mut self,
+            prefix: &str,
+            module: &M,
+        ) -> Result<(), NetError> {
+            let mut collect = Collect { file: self, prefix };
+            M::iter_tensors(&mut RecursiveWalker {
+                m: (module, String::new()),
+                f: &mut collect,
+            })?;
+            Ok(())
+        }
 
-    fn visit<S: Shape>(
-        &mut self,
-        _: TensorOptions<S, f32, Cpu>,
-        (t, name): (&Tensor<S, f32, Cpu>, String),
-    ) -> Result<Option<Tensor<S, f32, Cpu>>, NetError> {
-        let shape: Vec<usize> = t.shape().concrete().into_iter().collect();
-        self.file
-            .insert(&format!("{}{name}", self.prefix), &shape, &t.as_vec())?;
-        Ok(None)
+        /// Overwrites every tensor of a dfdx `module` with the tensors stored under `prefix`;
+        /// each must exist with the module's shape.
+        pub fn load_module<M: TensorCollection<f32, Cpu>>(
+            &self,
+            prefix: &str,
+            module: &mut M,
+        ) -> Result<(), NetError> {
+            let mut fill = Fill { file: self, prefix };
+            M::iter_tensors(&mut RecursiveWalker {
+                m: (module, String::new()),
+                f: &mut fill,
+            })?;
+            Ok(())
+        }
     }
 
-    fn visit_scalar<N: NumCast>(
-        &mut self,
-        _: ScalarOptions<N>,
-        (n, name): (&N, String),
-    ) -> Result<Option<N>, NetError> {
-        let v = n.to_f32().ok_or_else(|| NetError::TensorMismatch {
-            name: name.clone(),
-            stored: "scalar".to_owned(),
-            expected: "a value representable as f32".to_owned(),
-        })?;
-        self.file
-            .insert(&format!("{}{name}", self.prefix), &[], &[v])?;
-        Ok(None)
-    }
-}
-
-/// Copies a [`TensorFile`]'s tensors into a module.
-struct Fill<'a> {
-    file: &'a TensorFile,
-    prefix: &'a str,
-}
-
-impl TensorVisitor<f32, Cpu> for Fill<'_> {
-    type Viewer = (ViewTensorMut, ViewTensorName);
-    type Err = NetError;
-    type E2 = f32;
-    type D2 = Cpu;
-
-    fn visit<S: Shape>(
-        &mut self,
-        _: TensorOptions<S, f32, Cpu>,
-        (t, name): (&mut Tensor<S, f32, Cpu>, String),
-    ) -> Result<Option<Tensor<S, f32, Cpu>>, NetError> {
-        let shape: Vec<usize> = t.shape().concrete().into_iter().collect();
-        let data = self.file.get(&format!("{}{name}", self.prefix), &shape)?;
-        t.copy_from(data);
-        Ok(None)
+    /// Copies a module's tensors into a [`TensorFile`].
+    struct Collect<'a> {
+        file: &'a mut TensorFile,
+        prefix: &'a str,
     }
 
-    fn visit_scalar<N: NumCast>(
-        &mut self,
-        _: ScalarOptions<N>,
-        (n, name): (&mut N, String),
-    ) -> Result<Option<N>, NetError> {
-        let full = format!("{}{name}", self.prefix);
-        let v = self.file.get(&full, &[])?[0];
-        *n = N::from(v).ok_or_else(|| NetError::TensorMismatch {
-            name: full,
-            stored: format!("{v}"),
-            expected: "a value of the module's scalar type".to_owned(),
-        })?;
-        Ok(None)
+    impl TensorVisitor<f32, Cpu> for Collect<'_> {
+        type Viewer = (ViewTensorRef, ViewTensorName);
+        type Err = NetError;
+        type E2 = f32;
+        type D2 = Cpu;
+
+        fn visit<S: Shape>(
+            &mut self,
+            _: TensorOptions<S, f32, Cpu>,
+            (t, name): (&Tensor<S, f32, Cpu>, String),
+        ) -> Result<Option<Tensor<S, f32, Cpu>>, NetError> {
+            let shape: Vec<usize> = t.shape().concrete().into_iter().collect();
+            self.file
+                .insert(&format!("{}{name}", self.prefix), &shape, &t.as_vec())?;
+            Ok(None)
+        }
+
+        fn visit_scalar<N: NumCast>(
+            &mut self,
+            _: ScalarOptions<N>,
+            (n, name): (&N, String),
+        ) -> Result<Option<N>, NetError> {
+            let v = n.to_f32().ok_or_else(|| NetError::TensorMismatch {
+                name: name.clone(),
+                stored: "scalar".to_owned(),
+                expected: "a value representable as f32".to_owned(),
+            })?;
+            self.file
+                .insert(&format!("{}{name}", self.prefix), &[], &[v])?;
+            Ok(None)
+        }
+    }
+
+    /// Copies a [`TensorFile`]'s tensors into a module.
+    struct Fill<'a> {
+        file: &'a TensorFile,
+        prefix: &'a str,
+    }
+
+    impl TensorVisitor<f32, Cpu> for Fill<'_> {
+        type Viewer = (ViewTensorMut, ViewTensorName);
+        type Err = NetError;
+        type E2 = f32;
+        type D2 = Cpu;
+
+        fn visit<S: Shape>(
+            &mut self,
+            _: TensorOptions<S, f32, Cpu>,
+            (t, name): (&mut Tensor<S, f32, Cpu>, String),
+        ) -> Result<Option<Tensor<S, f32, Cpu>>, NetError> {
+            let shape: Vec<usize> = t.shape().concrete().into_iter().collect();
+            let data = self.file.get(&format!("{}{name}", self.prefix), &shape)?;
+            t.copy_from(data);
+            Ok(None)
+        }
+
+        fn visit_scalar<N: NumCast>(
+            &mut self,
+            _: ScalarOptions<N>,
+            (n, name): (&mut N, String),
+        ) -> Result<Option<N>, NetError> {
+            let full = format!("{}{name}", self.prefix);
+            let v = self.file.get(&full, &[])?[0];
+            *n = N::from(v).ok_or_else(|| NetError::TensorMismatch {
+                name: full,
+                stored: format!("{v}"),
+                expected: "a value of the module's scalar type".to_owned(),
+            })?;
+            Ok(None)
+        }
     }
 }

@@ -1,41 +1,46 @@
-//! Learned tactile models on [dfdx](https://docs.rs/dfdx) (CPU, stable Rust): the force / weight
-//! DNN and the contact-area MLP of a barometric fingertip (Kim, Lee, Chung & Lee, "Artificial
-//! Intelligence-Based Optimal Grasping Control", Sensors 2020, §2.2 and §4), the contact CNN of
-//! an IMU pad (Al & Martinez-Hernandez, "Multimodal barometric and inertial measurement unit
-//! based tactile sensor for robot control", §IV-A) and the Levenberg–Marquardt softness network
-//! of an underactuated hand ("Distinguish the Textures of Grasped Objects by Robotic Hand Using
-//! Artificial Neural-Network", §3.3; below, the underactuated-hand softness paper). Data in,
-//! weights and metrics out: the crate reads no dataset and prints nothing of its own (training
-//! shows an indicatif progress bar only when [`train::TrainConfig::progress`] asks for one).
+//! Learned tactile models: the force / weight DNN and the contact-area MLP of a barometric
+//! fingertip (Kim, Lee, Chung & Lee, "Artificial Intelligence-Based Optimal Grasping Control",
+//! Sensors 2020, §2.2 and §4), the contact CNN of an IMU pad (Al & Martinez-Hernandez,
+//! "Multimodal barometric and inertial measurement unit based tactile sensor for robot
+//! control", §IV-A) and the Levenberg–Marquardt softness network of an underactuated hand
+//! ("Distinguish the Textures of Grasped Objects by Robotic Hand Using Artificial
+//! Neural-Network", §3.3; below, the underactuated-hand softness paper). Data in, weights and
+//! metrics out: the crate reads no dataset and prints nothing of its own (training shows an
+//! indicatif progress bar only when its configuration asks for one).
 //!
-//! The trained models are built in ([`pretrained`]). Without the default `std` feature the
-//! crate is `no_std` and allocation-free: the built-in force DNN and contact MLPs run from
-//! `'static` arrays ([`force_dnn::StaticForceDnn`], [`contact_mlp::StaticContactMlp`]) on a
-//! fingertip's Cortex-M3 / M4F; everything marked `std` below needs the feature.
+//! Three feature levels:
+//! - none (`default-features = false`): `no_std` and allocation-free — the built-in force DNN,
+//!   contact MLPs and softness nets run from `'static` arrays ([`force_dnn::StaticForceDnn`],
+//!   [`contact_mlp::StaticContactMlp`], [`softness::SoftnessNet`]) on a fingertip's Cortex-M3 /
+//!   M4F;
+//! - `std` (default): every model's inference on plain arrays, the contact CNN included, and
+//!   weights files (a user's own, or the built-in ones) read with the `safetensors` crate — no
+//!   ML framework in the dependency tree;
+//! - `train`: training on [dfdx](https://docs.rs/dfdx) (CPU, stable Rust) and nalgebra
+//!   (Levenberg–Marquardt), and dfdx's forward of each model as a reference.
 //!
-//! - [`pretrained`]: the trained models, built in (`'static` arrays without `std`);
-//! - [`io`]: weights as safetensors for any dfdx module, plus extra named tensors;
-//! - [`train`]: a seeded minibatch Adam loop;
-//! - [`metrics`]: a metrics file and its drift check;
-//! - [`error`]: typed errors (wrong shape, non-finite input or output, bad files);
-//! - [`activations`]: sigmoid / softmax that stay finite for any logit;
-//! - [`frozen`]: the allocation-free inference form of any trained dfdx dense stack;
-//! - [`norm`]: input standardisation;
-//! - [`force_dnn`]: the force / weight DNN and its [`hand_traits::ForceEstimator`];
-//! - [`contact_mlp`]: the MLP, its two heads and its [`hand_traits::ContactLocator`] (the pad
+//! Modules:
+//! - `pretrained`: the trained models, built in;
+//! - `io` (`std`): weights files, named tensors in safetensors (dfdx modules too, with `train`);
+//! - `metrics` (`std`): a metrics file and its drift check;
+//! - `train` (`train`): a seeded minibatch Adam loop;
+//! - `error`: typed errors (wrong shape, non-finite input or output, bad files);
+//! - `activations`: sigmoid / softmax that stay finite for any logit;
+//! - `frozen`: the allocation-free inference form of a dense stack;
+//! - `norm`: input standardisation;
+//! - `force_dnn`: the force / weight DNN and its [`hand_traits::ForceEstimator`];
+//! - `contact_mlp`: the MLP, its two heads and its [`hand_traits::ContactLocator`] (the pad
 //!   and its eq. 4 labels are `aot-locate`'s);
-//! - [`cnn_layers`], [`cnn_frozen`]: im2col convolution and max-pool on stable dfdx, and the
-//!   plain-array inference path;
-//! - [`contact_cnn`]: the contact CNN of Al & Martinez-Hernandez, §IV-A, and its
-//!   [`hand_traits::ContactLocator`];
-//! - [`softness`]: the 8 → 4 → 4 → 3 softness classifier (the underactuated-hand softness
-//!   paper, §3.3) and its
-//!   [`hand_traits::SoftnessClassifier`];
-//! - [`softness_train`]: its Levenberg–Marquardt (and Adam) training;
-//! - [`softness_features`]: our variant's finger-order-invariant inputs.
+//! - `contact_cnn`, `cnn_frozen` (`std`): the contact CNN of Al & Martinez-Hernandez, §IV-A, its
+//!   plain-array inference and its [`hand_traits::ContactLocator`]; `cnn_layers` (`train`):
+//!   im2col convolution and max-pool on stable dfdx;
+//! - `softness`: the 8 → 4 → 4 → 3 softness classifier (the underactuated-hand softness
+//!   paper, §3.3) and its [`hand_traits::SoftnessClassifier`]; `softness_train` (`train`): its
+//!   Levenberg–Marquardt (and Adam) training; `softness_features` (`train`): our variant's
+//!   finger-order-invariant inputs.
 //!
 //! ```
-//! # #[cfg(feature = "std")] {
+//! # #[cfg(feature = "train")] {
 //! use tactile_nets::contact_mlp::{ContactExample, ContactMlp, Head, TapReading, features};
 //! use tactile_nets::train::TrainConfig;
 //! use hand_traits::ContactLocator;
@@ -68,10 +73,11 @@ pub mod force_dnn;
 pub mod frozen;
 pub mod norm;
 pub mod pretrained;
+pub mod softness;
 
 #[cfg(feature = "std")]
 pub mod cnn_frozen;
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 pub mod cnn_layers;
 #[cfg(feature = "std")]
 pub mod contact_cnn;
@@ -79,13 +85,13 @@ pub mod contact_cnn;
 pub mod io;
 #[cfg(feature = "std")]
 pub mod metrics;
-#[cfg(feature = "std")]
-pub mod softness;
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 pub mod softness_features;
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
+mod softness_layers;
+#[cfg(feature = "train")]
 pub mod softness_train;
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 pub mod train;
 
 #[cfg(feature = "std")]

@@ -2,7 +2,7 @@
 //! training spread (population standard deviation; 1 for an input that never varies).
 
 /// Per-input `(mean, scale)` of `rows` (training only: feature `std`); `mean` 0 and `scale` 1 when `rows` is empty.
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 pub fn mean_and_scale<const N: usize>(rows: &[[f32; N]]) -> ([f32; N], [f32; N]) {
     let mut mean = [0.0f32; N];
     let mut scale = [1.0f32; N];

@@ -1,7 +1,8 @@
 //! The softness classifier of the underactuated-hand softness paper ("Distinguish the Textures
 //! of Grasped Objects…"), §3.3: an 8 → 4 → 4 → 3 network (two hidden layers of 4
-//! logistic-sigmoid neurons, a linear "purelin" output), in nalgebra, trained by
-//! Levenberg–Marquardt ([`crate::softness_train`]).
+//! logistic-sigmoid neurons, a linear "purelin" output), run on plain `f32` arrays (feature
+//! `std` loads weights files; without it, the built-in nets in `'static` arrays), trained by
+//! Levenberg–Marquardt (feature `train`: `softness_train`).
 //!
 //! # Feature vector
 //! One network input is **one sample of the grasp's series**: the paper's 8 variables (§3.1)
@@ -19,6 +20,7 @@
 //! class).
 //!
 //! ```
+//! # #[cfg(feature = "train")] {
 //! use hand_traits::{Softness, SoftnessClassifier};
 //! use tactile_nets::softness::SoftnessNet;
 //! use tactile_nets::softness_train::{Optimiser, SoftnessTrainConfig, train};
@@ -32,13 +34,15 @@
 //! let series: Vec<f32> = hard.concat();
 //! assert_eq!(net.classify(&series)?, Softness::Hard);
 //! assert!(net.classify(&series[..7]).is_err()); // not whole samples: a typed error
+//! # }
 //! # Ok::<(), tactile_nets::NetError>(())
 //! ```
 
-use crate::error::{NetError, check_input, check_output};
-use crate::io::TensorFile;
+use crate::error::{RunError, check_input, check_output};
+#[cfg(feature = "std")]
+use crate::{error::NetError, io::TensorFile};
 use hand_traits::{Softness, SoftnessClassifier};
-use nalgebra::{RealField, SMatrix, SVector};
+#[cfg(feature = "std")]
 use std::path::Path;
 
 /// Readings per sample: `f1_n..f4_n`, then `a1_deg..a4_deg` (the paper's 8 variables, §3.1).
@@ -52,6 +56,8 @@ pub const VARIABLE_NAMES: [&str; N_VARIABLES] = [
 pub const HIDDEN: usize = 4;
 /// Classes (soft, moderate, hard).
 pub const CLASSES: usize = 3;
+// The network's outputs are the classes in `Softness::ALL` order.
+const _: () = assert!(Softness::ALL.len() == CLASSES);
 /// Trainable parameters: `8·4 + 4 + 4·4 + 4 + 4·3 + 3`.
 pub const N_PARAMS: usize =
     N_VARIABLES * HIDDEN + HIDDEN + HIDDEN * HIDDEN + HIDDEN + HIDDEN * CLASSES + CLASSES;
@@ -59,119 +65,6 @@ pub const N_PARAMS: usize =
 /// only bites 50 training ranges away, where every hidden sigmoid is saturated; it keeps the
 /// outputs finite for any finite input.
 pub const INPUT_CLIP: f32 = 100.0;
-
-/// The network's weights: `W·h + b` per layer, `W` of shape (outputs × inputs).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Layers<T: RealField + Copy> {
-    /// Input → hidden 1.
-    pub w1: SMatrix<T, HIDDEN, N_VARIABLES>,
-    /// Hidden 1 bias.
-    pub b1: SVector<T, HIDDEN>,
-    /// Hidden 1 → hidden 2.
-    pub w2: SMatrix<T, HIDDEN, HIDDEN>,
-    /// Hidden 2 bias.
-    pub b2: SVector<T, HIDDEN>,
-    /// Hidden 2 → output.
-    pub w3: SMatrix<T, CLASSES, HIDDEN>,
-    /// Output bias.
-    pub b3: SVector<T, CLASSES>,
-}
-
-/// The activations of one forward pass (kept for the Jacobian).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Pass<T: RealField + Copy> {
-    /// Hidden layer 1 (sigmoid).
-    pub h1: SVector<T, HIDDEN>,
-    /// Hidden layer 2 (sigmoid).
-    pub h2: SVector<T, HIDDEN>,
-    /// Outputs (linear).
-    pub y: SVector<T, CLASSES>,
-}
-
-/// The logistic sigmoid `1 / (1 + e^-z)`: `e^-z` may overflow to `+∞`, which gives 0, so the
-/// result stays in `[0, 1]` for every non-NaN `z`.
-fn logistic<T: RealField + Copy>(z: T) -> T {
-    T::one() / (T::one() + (-z).exp())
-}
-
-impl<T: RealField + Copy> Layers<T> {
-    /// Weights from a flat parameter vector: `w1` row-major, `b1`, `w2` row-major, `b2`, `w3`
-    /// row-major, `b3` (the order of [`Layers::flat`] and of the Jacobian's columns).
-    pub fn from_flat(p: &[T]) -> Option<Layers<T>> {
-        if p.len() != N_PARAMS {
-            return None;
-        }
-        let mut k = 0;
-        let mut take = |n: usize| {
-            k += n;
-            &p[k - n..k]
-        };
-        Some(Layers {
-            w1: SMatrix::from_row_slice(take(HIDDEN * N_VARIABLES)),
-            b1: SVector::from_column_slice(take(HIDDEN)),
-            w2: SMatrix::from_row_slice(take(HIDDEN * HIDDEN)),
-            b2: SVector::from_column_slice(take(HIDDEN)),
-            w3: SMatrix::from_row_slice(take(CLASSES * HIDDEN)),
-            b3: SVector::from_column_slice(take(CLASSES)),
-        })
-    }
-
-    /// The flat parameter vector ([`Layers::from_flat`]'s order).
-    pub fn flat(&self) -> Vec<T> {
-        let mut out = Vec::with_capacity(N_PARAMS);
-        out.extend(self.w1.transpose().iter());
-        out.extend(self.b1.iter());
-        out.extend(self.w2.transpose().iter());
-        out.extend(self.b2.iter());
-        out.extend(self.w3.transpose().iter());
-        out.extend(self.b3.iter());
-        out
-    }
-
-    /// Forward pass on a normalised input.
-    pub fn forward(&self, z: &SVector<T, N_VARIABLES>) -> Pass<T> {
-        let h1 = (self.w1 * z + self.b1).map(logistic);
-        let h2 = (self.w2 * h1 + self.b2).map(logistic);
-        let y = self.w3 * h2 + self.b3;
-        Pass { h1, h2, y }
-    }
-
-    /// `∂y_k / ∂p` for every output `k` (rows) and parameter `p` (columns, flat order), by
-    /// back-propagation through the sigmoid layers (`σ' = σ(1 − σ)`).
-    pub fn jacobian(
-        &self,
-        z: &SVector<T, N_VARIABLES>,
-        pass: &Pass<T>,
-    ) -> SMatrix<T, CLASSES, N_PARAMS> {
-        let one = T::one();
-        let d1 = pass.h1.map(|h| h * (one - h));
-        let d2 = pass.h2.map(|h| h * (one - h));
-        let o_b1 = HIDDEN * N_VARIABLES;
-        let o_w2 = o_b1 + HIDDEN;
-        let o_b2 = o_w2 + HIDDEN * HIDDEN;
-        let o_w3 = o_b2 + HIDDEN;
-        let o_b3 = o_w3 + CLASSES * HIDDEN;
-        let mut j = SMatrix::<T, CLASSES, N_PARAMS>::zeros();
-        for k in 0..CLASSES {
-            // δ at hidden 2 and hidden 1 for output k.
-            let g2: SVector<T, HIDDEN> = SVector::from_fn(|i, _| self.w3[(k, i)] * d2[i]);
-            let g1: SVector<T, HIDDEN> = (self.w2.transpose() * g2).component_mul(&d1);
-            for i in 0..HIDDEN {
-                j[(k, o_w3 + k * HIDDEN + i)] = pass.h2[i];
-                j[(k, o_b2 + i)] = g2[i];
-                j[(k, o_b1 + i)] = g1[i];
-                for l in 0..HIDDEN {
-                    j[(k, o_w2 + i * HIDDEN + l)] = g2[i] * pass.h1[l];
-                }
-                for l in 0..N_VARIABLES {
-                    j[(k, i * N_VARIABLES + l)] = g1[i] * z[l];
-                }
-            }
-            j[(k, o_b3 + k)] = one;
-        }
-        j
-    }
-}
 
 /// Input scaling: `z = clip(gain · (x − min) − 1)`, `gain = 2 / (max − min)` (0 for a
 /// variable that never varied in training, which then always reads −1).
@@ -207,30 +100,108 @@ impl InputScale {
     }
 
     /// The normalised input of one raw sample (finite for finite input).
-    pub fn apply(&self, x: &[f32; N_VARIABLES]) -> SVector<f32, N_VARIABLES> {
-        SVector::from_fn(|j, _| {
+    pub fn apply(&self, x: &[f32; N_VARIABLES]) -> [f32; N_VARIABLES] {
+        core::array::from_fn(|j| {
             // (x − min) may overflow to ±∞ for huge x; the clip brings it back.
             (self.gain[j] * (x[j] - self.min[j]) - 1.0).clamp(-INPUT_CLIP, INPUT_CLIP)
         })
     }
 }
 
-/// A trained softness classifier: weights (f32) and input scaling.
-#[derive(Debug, Clone, PartialEq)]
+/// A trained softness classifier: weights (f32, row-major: outputs × inputs) and input
+/// scaling.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SoftnessNet {
-    layers: Layers<f32>,
+    w1: [[f32; N_VARIABLES]; HIDDEN],
+    b1: [f32; HIDDEN],
+    w2: [[f32; HIDDEN]; HIDDEN],
+    b2: [f32; HIDDEN],
+    w3: [[f32; HIDDEN]; CLASSES],
+    b3: [f32; CLASSES],
     scale: InputScale,
 }
 
+/// `W x + b`, one row of `W` per output, summed in input order.
+fn affine<const I: usize, const O: usize>(
+    w: &[[f32; I]; O],
+    b: &[f32; O],
+    x: &[f32; I],
+) -> [f32; O] {
+    core::array::from_fn(|o| w[o].iter().zip(x).fold(0.0, |acc, (w, x)| acc + w * x) + b[o])
+}
+
+/// The logistic sigmoid `1 / (1 + e^-z)`: `e^-z` may overflow to `+∞`, which gives 0, so the
+/// result stays in `[0, 1]` for every non-NaN `z`.
+fn logistic(z: f32) -> f32 {
+    1.0 / (1.0 + num_traits::Float::exp(-z))
+}
+
 impl SoftnessNet {
-    /// A classifier from its weights and input scaling.
-    pub fn new(layers: Layers<f32>, scale: InputScale) -> SoftnessNet {
-        SoftnessNet { layers, scale }
+    /// A classifier from its layers (row-major, outputs × inputs) and input scaling.
+    pub const fn new(
+        w1: [[f32; N_VARIABLES]; HIDDEN],
+        b1: [f32; HIDDEN],
+        w2: [[f32; HIDDEN]; HIDDEN],
+        b2: [f32; HIDDEN],
+        w3: [[f32; HIDDEN]; CLASSES],
+        b3: [f32; CLASSES],
+        scale: InputScale,
+    ) -> SoftnessNet {
+        SoftnessNet {
+            w1,
+            b1,
+            w2,
+            b2,
+            w3,
+            b3,
+            scale,
+        }
     }
 
-    /// The weights.
-    pub fn layers(&self) -> &Layers<f32> {
-        &self.layers
+    /// A classifier from its flat parameters — `w1` row-major (4 × 8), `b1`, `w2` row-major
+    /// (4 × 4), `b2`, `w3` row-major (3 × 4), `b3`: [`N_PARAMS`] values — and its input
+    /// scaling; `None` for another count.
+    pub fn from_flat(p: &[f32], scale: InputScale) -> Option<SoftnessNet> {
+        if p.len() != N_PARAMS {
+            return None;
+        }
+        let mut k = 0;
+        let mut take = |n: usize| {
+            k += n;
+            &p[k - n..k]
+        };
+        fn rows<const I: usize, const O: usize>(v: &[f32]) -> [[f32; I]; O] {
+            core::array::from_fn(|o| core::array::from_fn(|i| v[o * I + i]))
+        }
+        fn vector<const N: usize>(v: &[f32]) -> [f32; N] {
+            core::array::from_fn(|i| v[i])
+        }
+        Some(SoftnessNet {
+            w1: rows(take(HIDDEN * N_VARIABLES)),
+            b1: vector(take(HIDDEN)),
+            w2: rows(take(HIDDEN * HIDDEN)),
+            b2: vector(take(HIDDEN)),
+            w3: rows(take(CLASSES * HIDDEN)),
+            b3: vector(take(CLASSES)),
+            scale,
+        })
+    }
+
+    /// The flat parameters ([`SoftnessNet::from_flat`]'s order).
+    pub fn flat(&self) -> [f32; N_PARAMS] {
+        let mut out = [0.0; N_PARAMS];
+        let parts = [
+            self.w1.as_flattened(),
+            &self.b1,
+            self.w2.as_flattened(),
+            &self.b2,
+            self.w3.as_flattened(),
+            &self.b3,
+        ];
+        for (o, v) in out.iter_mut().zip(parts.into_iter().flatten()) {
+            *o = *v;
+        }
+        out
     }
 
     /// The input scaling.
@@ -238,26 +209,32 @@ impl SoftnessNet {
         &self.scale
     }
 
+    /// The three linear outputs of a normalised sample.
+    fn forward(&self, z: &[f32; N_VARIABLES]) -> [f32; CLASSES] {
+        let h1 = affine(&self.w1, &self.b1, z).map(logistic);
+        let h2 = affine(&self.w2, &self.b2, &h1).map(logistic);
+        affine(&self.w3, &self.b3, &h2)
+    }
+
     /// The three linear outputs for one raw sample of [`N_VARIABLES`] readings.
     ///
-    /// Errors: [`NetError::Shape`] unless `sample` has 8 values, [`NetError::NonFinite`] for a
+    /// Errors: [`RunError::Shape`] unless `sample` has 8 values, [`RunError::NonFinite`] for a
     /// NaN or infinite reading.
-    pub fn sample_outputs(&self, sample: &[f32]) -> Result<[f32; CLASSES], NetError> {
+    pub fn sample_outputs(&self, sample: &[f32]) -> Result<[f32; CLASSES], RunError> {
         check_input(sample, N_VARIABLES)?;
         let x: [f32; N_VARIABLES] = core::array::from_fn(|j| sample[j]);
-        let y = self.layers.forward(&self.scale.apply(&x)).y;
-        let out = [y[0], y[1], y[2]];
+        let out = self.forward(&self.scale.apply(&x));
         check_output(&out)?;
         Ok(out)
     }
 
     /// Mean outputs over a series given flat, [`N_VARIABLES`] readings per sample.
     ///
-    /// Errors: [`NetError::Shape`] when the series is empty or not whole samples (`expected`
-    /// is then the next whole length), [`NetError::NonFinite`] at the first bad reading.
-    pub fn scores(&self, series: &[f32]) -> Result<[f32; CLASSES], NetError> {
+    /// Errors: [`RunError::Shape`] when the series is empty or not whole samples (`expected`
+    /// is then the next whole length), [`RunError::NonFinite`] at the first bad reading.
+    pub fn scores(&self, series: &[f32]) -> Result<[f32; CLASSES], RunError> {
         if series.is_empty() || !series.len().is_multiple_of(N_VARIABLES) {
-            return Err(NetError::Shape {
+            return Err(RunError::Shape {
                 expected: series.len().div_ceil(N_VARIABLES).max(1) * N_VARIABLES,
                 got: series.len(),
             });
@@ -265,7 +242,7 @@ impl SoftnessNet {
         let mut sum = [0.0f64; CLASSES];
         for (i, sample) in series.chunks_exact(N_VARIABLES).enumerate() {
             let y = self.sample_outputs(sample).map_err(|e| match e {
-                NetError::NonFinite { index } => NetError::NonFinite {
+                RunError::NonFinite { index } => RunError::NonFinite {
                     index: i * N_VARIABLES + index,
                 },
                 other => other,
@@ -279,41 +256,38 @@ impl SoftnessNet {
     }
 
     /// The class of a series ([`SoftnessNet::scores`]'s largest mean; ties: the softer).
-    pub fn predict(&self, series: &[f32]) -> Result<Softness, NetError> {
+    pub fn predict(&self, series: &[f32]) -> Result<Softness, RunError> {
         let s = self.scores(series)?;
         let best = (1..CLASSES).fold(0, |b, k| if s[k] > s[b] { k } else { b });
-        Softness::from_index(best).ok_or_else(|| NetError::Training("no class".into()))
+        Ok(Softness::ALL[best])
     }
+}
 
-    /// Weights and scaling as a [`TensorFile`] (`net.{0,1,2}.{weight,bias}`, `input.min`,
-    /// `input.gain`; weights row-major, outputs × inputs).
+/// The weights file's tensors: `net.{0,1,2}.{weight,bias}` in [`SoftnessNet::from_flat`]'s
+/// order (weights row-major, outputs × inputs).
+#[cfg(feature = "std")]
+const TENSORS: [(&str, &[usize]); 6] = [
+    ("net.0.weight", &[HIDDEN, N_VARIABLES]),
+    ("net.0.bias", &[HIDDEN]),
+    ("net.1.weight", &[HIDDEN, HIDDEN]),
+    ("net.1.bias", &[HIDDEN]),
+    ("net.2.weight", &[CLASSES, HIDDEN]),
+    ("net.2.bias", &[CLASSES]),
+];
+
+#[cfg(feature = "std")]
+impl SoftnessNet {
+    /// Weights and scaling as a [`TensorFile`] (the tensors of [`SoftnessNet::from_file`],
+    /// `input.min`, `input.gain`), `metadata` merged into the file's description.
     pub fn to_file(&self, metadata: serde_json::Value) -> Result<TensorFile, NetError> {
-        let l = &self.layers;
         let mut f = TensorFile::new();
-        let rows = |m: &dyn Fn(usize, usize) -> f32, r: usize, c: usize| -> Vec<f32> {
-            (0..r)
-                .flat_map(|i| (0..c).map(move |j| (i, j)))
-                .map(|(i, j)| m(i, j))
-                .collect()
-        };
-        f.insert(
-            "net.0.weight",
-            &[HIDDEN, N_VARIABLES],
-            &rows(&|i, j| l.w1[(i, j)], HIDDEN, N_VARIABLES),
-        )?;
-        f.insert("net.0.bias", &[HIDDEN], l.b1.as_slice())?;
-        f.insert(
-            "net.1.weight",
-            &[HIDDEN, HIDDEN],
-            &rows(&|i, j| l.w2[(i, j)], HIDDEN, HIDDEN),
-        )?;
-        f.insert("net.1.bias", &[HIDDEN], l.b2.as_slice())?;
-        f.insert(
-            "net.2.weight",
-            &[CLASSES, HIDDEN],
-            &rows(&|i, j| l.w3[(i, j)], CLASSES, HIDDEN),
-        )?;
-        f.insert("net.2.bias", &[CLASSES], l.b3.as_slice())?;
+        let flat = self.flat();
+        let mut at = 0;
+        for (name, shape) in TENSORS {
+            let n: usize = shape.iter().product();
+            f.insert(name, shape, &flat[at..at + n])?;
+            at += n;
+        }
         f.insert("input.min", &[N_VARIABLES], &self.scale.min)?;
         f.insert("input.gain", &[N_VARIABLES], &self.scale.gain)?;
         let mut meta = serde_json::json!({
@@ -330,33 +304,26 @@ impl SoftnessNet {
     }
 
     /// A classifier from [`SoftnessNet::to_file`]'s output.
+    ///
+    /// Errors: a tensor error for a missing or misshapen tensor, [`NetError::TensorMismatch`]
+    /// for an input gain that is not finite.
     pub fn from_file(file: &TensorFile) -> Result<SoftnessNet, NetError> {
         let mut p = Vec::with_capacity(N_PARAMS);
-        for (name, shape) in [
-            ("net.0.weight", &[HIDDEN, N_VARIABLES][..]),
-            ("net.0.bias", &[HIDDEN]),
-            ("net.1.weight", &[HIDDEN, HIDDEN]),
-            ("net.1.bias", &[HIDDEN]),
-            ("net.2.weight", &[CLASSES, HIDDEN]),
-            ("net.2.bias", &[CLASSES]),
-        ] {
+        for (name, shape) in TENSORS {
             p.extend_from_slice(file.get(name, shape)?);
         }
-        let layers = Layers::from_flat(&p).ok_or_else(|| NetError::TensorMismatch {
-            name: "net".into(),
-            stored: format!("{} parameters", p.len()),
-            expected: format!("{N_PARAMS}"),
-        })?;
         let arr = |name: &str| -> Result<[f32; N_VARIABLES], NetError> {
             let v = file.get(name, &[N_VARIABLES])?;
             Ok(core::array::from_fn(|j| v[j]))
         };
-        Ok(SoftnessNet {
-            layers,
-            scale: InputScale {
-                min: arr("input.min")?,
-                gain: arr("input.gain")?,
-            },
+        let scale = InputScale {
+            min: arr("input.min")?,
+            gain: arr("input.gain")?,
+        };
+        SoftnessNet::from_flat(&p, scale).ok_or_else(|| NetError::TensorMismatch {
+            name: "net".into(),
+            stored: format!("{} parameters", p.len()),
+            expected: format!("{N_PARAMS}"),
         })
     }
 
@@ -365,7 +332,7 @@ impl SoftnessNet {
         self.to_file(metadata)?.save(path)
     }
 
-    /// Reads a classifier written by [`SoftnessNet::save`].
+    /// Reads a classifier written by [`SoftnessNet::save`]; an error names the file.
     pub fn load(path: &Path) -> Result<SoftnessNet, NetError> {
         TensorFile::load_with(path, Self::from_file)
     }
@@ -374,9 +341,9 @@ impl SoftnessNet {
 /// Input: a grasp's series, flat, [`N_VARIABLES`] readings per sample (see the module docs).
 impl SoftnessClassifier for SoftnessNet {
     type Input = [f32];
-    type Error = NetError;
+    type Error = RunError;
 
-    fn classify(&mut self, series: &[f32]) -> Result<Softness, NetError> {
+    fn classify(&mut self, series: &[f32]) -> Result<Softness, RunError> {
         self.predict(series)
     }
 }

@@ -21,7 +21,8 @@
 
 use crate::error::NetError;
 use crate::softness::N_VARIABLES;
-use crate::softness::{CLASSES, HIDDEN, InputScale, Layers, N_PARAMS, SoftnessNet};
+use crate::softness::{CLASSES, HIDDEN, InputScale, N_PARAMS, SoftnessNet};
+pub use crate::softness_layers::{Layers, Pass};
 use hand_traits::Softness;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
 use nalgebra::storage::Owned;
@@ -294,7 +295,7 @@ pub fn train(
     let rows = Rows {
         z: picked
             .iter()
-            .map(|(s, _)| scale.apply(s).map(f64::from))
+            .map(|(s, _)| SVector::from(scale.apply(s).map(f64::from)))
             .collect(),
         t: picked.iter().map(|(_, l)| one_hot(*l)).collect(),
     };
@@ -307,15 +308,15 @@ pub fn train(
         Layers::from_flat(&p).ok_or_else(|| NetError::Training("parameter count".into()))?;
     let mse = rows.mse(&layers);
     let flat32: Vec<f32> = p.iter().map(|&v| v as f32).collect();
-    let layers32 =
-        Layers::from_flat(&flat32).ok_or_else(|| NetError::Training("parameter count".into()))?;
+    let net = SoftnessNet::from_flat(&flat32, scale)
+        .ok_or_else(|| NetError::Training("parameter count".into()))?;
     let report = TrainReport {
         stop,
         rows: rows.z.len(),
         curve,
         mse,
     };
-    Ok((SoftnessNet::new(layers32, scale), report))
+    Ok((net, report))
 }
 
 fn levenberg_marquardt(

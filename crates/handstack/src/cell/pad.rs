@@ -7,11 +7,12 @@ use super::error::CellError;
 use super::pace::Pacer;
 use crate::stop::Stop;
 use crate::tap_to_move::{TapToMoveConfig, TapTrigger};
-use hand_traits::{Contact, ImuFrame, TactileSource};
+use hand_traits::{Contact, ContactLocator, ImuFrame, TactileSource};
 use hand_zenoh::convert::{contact_to_msg, header, imu_to_msg};
 use hand_zenoh::msg::handstack_msgs::{ContactArray, PressureFrame};
 use hand_zenoh::msg::sensor_msgs::Imu;
 use hand_zenoh::node::{Node, now_ns};
+use tactile_nets::contact_cnn::{self, ContactCnn};
 
 /// How the pad node runs.
 #[derive(Debug, Clone)]
@@ -43,6 +44,22 @@ impl core::fmt::Display for PadNodeReport {
 
 /// Locates the tap in a window of frames: the contact locator behind the pad node.
 pub type Locate<'a> = &'a mut dyn FnMut(&[ImuFrame]) -> Result<Contact, CellError>;
+
+/// The contact CNN (Al & Martinez-Hernandez, §IV-A) as a pad node's locator: each window of
+/// [`contact_cnn::WINDOW`] frames (the trigger's `frames_before + frames_after`) → one of the
+/// pad's 9 regions. An error names the CNN and what was wrong.
+pub fn cnn_locator(
+    cnn: &mut ContactCnn,
+) -> impl FnMut(&[ImuFrame]) -> Result<Contact, CellError> + '_ {
+    move |frames| {
+        contact_cnn::window(frames)
+            .and_then(|w| cnn.locate(&w))
+            .map_err(|e| CellError::Device {
+                device: "estimators.contact",
+                reason: format!("the contact CNN: {e}"),
+            })
+    }
+}
 
 /// Runs the pad node on `node` until `stop` (or `max_frames`): reads `source` at the configured
 /// rate and publishes each frame; with `locate`, also cuts the window around each tap's trigger

@@ -8,11 +8,14 @@ use super::hand::{self, HandNodeConfig};
 use super::pad::{self, PadNodeConfig};
 use super::{NodeArgs, tactile};
 use crate::scene::NodeScene;
+use crate::scene::parts::Locator;
 use crate::stack::platform::Platform;
 use crate::stop::Stop;
 use crate::tap_to_move::TapToMoveConfig;
 use hand_zenoh::node::Node;
 use hand_zenoh::tactile::TactileInfo;
+use tactile_nets::contact_cnn::Variant;
+use tactile_nets::pretrained::contact_cnn;
 
 /// The fingertip's frame rate as a node: the grasp loop's default rate (100 Hz), the rate it
 /// reads its fingertips at.
@@ -112,8 +115,19 @@ pub fn run_node(
                 trigger: TapToMoveConfig::default(),
                 max_frames: None,
             };
-            // No locator: the contact CNN (tactile-nets with `std`) is not in this binary.
-            let report = pad::run(&node, &mut source, None, &config, stop)?;
+            // With `cnn` among the scene's locators, each tap's window goes through the built-in
+            // contact CNN (Al & Martinez-Hernandez, §IV-A: the paper's variant).
+            let mut cnn = if scene.locators().contains(&Locator::Cnn) {
+                Some(contact_cnn(Variant::Paper).map_err(|e| CellError::Device {
+                    device: "estimators.contact",
+                    reason: format!("the contact CNN: {e}"),
+                })?)
+            } else {
+                None
+            };
+            let mut locate = cnn.as_mut().map(pad::cnn_locator);
+            let locate = locate.as_mut().map(|l| l as pad::Locate<'_>);
+            let report = pad::run(&node, &mut source, locate, &config, stop)?;
             Ok(report.to_string())
         }
     }

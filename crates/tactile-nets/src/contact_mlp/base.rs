@@ -38,7 +38,7 @@ impl QuadraticBase {
     /// The least-squares base of `targets` at the standardised inputs `rows` (the minimum-norm
     /// solution when the terms are not independent, as on a handful of taps); `None` for no
     /// rows or a non-finite fit.
-    #[cfg(feature = "std")]
+    #[cfg(feature = "train")]
     pub fn fit(rows: &[[f32; N_FEATURES]], targets: &[[f32; 2]]) -> Option<QuadraticBase> {
         use nalgebra::DMatrix;
         if rows.is_empty() || rows.len() != targets.len() {

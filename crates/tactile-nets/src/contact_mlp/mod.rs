@@ -41,10 +41,10 @@ use hand_traits::{Contact, ContactLocator};
 use num_traits::Float;
 
 mod base;
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 mod model;
 pub use base::{BASE_TERMS, QuadraticBase, base_terms};
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 pub use model::ContactMlp;
 
 /// What the three sensors read for one tap, the MLP's raw material.
@@ -483,7 +483,7 @@ impl ContactLocator for StaticContactMlp {
     }
 }
 
-#[cfg(all(test, feature = "std"))]
+#[cfg(all(test, feature = "train"))]
 mod tests {
     use super::*;
     use crate::activations::log_sigmoid;

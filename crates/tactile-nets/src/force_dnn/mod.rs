@@ -16,7 +16,7 @@
 //! [`ForceDnn::estimate_gf_dfdx`] keeps the dfdx forward for comparison.
 //!
 //! ```
-//! # #[cfg(feature = "std")] {
+//! # #[cfg(feature = "train")] {
 //! use hand_traits::ForceEstimator;
 //! use tactile_nets::force_dnn::{ForceDnn, tared_table};
 //! use tactile_nets::train::TrainConfig;
@@ -40,9 +40,9 @@ use crate::frozen::{self, Layer, Logistic, Relu, StaticDense};
 use crate::norm::standardise;
 use hand_traits::{ForceEstimate, ForceEstimator};
 
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 mod model;
-#[cfg(feature = "std")]
+#[cfg(feature = "train")]
 pub use model::{ForceDnn, tared_table};
 
 /// One training or test sample: tared pressure rises and the true weight.

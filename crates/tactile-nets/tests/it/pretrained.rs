@@ -9,9 +9,9 @@ use tactile_nets::contact_cnn::Variant;
 use tactile_nets::contact_mlp::{N_FEATURES, TapReading, features};
 use tactile_nets::force_dnn::ForceDnn;
 use tactile_nets::pretrained::{
-    CONTACT_MLP_OSRS, FORCE_DNN_SIM, FORCE_DNN_TABLE1, ForceModel, SIZE_BUDGET_BYTES,
-    built_in_bytes, contact_cnn, contact_mlp, contact_mlp_static, force_dnn, metrics, softness,
-    softness_seed,
+    CONTACT_MLP_OSRS, FORCE_DNN_SIM, FORCE_DNN_TABLE1, ForceModel, SIZE_BUDGET_BYTES, SOFTNESS,
+    SOFTNESS_SEED, built_in_bytes, contact_cnn, contact_mlp, contact_mlp_static, force_dnn,
+    metrics, softness,
 };
 
 #[test]
@@ -100,6 +100,12 @@ fn every_built_in_model_loads_within_the_budget() -> Result<(), NetError> {
     }
     let net = softness()?;
     assert!(net.sample_outputs(&[1.0; 8]).is_ok());
+    // The `'static` softness net is the file's, bit for bit, and the metrics file's selection.
+    assert_eq!(SOFTNESS, net);
+    let selected = metrics("softness")?
+        .row("selected")
+        .and_then(|r| r.values.get("lm_seed").copied());
+    assert_eq!(selected, Some(SOFTNESS_SEED as f64));
     for kind in ["force_dnn", "contact_mlp", "contact_cnn", "softness"] {
         assert!(!metrics(kind)?.rows.is_empty(), "{kind}");
     }
@@ -136,7 +142,7 @@ fn the_readme_quotes_the_built_in_metrics() -> Result<(), NetError> {
             .map(pct)
         })
         .collect::<Result<_, _>>()?;
-    let seed = softness_seed()?;
+    let seed = SOFTNESS_SEED;
     let quoted = [
         format!(
             "fit RMSE {:.3} gf",

@@ -5,12 +5,12 @@
 use crate::common::{bits, rng};
 use proptest::prelude::*;
 use rand::Rng;
-use tactile_nets::NetError;
 use tactile_nets::pretrained;
 use tactile_nets::softness::{N_VARIABLES, SoftnessNet};
 use tactile_nets::softness_train::{
     AdamConfig, LmConfig, Optimiser, SoftnessTrainConfig, Stop, train,
 };
+use tactile_nets::{NetError, RunError};
 use tactile_nets::{Softness, SoftnessClassifier};
 
 /// One labelled grasp: its series of samples (four forces, N, then four distal angles, °).
@@ -119,21 +119,21 @@ fn bad_input_gives_typed_errors() -> Result<(), NetError> {
     let mut net = pretrained::softness()?;
     assert!(matches!(
         net.sample_outputs(&[0.0; 7]),
-        Err(NetError::Shape {
+        Err(RunError::Shape {
             expected: 8,
             got: 7
         })
     ));
     assert!(matches!(
         net.classify(&[]),
-        Err(NetError::Shape {
+        Err(RunError::Shape {
             expected: 8,
             got: 0
         })
     ));
     assert!(matches!(
         net.classify(&[1.0; 12]),
-        Err(NetError::Shape {
+        Err(RunError::Shape {
             expected: 16,
             got: 12
         })
@@ -142,12 +142,12 @@ fn bad_input_gives_typed_errors() -> Result<(), NetError> {
     series[N_VARIABLES + 5] = f32::NAN;
     assert!(matches!(
         net.classify(&series),
-        Err(NetError::NonFinite { index: 13 })
+        Err(RunError::NonFinite { index: 13 })
     ));
     series[N_VARIABLES + 5] = f32::INFINITY;
     assert!(matches!(
         net.classify(&series),
-        Err(NetError::NonFinite { index: 13 })
+        Err(RunError::NonFinite { index: 13 })
     ));
     // Training rejects a non-finite reading, a zero stride and an empty set.
     let mut bad = vec![[1.0f32; N_VARIABLES]; 4];

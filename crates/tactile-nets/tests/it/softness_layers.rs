@@ -2,7 +2,8 @@
 //! Jacobian matches finite differences.
 
 use nalgebra::SVector;
-use tactile_nets::softness::{CLASSES, Layers, N_PARAMS, N_VARIABLES};
+use tactile_nets::softness::{CLASSES, N_PARAMS, N_VARIABLES};
+use tactile_nets::softness_train::Layers;
 
 #[test]
 fn flat_round_trip_and_jacobian_matches_finite_differences() {

@@ -13,10 +13,13 @@
 //!   need a common scale), stored with the weights;
 //! - optimiser: Adam with softmax cross-entropy (the crate's shared [`crate::train::fit`]).
 //!
-//! Inference runs through [`crate::cnn_frozen`] (plain arrays, no allocation per call),
-//! checked against the dfdx forward in the tests.
+//! Inference runs through [`crate::cnn_frozen`] (plain arrays, no allocation per call, no
+//! dfdx: feature `std`); training (feature `train`) builds the dfdx graph of
+//! [`crate::cnn_layers`] and freezes it, and `DfdxCnn` (feature `train`) keeps dfdx's
+//! forward as the reference the plain-array path is tested against.
 //!
 //! ```
+//! # #[cfg(feature = "train")] {
 //! use hand_traits::ContactLocator;
 //! use tactile_nets::contact_cnn::{ContactCnn, Variant};
 //! use tactile_nets::train::TrainConfig;
@@ -33,18 +36,21 @@
 //! let contact = cnn.locate(&window(-100.0))?;
 //! assert_eq!((contact.region, contact.regions), (4, 9));
 //! assert!(cnn.locate(&[0.0; 3]).is_err()); // wrong shape: a typed error, not a panic
+//! # }
 //! # Ok::<(), tactile_nets::NetError>(())
 //! ```
 
 use crate::activations::softmax_into;
 use crate::cnn_frozen::FrozenCnn;
-use crate::cnn_layers::{Im2Col, PATCH, POOLED, POSITIONS, PoolFlatten};
 use crate::error::{NetError, check_input, check_output};
 use crate::io::TensorFile;
-use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
-use dfdx::prelude::*;
-use hand_traits::{Contact, ContactLocator};
+use hand_traits::{Contact, ContactLocator, ImuFrame};
 use std::path::Path;
+
+#[cfg(feature = "train")]
+mod training;
+#[cfg(feature = "train")]
+pub use training::DfdxCnn;
 
 /// Samples per signal in a window (§IV-A: 4 × 38).
 pub const WINDOW: usize = 38;
@@ -54,13 +60,63 @@ pub const CHANNELS: usize = 4;
 pub const WINDOW_VALUES: usize = CHANNELS * WINDOW;
 /// The §IV-A contact regions (3 columns × 3 groups of 8 rows).
 pub const REGIONS: usize = 9;
+/// From an IMU frame's SI units to the network's: m/s² → mm/s², rad/s → mrad/s (the units of
+/// hand-sim's tap dataset the built-in networks were trained on).
+pub const SI_TO_INPUT: f32 = 1e3;
 
-type Arch<const F: usize, const FLAT: usize, const H: usize> = (
-    (Im2Col, Linear<PATCH, F>, ReLU, PoolFlatten<F, FLAT>),
-    (Linear<FLAT, H>, ReLU, Linear<H, REGIONS>),
-);
-type Net<const F: usize, const FLAT: usize, const H: usize> =
-    <Arch<F, FLAT, H> as BuildOnDevice<Cpu, f32>>::Built;
+/// The window the network reads from [`WINDOW`] IMU frames in time order: channel-major acc x,
+/// acc y, gyro x, gyro y, scaled by [`SI_TO_INPUT`].
+///
+/// Errors: [`NetError::Shape`] (in frames) unless there are exactly [`WINDOW`] frames.
+///
+/// ```
+/// use hand_traits::ImuFrame;
+/// use tactile_nets::contact_cnn::{WINDOW, window};
+/// let frames: Vec<ImuFrame> = (0..WINDOW as u64)
+///     .map(|i| ImuFrame { t_us: i * 33_333, accel_mps2: [0.5, -0.25, 9.8],
+///                         gyro_rps: [0.01, 0.02, 0.0], pressure_pa: None })
+///     .collect();
+/// let w = window(&frames)?;
+/// assert_eq!((w[0], w[WINDOW], w[3 * WINDOW]), (500.0, -250.0, 20.0));
+/// assert!(window(&frames[1..]).is_err());
+/// # Ok::<(), tactile_nets::NetError>(())
+/// ```
+pub fn window(frames: &[ImuFrame]) -> Result<[f32; WINDOW_VALUES], NetError> {
+    if frames.len() != WINDOW {
+        return Err(NetError::Shape {
+            expected: WINDOW,
+            got: frames.len(),
+        });
+    }
+    Ok(core::array::from_fn(|i| {
+        let f = &frames[i % WINDOW];
+        let v = match i / WINDOW {
+            0 => f.accel_mps2[0],
+            1 => f.accel_mps2[1],
+            2 => f.gyro_rps[0],
+            _ => f.gyro_rps[1],
+        };
+        v * SI_TO_INPUT
+    }))
+}
+
+/// Kernel side.
+pub const KERNEL: usize = 3;
+/// Values per patch (3 × 3).
+pub const PATCH: usize = KERNEL * KERNEL;
+/// Rows of the conv map (valid convolution over 4 signals).
+pub const CONV_ROWS: usize = CHANNELS - KERNEL + 1;
+/// Columns of the conv map (valid convolution over 38 samples).
+pub const CONV_COLS: usize = WINDOW - KERNEL + 1;
+/// Members of a 2 × 2 pool window.
+pub const POOL_SLOTS: usize = 4;
+/// Columns after the 2 × 2, stride-2 max-pool (the single pooled row is 1 high).
+pub const POOLED: usize = CONV_COLS / 2;
+/// Conv positions per sample (2 × 36).
+pub const POSITIONS: usize = POOL_SLOTS * POOLED;
+
+// The pool consumes the whole conv map: 2 rows, an even number of columns.
+const _: () = assert!(CONV_ROWS == 2 && CONV_COLS.is_multiple_of(2));
 
 /// Which network.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -126,37 +182,29 @@ impl Variant {
     }
 }
 
-enum Body {
-    Paper(Net<8, { 8 * POOLED }, 320>),
-    Small(Net<4, { 4 * POOLED }, 32>),
-    Wide(Net<16, { 16 * POOLED }, 64>),
-}
-
-/// The frozen (plain-array) form of a [`Body`].
+/// The plain-array network of each [`Variant`].
+#[derive(Debug, Clone, PartialEq)]
 enum Fast {
     Paper(FrozenCnn<8, { 8 * POOLED }, 320>),
     Small(FrozenCnn<4, { 4 * POOLED }, 32>),
     Wide(FrozenCnn<16, { 16 * POOLED }, 64>),
 }
 
-/// Runs `$e` with `$n` bound to the concrete network inside a [`Body`].
-macro_rules! with_net {
-    ($body:expr, $n:ident => $e:expr) => {
-        match $body {
-            Body::Paper($n) => $e,
-            Body::Small($n) => $e,
-            Body::Wide($n) => $e,
-        }
-    };
-}
-
 impl Fast {
-    fn of(body: &Body) -> Result<Fast, NetError> {
-        Ok(match body {
-            Body::Paper(n) => Fast::Paper(FrozenCnn::new(&n.0.1, &n.1)?),
-            Body::Small(n) => Fast::Small(FrozenCnn::new(&n.0.1, &n.1)?),
-            Body::Wide(n) => Fast::Wide(FrozenCnn::new(&n.0.1, &n.1)?),
+    fn from_file(variant: Variant, file: &TensorFile) -> Result<Fast, NetError> {
+        Ok(match variant {
+            Variant::Paper => Fast::Paper(FrozenCnn::from_file(file)?),
+            Variant::Small => Fast::Small(FrozenCnn::from_file(file)?),
+            Variant::Wide => Fast::Wide(FrozenCnn::from_file(file)?),
         })
+    }
+
+    fn to_file(&self, file: &mut TensorFile) -> Result<(), NetError> {
+        match self {
+            Fast::Paper(f) => f.to_file(file),
+            Fast::Small(f) => f.to_file(file),
+            Fast::Wide(f) => f.to_file(file),
+        }
     }
 
     fn logits(&self, z: &[f32; WINDOW_VALUES]) -> [f32; REGIONS] {
@@ -168,14 +216,13 @@ impl Fast {
     }
 }
 
-/// A trained contact CNN.
+/// A trained contact CNN: its weights in plain arrays and the input standardisation.
+#[derive(Debug, Clone, PartialEq)]
 pub struct ContactCnn {
     variant: Variant,
-    body: Body,
     mean: [f32; CHANNELS],
     scale: [f32; CHANNELS],
     frozen: Fast,
-    dev: Cpu,
 }
 
 /// One localisation.
@@ -187,108 +234,20 @@ pub struct Prediction {
     pub confidence: f32,
 }
 
-fn build(variant: Variant, dev: &Cpu) -> Body {
-    match variant {
-        Variant::Paper => Body::Paper(dev.build_module::<Arch<8, { 8 * POOLED }, 320>, f32>()),
-        Variant::Small => Body::Small(dev.build_module::<Arch<4, { 4 * POOLED }, 32>, f32>()),
-        Variant::Wide => Body::Wide(dev.build_module::<Arch<16, { 16 * POOLED }, 64>, f32>()),
-    }
-}
-
-/// Per-channel mean and spread of `windows` (spread 1 for a constant channel).
-fn channel_stats(windows: &[[f32; WINDOW_VALUES]]) -> ([f32; CHANNELS], [f32; CHANNELS]) {
-    let mut mean = [0.0f32; CHANNELS];
-    let mut scale = [1.0f32; CHANNELS];
-    let n = (windows.len() * WINDOW).max(1) as f64;
-    for c in 0..CHANNELS {
-        let vals = || {
-            windows
-                .iter()
-                .flat_map(|w| &w[c * WINDOW..(c + 1) * WINDOW])
-        };
-        let m = vals().map(|&v| f64::from(v)).sum::<f64>() / n;
-        let var = vals().map(|&v| (f64::from(v) - m).powi(2)).sum::<f64>() / n;
-        mean[c] = m as f32;
-        if var.sqrt() > 1e-6 {
-            scale[c] = var.sqrt() as f32;
-        }
-    }
-    (mean, scale)
-}
-
 impl ContactCnn {
-    /// Trains `variant` on `windows` (raw, channel-major) labelled with `regions` (0…8),
-    /// using `config` (its seed also seeds the initial weights).
-    pub fn train(
-        windows: &[[f32; WINDOW_VALUES]],
-        regions: &[u8],
-        variant: Variant,
-        config: &TrainConfig,
-    ) -> Result<(ContactCnn, TrainLog), NetError> {
-        if windows.is_empty() || windows.len() != regions.len() {
-            return Err(NetError::Training(format!(
-                "{} windows and {} labels",
-                windows.len(),
-                regions.len()
-            )));
-        }
-        if let Some(&r) = regions.iter().find(|&&r| usize::from(r) >= REGIONS) {
-            return Err(NetError::Training(format!("region {r} is not 0…8")));
-        }
-        let (mean, scale) = channel_stats(windows);
-        let mut samples = Samples {
-            inputs: Vec::with_capacity(windows.len() * WINDOW_VALUES),
-            targets: Vec::with_capacity(windows.len() * REGIONS),
-        };
-        for (w, &r) in windows.iter().zip(regions) {
-            samples
-                .inputs
-                .extend((0..WINDOW_VALUES).map(|i| (w[i] - mean[i / WINDOW]) / scale[i / WINDOW]));
-            samples
-                .targets
-                .extend((0..REGIONS).map(|k| f32::from(u8::from(k == usize::from(r)))));
-        }
-        let dev = Cpu::seed_from_u64(config.seed);
-        let mut body = build(variant, &dev);
-        let loss = Loss::SoftmaxCrossEntropy;
-        let log = with_net!(&mut body, net => {
-            fit::<_, WINDOW_VALUES, REGIONS>(&dev, net, &samples, loss, config)?
-        });
-        let model = Self::assemble(variant, body, mean, scale, dev)?;
-        Ok((model, log))
-    }
-
-    fn assemble(
-        variant: Variant,
-        body: Body,
-        mean: [f32; CHANNELS],
-        scale: [f32; CHANNELS],
-        dev: Cpu,
-    ) -> Result<ContactCnn, NetError> {
-        let frozen = Fast::of(&body)?;
-        Ok(ContactCnn {
-            variant,
-            body,
-            mean,
-            scale,
-            frozen,
-            dev,
-        })
-    }
-
     /// Which network this is.
     pub fn variant(&self) -> Variant {
         self.variant
     }
 
+    /// The per-channel input standardisation `(mean, spread)` of the training set.
+    pub fn input_scale(&self) -> ([f32; CHANNELS], [f32; CHANNELS]) {
+        (self.mean, self.scale)
+    }
+
     /// Standardised window; errors as [`ContactCnn::logits`].
     fn standardise(&self, window: &[f32]) -> Result<[f32; WINDOW_VALUES], NetError> {
-        check_input(window, WINDOW_VALUES)?;
-        let z: [f32; WINDOW_VALUES] =
-            core::array::from_fn(|i| (window[i] - self.mean[i / WINDOW]) / self.scale[i / WINDOW]);
-        // A finite input can still overflow the standardisation: report it as the overflow it is.
-        check_output(&z)?;
-        Ok(z)
+        standardise(window, &self.mean, &self.scale)
     }
 
     /// The 9 logits for a raw window (152 values, channel-major: acc x, acc y in mm/s², gyro
@@ -304,37 +263,12 @@ impl ContactCnn {
         Ok(out)
     }
 
-    /// The same logits through dfdx's forward (the reference the plain-array path is tested
-    /// against).
-    pub fn logits_dfdx(&self, window: &[f32]) -> Result<[f32; REGIONS], NetError> {
-        let z = self.standardise(window)?;
-        let x = self
-            .dev
-            .try_tensor_from_vec(z.to_vec(), (1, Const::<WINDOW_VALUES>))?;
-        let out = with_net!(&self.body, net => net.try_forward(x)?.as_vec());
-        check_output(&out)?;
-        let mut l = [0.0f32; REGIONS];
-        l.copy_from_slice(&out);
-        Ok(l)
-    }
-
-    /// Region of highest probability for each of many raw windows (one batched dfdx forward
-    /// per 1024 windows: the evaluation path).
+    /// Region of highest probability for each of many raw windows (the evaluation path).
     pub fn classify_batch(&self, windows: &[[f32; WINDOW_VALUES]]) -> Result<Vec<u8>, NetError> {
-        let mut out = Vec::with_capacity(windows.len());
-        for chunk in windows.chunks(1024) {
-            let mut z = Vec::with_capacity(chunk.len() * WINDOW_VALUES);
-            for w in chunk {
-                z.extend_from_slice(&self.standardise(w)?);
-            }
-            let x = self
-                .dev
-                .try_tensor_from_vec(z, (chunk.len(), Const::<WINDOW_VALUES>))?;
-            let logits = with_net!(&self.body, net => net.try_forward(x)?.as_vec());
-            check_output(&logits)?;
-            out.extend(logits.chunks(REGIONS).map(argmax));
-        }
-        Ok(out)
+        windows
+            .iter()
+            .map(|w| self.logits(w).map(|l| argmax(&l)))
+            .collect()
     }
 
     /// Locates a contact from a raw window (see [`ContactCnn::logits`] for the errors).
@@ -352,7 +286,7 @@ impl ContactCnn {
     /// Weights and input scaling as a [`TensorFile`].
     pub fn to_file(&self) -> Result<TensorFile, NetError> {
         let mut f = TensorFile::new();
-        with_net!(&self.body, net => f.add_module("net.", net)?);
+        self.frozen.to_file(&mut f)?;
         f.insert("input.mean", &[CHANNELS], &self.mean)?;
         f.insert("input.scale", &[CHANNELS], &self.scale)?;
         let (filters, dense) = self.variant.sizes();
@@ -369,6 +303,10 @@ impl ContactCnn {
     }
 
     /// A model from [`ContactCnn::to_file`]'s output.
+    ///
+    /// Errors: [`NetError::SafeTensors`] when the metadata names no variant, a tensor error
+    /// for a missing or misshapen tensor, [`NetError::TensorMismatch`] for a spread that is
+    /// not finite and positive.
     pub fn from_file(file: &TensorFile) -> Result<ContactCnn, NetError> {
         let meta: serde_json::Value = serde_json::from_str(file.metadata())
             .map_err(|e| NetError::SafeTensors(format!("metadata: {e}")))?;
@@ -377,9 +315,6 @@ impl ContactCnn {
             .and_then(|v| v.as_str())
             .and_then(Variant::from_name)
             .ok_or_else(|| NetError::SafeTensors("metadata names no contact-CNN variant".into()))?;
-        let dev = Cpu::seed_from_u64(0);
-        let mut body = build(variant, &dev);
-        with_net!(&mut body, net => file.load_module("net.", net)?);
         let vec4 = |name: &str| -> Result<[f32; CHANNELS], NetError> {
             let v = file.get(name, &[CHANNELS])?;
             Ok(core::array::from_fn(|j| v[j]))
@@ -392,7 +327,12 @@ impl ContactCnn {
                 expected: "finite positive spreads".into(),
             });
         }
-        Self::assemble(variant, body, mean, scale, dev)
+        Ok(ContactCnn {
+            variant,
+            mean,
+            scale,
+            frozen: Fast::from_file(variant, file)?,
+        })
     }
 
     /// Writes the model as a `.safetensors` file.
@@ -406,6 +346,19 @@ impl ContactCnn {
     }
 }
 
+/// `window` checked and standardised with the per-channel `mean` and `scale`.
+fn standardise(
+    window: &[f32],
+    mean: &[f32; CHANNELS],
+    scale: &[f32; CHANNELS],
+) -> Result<[f32; WINDOW_VALUES], NetError> {
+    check_input(window, WINDOW_VALUES)?;
+    let z: [f32; WINDOW_VALUES] =
+        core::array::from_fn(|i| (window[i] - mean[i / WINDOW]) / scale[i / WINDOW]);
+    // A finite input can still overflow the standardisation: report it as the overflow it is.
+    check_output(&z)?;
+    Ok(z)
+}
 /// Index of the largest value (ties: the lower; NaN never wins).
 fn argmax(v: &[f32]) -> u8 {
     let mut best = 0;
