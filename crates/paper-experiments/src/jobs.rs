@@ -455,7 +455,11 @@ pub fn contact_cnn(
         let (_, model) = cnn_eval::run_job(job, d, seed, &|_| {})?;
         let secs = t.elapsed().as_secs_f64();
         let path = dir.join(which.file());
-        model.save(&path)?;
+        // The file says where its training windows sit after a tap's trigger, so that a pad
+        // node cuts the windows it learned from.
+        model
+            .with_trigger_offset(crate::tap_run::training_centre_frames())?
+            .save(&path)?;
         // The row comes from the saved file, exactly as the drift test will re-create it.
         let (acc, conf) = cnn_eval::evaluate_committed(root, &taps, which)?;
         println!(

@@ -94,12 +94,7 @@ pub fn training_centre_frames() -> usize {
 /// The experiment with its window placed like the training windows: `training_centre_frames`
 /// after the trigger at frame 19 of 38.
 pub fn training_aligned() -> TapToMoveConfig {
-    let shift = training_centre_frames().min(WINDOW_SAMPLES / 2);
-    TapToMoveConfig {
-        frames_before: WINDOW_SAMPLES / 2 - shift,
-        frames_after: WINDOW_SAMPLES / 2 + shift,
-        ..TapToMoveConfig::default()
-    }
+    TapToMoveConfig::centred_after_trigger(training_centre_frames())
 }
 
 /// One cycle's outcome.

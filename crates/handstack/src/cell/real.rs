@@ -109,14 +109,9 @@ pub fn run_node(
             })?;
             let mut source = crate::stack::pad::open(platform, bus.get_ref(), pad.pressure_mode)?;
             let node = Node::open(args.options())?;
-            let config = PadNodeConfig {
-                rate_hz: crate::stack::pad::FRAME_RATE_HZ,
-                frame_id,
-                trigger: TapToMoveConfig::default(),
-                max_frames: None,
-            };
             // With `cnn` among the scene's locators, each tap's window goes through the built-in
-            // contact CNN (Al & Martinez-Hernandez, §IV-A: the paper's variant).
+            // contact CNN (Al & Martinez-Hernandez, §IV-A: the paper's variant), cut where its
+            // training windows sat after the trigger.
             let mut cnn = if scene.locators().contains(&Locator::Cnn) {
                 Some(contact_cnn(Variant::Paper).map_err(|e| CellError::Device {
                     device: "estimators.contact",
@@ -124,6 +119,16 @@ pub fn run_node(
                 })?)
             } else {
                 None
+            };
+            let trigger = cnn.as_ref().and_then(|c| c.trigger_offset()).map_or_else(
+                TapToMoveConfig::default,
+                TapToMoveConfig::centred_after_trigger,
+            );
+            let config = PadNodeConfig {
+                rate_hz: crate::stack::pad::FRAME_RATE_HZ,
+                frame_id,
+                trigger,
+                max_frames: None,
             };
             let mut locate = cnn.as_mut().map(pad::cnn_locator);
             let locate = locate.as_mut().map(|l| l as pad::Locate<'_>);

@@ -48,6 +48,30 @@ impl Default for TapToMoveConfig {
     }
 }
 
+impl TapToMoveConfig {
+    /// The default trigger with its window of `frames_before + frames_after` frames centred
+    /// `frames` after the trigger frame (at most half the window: it starts at the trigger at
+    /// the latest), where a locator's training windows sat
+    /// (`tactile_nets::contact_cnn::ContactCnn::trigger_offset`).
+    ///
+    /// ```
+    /// use handstack::tap_to_move::TapToMoveConfig;
+    /// let c = TapToMoveConfig::centred_after_trigger(16);
+    /// assert_eq!((c.frames_before, c.frames_after), (3, 35));
+    /// let c = TapToMoveConfig::centred_after_trigger(40);
+    /// assert_eq!((c.frames_before, c.frames_after), (0, 38));
+    /// ```
+    pub fn centred_after_trigger(frames: usize) -> TapToMoveConfig {
+        let d = TapToMoveConfig::default();
+        let shift = frames.min(d.frames_before);
+        TapToMoveConfig {
+            frames_before: d.frames_before - shift,
+            frames_after: d.frames_after + shift,
+            ..d
+        }
+    }
+}
+
 /// What one cycle did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CycleReport {

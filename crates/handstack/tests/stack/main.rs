@@ -6,5 +6,7 @@ mod cell_arm;
 mod cli;
 mod ending;
 mod hardware;
+#[cfg(feature = "cell")]
+mod pad_node;
 mod process;
 mod scenes;

@@ -7,7 +7,7 @@ use paper_experiments::cnn_eval::{
 };
 use paper_experiments::data::imu_pad::{self, CHANNELS, Dataset, WINDOW};
 use tactile_nets::NetError;
-use tactile_nets::contact_cnn::Variant;
+use tactile_nets::contact_cnn::{ContactCnn, Variant};
 use tactile_nets::metrics::MetricsFile;
 
 fn taps() -> Dataset {
@@ -81,5 +81,16 @@ fn committed_metrics_match_a_re_evaluation_of_the_committed_weights() -> Result<
     };
     let drift = only_committed.drift(&cnn_eval::metrics_file(fresh, SEED), 1e-9);
     assert!(drift.is_empty(), "committed metrics drifted: {drift:#?}");
+    // Each committed file says where its training windows sit after a tap's trigger: where
+    // hand-sim cuts them.
+    for which in cnn_eval::COMMITTED {
+        let model = ContactCnn::load(&root().join(MODEL_DIR).join(which.file()))?;
+        assert_eq!(
+            model.trigger_offset(),
+            Some(paper_experiments::tap_run::training_centre_frames()),
+            "{}",
+            which.file()
+        );
+    }
     Ok(())
 }

@@ -216,14 +216,19 @@ impl Fast {
     }
 }
 
-/// A trained contact CNN: its weights in plain arrays and the input standardisation.
+/// A trained contact CNN: its weights in plain arrays, the input standardisation and, when its
+/// training windows said so, where a window sits relative to the tap's pressure trigger.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactCnn {
     variant: Variant,
     mean: [f32; CHANNELS],
     scale: [f32; CHANNELS],
     frozen: Fast,
+    trigger_offset: Option<u8>,
 }
+
+/// The weights file's metadata key for [`ContactCnn::trigger_offset`].
+const TRIGGER_OFFSET_KEY: &str = "window_centre_after_trigger_frames";
 
 /// One localisation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -238,6 +243,31 @@ impl ContactCnn {
     /// Which network this is.
     pub fn variant(&self) -> Variant {
         self.variant
+    }
+
+    /// Frames from a tap's pressure trigger to the centre of the windows the network was
+    /// trained on (sample [`WINDOW`]` / 2`): a window cut elsewhere around a tap is not what
+    /// the network learned. `None` when the training data did not say.
+    ///
+    /// The built-in models: 16 (hand-sim's taps are cut around the middle of press, hold and
+    /// release; centred on the trigger instead, the paper CNN located 10 of 90 taps).
+    pub fn trigger_offset(&self) -> Option<usize> {
+        self.trigger_offset.map(usize::from)
+    }
+
+    /// The model with its training windows' [`ContactCnn::trigger_offset`] (at most
+    /// [`WINDOW`]` / 2`: a window starts at the trigger at the latest).
+    ///
+    /// Errors: [`NetError::Training`] for a larger offset.
+    pub fn with_trigger_offset(mut self, frames: usize) -> Result<ContactCnn, NetError> {
+        if frames > WINDOW / 2 {
+            return Err(NetError::Training(format!(
+                "a window centred {frames} frames after the trigger would start after it (at most {})",
+                WINDOW / 2
+            )));
+        }
+        self.trigger_offset = Some(frames as u8);
+        Ok(self)
     }
 
     /// The per-channel input standardisation `(mean, spread)` of the training set.
@@ -290,7 +320,7 @@ impl ContactCnn {
         f.insert("input.mean", &[CHANNELS], &self.mean)?;
         f.insert("input.scale", &[CHANNELS], &self.scale)?;
         let (filters, dense) = self.variant.sizes();
-        let meta = serde_json::json!({
+        let mut meta = serde_json::json!({
             "model": "contact_cnn",
             "variant": self.variant.name(),
             "input": "4 x 38 window, channel-major: acc x, acc y (mm/s^2), gyro x, gyro y (mrad/s)",
@@ -298,13 +328,18 @@ impl ContactCnn {
             "dense": dense,
             "regions": REGIONS,
         });
+        if let (Some(frames), Some(m)) = (self.trigger_offset, meta.as_object_mut()) {
+            m.insert(TRIGGER_OFFSET_KEY.to_owned(), frames.into());
+        }
         f.set_metadata(meta.to_string());
         Ok(f)
     }
 
     /// A model from [`ContactCnn::to_file`]'s output.
     ///
-    /// Errors: [`NetError::SafeTensors`] when the metadata names no variant, a tensor error
+    /// Errors: [`NetError::SafeTensors`] when the metadata names no variant or a trigger
+    /// offset that is not a frame count, [`NetError::Training`] for an offset past
+    /// [`WINDOW`]` / 2`, a tensor error
     /// for a missing or misshapen tensor, [`NetError::TensorMismatch`] for a spread that is
     /// not finite and positive.
     pub fn from_file(file: &TensorFile) -> Result<ContactCnn, NetError> {
@@ -327,12 +362,22 @@ impl ContactCnn {
                 expected: "finite positive spreads".into(),
             });
         }
-        Ok(ContactCnn {
+        let model = ContactCnn {
             variant,
             mean,
             scale,
             frozen: Fast::from_file(variant, file)?,
-        })
+            trigger_offset: None,
+        };
+        match meta.get(TRIGGER_OFFSET_KEY) {
+            None => Ok(model),
+            Some(v) => match v.as_u64().and_then(|f| usize::try_from(f).ok()) {
+                Some(frames) => model.with_trigger_offset(frames),
+                None => Err(NetError::SafeTensors(format!(
+                    "metadata `{TRIGGER_OFFSET_KEY}` is {v}, not a frame count"
+                ))),
+            },
+        }
     }
 
     /// Writes the model as a `.safetensors` file.

@@ -128,6 +128,7 @@ impl ContactCnn {
             mean,
             scale,
             frozen: body.freeze()?,
+            trigger_offset: None,
         };
         Ok((model, log))
     }

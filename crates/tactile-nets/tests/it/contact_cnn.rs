@@ -125,6 +125,43 @@ fn bad_input_gives_typed_errors() -> Result<(), NetError> {
     Ok(())
 }
 
+#[test]
+fn the_trigger_offset_travels_with_the_weights_and_is_checked() -> Result<(), NetError> {
+    // The built-in models were trained on windows centred 16 frames after the trigger.
+    for v in Variant::ALL {
+        assert_eq!(
+            pretrained::contact_cnn(v)?.trigger_offset(),
+            Some(16),
+            "{v:?}"
+        );
+    }
+    let (w, r) = windows(5);
+    let (cnn, _) = ContactCnn::train(&w[..40], &r[..40], Variant::Small, &tiny(1))?;
+    assert_eq!(cnn.trigger_offset(), None);
+    let back = ContactCnn::from_file(&cnn.clone().with_trigger_offset(19)?.to_file()?)?;
+    assert_eq!(back.trigger_offset(), Some(19));
+    assert!(matches!(
+        cnn.clone().with_trigger_offset(20),
+        Err(NetError::Training(_))
+    ));
+    // A file whose metadata holds a bad offset: a typed error, not a default.
+    for bad in ["\"16\"", "-1", "20"] {
+        let mut file = cnn.to_file()?;
+        let meta = file.metadata().replacen(
+            '{',
+            &format!("{{\"window_centre_after_trigger_frames\":{bad},"),
+            1,
+        );
+        file.set_metadata(meta);
+        let e = ContactCnn::from_file(&file).expect_err(bad);
+        assert!(
+            e.to_string().contains("trigger") || e.to_string().contains("frame"),
+            "{bad}: {e}"
+        );
+    }
+    Ok(())
+}
+
 proptest! {
     #[test]
     fn softmax_is_finite_for_huge_logits(
