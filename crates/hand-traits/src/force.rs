@@ -8,6 +8,10 @@ pub const GRAM_FORCE_N: f32 = 9.806_65e-3;
 pub struct ForceEstimate {
     /// The estimated normal force, in newton.
     pub force_n: f32,
+    /// Whether the estimate lies within the range the estimator is valid for (a learned
+    /// model's training range). `false`: an extrapolation — for a network, typically its
+    /// saturated output, far from the true force — to be reported, not used as a measurement.
+    pub in_range: bool,
 }
 
 impl ForceEstimate {
@@ -22,6 +26,22 @@ impl ForceEstimate {
     pub fn from_gram_force(gf: f32) -> Self {
         Self {
             force_n: gf * GRAM_FORCE_N,
+            in_range: true,
+        }
+    }
+
+    /// The estimate, [`in_range`](Self::in_range) only if its gram-force lies within
+    /// `[lo, hi]`.
+    ///
+    /// ```
+    /// # use hand_traits::ForceEstimate;
+    /// assert!(ForceEstimate::from_gram_force(150.0).within_gf([0.0, 200.0]).in_range);
+    /// assert!(!ForceEstimate::from_gram_force(213.0).within_gf([0.0, 200.0]).in_range);
+    /// ```
+    pub fn within_gf(self, [lo, hi]: [f32; 2]) -> Self {
+        Self {
+            in_range: self.in_range && (lo..=hi).contains(&self.gram_force()),
+            ..self
         }
     }
 
@@ -44,7 +64,7 @@ impl ForceEstimate {
 ///     type Error = core::convert::Infallible;
 ///     fn estimate_force(&mut self, frame: &Self::Input) -> Result<ForceEstimate, Self::Error> {
 ///         let rise: f32 = frame.pressure_pa.iter().map(|p| p - self.baseline_pa).sum();
-///         Ok(ForceEstimate { force_n: rise * self.n_per_pa })
+///         Ok(ForceEstimate { force_n: rise * self.n_per_pa, in_range: true })
 ///     }
 /// }
 ///

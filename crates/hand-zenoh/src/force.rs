@@ -17,7 +17,7 @@
 //!     type Input = [f32];
 //!     type Error = core::convert::Infallible;
 //!     fn estimate_force(&mut self, rise_hpa: &[f32]) -> Result<ForceEstimate, Self::Error> {
-//!         Ok(ForceEstimate { force_n: rise_hpa.iter().sum() })
+//!         Ok(ForceEstimate { force_n: rise_hpa.iter().sum(), in_range: true })
 //!     }
 //! }
 //!
@@ -45,6 +45,7 @@ pub struct ForceTopic {
     estimate: Estimate,
     refused: u64,
     last_refusal: Option<String>,
+    beyond_range: u64,
 }
 
 impl ForceTopic {
@@ -61,17 +62,20 @@ impl ForceTopic {
             }),
             refused: 0,
             last_refusal: None,
+            beyond_range: 0,
         })
     }
 
     /// Estimates the force from `rise_hpa` (each sensor's rise over its zero, hPa) and
     /// publishes it stamped with `header`. `Ok(false)`: the estimator refused the input or
     /// gave a force that is not finite, which is counted ([`ForceTopic::refused`]) and not
-    /// published.
+    /// published. An estimate outside the estimator's range ([`ForceEstimate::in_range`]) is
+    /// published as it is and counted ([`ForceTopic::beyond_range`]).
     pub fn publish(&mut self, header: Header, rise_hpa: &[f32]) -> Result<bool, NodeError> {
         match (self.estimate)(rise_hpa) {
             Ok(f) if f.force_n.is_finite() => {
                 self.publisher.publish(&force_to_msg(f, header))?;
+                self.beyond_range += u64::from(!f.in_range);
                 Ok(true)
             }
             Ok(f) => Ok(self.refuse(format!("a force of {} N", f.force_n))),
@@ -88,6 +92,12 @@ impl ForceTopic {
     /// Inputs the estimator refused (or answered with a force that is not finite).
     pub fn refused(&self) -> u64 {
         self.refused
+    }
+
+    /// Published estimates outside the estimator's range (a force DNN pressed past its rated
+    /// weights: its saturated output).
+    pub fn beyond_range(&self) -> u64 {
+        self.beyond_range
     }
 
     /// Why the latest refused input was refused.

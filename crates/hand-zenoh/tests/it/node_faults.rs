@@ -308,7 +308,8 @@ impl hand_traits::TactileSource for Loaded {
     }
 }
 
-/// 1 N per hPa of summed rise; refuses more than 50 hPa (an estimator's typed error).
+/// 1 N per hPa of summed rise; out of its range above 20 hPa, refuses more than 50 hPa (an
+/// estimator's typed error).
 struct Linear;
 
 impl hand_traits::ForceEstimator for Linear {
@@ -322,7 +323,10 @@ impl hand_traits::ForceEstimator for Linear {
         if sum > 50.0 {
             return Err("beyond the rated range");
         }
-        Ok(hand_traits::ForceEstimate { force_n: sum })
+        Ok(hand_traits::ForceEstimate {
+            force_n: sum,
+            in_range: sum <= 20.0,
+        })
     }
 }
 
@@ -336,11 +340,12 @@ fn a_force_estimate_is_published_once_tared_and_a_refusal_is_counted() {
     let b = node(&endpoint, "/hand0", "reader");
     let source = Loaded {
         rest_pa: [119_125.0, 119_902.0, 101_804.0],
-        // 6 hPa in all; 60 hPa (refused); 0.5 hPa.
+        // 6 hPa in all; 60 hPa (refused); 0.5 hPa; 30 hPa (beyond the range).
         loads_pa: vec![
             [100.0, 200.0, 300.0],
             [2000.0, 2000.0, 2000.0],
             [50.0, 0.0, 0.0],
+            [1000.0, 1000.0, 1000.0],
         ],
         read: 0,
     };
@@ -366,12 +371,12 @@ fn a_force_estimate_is_published_once_tared_and_a_refusal_is_counted() {
             .wait_matched(WAIT)
             .unwrap()
     );
-    for _ in 0..6 {
+    for _ in 0..7 {
         tactile.step().unwrap();
     }
     // Nothing before the start-up tare's third frame; that frame itself is the zero (0 N).
     let mut got = Vec::new();
-    while got.len() < 3 {
+    while got.len() < 4 {
         let m = sub.recv_timeout(WAIT).unwrap().expect("a force message");
         got.push(m.message);
     }
@@ -381,7 +386,10 @@ fn a_force_estimate_is_published_once_tared_and_a_refusal_is_counted() {
     assert!((z[1] - 6.0).abs() < 1e-3, "{z:?}");
     // The refused 60 hPa frame published nothing: the next message is the 0.5 hPa frame.
     assert!((z[2] - 0.5).abs() < 1e-3, "{z:?}");
+    // Beyond the range: published as estimated, and counted.
+    assert!((z[3] - 30.0).abs() < 1e-3, "{z:?}");
     let force = tactile.force().unwrap();
+    assert_eq!(force.beyond_range(), 1);
     assert_eq!(force.refused(), 1);
     assert_eq!(force.last_refusal(), Some("\"beyond the rated range\""));
     for m in &got {

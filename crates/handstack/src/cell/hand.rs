@@ -69,6 +69,8 @@ pub struct HandNodeReport {
     pub forces: u64,
     /// Frames the force DNN refused (counted, not published).
     pub forces_refused: u64,
+    /// Published forces beyond the force DNN's rated range (its saturated output).
+    pub forces_beyond_range: u64,
     /// What the end action left the hand doing, in words.
     pub left: String,
 }
@@ -78,7 +80,7 @@ impl core::fmt::Display for HandNodeReport {
         write!(
             f,
             "{} cycles; goals: {} taken, {} refused, {} unreadable; {} starts, {} stops, {} safe stops; \
-             forces: {} published, {} frames refused; hand {}",
+             forces: {} published ({} beyond the model's range), {} frames refused; hand {}",
             self.cycles,
             self.commands,
             self.refused,
@@ -87,6 +89,7 @@ impl core::fmt::Display for HandNodeReport {
             self.stops,
             self.safe_stops,
             self.forces,
+            self.forces_beyond_range,
             self.forces_refused,
             self.left
         )
@@ -257,8 +260,9 @@ where
     let end = grasp.end();
     let last_torque = grasp.log().iter().rev().find_map(|s| s.torque_raw);
     report.left = left_text(&end, last_torque);
-    // The topic counts what its estimator refused.
+    // The topic counts what its estimator refused and what lay beyond its range.
     report.forces_refused = force.as_ref().map_or(0, ForceTopic::refused);
+    report.forces_beyond_range = force.as_ref().map_or(0, ForceTopic::beyond_range);
     match ended {
         Ok(None) => Ok(report),
         Ok(Some(what)) => Err(CellError::from(RunError::Ended {

@@ -310,7 +310,8 @@ impl ForceEstimator for ForceDnn {
     type Input = [f32];
     type Error = NetError;
 
+    /// The estimate, flagged out of range as [`super::StaticForceDnn`]'s is.
     fn estimate_force(&mut self, input: &[f32]) -> Result<ForceEstimate, NetError> {
-        Ok(ForceEstimate::from_gram_force(self.estimate_gf(input)?))
+        Ok(super::estimate(self.estimate_gf(input)?, self.range_gf()))
     }
 }

@@ -93,6 +93,36 @@ fn damaged_files_are_typed_errors_naming_file_and_tensor() -> Result<(), NetErro
     Ok(())
 }
 
+/// Kim et al. 2020, Table 1: 100 gf raised the sensors by 0.71, 0.53 and 0.63 hPa; a press
+/// 40 times as hard (4 kgf, past the 0–200 gf the models were trained on) saturates the
+/// network, and the estimate says so instead of passing for a measurement.
+#[test]
+fn a_force_beyond_the_rated_range_is_flagged() -> Result<(), NetError> {
+    use tactile_nets::ForceEstimator;
+    use tactile_nets::force_dnn::valid_range_gf;
+    for model in ForceModel::ALL {
+        let mut fast = model.dnn();
+        let mut full = force_dnn(model)?;
+        let [lo, hi] = valid_range_gf(fast.range_gf());
+        assert_eq!([lo, hi], [-5.0, 205.0], "{model:?}");
+        let rated = [0.71f32, 0.53, 0.63];
+        let f = fast.estimate_force(&rated)?;
+        assert!(f.in_range, "{model:?}: {} gf", f.gram_force());
+        let hard = rated.map(|r| 40.0 * r);
+        let (f, g) = (fast.estimate_force(&hard)?, full.estimate_force(&hard)?);
+        assert!(
+            !f.in_range && f.gram_force() > hi,
+            "{model:?}: {} gf",
+            f.gram_force()
+        );
+        assert_eq!(
+            f, g,
+            "{model:?}: the full model flags as the static one does"
+        );
+    }
+    Ok(())
+}
+
 #[test]
 fn every_built_in_model_loads_within_the_budget() -> Result<(), NetError> {
     for v in Variant::ALL {
