@@ -78,11 +78,55 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "#[cfg(feature = \"std\")]\npub(crate) static METRICS: [(&str, &str); {}] = [\n{metrics}];",
         KINDS.len()
     )?;
-    std::fs::write(
-        PathBuf::from(std::env::var("OUT_DIR")?).join("pretrained.rs"),
-        out,
-    )?;
+    let out_dir = PathBuf::from(std::env::var("OUT_DIR")?);
+    std::fs::write(out_dir.join("pretrained.rs"), out)?;
+    std::fs::write(out_dir.join("fixed_tables.rs"), fixed_tables())?;
     Ok(())
+}
+
+/// The largest magnitude a quantised weight takes (`i16`).
+const WEIGHT_LIMIT: f64 = 32767.0;
+/// The largest magnitude a quantised bias takes (`i32`, with headroom for the sum it joins).
+const BIAS_LIMIT: f64 = 1_073_741_824.0;
+/// Exponents stay within what the fixed-point layers shift by.
+const MAX_EXP: i32 = 60;
+
+/// `values` as integers `round(x · 2^e)` with `e` the largest exponent (at most [`MAX_EXP`])
+/// that keeps every magnitude within `limit`, and `e`.
+fn quantise(values: &[f32], limit: f64) -> (Vec<i64>, i32) {
+    let max = values
+        .iter()
+        .fold(0.0f64, |m, &v| m.max(f64::from(v).abs()));
+    let exp = if max > 0.0 {
+        ((limit / max).log2().floor() as i32).min(MAX_EXP)
+    } else {
+        0
+    };
+    let scale = 2f64.powi(exp);
+    let q = values
+        .iter()
+        .map(|&v| (f64::from(v) * scale).round() as i64)
+        .collect();
+    (q, exp)
+}
+
+/// The fixed-point layers' tables: `σ(x)` in Q15 at `x = −12 + k/16`, `k = 0..=384`, and
+/// `e^-x` in Q16 at `x = k/16`, `k = 0..=256`.
+fn fixed_tables() -> String {
+    let table = |n: u32, f: &dyn Fn(f64) -> f64| {
+        let items: Vec<String> = (0..=n)
+            .map(|k| format!("{}", f(f64::from(k)).round() as i64))
+            .collect();
+        items.join(", ")
+    };
+    format!(
+        "/// `σ(−12 + k/16)` in Q15, `k = 0..=384`.\n\
+         pub(super) static LOGISTIC_Q15: [i32; 385] = [{}];\n\
+         /// `e^-(k/16)` in Q16, `k = 0..=256`.\n\
+         pub(super) static EXP_NEG_Q16: [i32; 257] = [{}];\n",
+        table(384, &|k| 32768.0 / (1.0 + (12.0 - k / 16.0).exp())),
+        table(256, &|k| 65536.0 * (-k / 16.0).exp()),
+    )
 }
 
 /// The `lm_seed` of the `selected` row of the softness metrics file at `path`.
@@ -144,6 +188,52 @@ fn arrays_module(name: &str, bytes: &[u8]) -> Result<String, String> {
         };
         let ident = tensor.replace('.', "_").to_uppercase();
         m += &format!("    pub(crate) static {ident}: {ty} = {value};\n");
+        // The reciprocal of the input spreads, for the fixed-point forms' standardisation (a
+        // multiply where the float models divide: on a core without an FPU a division is the
+        // dearer library call).
+        if tensor == "input.scale" {
+            let inv: Vec<f32> = v.iter().map(|&x| (1.0 / f64::from(x)) as f32).collect();
+            m += &format!(
+                "    pub(crate) static {ident}_INV: {ty} = {};\n",
+                list(&inv)
+            );
+        }
+        // The catalogue's masks as integers, for the fixed-point decode (stored as f32 below
+        // 2^24: exact).
+        if tensor == "catalogue.masks" {
+            let masks: Vec<String> = v.iter().map(|&m| (m as u32).to_string()).collect();
+            m += &format!(
+                "    pub(crate) static {ident}_U32: [u32; {}] = [{}];\n",
+                masks.len(),
+                masks.join(", ")
+            );
+        }
+        // The fixed-point form of a layer's weights and bias (`src/fixed/mod.rs` documents
+        // the scheme): a power-of-two scale per tensor.
+        if tensor.starts_with("net.") {
+            let list = |q: &[i64]| {
+                let items: Vec<String> = q.iter().map(i64::to_string).collect();
+                format!("[{}]", items.join(", "))
+            };
+            let (ty, value, exp) = match (view.shape(), tensor.ends_with(".weight")) {
+                ([o, i], true) => {
+                    let (q, exp) = quantise(&v, WEIGHT_LIMIT);
+                    let rows: Vec<String> = q.chunks_exact((*i).max(1)).map(list).collect();
+                    (
+                        format!("[[i16; {i}]; {o}]"),
+                        format!("[{}]", rows.join(",\n")),
+                        exp,
+                    )
+                }
+                ([o], false) => {
+                    let (q, exp) = quantise(&v, BIAS_LIMIT);
+                    (format!("[i32; {o}]"), list(&q), exp)
+                }
+                _ => continue,
+            };
+            m += &format!("    pub(crate) static {ident}_Q: {ty} = {value};\n");
+            m += &format!("    pub(crate) const {ident}_Q_EXP: i32 = {exp};\n");
+        }
     }
     m += "}\n";
     Ok(m)

@@ -41,12 +41,12 @@ struct Board {
 const BOARDS: [Board; 3] = [
     Board {
         target: "thumbv7m-none-eabi",
-        features: &[],
+        features: &["stm32f103re", "fixed-point"],
         name: "STM32F103RE (Cortex-M3, 512 KiB flash, 64 KiB RAM)",
     },
     Board {
         target: "thumbv7m-none-eabi",
-        features: &["stm32f103c8"],
+        features: &["stm32f103c8", "fixed-point"],
         name: "STM32F103C8 (Cortex-M3, 64 KiB flash, 20 KiB RAM)",
     },
     Board {
@@ -286,10 +286,10 @@ fn spaced(n: u64) -> String {
     out
 }
 
-/// The stages of the instruction-count table: callgrind's function name pattern, what the stage
-/// is, which of the harness's call counts it runs per, and its line in the QEMU program's output
-/// (`firmware/instruction-counts`).
-const STAGES: [(&str, &str, &str, &str); 5] = [
+/// The stages of the instruction-count table: callgrind's function name pattern (empty: a
+/// stage the host harness does not run), what the stage is, which of the harness's call counts
+/// it runs per, and its line in the QEMU program's output (`firmware/instruction-counts`).
+const STAGES: [(&str, &str, &str, &str); 7] = [
     (
         "Fingertip<DI>::estimate",
         "the whole compute half of a cycle",
@@ -319,6 +319,18 @@ const STAGES: [(&str, &str, &str, &str); 5] = [
         "contact MLP (9 → 64 → 32 → 24) and its catalogue decode",
         "located",
         "contact-mlp",
+    ),
+    (
+        "",
+        "force DNN in fixed point (the Cortex-M3 boards')",
+        "tared",
+        "fixed-force-dnn",
+    ),
+    (
+        "",
+        "contact MLP and decode in fixed point (the Cortex-M3 boards')",
+        "located",
+        "fixed-contact-mlp",
     ),
 ];
 
@@ -430,6 +442,7 @@ fn instruction_counts(root: &Path, run: &str) -> Result<String> {
         let n = calls(per)?;
         // The optimiser may inline a stage into `estimate` (never `estimate` itself).
         let host = match text.lines().find(|l| l.contains(pattern)) {
+            _ if pattern.is_empty() => "—".to_owned(),
             None => "inlined into the cycle".to_owned(),
             Some(line) => {
                 let ir: u64 = line
@@ -441,6 +454,11 @@ fn instruction_counts(root: &Path, run: &str) -> Result<String> {
                     .with_context(|| format!("no instruction count in {line:?}"))?;
                 spaced(ir / n.max(1))
             }
+        };
+        let n = if pattern.is_empty() {
+            "—".to_owned()
+        } else {
+            n.to_string()
         };
         writeln!(
             table,

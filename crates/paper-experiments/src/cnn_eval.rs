@@ -34,6 +34,16 @@ use tactile_nets::train::TrainConfig;
 
 /// Where the committed weights and metrics live, below the workspace root.
 pub const MODEL_DIR: &str = "crates/tactile-nets/models/contact_cnn";
+/// Frames from the trigger to the centre hand-sim's training windows are cut around (the middle
+/// of press + hold + release, `TapTiming::centre_s`), less the ~1 frame the trigger lags the
+/// press: where a window must sit to look like the CNN's training data.
+pub fn training_centre_frames() -> usize {
+    let c = hand_sim::imu_pad::ImuPadConfig::default();
+    let t = c.timing;
+    let centre_after_press_s = 0.5 * (t.press_s + t.hold_s + t.release_s);
+    ((centre_after_press_s * c.sample_rate_hz).round() as usize).saturating_sub(1)
+}
+
 /// The committed metrics file inside [`MODEL_DIR`].
 pub const METRICS_FILE: &str = "metrics.json";
 /// Root seed of the protocol (augmentation, splits, initial weights).

@@ -29,7 +29,7 @@ use crate::data::fingertip::{ContactExample, TapRecord};
 use aot_locate::CellSet;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use tactile_nets::contact_mlp::{ContactMlp, DROPOUT, Head, Options, features};
+use tactile_nets::contact_mlp::{ContactMlp, DROPOUT, Head, Options, Prediction, features};
 use tactile_nets::error::NetError;
 use tactile_nets::metrics::{MetricsFile, MetricsRow};
 use tactile_nets::train::{TrainConfig, TrainLog};
@@ -108,9 +108,18 @@ impl Evaluation {
 
 /// Evaluates `model` on `records`.
 pub fn evaluate(model: &ContactMlp, records: &[&TapRecord]) -> Result<Evaluation, NetError> {
+    evaluate_with(|x| model.predict(x), records)
+}
+
+/// [`evaluate`] for any predictor of the MLP's raw features (a built-in model's `'static` or
+/// fixed-point form).
+pub fn evaluate_with<E: Into<NetError>>(
+    predict: impl Fn(&[f32]) -> Result<Prediction, E>,
+    records: &[&TapRecord],
+) -> Result<Evaluation, NetError> {
     let mut e = Evaluation::default();
     for r in records {
-        let p = model.predict(&features(&r.reading))?;
+        let p = predict(&features(&r.reading)).map_err(Into::into)?;
         let truth = r.tap.mask;
         e.taps += 1;
         if truth.count_ones() == 1 {

@@ -458,7 +458,7 @@ pub fn contact_cnn(
         // The file says where its training windows sit after a tap's trigger, so that a pad
         // node cuts the windows it learned from.
         model
-            .with_trigger_offset(crate::tap_run::training_centre_frames())?
+            .with_trigger_offset(cnn_eval::training_centre_frames())?
             .save(&path)?;
         // The row comes from the saved file, exactly as the drift test will re-create it.
         let (acc, conf) = cnn_eval::evaluate_committed(root, &taps, which)?;

@@ -81,20 +81,10 @@ pub fn cnn_window(frames: &[ImuFrame]) -> [f32; WINDOW_SAMPLES * WINDOW_SIGNALS]
     core::array::from_fn(|i| w[i / WINDOW_SAMPLES][i % WINDOW_SAMPLES] * contact_cnn::SI_TO_INPUT)
 }
 
-/// Frames from the trigger to the centre hand-sim's training windows are cut around (the middle
-/// of press + hold + release, `TapTiming::centre_s`), less the ~1 frame the trigger lags the
-/// press: where a window must sit to look like the CNN's training data.
-pub fn training_centre_frames() -> usize {
-    let c = ImuPadConfig::default();
-    let t = c.timing;
-    let centre_after_press_s = 0.5 * (t.press_s + t.hold_s + t.release_s);
-    ((centre_after_press_s * c.sample_rate_hz).round() as usize).saturating_sub(1)
-}
-
 /// The experiment with its window placed like the training windows: `training_centre_frames`
 /// after the trigger at frame 19 of 38.
 pub fn training_aligned() -> TapToMoveConfig {
-    TapToMoveConfig::centred_after_trigger(training_centre_frames())
+    TapToMoveConfig::centred_after_trigger(cnn_eval::training_centre_frames())
 }
 
 /// One cycle's outcome.

@@ -27,6 +27,7 @@
 //! - `error`: typed errors (wrong shape, non-finite input or output, bad files);
 //! - `activations`: sigmoid / softmax that stay finite for any logit;
 //! - `frozen`: the allocation-free inference form of a dense stack;
+//! - `fixed`: the fingertip's models in fixed point, for cores without an FPU;
 //! - `norm`: input standardisation;
 //! - `force_dnn`: the force / weight DNN and its [`hand_traits::ForceEstimator`];
 //! - `contact_mlp`: the MLP, its two heads and its [`hand_traits::ContactLocator`] (the pad
@@ -69,6 +70,7 @@
 pub mod activations;
 pub mod contact_mlp;
 pub mod error;
+pub mod fixed;
 pub mod force_dnn;
 pub mod frozen;
 pub mod norm;

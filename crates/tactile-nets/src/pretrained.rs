@@ -7,6 +7,7 @@
 //! | force DNN, [`ForceModel::Table1`] | Kim et al. 2020, Table 1 | [`FORCE_DNN_TABLE1`]; [`force_dnn`] |
 //! | contact MLP, cell-set head, per OSR in [`CONTACT_MLP_OSRS`] | the validation-chosen model (Kim et al. 2020, §4) | [`contact_mlp_static`]; [`contact_mlp`] |
 //! | contact CNN, every [`Variant`] | Al & Martinez-Hernandez, §IV-A, and our variants | [`contact_cnn`] (`std`) |
+//! | the force DNNs and contact MLPs in fixed point ([`crate::fixed`]) | the same weights, quantised at build time | [`FIXED_FORCE_DNN_SIM`], [`FIXED_FORCE_DNN_TABLE1`], [`FIXED_CONTACT_MLP_OSR256`] …, [`fixed_contact_mlp_static`] |
 //! | softness net | the underactuated-hand softness paper ("Distinguish the Textures of Grasped Objects…"), §3.3: Levenberg–Marquardt, the selected training seed | [`SOFTNESS`]; [`softness`] (`std`) |
 //!
 //! Without `std` the force DNN, the contact MLPs and the softness net are `'static` arrays
@@ -33,6 +34,7 @@
 //! ```
 
 use crate::contact_mlp::{StaticContactMlp, StaticNet as MlpNet};
+use crate::fixed::{FixedContactMlp, FixedForceDnn, FixedForceNet, FixedMlpNet, QDense};
 use crate::force_dnn::{StaticForceDnn, StaticNet as ForceNet};
 use crate::frozen::{Identity, Logistic, Relu, StaticDense};
 use crate::softness::{InputScale, SoftnessNet};
@@ -109,10 +111,103 @@ macro_rules! contact_mlp {
     };
 }
 
+/// A fixed-point force DNN over the quantised arrays of the built-in file `$w`.
+macro_rules! fixed_force_dnn {
+    ($w:ident) => {
+        FixedForceDnn::new(
+            (
+                (
+                    QDense::new(
+                        &weights::$w::NET_0_0_WEIGHT_Q,
+                        weights::$w::NET_0_0_WEIGHT_Q_EXP,
+                        &weights::$w::NET_0_0_BIAS_Q,
+                        weights::$w::NET_0_0_BIAS_Q_EXP,
+                    ),
+                    Logistic,
+                ),
+                (
+                    QDense::new(
+                        &weights::$w::NET_1_0_WEIGHT_Q,
+                        weights::$w::NET_1_0_WEIGHT_Q_EXP,
+                        &weights::$w::NET_1_0_BIAS_Q,
+                        weights::$w::NET_1_0_BIAS_Q_EXP,
+                    ),
+                    Relu,
+                ),
+                (
+                    QDense::new(
+                        &weights::$w::NET_2_0_WEIGHT_Q,
+                        weights::$w::NET_2_0_WEIGHT_Q_EXP,
+                        &weights::$w::NET_2_0_BIAS_Q,
+                        weights::$w::NET_2_0_BIAS_Q_EXP,
+                    ),
+                    Logistic,
+                ),
+                (
+                    QDense::new(
+                        &weights::$w::NET_3_0_WEIGHT_Q,
+                        weights::$w::NET_3_0_WEIGHT_Q_EXP,
+                        &weights::$w::NET_3_0_BIAS_Q,
+                        weights::$w::NET_3_0_BIAS_Q_EXP,
+                    ),
+                    Logistic,
+                ),
+            ) as FixedForceNet,
+            &weights::$w::INPUT_MEAN,
+            &weights::$w::INPUT_SCALE_INV,
+            &weights::$w::OUTPUT_RANGE_GF,
+        )
+    };
+}
+
+/// A fixed-point contact MLP over the quantised arrays of the built-in file `$w`.
+macro_rules! fixed_contact_mlp {
+    ($w:ident) => {
+        FixedContactMlp::new(
+            (
+                (
+                    QDense::new(
+                        &weights::$w::NET_0_0_WEIGHT_Q,
+                        weights::$w::NET_0_0_WEIGHT_Q_EXP,
+                        &weights::$w::NET_0_0_BIAS_Q,
+                        weights::$w::NET_0_0_BIAS_Q_EXP,
+                    ),
+                    Relu,
+                    Identity,
+                ),
+                (
+                    QDense::new(
+                        &weights::$w::NET_1_0_WEIGHT_Q,
+                        weights::$w::NET_1_0_WEIGHT_Q_EXP,
+                        &weights::$w::NET_1_0_BIAS_Q,
+                        weights::$w::NET_1_0_BIAS_Q_EXP,
+                    ),
+                    Relu,
+                    Identity,
+                ),
+                QDense::new(
+                    &weights::$w::NET_2_WEIGHT_Q,
+                    weights::$w::NET_2_WEIGHT_Q_EXP,
+                    &weights::$w::NET_2_BIAS_Q,
+                    weights::$w::NET_2_BIAS_Q_EXP,
+                ),
+            ) as FixedMlpNet,
+            &weights::$w::INPUT_MEAN,
+            &weights::$w::INPUT_SCALE_INV,
+            &weights::$w::CATALOGUE_MASKS_U32,
+        )
+    };
+}
+
 /// The force DNN trained on hand-sim's weight series (OSR 4096, 0–200 gf).
 pub static FORCE_DNN_SIM: StaticForceDnn = force_dnn!(force_dnn_sim);
 /// The force DNN trained on Table 1 of Kim et al. 2020 (0–200 gf).
 pub static FORCE_DNN_TABLE1: StaticForceDnn = force_dnn!(force_dnn_table1);
+
+/// [`FORCE_DNN_SIM`] in fixed point ([`crate::fixed`]).
+pub static FIXED_FORCE_DNN_SIM: FixedForceDnn = fixed_force_dnn!(force_dnn_sim);
+/// [`FORCE_DNN_TABLE1`] in fixed point ([`crate::fixed`]).
+pub static FIXED_FORCE_DNN_TABLE1: FixedForceDnn = fixed_force_dnn!(force_dnn_table1);
 
 /// The oversampling ratios with a built-in contact MLP.
 pub const CONTACT_MLP_OSRS: [u16; 5] = [256, 512, 1024, 2048, 4096];
@@ -128,6 +223,36 @@ pub static CONTACT_MLP_OSR1024: StaticContactMlp = contact_mlp!(contact_mlp_osr1
 pub static CONTACT_MLP_OSR2048: StaticContactMlp = contact_mlp!(contact_mlp_osr2048_chosen);
 /// As [`CONTACT_MLP_OSR256`], for OSR 4096.
 pub static CONTACT_MLP_OSR4096: StaticContactMlp = contact_mlp!(contact_mlp_osr4096_chosen);
+
+/// [`CONTACT_MLP_OSR256`] in fixed point ([`crate::fixed`]).
+pub static FIXED_CONTACT_MLP_OSR256: FixedContactMlp =
+    fixed_contact_mlp!(contact_mlp_osr256_chosen);
+/// [`CONTACT_MLP_OSR512`] in fixed point.
+pub static FIXED_CONTACT_MLP_OSR512: FixedContactMlp =
+    fixed_contact_mlp!(contact_mlp_osr512_chosen);
+/// [`CONTACT_MLP_OSR1024`] in fixed point.
+pub static FIXED_CONTACT_MLP_OSR1024: FixedContactMlp =
+    fixed_contact_mlp!(contact_mlp_osr1024_chosen);
+/// [`CONTACT_MLP_OSR2048`] in fixed point.
+pub static FIXED_CONTACT_MLP_OSR2048: FixedContactMlp =
+    fixed_contact_mlp!(contact_mlp_osr2048_chosen);
+/// [`CONTACT_MLP_OSR4096`] in fixed point.
+pub static FIXED_CONTACT_MLP_OSR4096: FixedContactMlp =
+    fixed_contact_mlp!(contact_mlp_osr4096_chosen);
+
+static FIXED_CONTACT_MLPS: [&FixedContactMlp; 5] = [
+    &FIXED_CONTACT_MLP_OSR256,
+    &FIXED_CONTACT_MLP_OSR512,
+    &FIXED_CONTACT_MLP_OSR1024,
+    &FIXED_CONTACT_MLP_OSR2048,
+    &FIXED_CONTACT_MLP_OSR4096,
+];
+
+/// [`contact_mlp_static`] in fixed point. (It links all five into a binary.)
+pub fn fixed_contact_mlp_static(osr: u16) -> Option<&'static FixedContactMlp> {
+    let i = CONTACT_MLP_OSRS.iter().position(|&o| o == osr)?;
+    FIXED_CONTACT_MLPS.get(i).copied()
+}
 
 static CONTACT_MLPS: [&StaticContactMlp; 5] = [
     &CONTACT_MLP_OSR256,
@@ -182,6 +307,14 @@ impl ForceModel {
         match self {
             ForceModel::Sim => FORCE_DNN_SIM,
             ForceModel::Table1 => FORCE_DNN_TABLE1,
+        }
+    }
+
+    /// Its network in fixed point ([`FIXED_FORCE_DNN_SIM`] or [`FIXED_FORCE_DNN_TABLE1`]).
+    pub fn fixed_dnn(self) -> FixedForceDnn {
+        match self {
+            ForceModel::Sim => FIXED_FORCE_DNN_SIM,
+            ForceModel::Table1 => FIXED_FORCE_DNN_TABLE1,
         }
     }
 }

@@ -6,9 +6,11 @@ use embedded_hal::delay::DelayNs;
 use fuzzy_mamdani::{EvalError, GraspController};
 use hand_traits::{ContactLocator, EstimateError, GraspPolicy, PressureEstimator, PressureFrame};
 use tactile_nets::RunError;
-use tactile_nets::contact_mlp::{StaticContactMlp, TapReading, features};
-use tactile_nets::force_dnn::StaticForceDnn;
+use tactile_nets::contact_mlp::{TapReading, features};
+#[cfg(not(feature = "fixed-point"))]
 use tactile_nets::pretrained::{CONTACT_MLP_OSR1024, FORCE_DNN_SIM};
+#[cfg(feature = "fixed-point")]
+use tactile_nets::pretrained::{FIXED_CONTACT_MLP_OSR1024, FIXED_FORCE_DNN_SIM};
 
 /// MS5611s per fingertip (seed 000 §2).
 pub const SENSORS: usize = 3;
@@ -33,8 +35,27 @@ pub const SENSORS_MM: [[f32; 2]; SENSORS] = [[4.5, 1.5], [0.0, -4.5], [-4.5, 1.5
 pub const OSR: Osr = Osr::Osr1024;
 
 /// The contact MLP trained on taps read at [`OSR`]: naming its static links its weights alone
-/// (13.6 KiB) rather than all five OSRs'.
-static CONTACT_MLP: &StaticContactMlp = &CONTACT_MLP_OSR1024;
+/// (13.6 KiB) rather than all five OSRs'. With `fixed-point` (the Cortex-M3 boards: no FPU),
+/// its fixed-point form, as is the force DNN's.
+#[cfg(not(feature = "fixed-point"))]
+static CONTACT_MLP: &ContactModel = &CONTACT_MLP_OSR1024;
+#[cfg(feature = "fixed-point")]
+static CONTACT_MLP: &ContactModel = &FIXED_CONTACT_MLP_OSR1024;
+
+/// The force DNN trained on hand-sim's weight series (in fixed point with `fixed-point`).
+#[cfg(not(feature = "fixed-point"))]
+static FORCE_DNN: &ForceModel = &FORCE_DNN_SIM;
+#[cfg(feature = "fixed-point")]
+static FORCE_DNN: &ForceModel = &FIXED_FORCE_DNN_SIM;
+
+#[cfg(not(feature = "fixed-point"))]
+type ContactModel = tactile_nets::contact_mlp::StaticContactMlp;
+#[cfg(feature = "fixed-point")]
+type ContactModel = tactile_nets::fixed::FixedContactMlp;
+#[cfg(not(feature = "fixed-point"))]
+type ForceModel = tactile_nets::force_dnn::StaticForceDnn;
+#[cfg(feature = "fixed-point")]
+type ForceModel = tactile_nets::fixed::FixedForceDnn;
 
 /// What a fingertip is set up with.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -125,8 +146,8 @@ pub struct Fingertip<DI> {
     estimator: PressureEstimator<SENSORS>,
     detector: ArrivalDetector,
     aot: AotLocator,
-    force: &'static StaticForceDnn,
-    mlp: &'static StaticContactMlp,
+    force: &'static ForceModel,
+    mlp: &'static ContactModel,
     grasp: GraspController,
 }
 
@@ -165,7 +186,7 @@ where
             estimator: PressureEstimator::new(config.contact_threshold_pa, config.rate_cutoff_hz),
             detector: ArrivalDetector::new(DetectorConfig::DEFAULT),
             aot: AotLocator::new(pad),
-            force: &FORCE_DNN_SIM,
+            force: FORCE_DNN,
             mlp: CONTACT_MLP,
             grasp: fuzzy_mamdani::grasp_controller(),
         })

@@ -23,7 +23,9 @@ use cortex_m_rt::{entry, exception};
 use cortex_m_semihosting::{debug, hprintln};
 use hand_traits::{ContactLocator, GraspObservation, GraspPolicy};
 use tactile_nets::contact_mlp::{TapReading, features};
-use tactile_nets::pretrained::{CONTACT_MLP_OSR1024, FORCE_DNN_SIM};
+use tactile_nets::pretrained::{
+    CONTACT_MLP_OSR1024, FIXED_CONTACT_MLP_OSR1024, FIXED_FORCE_DNN_SIM, FORCE_DNN_SIM,
+};
 
 /// No heap, as the firmware (`firmware/fingertip/src/main.rs`): nothing measured allocates,
 /// and `alloc`, which a linked crate brings in, needs an allocator to link.
@@ -172,6 +174,14 @@ fn main() -> ! {
     });
     measure("force-dnn", &mut || {
         let g = FORCE_DNN_SIM.estimate_gf(black_box(&rise_hpa[..]));
+        g.map_or(u32::MAX, f32::to_bits)
+    });
+    measure("fixed-contact-mlp", &mut || {
+        let p = FIXED_CONTACT_MLP_OSR1024.predict(&features(black_box(&reading)));
+        p.map_or(u32::MAX, |p| u32::from(p.region) ^ p.contact)
+    });
+    measure("fixed-force-dnn", &mut || {
+        let g = FIXED_FORCE_DNN_SIM.estimate_gf(black_box(&rise_hpa[..]));
         g.map_or(u32::MAX, f32::to_bits)
     });
     measure("fuzzy-grasp", &mut || {

@@ -6,7 +6,5 @@ mod cell_arm;
 mod cli;
 mod ending;
 mod hardware;
-#[cfg(feature = "cell")]
-mod pad_node;
 mod process;
 mod scenes;

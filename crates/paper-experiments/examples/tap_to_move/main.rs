@@ -38,7 +38,7 @@ fn main() -> Result<(), String> {
             run::training_aligned(),
             format!(
                 "window centred {} frames after the trigger, where hand-sim's training windows are centred",
-                run::training_centre_frames()
+                paper_experiments::cnn_eval::training_centre_frames()
             ),
         ),
     ];

@@ -8,6 +8,7 @@
 
 pub mod defuzz;
 mod error;
+pub mod fixed_point;
 pub mod force_width;
 pub mod icm_mode;
 pub mod location;
@@ -51,6 +52,7 @@ pub struct Trade {
 pub fn tasks() -> Vec<Task> {
     let mut t = location::tasks();
     t.push(force_width::task());
+    t.extend(fixed_point::tasks());
     t.push(icm_mode::task());
     t.push(defuzz::task());
     t
@@ -70,6 +72,9 @@ pub fn run(root: &Path, mut progress: impl FnMut(&str)) -> Result<Trade, TradeEr
     progress("force DNN widths: 13 leave-one-out models per width");
     let (force, force_note) = force_width::points(root)?;
     points.extend(force);
+    progress("fixed point vs f32: contact MLPs and force DNNs on their held-out sets");
+    points.extend(fixed_point::mlp_points(root, true)?);
+    points.extend(fixed_point::force_points(root, true)?);
     progress("ICM-20789 pressure modes");
     points.extend(icm_mode::points()?);
     progress("grasp controller defuzzifiers, f32 and f64");

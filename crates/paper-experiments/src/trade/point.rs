@@ -52,7 +52,7 @@ pub struct Point {
     pub pareto: bool,
 }
 
-/// Sets [`Point::pareto`] task by task.
+/// Sets [`Point::pareto`] task by task, on the values as [`to_csv`] writes them.
 ///
 /// Errors: [`TradeError::NotFinite`] for a NaN / infinite point (its index in `points`), or
 /// [`TradeError::Input`] for a point whose task is not in `tasks`.
@@ -70,9 +70,20 @@ pub fn mark_fronts(tasks: &[Task], points: &mut [Point]) -> Result<(), TradeErro
         let idx: Vec<usize> = (0..points.len())
             .filter(|&i| points[i].task == task.id)
             .collect();
+        // As `points.csv` writes them (4 and 6 decimals): two costs that round alike are a
+        // tie there, and the committed flags must be the fronts of the committed points.
+        let rounded = |x: f64, decimals: i32| {
+            let f = 10f64.powi(decimals);
+            (x * f).round() / f
+        };
         let xy: Vec<(f64, f64)> = idx
             .iter()
-            .map(|&i| (points[i].cost_us, points[i].accuracy))
+            .map(|&i| {
+                (
+                    rounded(points[i].cost_us, 4),
+                    rounded(points[i].accuracy, 6),
+                )
+            })
             .collect();
         let front = pareto_front(&xy, task.better).map_err(|e| match e {
             TradeError::NotFinite { index } => TradeError::NotFinite { index: idx[index] },

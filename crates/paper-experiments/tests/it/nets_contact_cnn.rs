@@ -87,7 +87,7 @@ fn committed_metrics_match_a_re_evaluation_of_the_committed_weights() -> Result<
         let model = ContactCnn::load(&root().join(MODEL_DIR).join(which.file()))?;
         assert_eq!(
             model.trigger_offset(),
-            Some(paper_experiments::tap_run::training_centre_frames()),
+            Some(cnn_eval::training_centre_frames()),
             "{}",
             which.file()
         );

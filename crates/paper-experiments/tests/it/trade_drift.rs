@@ -4,7 +4,7 @@
 //! are wall-clock and are not compared; a mismatch means the controller, the chip model or the
 //! driver changed: rerun `cargo xtask trade` and review the diff.
 
-use paper_experiments::trade::{self, CsvRow, defuzz, icm_mode, location};
+use paper_experiments::trade::{self, CsvRow, defuzz, fixed_point, icm_mode, location};
 use std::path::PathBuf;
 
 fn committed() -> Vec<CsvRow> {
@@ -53,6 +53,27 @@ fn icm_noise_and_osr_frame_periods_match_the_committed_points() {
     for r in rows.iter().filter(|r| r.task == location::OSR_MLP) {
         let osr: u16 = r.setting.trim_start_matches("OSR ").parse().unwrap();
         assert_eq!(Some(r.cost_us), location::frame_us(osr), "{}", r.setting);
+    }
+}
+
+/// The fixed-point and float forms of the fingertip's models on their held-out sets.
+#[test]
+fn fixed_point_accuracies_match_the_committed_points() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let rows = committed();
+    let mut fresh = fixed_point::mlp_points(&root, false).unwrap();
+    fresh.extend(fixed_point::force_points(&root, false).unwrap());
+    assert_eq!(fresh.len(), 14);
+    for p in fresh {
+        let r = row(&rows, p.task, &p.setting);
+        assert!(
+            (r.accuracy - p.accuracy).abs() < TOLERANCE,
+            "{} / {}: committed {} recomputed {}",
+            p.task,
+            p.setting,
+            r.accuracy,
+            p.accuracy
+        );
     }
 }
 

@@ -11,6 +11,8 @@ mod devices;
 mod full_hand;
 mod grasp_table5;
 mod hand_loop_faults;
+#[cfg(feature = "cell")]
+mod pad_node;
 mod report_render;
 mod scene_props;
 mod softness;

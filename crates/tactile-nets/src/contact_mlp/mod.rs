@@ -265,7 +265,7 @@ pub fn features(reading: &TapReading) -> [f32; N_FEATURES] {
 }
 
 /// A mask's centroid, 1-based (row, column); the top-left cell's centre for an empty mask.
-fn centroid_of(mask: u32) -> [f32; 2] {
+pub(crate) fn centroid_of(mask: u32) -> [f32; 2] {
     CellSet::from_bits(mask)
         .and_then(CellSet::centroid)
         .unwrap_or([1.0, 1.0])
@@ -274,7 +274,7 @@ fn centroid_of(mask: u32) -> [f32; 2] {
 /// The cell (`0..24`, row-major) nearest the 1-based (row, column) point `p`: the one holding
 /// it, a point off the pad going to the nearest edge cell (ties on a border: the lower row,
 /// then column).
-fn region_at([r, c]: [f32; 2]) -> u16 {
+pub(crate) fn region_at([r, c]: [f32; 2]) -> u16 {
     // Casts saturate and NaN casts to 0, so any point gives a cell.
     let snap = |x: f32, n: usize| (Float::ceil(x - 1.5).max(0.0) as usize).min(n - 1);
     let (rows, cols) = (usize::from(ROWS), usize::from(COLS));
@@ -400,7 +400,7 @@ pub fn head_inputs(head: Head, raw: [f32; N_FEATURES]) -> [f32; N_FEATURES] {
 
 /// Raw features checked, fed as `head` reads them ([`head_inputs`]) and standardised with the
 /// training `mean` and `scale`.
-fn standardised(
+pub(crate) fn standardised(
     head: Head,
     input: &[f32],
     mean: &[f32; N_FEATURES],

@@ -112,7 +112,7 @@ pub const OUTPUT_SPAN: [f32; 2] = [0.1, 0.9];
 pub const WIDTHS: [usize; 4] = [4, 8, HIDDEN, 32];
 
 /// `rise_hpa` checked and standardised with the training `mean` and `scale`.
-fn standardised(
+pub(crate) fn standardised(
     rise_hpa: &[f32],
     mean: &[f32; N_INPUTS],
     scale: &[f32; N_INPUTS],
@@ -139,12 +139,12 @@ pub fn valid_range_gf([lo, hi]: [f32; 2]) -> [f32; 2] {
 
 /// `gf` as an estimate of a model rated for `range_gf`: flagged out of range beyond
 /// [`valid_range_gf`].
-fn estimate(gf: f32, range_gf: [f32; 2]) -> ForceEstimate {
+pub(crate) fn estimate(gf: f32, range_gf: [f32; 2]) -> ForceEstimate {
     ForceEstimate::from_gram_force(gf).within_gf(valid_range_gf(range_gf))
 }
 
 /// The sigmoid output `unit` back in gram-force over the rated range `range_gf`.
-fn decoded(unit: f32, [lo, hi]: [f32; 2]) -> Result<f32, RunError> {
+pub(crate) fn decoded(unit: f32, [lo, hi]: [f32; 2]) -> Result<f32, RunError> {
     let [a, b] = OUTPUT_SPAN;
     let gf = lo + (unit - a) / (b - a) * (hi - lo);
     check_output(&[gf])?;

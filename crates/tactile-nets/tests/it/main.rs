@@ -13,6 +13,7 @@ mod common;
 mod contact_cnn;
 mod contact_mlp;
 mod contact_mlp_model;
+mod fixed;
 mod force_dnn;
 mod frozen;
 mod io;
