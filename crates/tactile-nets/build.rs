@@ -156,6 +156,8 @@ fn arrays_module(name: &str, bytes: &[u8]) -> Result<String, String> {
     names.sort();
     let module = name.replace(['/', '-'], "_");
     let mut m = format!("pub(crate) mod {module} {{\n");
+    // Dense layers (weight and bias prefix, inputs, outputs) with a fixed-point form.
+    let mut layers: Vec<(String, usize, usize)> = Vec::new();
     for tensor in names {
         let view = st.tensor(&tensor).map_err(|e| e.to_string())?;
         if view.dtype() != Dtype::F32 {
@@ -217,6 +219,7 @@ fn arrays_module(name: &str, bytes: &[u8]) -> Result<String, String> {
             };
             let (ty, value, exp) = match (view.shape(), tensor.ends_with(".weight")) {
                 ([o, i], true) => {
+                    layers.push((ident.trim_end_matches("_WEIGHT").to_owned(), *i, *o));
                     let (q, exp) = quantise(&v, WEIGHT_LIMIT);
                     let rows: Vec<String> = q.chunks_exact((*i).max(1)).map(list).collect();
                     (
@@ -234,6 +237,12 @@ fn arrays_module(name: &str, bytes: &[u8]) -> Result<String, String> {
             m += &format!("    pub(crate) static {ident}_Q: {ty} = {value};\n");
             m += &format!("    pub(crate) const {ident}_Q_EXP: i32 = {exp};\n");
         }
+    }
+    for (layer, i, o) in layers {
+        m += &format!(
+            "    pub(crate) static {layer}_Q: crate::fixed::QDense<{i}, {o}> = crate::fixed::QDense::new(\
+             &{layer}_WEIGHT_Q, {layer}_WEIGHT_Q_EXP, &{layer}_BIAS_Q, {layer}_BIAS_Q_EXP);\n"
+        );
     }
     m += "}\n";
     Ok(m)

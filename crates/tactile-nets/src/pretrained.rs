@@ -34,7 +34,7 @@
 //! ```
 
 use crate::contact_mlp::{StaticContactMlp, StaticNet as MlpNet};
-use crate::fixed::{FixedContactMlp, FixedForceDnn, FixedForceNet, FixedMlpNet, QDense};
+use crate::fixed::{FixedContactMlp, FixedForceDnn, FixedForceNet, FixedMlpNet};
 use crate::force_dnn::{StaticForceDnn, StaticNet as ForceNet};
 use crate::frozen::{Identity, Logistic, Relu, StaticDense};
 use crate::softness::{InputScale, SoftnessNet};
@@ -116,42 +116,10 @@ macro_rules! fixed_force_dnn {
     ($w:ident) => {
         FixedForceDnn::new(
             (
-                (
-                    QDense::new(
-                        &weights::$w::NET_0_0_WEIGHT_Q,
-                        weights::$w::NET_0_0_WEIGHT_Q_EXP,
-                        &weights::$w::NET_0_0_BIAS_Q,
-                        weights::$w::NET_0_0_BIAS_Q_EXP,
-                    ),
-                    Logistic,
-                ),
-                (
-                    QDense::new(
-                        &weights::$w::NET_1_0_WEIGHT_Q,
-                        weights::$w::NET_1_0_WEIGHT_Q_EXP,
-                        &weights::$w::NET_1_0_BIAS_Q,
-                        weights::$w::NET_1_0_BIAS_Q_EXP,
-                    ),
-                    Relu,
-                ),
-                (
-                    QDense::new(
-                        &weights::$w::NET_2_0_WEIGHT_Q,
-                        weights::$w::NET_2_0_WEIGHT_Q_EXP,
-                        &weights::$w::NET_2_0_BIAS_Q,
-                        weights::$w::NET_2_0_BIAS_Q_EXP,
-                    ),
-                    Logistic,
-                ),
-                (
-                    QDense::new(
-                        &weights::$w::NET_3_0_WEIGHT_Q,
-                        weights::$w::NET_3_0_WEIGHT_Q_EXP,
-                        &weights::$w::NET_3_0_BIAS_Q,
-                        weights::$w::NET_3_0_BIAS_Q_EXP,
-                    ),
-                    Logistic,
-                ),
+                (weights::$w::NET_0_0_Q, Logistic),
+                (weights::$w::NET_1_0_Q, Relu),
+                (weights::$w::NET_2_0_Q, Logistic),
+                (weights::$w::NET_3_0_Q, Logistic),
             ) as FixedForceNet,
             &weights::$w::INPUT_MEAN,
             &weights::$w::INPUT_SCALE_INV,
@@ -165,32 +133,9 @@ macro_rules! fixed_contact_mlp {
     ($w:ident) => {
         FixedContactMlp::new(
             (
-                (
-                    QDense::new(
-                        &weights::$w::NET_0_0_WEIGHT_Q,
-                        weights::$w::NET_0_0_WEIGHT_Q_EXP,
-                        &weights::$w::NET_0_0_BIAS_Q,
-                        weights::$w::NET_0_0_BIAS_Q_EXP,
-                    ),
-                    Relu,
-                    Identity,
-                ),
-                (
-                    QDense::new(
-                        &weights::$w::NET_1_0_WEIGHT_Q,
-                        weights::$w::NET_1_0_WEIGHT_Q_EXP,
-                        &weights::$w::NET_1_0_BIAS_Q,
-                        weights::$w::NET_1_0_BIAS_Q_EXP,
-                    ),
-                    Relu,
-                    Identity,
-                ),
-                QDense::new(
-                    &weights::$w::NET_2_WEIGHT_Q,
-                    weights::$w::NET_2_WEIGHT_Q_EXP,
-                    &weights::$w::NET_2_BIAS_Q,
-                    weights::$w::NET_2_BIAS_Q_EXP,
-                ),
+                (weights::$w::NET_0_0_Q, Relu, Identity),
+                (weights::$w::NET_1_0_Q, Relu, Identity),
+                weights::$w::NET_2_Q,
             ) as FixedMlpNet,
             &weights::$w::INPUT_MEAN,
             &weights::$w::INPUT_SCALE_INV,
