@@ -268,6 +268,30 @@ fn the_installable_stack_stays_free_of_the_reproduction_and_under_no_product_cra
     );
 }
 
+/// The installable binary runs every learned model without an ML framework: tactile-nets'
+/// `train` feature (dfdx; nalgebra's Levenberg–Marquardt) stays out of its dependency tree,
+/// whatever features the binary is built with.
+#[test]
+fn the_installable_stack_links_no_ml_framework() {
+    let out = std::process::Command::new(env!("CARGO"))
+        .current_dir(xtask::workspace_root())
+        .args(["tree", "-p", "handstack", "--all-features", "-e", "normal"])
+        .args(["--prefix", "none", "--offline", "--locked"])
+        .output()
+        .expect("cargo tree");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let tree = String::from_utf8_lossy(&out.stdout);
+    let crates: Vec<&str> = tree.lines().filter_map(|l| l.split(' ').next()).collect();
+    assert!(crates.contains(&"tactile-nets"), "{tree}");
+    for framework in ["dfdx", "levenberg-marquardt"] {
+        assert!(!crates.contains(&framework), "handstack links {framework}");
+    }
+}
+
 #[test]
 fn a_driver_uses_embedded_hal_and_its_listed_crates_only() {
     let bad = after(|p| add(p, "baro-drivers", "serde", "normal", false));
@@ -496,7 +520,7 @@ fn the_drawn_graph_is_the_one_cargo_metadata_declares() {
     ] {
         assert!(experiments.contains(edge), "{edge} not in {experiments}");
     }
-    assert!(row("handstack").contains("`tactile-nets` (no default features)"));
+    assert!(row("handstack").contains("`tactile-nets[std]` (no default features)"));
     assert!(row("handstack").contains("`hand-zenoh` (optional: `cell`)"));
     for group in [
         "**Product crates (published)**",
