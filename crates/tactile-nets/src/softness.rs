@@ -66,6 +66,11 @@ pub const N_PARAMS: usize =
 /// outputs finite for any finite input.
 pub const INPUT_CLIP: f32 = 100.0;
 
+/// How far past its training range a reading may lie and still count as inside it, as a share
+/// of the variable's training span on each side (normalised, `|z| ≤ 1.2`): a grasp of a new
+/// object reads a little past the training extremes; far past them the network extrapolates.
+pub const RANGE_MARGIN: f32 = 0.1;
+
 /// Input scaling: `z = clip(gain · (x − min) − 1)`, `gain = 2 / (max − min)` (0 for a
 /// variable that never varied in training, which then always reads −1).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -97,6 +102,35 @@ impl InputScale {
             }
         });
         InputScale { min, gain }
+    }
+
+    /// Each variable's training range, `[min, max]`.
+    pub fn range(&self) -> [[f32; 2]; N_VARIABLES] {
+        core::array::from_fn(|j| {
+            let span = if self.gain[j] > 0.0 {
+                2.0 / self.gain[j]
+            } else {
+                0.0
+            };
+            [self.min[j], self.min[j] + span]
+        })
+    }
+
+    /// How many readings of one raw sample lie outside their training range widened by
+    /// [`RANGE_MARGIN`]; a variable that never varied in training counts when it reads
+    /// anything else.
+    pub fn outside(&self, x: &[f32; N_VARIABLES]) -> usize {
+        (0..N_VARIABLES)
+            .filter(|&j| {
+                if self.gain[j] > 0.0 {
+                    let z = self.gain[j] * (x[j] - self.min[j]) - 1.0;
+                    // A NaN (which a model's input check refuses first) counts as outside.
+                    z.is_nan() || z.abs() > 1.0 + 2.0 * RANGE_MARGIN
+                } else {
+                    x[j] != self.min[j]
+                }
+            })
+            .count()
     }
 
     /// The normalised input of one raw sample (finite for finite input).
@@ -257,10 +291,44 @@ impl SoftnessNet {
 
     /// The class of a series ([`SoftnessNet::scores`]'s largest mean; ties: the softer).
     pub fn predict(&self, series: &[f32]) -> Result<Softness, RunError> {
-        let s = self.scores(series)?;
-        let best = (1..CLASSES).fold(0, |b, k| if s[k] > s[b] { k } else { b });
-        Ok(Softness::ALL[best])
+        Ok(class_of(&self.scores(series)?))
     }
+
+    /// The class of a series, its scores, and how many of its readings lay outside the range
+    /// the network was trained on ([`InputScale::outside`]): a class read from readings far
+    /// outside it is an extrapolation, and says so. Errors as [`SoftnessNet::scores`].
+    pub fn assess(&self, series: &[f32]) -> Result<Assessment, RunError> {
+        let scores = self.scores(series)?;
+        let readings_outside = series
+            .chunks_exact(N_VARIABLES)
+            .map(|s| self.scale.outside(&core::array::from_fn(|j| s[j])))
+            .sum();
+        Ok(Assessment {
+            class: class_of(&scores),
+            scores,
+            samples: series.len() / N_VARIABLES,
+            readings_outside,
+        })
+    }
+}
+
+/// The class of largest score (ties: the softer).
+fn class_of(scores: &[f32; CLASSES]) -> Softness {
+    let best = (1..CLASSES).fold(0, |b, k| if scores[k] > scores[b] { k } else { b });
+    Softness::ALL[best]
+}
+
+/// A grasp's classification ([`SoftnessNet::assess`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Assessment {
+    /// The class of largest mean score (ties: the softer).
+    pub class: Softness,
+    /// The mean outputs, [`Softness::ALL`] order.
+    pub scores: [f32; CLASSES],
+    /// Samples in the series.
+    pub samples: usize,
+    /// Readings (of `samples × 8`) outside the training range widened by [`RANGE_MARGIN`].
+    pub readings_outside: usize,
 }
 
 /// The weights file's tensors: `net.{0,1,2}.{weight,bias}` in [`SoftnessNet::from_flat`]'s

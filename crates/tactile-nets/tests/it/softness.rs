@@ -6,7 +6,7 @@ use crate::common::{bits, rng};
 use proptest::prelude::*;
 use rand::Rng;
 use tactile_nets::pretrained;
-use tactile_nets::softness::{N_VARIABLES, SoftnessNet};
+use tactile_nets::softness::{N_VARIABLES, RANGE_MARGIN, SoftnessNet};
 use tactile_nets::softness_train::{
     AdamConfig, LmConfig, Optimiser, SoftnessTrainConfig, Stop, train,
 };
@@ -111,6 +111,33 @@ fn training_is_deterministic_and_save_load_is_bit_identical() -> Result<(), NetE
             assert_eq!(bits(&a.scores(flat)?), bits(&loaded.scores(flat)?));
         }
     }
+    Ok(())
+}
+
+/// The built-in net states the range it was trained on and counts the readings of a grasp
+/// that lie outside it.
+#[test]
+fn readings_outside_the_training_range_are_counted() -> Result<(), NetError> {
+    let net = pretrained::SOFTNESS;
+    let range = net.scale().range();
+    // Each variable's midpoint: inside.
+    let mid: Vec<f32> = range.iter().map(|[lo, hi]| 0.5 * (lo + hi)).collect();
+    let inside = mid.repeat(5);
+    let a = net.assess(&inside)?;
+    assert_eq!((a.samples, a.readings_outside), (5, 0));
+    assert_eq!(a.class, net.predict(&inside)?);
+    // Finger 1's force ten spans past its maximum in two of the five samples.
+    let mut outside = inside.clone();
+    for s in [1, 3] {
+        let [lo, hi] = range[0];
+        outside[s * N_VARIABLES] = hi + 10.0 * (hi - lo);
+    }
+    assert_eq!(net.assess(&outside)?.readings_outside, 2);
+    // Just past the maximum, within the margin: still inside.
+    let mut near = inside;
+    let [lo, hi] = range[4];
+    near[4] = hi + 0.5 * RANGE_MARGIN * (hi - lo);
+    assert_eq!(net.assess(&near)?.readings_outside, 0);
     Ok(())
 }
 
