@@ -94,6 +94,16 @@ impl<const I: usize, const O: usize> Dense<I, O> {
             .map_err(|b: Box<[f32]>| mismatch("bias", b.len(), &format!("[{O}]")))?;
         Ok(Self { weight, bias })
     }
+
+    /// The weights in row-major `O × I` order (as a weights file stores them).
+    pub fn weight_rows(&self) -> &[f32] {
+        self.weight.as_flattened()
+    }
+
+    /// The bias.
+    pub fn bias(&self) -> &[f32; O] {
+        &self.bias
+    }
 }
 
 #[cfg(feature = "std")]

@@ -93,6 +93,8 @@ pub mod softness_features;
 mod softness_layers;
 #[cfg(feature = "train")]
 pub mod softness_train;
+#[cfg(feature = "std")]
+mod stored;
 #[cfg(feature = "train")]
 pub mod train;
 

@@ -13,7 +13,9 @@
 //! The network standardises them with the training set's mean and spread (stored with the
 //! weights), then runs hidden layers of 64 and 32 ReLU units, each followed by 30 % dropout
 //! (active only in training), trained by Adam with L2 0.001 — the paper's recipe. Inference
-//! runs through the network's [`crate::frozen`] copy (no dfdx call per sample).
+//! runs on plain arrays, no ML framework: [`StaticContactMlp`] over the built-in `'static`
+//! weights (no `std`), [`ContactMlp`] (feature `std`) over a weights file's; training (feature
+//! `train`) freezes dfdx's network into a [`ContactMlp`].
 //!
 //! # Heads
 //! - [`Head::AverageArea`] (the paper's): one linear output regressing the eq. 4 average-area
@@ -41,10 +43,12 @@ use hand_traits::{Contact, ContactLocator};
 use num_traits::Float;
 
 mod base;
-#[cfg(feature = "train")]
+#[cfg(feature = "std")]
 mod model;
-pub use base::{BASE_TERMS, QuadraticBase, base_terms};
 #[cfg(feature = "train")]
+mod training;
+pub use base::{BASE_TERMS, QuadraticBase, base_terms};
+#[cfg(feature = "std")]
 pub use model::ContactMlp;
 
 /// What the three sensors read for one tap, the MLP's raw material.
@@ -149,7 +153,7 @@ pub const DROPOUT: f32 = 0.3;
 /// L2 regularisation (Kim et al. 2020, §4).
 pub const L2: f64 = 0.001;
 /// What a contact MLP is built as, beyond its training loop's [`crate::train::TrainConfig`]:
-/// what [`ContactMlp::train_with`] takes (feature `std`). The default is the paper's network.
+/// what `ContactMlp::train_with` takes (feature `train`). The default is the paper's network.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Options {
     /// Dropout after each hidden layer, `0.0..1.0` (default the paper's [`DROPOUT`]).

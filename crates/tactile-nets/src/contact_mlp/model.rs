@@ -1,40 +1,36 @@
-//! The trainable contact MLP (feature `std`): dfdx network, training, weights files.
+//! The contact MLP as a weights file holds it (feature `std`): plain arrays, no ML framework.
 
-use super::Options;
 use super::{
-    BASE_TERMS, ContactExample, DROPOUT, FEATURE_NAMES, HIDDEN, Head, N_FEATURES, Prediction,
-    QuadraticBase, average_area, decode, features, head_inputs, standardised,
+    BASE_TERMS, DROPOUT, FEATURE_NAMES, HIDDEN, Head, N_FEATURES, Prediction, QuadraticBase,
+    decode, standardised,
 };
 use crate::activations::sigmoid;
 use crate::error::{NetError, check_output};
-use crate::frozen::{Freeze, Layer};
+use crate::frozen::{Dense, Identity, Layer, Relu};
 use crate::io::TensorFile;
-use crate::norm::{mean_and_scale, standardise};
-use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
+use crate::stored::Stored;
 use aot_locate::CELLS;
-use dfdx::prelude::*;
 use hand_traits::{Contact, ContactLocator};
 use std::path::Path;
 
-type Arch<const O: usize> = (
-    (Linear<N_FEATURES, 64>, ReLU, Dropout),
-    (Linear<64, 32>, ReLU, Dropout),
-    Linear<32, O>,
+/// The network with `O` outputs in plain arrays (what dfdx's trained stack freezes to: its
+/// dropout is the identity at inference).
+pub(super) type Fast<const O: usize> = (
+    (Dense<N_FEATURES, 64>, Relu, Identity),
+    (Dense<64, 32>, Relu, Identity),
+    Dense<32, O>,
 );
-type Net<const O: usize> = <Arch<O> as BuildOnDevice<Cpu, f32>>::Built;
-/// The allocation-free inference copy of a [`Net`].
-type Fast<const O: usize> = <Net<O> as Freeze>::Frozen;
 
-/// The trained network (saved) and its frozen copy (run); the centroid head's ensemble
-/// members (at least one) each as such a pair.
-enum Body {
-    Area(Net<1>, Fast<1>),
-    Cells(Net<CELLS>, Fast<CELLS>),
-    Centroid(Vec<(Net<2>, Fast<2>)>),
+/// The network of each head; the centroid head's ensemble members (at least one).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Body {
+    Area(Fast<1>),
+    Cells(Fast<CELLS>),
+    Centroid(Vec<Fast<2>>),
 }
 
 /// The most members a weights file may name (a bound on what a corrupt file makes us build).
-const MAX_MEMBERS: usize = 64;
+pub(super) const MAX_MEMBERS: usize = 64;
 
 /// Tensor-name prefix of ensemble member `i`: the first keeps a single network's names.
 fn member_prefix(i: usize) -> String {
@@ -45,220 +41,44 @@ fn member_prefix(i: usize) -> String {
     }
 }
 
-/// A trained contact-area MLP.
-pub struct ContactMlp {
-    head: Head,
-    body: Body,
-    /// The dropout rate it was trained with (recorded in the weights file).
-    dropout: f32,
-    /// [`Head::Centroid`]'s quadratic base, when it was trained on one: the network's output
-    /// is added to it.
-    base: Option<QuadraticBase>,
-    mean: [f32; N_FEATURES],
-    scale: [f32; N_FEATURES],
-    catalogue: Vec<u32>,
-}
-
-/// The training-split contacts: distinct masks, smaller contacts first, then by mask.
-fn catalogue_of(examples: &[ContactExample]) -> Vec<u32> {
-    let mut masks: Vec<u32> = examples.iter().map(|e| e.mask).collect();
-    masks.sort_by_key(|&m| (m.count_ones(), m));
-    masks.dedup();
-    masks
-}
-
 /// Where `base` puts the centroid at the standardised inputs `z` (the origin without one):
 /// what the network is trained to add to, and adds to at inference.
-fn base_at(base: Option<&QuadraticBase>, z: &[f32; N_FEATURES]) -> [f32; 2] {
+pub(super) fn base_at(base: Option<&QuadraticBase>, z: &[f32; N_FEATURES]) -> [f32; 2] {
     base.map_or([0.0; 2], |b| b.at(z))
 }
 
-fn build<const O: usize>(dev: &Cpu, dropout: f32) -> Net<O> {
-    let mut net = dev.build_module::<Arch<O>, f32>();
-    net.0.2.p = dropout;
-    net.1.2.p = dropout;
-    net
+/// A contact-area MLP from a weights file (or trained, with the `train` feature).
+///
+/// ```
+/// use hand_traits::ContactLocator;
+/// use tactile_nets::contact_mlp::ContactMlp;
+/// use tactile_nets::pretrained;
+///
+/// // A weights file as `ContactMlp::save` (or `cargo xtask train contact-mlp`) writes it.
+/// let path = std::env::temp_dir().join("contact-mlp-doc.safetensors");
+/// pretrained::contact_mlp(1024)?.save(&path)?;
+/// let mut mlp = ContactMlp::load(&path)?;
+/// let features = [0.4, 0.9, 0.2, 0.27, 0.6, 0.13, 0.0, 2.0, 4.0];
+/// assert_eq!(mlp.locate(&features)?.regions, 24);
+/// assert!(mlp.locate(&[0.0; 3]).is_err()); // wrong shape: a typed error
+/// # std::fs::remove_file(&path).ok();
+/// # Ok::<(), tactile_nets::NetError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactMlp {
+    pub(super) head: Head,
+    pub(super) body: Body,
+    /// The dropout rate it was trained with (recorded in the weights file).
+    pub(super) dropout: f32,
+    /// [`Head::Centroid`]'s quadratic base, when it was trained on one: the network's output
+    /// is added to it.
+    pub(super) base: Option<QuadraticBase>,
+    pub(super) mean: [f32; N_FEATURES],
+    pub(super) scale: [f32; N_FEATURES],
+    pub(super) catalogue: Vec<u32>,
 }
 
 impl ContactMlp {
-    /// Trains a model with `head` on `examples` (the training split) using `config`'s epochs,
-    /// batch size, learning rate and seeds (its `l2` is the paper's 0.001 unless changed).
-    pub fn train(
-        examples: &[ContactExample],
-        head: Head,
-        config: &TrainConfig,
-    ) -> Result<(ContactMlp, TrainLog), NetError> {
-        Self::train_with_dropout(examples, head, DROPOUT, config)
-    }
-
-    /// [`ContactMlp::train`] with another dropout rate than the paper's 30 % after each hidden
-    /// layer (0 for none: a regression to fractions of a cell is blurred by dropout's noise).
-    ///
-    /// Errors: no examples, or a `dropout` outside `0.0..1.0`.
-    pub fn train_with_dropout(
-        examples: &[ContactExample],
-        head: Head,
-        dropout: f32,
-        config: &TrainConfig,
-    ) -> Result<(ContactMlp, TrainLog), NetError> {
-        let options = Options {
-            dropout,
-            ..Options::default()
-        };
-        Self::train_with(examples, head, &options, config)
-    }
-
-    /// [`ContactMlp::train`] with `options`: the dropout rate, and for [`Head::Centroid`] a
-    /// [`QuadraticBase`] fitted first on the same taps (the network learns what it leaves)
-    /// and the ensemble's size. Member `i` is trained as a single network would be with
-    /// `config.seed + i` (its initial weights and minibatch order), so member 0 is the model
-    /// `options.members = 1` gives. The log holds the members' mean loss per epoch.
-    ///
-    /// ```
-    /// use tactile_nets::contact_mlp::{ContactExample, ContactMlp, Head, Options, TapReading};
-    /// use tactile_nets::train::TrainConfig;
-    /// let tap = |left: f32, right: f32, centroid| ContactExample {
-    ///     centroid,
-    ///     ..ContactExample::new(
-    ///         TapReading {
-    ///             baseline_pa: [101_000.0; 3],
-    ///             held_pa: [101_000.0 + left, 101_100.0, 101_000.0 + right],
-    ///             arrival_ms: [Some(2.0); 3],
-    ///         },
-    ///         0,
-    ///     )
-    /// };
-    /// let taps = [tap(3000.0, 500.0, [1.5, 1.5]), tap(500.0, 3000.0, [1.5, 5.5])];
-    /// let options = Options { dropout: 0.0, quadratic_base: false, members: 3 };
-    /// let config = TrainConfig {
-    ///     epochs: 20, batch_size: 2, learning_rate: 1e-2, l2: 0.0, seed: 1,
-    ///     progress: false, label: String::new(),
-    /// };
-    /// let (mlp, log) = ContactMlp::train_with(&taps, Head::Centroid, &options, &config)?;
-    /// assert_eq!((mlp.members(), log.epoch_loss.len()), (3, 20));
-    /// # Ok::<(), tactile_nets::NetError>(())
-    /// ```
-    ///
-    /// Errors: as [`ContactMlp::train_with_dropout`]; a base or more than one member asked of
-    /// another head than [`Head::Centroid`], no members, or a base whose fit fails.
-    pub fn train_with(
-        examples: &[ContactExample],
-        head: Head,
-        options: &Options,
-        config: &TrainConfig,
-    ) -> Result<(ContactMlp, TrainLog), NetError> {
-        let Options {
-            dropout,
-            quadratic_base,
-            members,
-        } = *options;
-        if (quadratic_base || members > 1) && head != Head::Centroid {
-            return Err(NetError::Training(format!(
-                "a quadratic base or an ensemble needs the centroid head, not {}",
-                head.name()
-            )));
-        }
-        if !(1..=MAX_MEMBERS).contains(&members) {
-            return Err(NetError::Training(format!(
-                "{members} ensemble members (1 to {MAX_MEMBERS})"
-            )));
-        }
-        if !(0.0..1.0).contains(&dropout) {
-            return Err(NetError::Training(format!(
-                "dropout {dropout} is outside 0.0..1.0"
-            )));
-        }
-        if examples.is_empty() {
-            return Err(NetError::Training("no training taps".into()));
-        }
-        let rows: Vec<[f32; N_FEATURES]> = examples
-            .iter()
-            .map(|e| head_inputs(head, features(&e.reading)))
-            .collect();
-        let (mean, scale) = mean_and_scale(&rows);
-        let z_rows: Vec<[f32; N_FEATURES]> =
-            rows.iter().map(|r| standardise(r, &mean, &scale)).collect();
-        let base = if quadratic_base {
-            let targets: Vec<[f32; 2]> = examples.iter().map(|e| e.centroid).collect();
-            Some(QuadraticBase::fit(&z_rows, &targets).ok_or_else(|| {
-                NetError::Training("the quadratic base's least-squares fit failed".into())
-            })?)
-        } else {
-            None
-        };
-        let mut samples = Samples::default();
-        for (z, ex) in z_rows.iter().zip(examples) {
-            let z = *z;
-            match head {
-                Head::AverageArea => samples.push(&z, &[average_area(ex.mask)]),
-                Head::CellSet => {
-                    let bits: [f32; CELLS] =
-                        core::array::from_fn(|i| f32::from(u8::from(ex.mask & (1 << i) != 0)));
-                    samples.push(&z, &bits);
-                }
-                Head::Centroid => {
-                    let from = base_at(base.as_ref(), &z);
-                    samples.push(&z, &[ex.centroid[0] - from[0], ex.centroid[1] - from[1]]);
-                }
-            }
-        }
-        let dev = Cpu::seed_from_u64(config.seed);
-        let (body, log) = match head {
-            Head::AverageArea => {
-                let mut net = build::<1>(&dev, dropout);
-                let log = fit::<_, N_FEATURES, 1>(&dev, &mut net, &samples, Loss::Mse, config)?;
-                {
-                    let fast = net.freeze()?;
-                    (Body::Area(net, fast), log)
-                }
-            }
-            Head::CellSet => {
-                let mut net = build::<CELLS>(&dev, dropout);
-                let loss = Loss::SigmoidCrossEntropy;
-                let log = fit::<_, N_FEATURES, CELLS>(&dev, &mut net, &samples, loss, config)?;
-                {
-                    let fast = net.freeze()?;
-                    (Body::Cells(net, fast), log)
-                }
-            }
-            Head::Centroid => {
-                let mut nets = Vec::with_capacity(members);
-                // The members' mean loss per epoch: summed, then divided (exact for one).
-                let mut log = TrainLog {
-                    epoch_loss: vec![0.0; config.epochs],
-                };
-                for i in 0..members {
-                    let config = TrainConfig {
-                        seed: config.seed.wrapping_add(i as u64),
-                        ..config.clone()
-                    };
-                    let dev = Cpu::seed_from_u64(config.seed);
-                    let mut net = build::<2>(&dev, dropout);
-                    let l = fit::<_, N_FEATURES, 2>(&dev, &mut net, &samples, Loss::Mse, &config)?;
-                    for (sum, x) in log.epoch_loss.iter_mut().zip(l.epoch_loss) {
-                        *sum += x;
-                    }
-                    let fast = net.freeze()?;
-                    nets.push((net, fast));
-                }
-                for l in &mut log.epoch_loss {
-                    *l /= members as f32;
-                }
-                (Body::Centroid(nets), log)
-            }
-        };
-        let model = ContactMlp {
-            head,
-            body,
-            dropout,
-            base,
-            mean,
-            scale,
-            catalogue: catalogue_of(examples),
-        };
-        Ok((model, log))
-    }
-
     /// The head this model was trained with.
     pub fn head(&self) -> Head {
         self.head
@@ -299,18 +119,18 @@ impl ContactMlp {
         let z = standardised(self.head, input, &self.mean, &self.scale)?;
         let mut out = [0.0f32; CELLS];
         let n = match &self.body {
-            Body::Area(_, fast) => {
+            Body::Area(fast) => {
                 out[..1].copy_from_slice(&fast.forward(z));
                 1
             }
-            Body::Cells(_, fast) => {
+            Body::Cells(fast) => {
                 out = fast.forward(z);
                 CELLS
             }
             Body::Centroid(nets) => {
                 let from = base_at(self.base.as_ref(), &z);
                 let mut sum = [0.0f32; 2];
-                for (_, fast) in nets {
+                for fast in nets {
                     let y = fast.forward(z);
                     sum = [sum[0] + y[0], sum[1] + y[1]];
                 }
@@ -343,12 +163,18 @@ impl ContactMlp {
     pub fn to_file(&self) -> Result<TensorFile, NetError> {
         let mut f = TensorFile::new();
         match &self.body {
-            Body::Area(net, _) => f.add_module("net.", net)?,
-            Body::Cells(net, _) => f.add_module("net.", net)?,
-            Body::Centroid(nets) => {
-                for (i, (net, _)) in nets.iter().enumerate() {
-                    f.add_module(&member_prefix(i), net)?;
+            Body::Area(net) => net.write(&mut f, "net.")?,
+            Body::Cells(net) => net.write(&mut f, "net.")?,
+            Body::Centroid(members) => {
+                for (i, net) in members.iter().enumerate() {
+                    net.write(&mut f, &member_prefix(i))?;
                 }
+            }
+        }
+        // dfdx's dropout layers store their rate (a file trained with `train` has them).
+        for prefix in (0..self.members()).map(member_prefix) {
+            for layer in ["0.2", "1.2"] {
+                f.insert(&format!("{prefix}{layer}.p"), &[], &[self.dropout])?;
             }
         }
         if let Some(b) = &self.base {
@@ -402,30 +228,14 @@ impl ContactMlp {
                 head.name()
             )));
         }
-        let dev = Cpu::seed_from_u64(0);
         let body = match head {
-            Head::AverageArea => {
-                let mut net = build::<1>(&dev, DROPOUT);
-                file.load_module("net.", &mut net)?;
-                let fast = net.freeze()?;
-                Body::Area(net, fast)
-            }
-            Head::CellSet => {
-                let mut net = build::<CELLS>(&dev, DROPOUT);
-                file.load_module("net.", &mut net)?;
-                let fast = net.freeze()?;
-                Body::Cells(net, fast)
-            }
-            Head::Centroid => {
-                let mut nets = Vec::with_capacity(members);
-                for i in 0..members {
-                    let mut net = build::<2>(&dev, DROPOUT);
-                    file.load_module(&member_prefix(i), &mut net)?;
-                    let fast = net.freeze()?;
-                    nets.push((net, fast));
-                }
-                Body::Centroid(nets)
-            }
+            Head::AverageArea => Body::Area(Stored::read(file, "net.")?),
+            Head::CellSet => Body::Cells(Stored::read(file, "net.")?),
+            Head::Centroid => Body::Centroid(
+                (0..members)
+                    .map(|i| Stored::read(file, &member_prefix(i)))
+                    .collect::<Result<_, _>>()?,
+            ),
         };
         let vec9 = |name: &str| -> Result<[f32; N_FEATURES], NetError> {
             let v = file.get(name, &[N_FEATURES])?;
@@ -479,6 +289,12 @@ impl ContactMlp {
     /// Reads a model written by [`ContactMlp::save`]; an error names the file.
     pub fn load(path: &Path) -> Result<ContactMlp, NetError> {
         TensorFile::load_with(path, Self::from_file)
+    }
+
+    /// A model from the bytes of a weights file (one embedded with `include_bytes!`, or
+    /// received); errors name it as `name`.
+    pub fn from_bytes(name: &str, bytes: &[u8]) -> Result<ContactMlp, NetError> {
+        TensorFile::parse_with(name, bytes, Self::from_file)
     }
 }
 

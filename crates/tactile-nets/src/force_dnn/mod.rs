@@ -12,8 +12,10 @@
 //! estimates saturate 12.5 % of the range beyond it instead of running away.
 //!
 //! # Inference
-//! Runs through the [`crate::frozen`] copy of the network (plain arrays, no allocation);
-//! [`ForceDnn::estimate_gf_dfdx`] keeps the dfdx forward for comparison.
+//! Plain arrays, no allocation, no ML framework: [`StaticForceDnn`] over the built-in
+//! `'static` weights (no `std`), [`ForceDnn`] (feature `std`) over a weights file's;
+//! training (feature `train`) freezes dfdx's network into a [`ForceDnn`], and
+//! `ForceDnn::estimate_gf_dfdx` keeps dfdx's forward as the reference.
 //!
 //! ```
 //! # #[cfg(feature = "train")] {
@@ -40,10 +42,16 @@ use crate::frozen::{self, Layer, Logistic, Relu, StaticDense};
 use crate::norm::standardise;
 use hand_traits::{ForceEstimate, ForceEstimator};
 
-#[cfg(feature = "train")]
+#[cfg(feature = "std")]
 mod model;
+#[cfg(feature = "std")]
+mod table;
 #[cfg(feature = "train")]
-pub use model::{ForceDnn, tared_table};
+mod training;
+#[cfg(feature = "std")]
+pub use model::ForceDnn;
+#[cfg(feature = "std")]
+pub use table::tared_table;
 
 /// One training or test sample: tared pressure rises and the true weight.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,5 +1,6 @@
-//! The built-in models: the `'static` and the full models agree bit for bit, damaged files are
-//! typed errors naming file and tensor, every model loads within the size budget, and the
+//! The built-in models: the `'static` and the full models agree bit for bit, every committed
+//! force-DNN and contact-MLP file reads and re-writes to its own bytes without dfdx, damaged
+//! files are typed errors naming file and tensor, every model loads within the size budget, and the
 //! README quotes the committed metrics.
 
 use rand::{Rng, SeedableRng};
@@ -7,6 +8,7 @@ use rand_chacha::ChaCha8Rng;
 use tactile_nets::NetError;
 use tactile_nets::contact_cnn::Variant;
 use tactile_nets::contact_mlp::{N_FEATURES, TapReading, features};
+use tactile_nets::contact_mlp::ContactMlp;
 use tactile_nets::force_dnn::ForceDnn;
 use tactile_nets::pretrained::{
     CONTACT_MLP_OSRS, FORCE_DNN_SIM, FORCE_DNN_TABLE1, ForceModel, SIZE_BUDGET_BYTES, SOFTNESS,
@@ -47,6 +49,42 @@ fn static_and_full_models_agree_bit_for_bit() -> Result<(), NetError> {
     }
     assert!(contact_mlp_static(300).is_none());
     assert!(contact_mlp(300).is_err());
+    Ok(())
+}
+
+/// Every committed weights file of `kind` (`force_dnn`, `contact_mlp`).
+fn committed(kind: &str) -> Vec<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models").join(kind);
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("the models directory")
+        .map(|e| e.expect("a directory entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "safetensors"))
+        .collect();
+    files.sort();
+    files
+}
+
+/// The plain-array models write the tensors dfdx's module walk wrote (names, shapes, the
+/// dropout rates): every committed file, trained through dfdx, comes back byte for byte, and
+/// its estimates match dfdx's forward.
+#[test]
+fn committed_files_read_and_rewrite_to_their_own_bytes_without_dfdx() -> Result<(), NetError> {
+    let (forces, mlps) = (committed("force_dnn"), committed("contact_mlp"));
+    // Table 1's model, its 13 leave-one-out folds and the hand-sim model; 5 OSRs × 5 heads.
+    assert_eq!((forces.len(), mlps.len()), (15, 25));
+    for path in &forces {
+        let bytes = std::fs::read(path)?;
+        let dnn = ForceDnn::from_bytes(&path.display().to_string(), &bytes)?;
+        assert!(dnn.to_file()?.to_bytes()? == bytes, "{}", path.display());
+        let rise = [0.7, 1.9, 1.2];
+        let (plain, reference) = (dnn.estimate_gf(&rise)?, dnn.estimate_gf_dfdx(&rise)?);
+        assert!((plain - reference).abs() < 1e-3, "{plain} vs {reference}");
+    }
+    for path in &mlps {
+        let bytes = std::fs::read(path)?;
+        let mlp = ContactMlp::load(path)?;
+        assert!(mlp.to_file()?.to_bytes()? == bytes, "{}", path.display());
+    }
     Ok(())
 }
 
