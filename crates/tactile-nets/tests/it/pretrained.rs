@@ -7,8 +7,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tactile_nets::NetError;
 use tactile_nets::contact_cnn::Variant;
-use tactile_nets::contact_mlp::{N_FEATURES, TapReading, features};
 use tactile_nets::contact_mlp::ContactMlp;
+use tactile_nets::contact_mlp::{N_FEATURES, TapReading, features};
 use tactile_nets::force_dnn::ForceDnn;
 use tactile_nets::pretrained::{
     CONTACT_MLP_OSRS, FORCE_DNN_SIM, FORCE_DNN_TABLE1, ForceModel, SIZE_BUDGET_BYTES, SOFTNESS,
@@ -54,7 +54,9 @@ fn static_and_full_models_agree_bit_for_bit() -> Result<(), NetError> {
 
 /// Every committed weights file of `kind` (`force_dnn`, `contact_mlp`).
 fn committed(kind: &str) -> Vec<std::path::PathBuf> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models").join(kind);
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("models")
+        .join(kind);
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .expect("the models directory")
         .map(|e| e.expect("a directory entry").path())
