@@ -62,6 +62,8 @@ impl ContactLocator for AotLocator {
             region: scores.argmax() as u16,
             regions: AREAS as u16,
             confidence: scores.confidence(),
+            // Eq. 3 is a formula over the arrival order, valid for any arrivals.
+            in_range: true,
         })
     }
 }

@@ -9,6 +9,10 @@ pub struct Contact {
     pub regions: u16,
     /// How sure the locator is, in `0.0..=1.0` (a softmax probability, a normalised score).
     pub confidence: f32,
+    /// Whether the input lay within the range the locator is valid for (a learned model's
+    /// training range). `false`: the region is an extrapolation — its confidence says nothing
+    /// of a reading unlike any the model saw — to be reported, not acted on.
+    pub in_range: bool,
 }
 
 /// Finds where a pad was touched.
@@ -28,7 +32,7 @@ pub struct Contact {
 ///     fn locate(&mut self, frame: &Self::Input) -> Result<Contact, Self::Error> {
 ///         let (i, _) = frame.pressure_pa.iter().enumerate()
 ///             .fold((0, f32::MIN), |best, (i, &p)| if p > best.1 { (i, p) } else { best });
-///         Ok(Contact { region: i as u16, regions: 3, confidence: 1.0 })
+///         Ok(Contact { region: i as u16, regions: 3, confidence: 1.0, in_range: true })
 ///     }
 /// }
 ///

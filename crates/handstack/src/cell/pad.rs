@@ -34,11 +34,18 @@ pub struct PadNodeReport {
     pub frames: u64,
     /// Contacts located and published.
     pub contacts: u64,
+    /// Of those, the ones located from a window outside the locator's range
+    /// ([`Contact::in_range`]): extrapolations, published as located.
+    pub contacts_outside_range: u64,
 }
 
 impl core::fmt::Display for PadNodeReport {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(f, "{} frames, {} contacts", self.frames, self.contacts)
+        write!(
+            f,
+            "{} frames, {} contacts ({} outside the locator's range)",
+            self.frames, self.contacts, self.contacts_outside_range
+        )
     }
 }
 
@@ -105,6 +112,7 @@ where
                     contacts: vec![contact_to_msg(&c)],
                 })?;
                 report.contacts += 1;
+                report.contacts_outside_range += u64::from(!c.in_range);
             }
         }
         pacer.wait();

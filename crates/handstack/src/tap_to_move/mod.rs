@@ -79,13 +79,16 @@ pub struct CycleReport {
     pub region: u16,
     /// Its confidence.
     pub confidence: f32,
+    /// Whether the window lay within the locator's range ([`hand_traits::Contact::in_range`]). When it
+    /// did not, the region is an extrapolation and the arm was not moved: it stays at home.
+    pub in_range: bool,
     /// Source time of the frame whose pressure crossed the threshold, µs.
     pub trigger_t_us: u64,
     /// Source time from the trigger to the last frame of the window, µs.
     pub window_wait_us: u64,
     /// Wall time the locator took, s.
     pub locate_s: f64,
-    /// Wall time of the move to the grid pose, s.
+    /// Wall time of the move to the grid pose, s (0 when the arm was not moved).
     pub move_s: f64,
 }
 
@@ -258,7 +261,9 @@ impl<'g> TapToMove<'g> {
         }
     }
 
-    /// One cycle: home, wait for a contact, locate it, move to its grid pose.
+    /// One cycle: home, wait for a contact, locate it, move to its grid pose — unless the
+    /// window lay outside the locator's range ([`CycleReport::in_range`]): then the arm stays
+    /// at home.
     ///
     /// `to_input` turns the `frames_before + frames_after` frames around the trigger into the
     /// locator's input, owned or as anything that borrows as it (for a CNN taking `[f32]`: the
@@ -299,11 +304,14 @@ impl<'g> TapToMove<'g> {
             .pose(contact.region)
             .map_err(|e| halt(arm, ExperimentError::Grid(e)))?;
         let t1 = Instant::now();
-        arm.move_linear(&target, &self.config.motion)
-            .map_err(|e| halt(arm, ExperimentError::Arm(e)))?;
+        if contact.in_range {
+            arm.move_linear(&target, &self.config.motion)
+                .map_err(|e| halt(arm, ExperimentError::Arm(e)))?;
+        }
         Ok(CycleReport {
             region: contact.region,
             confidence: contact.confidence,
+            in_range: contact.in_range,
             trigger_t_us,
             window_wait_us,
             locate_s,

@@ -94,3 +94,35 @@ fn committed_metrics_match_a_re_evaluation_of_the_committed_weights() -> Result<
     }
     Ok(())
 }
+
+/// The range the CNNs state (`contact_cnn::Z_RANGE` spreads of each channel's training
+/// values) holds every window of the pad's dataset, for every built-in variant; the most
+/// extreme tap at three times its rates is flagged.
+#[test]
+fn every_dataset_window_is_in_range_and_three_times_the_most_extreme_is_not() -> Result<(), NetError>
+{
+    use tactile_nets::contact_cnn::WINDOW_VALUES;
+    let taps = taps();
+    let window = |i: usize| -> [f32; WINDOW_VALUES] {
+        core::array::from_fn(|k| taps.windows[[i, k / WINDOW, k % WINDOW]])
+    };
+    for variant in Variant::ALL {
+        let cnn = tactile_nets::pretrained::contact_cnn(variant)?;
+        let (mean, scale) = cnn.input_scale();
+        let mut extreme = (0, 0.0f32);
+        for i in 0..taps.len() {
+            let w = window(i);
+            assert!(cnn.predict(&w)?.in_range, "{variant:?}, tap {i}");
+            for (k, v) in w.iter().enumerate() {
+                let z = ((v - mean[k / WINDOW]) / scale[k / WINDOW]).abs();
+                if z > extreme.1 {
+                    extreme = (i, z);
+                }
+            }
+        }
+        let tripled = window(extreme.0).map(|v| 3.0 * v);
+        assert!(!cnn.predict(&tripled)?.in_range, "{variant:?}: {extreme:?}");
+    }
+    assert_eq!(CHANNELS * WINDOW, tactile_nets::contact_cnn::WINDOW_VALUES);
+    Ok(())
+}

@@ -164,3 +164,45 @@ fn the_one_cell_sets_hold_their_taps_off_every_border() -> Result<(), Box<dyn st
     assert_eq!(n, 3024);
     Ok(())
 }
+
+/// The range the MLPs state (`contact_mlp::Z_RANGE` spreads of the training inputs) holds every
+/// tap of the pad's dataset, training and held-out, at every OSR, for the float and the
+/// fixed-point forms; the hardest tap pressed three times as hard is flagged.
+#[test]
+fn every_dataset_tap_is_in_range_and_a_press_three_times_the_hardest_is_not() -> Result<(), NetError>
+{
+    use tactile_nets::contact_mlp::features;
+    use tactile_nets::pretrained::{
+        CONTACT_MLP_OSRS, contact_mlp_static, fixed_contact_mlp_static,
+    };
+    let records = records();
+    for osr in CONTACT_MLP_OSRS {
+        let (float, fixed) = (
+            contact_mlp_static(osr).ok_or(NetError::EmptyCatalogue)?,
+            fixed_contact_mlp_static(osr).ok_or(NetError::EmptyCatalogue)?,
+        );
+        let taps = contact_eval::at_osr(&records, osr);
+        let rise = |r: &&TapRecord| -> f32 {
+            (0..3)
+                .map(|k| r.reading.held_pa[k] - r.reading.baseline_pa[k])
+                .sum()
+        };
+        for r in &taps {
+            let x = features(&r.reading);
+            assert!(float.predict(&x)?.in_range, "OSR {osr}: {:?}", r.reading);
+            assert!(fixed.predict(&x)?.in_range, "OSR {osr}: {:?}", r.reading);
+        }
+        let hardest = taps
+            .iter()
+            .max_by(|a, b| rise(a).total_cmp(&rise(b)))
+            .ok_or(NetError::EmptyCatalogue)?;
+        let mut pressed = hardest.reading;
+        for k in 0..3 {
+            pressed.held_pa[k] += 2.0 * (pressed.held_pa[k] - pressed.baseline_pa[k]);
+        }
+        let x = features(&pressed);
+        assert!(!float.predict(&x)?.in_range, "OSR {osr}: {pressed:?}");
+        assert!(!fixed.predict(&x)?.in_range, "OSR {osr}: {pressed:?}");
+    }
+    Ok(())
+}

@@ -44,6 +44,7 @@ impl ContactLocator for Scheduled {
             region,
             regions: 9,
             confidence: 1.0,
+            in_range: true,
         })
     }
 }

@@ -180,4 +180,9 @@ fn a_pad_node_with_the_cnn_publishes_where_each_tap_landed() {
         .filter(|&(i, &(r, _))| usize::from(r) == i)
         .count();
     assert!(right >= 7, "{right} of 9 taps in their region: {regions:?}");
+    // The chip model's windows read like the dataset's the CNN was trained on.
+    assert!(
+        report.contains("(0 outside the locator's range)"),
+        "{report}"
+    );
 }

@@ -237,7 +237,17 @@ pub struct Prediction {
     pub region: u8,
     /// Its softmax probability.
     pub confidence: f32,
+    /// Whether every standardised value of the window lay within [`Z_RANGE`] training spreads
+    /// of its channel's training mean; `false`: a window unlike any the model was trained on.
+    pub in_range: bool,
 }
+
+/// How far from its channel's training mean, in training spreads, a standardised window value
+/// may lie and still count as in range: 10. The 2880 taps of the pad dataset the built-in CNNs
+/// were trained and tested on lie within 7.9 (gyro y; accelerations within 5.0); a tap at three
+/// times the hardest one's rates lies beyond (both measured in paper-experiments'
+/// `nets_contact_cnn`).
+pub const Z_RANGE: f32 = 10.0;
 
 impl ContactCnn {
     /// Which network this is.
@@ -301,15 +311,19 @@ impl ContactCnn {
             .collect()
     }
 
-    /// Locates a contact from a raw window (see [`ContactCnn::logits`] for the errors).
+    /// Locates a contact from a raw window (see [`ContactCnn::logits`] for the errors),
+    /// flagged out of range beyond [`Z_RANGE`].
     pub fn predict(&self, window: &[f32]) -> Result<Prediction, NetError> {
-        let logits = self.logits(window)?;
+        let z = self.standardise(window)?;
+        let logits = self.frozen.logits(&z);
+        check_output(&logits)?;
         let mut p = [0.0f32; REGIONS];
         softmax_into(&logits, &mut p);
         let region = argmax(&logits);
         Ok(Prediction {
             region,
             confidence: p[usize::from(region)],
+            in_range: z.iter().all(|v| v.abs() <= Z_RANGE),
         })
     }
 
@@ -427,6 +441,7 @@ impl ContactLocator for ContactCnn {
             region: u16::from(p.region),
             regions: REGIONS as u16,
             confidence: p.confidence,
+            in_range: p.in_range,
         })
     }
 }

@@ -239,6 +239,32 @@ pub struct Prediction {
     /// Where the contact is centred, 1-based (row, column) cell units: the decoded contact's
     /// centroid, or for [`Head::Centroid`] the regressed point.
     pub centroid: [f32; 2],
+    /// Whether every standardised input lay within [`Z_RANGE`] training spreads of its training
+    /// mean ([`in_range`]); `false`: a reading unlike any the model was trained on.
+    pub in_range: bool,
+}
+
+/// As a [`Contact`] over the 24 cells, row-major.
+impl From<Prediction> for Contact {
+    fn from(p: Prediction) -> Contact {
+        Contact {
+            region: p.region,
+            regions: CELLS as u16,
+            confidence: p.confidence,
+            in_range: p.in_range,
+        }
+    }
+}
+
+/// How far from its training mean, in training spreads, a standardised input may lie and still
+/// count as in range: 4. The committed models' training taps lie within 2.6 spreads on every
+/// feature at every OSR (their held-out taps too); a press with three times the rises of the
+/// hardest training tap lies beyond (both measured in paper-experiments' `nets_contact_mlp`).
+pub const Z_RANGE: f32 = 4.0;
+
+/// Whether the standardised inputs `z` lie within [`Z_RANGE`] of the training mean.
+pub fn in_range(z: &[f32; N_FEATURES]) -> bool {
+    z.iter().all(|v| v.abs() <= Z_RANGE)
 }
 
 /// The raw input features of one reading ([`FEATURE_NAMES`]).
@@ -357,7 +383,8 @@ fn decode_cells(logits: &[f32], catalogue: impl IntoIterator<Item = u32>) -> Opt
 }
 
 /// The prediction for the network outputs `out` (one label value, a centroid's two
-/// coordinates, or [`CELLS`] cell logits) over `catalogue`.
+/// coordinates, or [`CELLS`] cell logits) over `catalogue`, in range (the caller, which has
+/// the inputs, says otherwise).
 fn decode(out: &[f32], catalogue: impl IntoIterator<Item = u32>) -> Result<Prediction, RunError> {
     if let [r, c] = *out {
         let region = region_at([r, c]);
@@ -366,6 +393,7 @@ fn decode(out: &[f32], catalogue: impl IntoIterator<Item = u32>) -> Result<Predi
             region,
             confidence: inside_cell([r, c]),
             centroid: [r, c],
+            in_range: true,
         });
     }
     let (contact, confidence) = if out.len() == 1 {
@@ -380,6 +408,7 @@ fn decode(out: &[f32], catalogue: impl IntoIterator<Item = u32>) -> Result<Predi
         region: region_at(centroid),
         confidence,
         centroid,
+        in_range: true,
     })
 }
 
@@ -464,11 +493,13 @@ impl StaticContactMlp {
     /// an input far outside the training range overflows the network,
     /// [`RunError::EmptyCatalogue`] for a model without contacts.
     pub fn predict(&self, input: &[f32]) -> Result<Prediction, RunError> {
-        let logits = self
-            .net
-            .forward(standardised(Head::CellSet, input, self.mean, self.scale)?);
+        let z = standardised(Head::CellSet, input, self.mean, self.scale)?;
+        let logits = self.net.forward(z);
         check_output(&logits)?;
-        decode(&logits, self.catalogue())
+        Ok(Prediction {
+            in_range: in_range(&z),
+            ..decode(&logits, self.catalogue())?
+        })
     }
 }
 
@@ -478,12 +509,7 @@ impl ContactLocator for StaticContactMlp {
     type Error = RunError;
 
     fn locate(&mut self, input: &[f32]) -> Result<Contact, RunError> {
-        let p = self.predict(input)?;
-        Ok(Contact {
-            region: p.region,
-            regions: CELLS as u16,
-            confidence: p.confidence,
-        })
+        Ok(self.predict(input)?.into())
     }
 }
 

@@ -2,7 +2,7 @@
 
 use super::{
     BASE_TERMS, DROPOUT, FEATURE_NAMES, HIDDEN, Head, N_FEATURES, Prediction, QuadraticBase,
-    decode, standardised,
+    decode, in_range, standardised,
 };
 use crate::activations::sigmoid;
 use crate::error::{NetError, check_output};
@@ -109,13 +109,14 @@ impl ContactMlp {
     /// [`NetError::NonFinite`] for a NaN or infinite value, [`NetError::NonFiniteOutput`] when
     /// an input far outside the training range overflows the network.
     pub fn outputs(&self, input: &[f32]) -> Result<Vec<f32>, NetError> {
-        let (out, n) = self.raw_outputs(input)?;
+        let (out, n, _) = self.raw_outputs(input)?;
         Ok(out[..n].to_vec())
     }
 
-    /// [`ContactMlp::outputs`] in a fixed buffer (the first `n` slots hold the head's outputs):
-    /// localisation runs inside control cycles, where it must not allocate.
-    fn raw_outputs(&self, input: &[f32]) -> Result<([f32; CELLS], usize), NetError> {
+    /// [`ContactMlp::outputs`] in a fixed buffer (the first `n` slots hold the head's outputs;
+    /// localisation runs inside control cycles, where it must not allocate), and whether the
+    /// input was [`in_range`].
+    fn raw_outputs(&self, input: &[f32]) -> Result<([f32; CELLS], usize, bool), NetError> {
         let z = standardised(self.head, input, &self.mean, &self.scale)?;
         let mut out = [0.0f32; CELLS];
         let n = match &self.body {
@@ -140,13 +141,17 @@ impl ContactMlp {
             }
         };
         check_output(&out[..n])?;
-        Ok((out, n))
+        Ok((out, n, in_range(&z)))
     }
 
-    /// Locates the contact for raw features (see [`ContactMlp::outputs`] for the errors).
+    /// Locates the contact for raw features (see [`ContactMlp::outputs`] for the errors),
+    /// flagged out of range as [`super::StaticContactMlp`]'s predictions are.
     pub fn predict(&self, input: &[f32]) -> Result<Prediction, NetError> {
-        let (out, n) = self.raw_outputs(input)?;
-        Ok(decode(&out[..n], self.catalogue.iter().copied())?)
+        let (out, n, in_range) = self.raw_outputs(input)?;
+        Ok(Prediction {
+            in_range,
+            ..decode(&out[..n], self.catalogue.iter().copied())?
+        })
     }
 
     /// Per-cell contact probabilities (the [`Head::CellSet`] outputs through a sigmoid);
@@ -304,11 +309,6 @@ impl ContactLocator for ContactMlp {
     type Error = NetError;
 
     fn locate(&mut self, input: &[f32]) -> Result<Contact, NetError> {
-        let p = self.predict(input)?;
-        Ok(Contact {
-            region: p.region,
-            regions: CELLS as u16,
-            confidence: p.confidence,
-        })
+        Ok(self.predict(input)?.into())
     }
 }

@@ -143,6 +143,7 @@ impl FixedContactMlp {
             region: contact_mlp::region_at(centroid),
             confidence,
             centroid,
+            in_range: contact_mlp::in_range(&z),
         })
     }
 }
@@ -202,11 +203,6 @@ impl ContactLocator for FixedContactMlp {
     type Error = RunError;
 
     fn locate(&mut self, input: &[f32]) -> Result<Contact, RunError> {
-        let p = self.predict(input)?;
-        Ok(Contact {
-            region: p.region,
-            regions: CELLS as u16,
-            confidence: p.confidence,
-        })
+        Ok(self.predict(input)?.into())
     }
 }
