@@ -315,7 +315,11 @@ impl<'g> TapToMove<'g> {
             trigger_t_us,
             window_wait_us,
             locate_s,
-            move_s: t1.elapsed().as_secs_f64(),
+            move_s: if contact.in_range {
+                t1.elapsed().as_secs_f64()
+            } else {
+                0.0
+            },
         })
     }
 

@@ -14,6 +14,8 @@ use ur_sim::TimeScale;
 struct Scheduled {
     regions: Vec<u16>,
     next: usize,
+    /// The tap whose contact it reports outside its range.
+    outside: Option<usize>,
 }
 
 impl Scheduled {
@@ -27,7 +29,11 @@ impl Scheduled {
                     .map_err(|e| e.to_string())
             })
             .collect::<Result<_, _>>()?;
-        Ok(Self { regions, next: 0 })
+        Ok(Self {
+            regions,
+            next: 0,
+            outside: None,
+        })
     }
 }
 
@@ -44,7 +50,7 @@ impl ContactLocator for Scheduled {
             region,
             regions: 9,
             confidence: 1.0,
-            in_range: true,
+            in_range: self.outside != Some(self.next - 1),
         })
     }
 }
@@ -84,4 +90,32 @@ fn every_region_moves_the_arm_to_its_grid_pose() {
             TimeScale::new(run::TIME_SCALE).unwrap()
         )
     );
+}
+
+/// A contact located from a window outside the locator's range is reported, not acted on: the
+/// arm stays at home for that tap and moves for the others.
+#[test]
+fn a_contact_outside_the_locators_range_leaves_the_arm_at_home() {
+    let taps = run::schedule(run::PAD_SEED, 1);
+    let mut locator = Scheduled::new(&taps).unwrap();
+    locator.outside = Some(4);
+    let rows = run::run(
+        22,
+        TimeScale::new(run::TIME_SCALE).unwrap(),
+        taps,
+        TapToMoveConfig::default(),
+        &mut locator,
+        run::window,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(rows.len(), 9);
+    for (k, r) in rows.iter().enumerate() {
+        if k == 4 {
+            // At home, centimetres from region 4's grid pose; no move was timed.
+            assert!(r.tcp_error_m > 0.01, "region 4: {} m", r.tcp_error_m);
+            assert_eq!(r.move_s, 0.0);
+        } else {
+            assert!(r.tcp_error_m < 1e-4, "region {k}: {} m", r.tcp_error_m);
+        }
+    }
 }
