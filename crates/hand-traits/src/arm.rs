@@ -92,7 +92,7 @@ impl Default for LinearMotion {
 /// ```
 pub trait Arm {
     /// What can go wrong (a protective stop, a lost connection, an unreachable pose…).
-    type Error: core::fmt::Debug;
+    type Error: core::fmt::Debug + core::fmt::Display;
 
     /// Moves the tool in a straight line to `target` and returns when it is there.
     fn move_linear(&mut self, target: &Pose, motion: &LinearMotion) -> Result<(), Self::Error>;

@@ -44,7 +44,7 @@ pub trait ContactLocator {
     /// What the locator reads: pressures with arrival times, a feature vector, an IMU window.
     type Input: ?Sized;
     /// Why no location could be given (no sensor arrived, a non-finite input…).
-    type Error: core::fmt::Debug;
+    type Error: core::fmt::Debug + core::fmt::Display;
 
     /// Locates one contact.
     fn locate(&mut self, input: &Self::Input) -> Result<Contact, Self::Error>;

@@ -77,7 +77,7 @@ pub trait ForceEstimator {
     /// What the estimator reads: a frame, a window of frames, a feature vector.
     type Input: ?Sized;
     /// Why an estimate could not be made (a non-finite input, a wrong shape…).
-    type Error: core::fmt::Debug;
+    type Error: core::fmt::Debug + core::fmt::Display;
 
     /// Estimates the force for one input. `&mut self` lets an estimator reuse scratch buffers.
     fn estimate_force(&mut self, input: &Self::Input) -> Result<ForceEstimate, Self::Error>;

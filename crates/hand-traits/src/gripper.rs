@@ -153,7 +153,7 @@ pub enum SafeAction {
 /// ```
 pub trait GripperActuator {
     /// What can go wrong (a lost status packet, a CRC mismatch, a hardware-error bit…).
-    type Error: core::fmt::Debug;
+    type Error: core::fmt::Debug + core::fmt::Display;
 
     /// Sends one command.
     fn command(&mut self, cmd: &GripperCommand) -> Result<(), Self::Error>;

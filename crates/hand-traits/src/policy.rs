@@ -79,7 +79,7 @@ impl Effort {
 /// See the crate-level example for an implementation.
 pub trait GraspPolicy {
     /// Why no effort could be chosen (a non-finite observation…).
-    type Error: core::fmt::Debug;
+    type Error: core::fmt::Debug + core::fmt::Display;
 
     /// The effort for this cycle's observation.
     fn effort(&mut self, obs: &GraspObservation) -> Result<Effort, Self::Error>;

@@ -57,7 +57,7 @@ pub trait SoftnessClassifier {
     /// What the classifier reads: a feature vector, a time series.
     type Input: ?Sized;
     /// Why no class could be given.
-    type Error: core::fmt::Debug;
+    type Error: core::fmt::Debug + core::fmt::Display;
 
     /// Classifies one grasp.
     fn classify(&mut self, input: &Self::Input) -> Result<Softness, Self::Error>;

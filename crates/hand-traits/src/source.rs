@@ -13,6 +13,12 @@
 /// #[derive(Debug, PartialEq)]
 /// struct Exhausted;
 ///
+/// impl core::fmt::Display for Exhausted {
+///     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+///         f.write_str("the recording ran out of frames")
+///     }
+/// }
+///
 /// impl TactileSource for Replay<'_> {
 ///     type Frame = PressureFrame<3>;
 ///     type Error = Exhausted;
@@ -32,8 +38,9 @@
 pub trait TactileSource {
     /// The frame type, e.g. [`PressureFrame`](crate::PressureFrame) or [`ImuFrame`](crate::ImuFrame).
     type Frame;
-    /// What can go wrong reading one frame (a bus NACK, a CRC mismatch, a timeout…).
-    type Error: core::fmt::Debug;
+    /// What can go wrong reading one frame (a bus NACK, a CRC mismatch, a timeout…), in
+    /// words for the user (`Display`) and for a developer (`Debug`).
+    type Error: core::fmt::Debug + core::fmt::Display;
 
     /// Reads the next frame.
     fn read_frame(&mut self) -> Result<Self::Frame, Self::Error>;

@@ -53,12 +53,12 @@ impl ForceTopic {
     pub fn new<F>(node: &Node, mut estimator: F) -> Result<Self, NodeError>
     where
         F: ForceEstimator<Input = [f32]> + Send + 'static,
-        F::Error: core::fmt::Debug,
+        F::Error: core::fmt::Display,
     {
         Ok(ForceTopic {
             publisher: node.publisher("force")?,
             estimate: Box::new(move |rise| {
-                estimator.estimate_force(rise).map_err(|e| format!("{e:?}"))
+                estimator.estimate_force(rise).map_err(|e| e.to_string())
             }),
             refused: 0,
             last_refusal: None,

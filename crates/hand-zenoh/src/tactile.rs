@@ -13,14 +13,14 @@
 //! # struct Fingertip;
 //! # impl TactileSource for Fingertip {
 //! #     type Frame = PressureFrame<3>;
-//! #     type Error = ();
-//! #     fn read_frame(&mut self) -> Result<PressureFrame<3>, ()> { Ok(PressureFrame { t_us: 0, pressure_pa: [101_325.0; 3] }) }
+//! #     type Error = core::convert::Infallible;
+//! #     fn read_frame(&mut self) -> Result<PressureFrame<3>, Self::Error> { Ok(PressureFrame { t_us: 0, pressure_pa: [101_325.0; 3] }) }
 //! # }
 //! let node = Node::open(NodeOptions::new("/hand0", "tactile"))?;
 //! let info = TactileInfo { chip: "MS5611".into(), rate_hz: 100.0, frame_id: "hand0/fingertip0".into() };
 //! let mut tactile = TactileNode::new(&node, Fingertip, info)?;
 //! tactile.step()?; // read one frame, publish raw and touch (and sensor_info when due)
-//! # Ok::<(), hand_zenoh::tactile::TactileError<()>>(())
+//! # Ok::<(), hand_zenoh::tactile::TactileError<core::convert::Infallible>>(())
 //! ```
 
 use crate::NodeError;
@@ -44,9 +44,9 @@ pub struct TactileInfo {
 
 /// Why a step failed.
 #[derive(Debug, thiserror::Error)]
-pub enum TactileError<E: core::fmt::Debug> {
+pub enum TactileError<E: core::fmt::Debug + core::fmt::Display> {
     /// The device did not give a frame (the node publishes nothing for it).
-    #[error("tactile device: {0:?}")]
+    #[error("tactile device: {0}")]
     Device(E),
     /// A frame with a value that is not finite: dropped, not published.
     #[error("sensor {sensor} read {value} Pa")]
@@ -147,7 +147,7 @@ where
     ) -> Result<Self, NodeError>
     where
         F: ForceEstimator<Input = [f32]> + Send + 'static,
-        F::Error: core::fmt::Debug,
+        F::Error: core::fmt::Debug + core::fmt::Display,
     {
         self.force = Some(ForceTopic::new(node, estimator)?);
         self.startup = (tare_frames > 0).then(|| StartupTare {

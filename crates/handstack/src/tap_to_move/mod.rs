@@ -95,15 +95,20 @@ pub struct CycleReport {
 /// Why a cycle ended early. The arm was told to stop first.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
-pub enum ExperimentError<S: core::fmt::Debug, L: core::fmt::Debug, A: core::fmt::Debug> {
+pub enum ExperimentError<S, L, A>
+where
+    S: core::fmt::Debug + core::fmt::Display,
+    L: core::fmt::Debug + core::fmt::Display,
+    A: core::fmt::Debug + core::fmt::Display,
+{
     /// The tactile source failed.
-    #[error("tactile source: {0:?}")]
+    #[error("tactile source: {0}")]
     Source(S),
     /// The locator failed.
-    #[error("contact locator: {0:?}")]
+    #[error("contact locator: {0}")]
     Locator(L),
     /// The arm failed.
-    #[error("arm: {0:?}")]
+    #[error("arm: {0}")]
     Arm(A),
     /// The region has no grid pose.
     #[error(transparent)]
@@ -332,8 +337,8 @@ impl<'g> TapToMove<'g> {
     ) -> Result<Window<'_>, ExperimentError<S::Error, LE, AE>>
     where
         S: TactileSource<Frame = ImuFrame>,
-        LE: core::fmt::Debug,
-        AE: core::fmt::Debug,
+        LE: core::fmt::Debug + core::fmt::Display,
+        AE: core::fmt::Debug + core::fmt::Display,
     {
         self.trigger.restart();
         let mut waited = 0;

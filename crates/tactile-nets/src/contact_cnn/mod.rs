@@ -285,8 +285,9 @@ impl ContactCnn {
         (self.mean, self.scale)
     }
 
-    /// Standardised window; errors as [`ContactCnn::logits`].
-    fn standardise(&self, window: &[f32]) -> Result<[f32; WINDOW_VALUES], NetError> {
+    /// Standardised window and whether it lies within [`Z_RANGE`]; errors as
+    /// [`ContactCnn::logits`].
+    fn standardise(&self, window: &[f32]) -> Result<([f32; WINDOW_VALUES], bool), NetError> {
         standardise(window, &self.mean, &self.scale)
     }
 
@@ -297,7 +298,7 @@ impl ContactCnn {
     /// a NaN or infinite value, [`NetError::NonFiniteOutput`] when a finite input far outside
     /// the training range overflows the network.
     pub fn logits(&self, window: &[f32]) -> Result<[f32; REGIONS], NetError> {
-        let z = self.standardise(window)?;
+        let (z, _) = self.standardise(window)?;
         let out = self.frozen.logits(&z);
         check_output(&out)?;
         Ok(out)
@@ -314,7 +315,7 @@ impl ContactCnn {
     /// Locates a contact from a raw window (see [`ContactCnn::logits`] for the errors),
     /// flagged out of range beyond [`Z_RANGE`].
     pub fn predict(&self, window: &[f32]) -> Result<Prediction, NetError> {
-        let z = self.standardise(window)?;
+        let (z, in_range) = self.standardise(window)?;
         let logits = self.frozen.logits(&z);
         check_output(&logits)?;
         let mut p = [0.0f32; REGIONS];
@@ -323,7 +324,7 @@ impl ContactCnn {
         Ok(Prediction {
             region,
             confidence: p[usize::from(region)],
-            in_range: z.iter().all(|v| v.abs() <= Z_RANGE),
+            in_range,
         })
     }
 
@@ -405,18 +406,23 @@ impl ContactCnn {
     }
 }
 
-/// `window` checked and standardised with the per-channel `mean` and `scale`.
+/// `window` checked and standardised with the per-channel `mean` and `scale`, and whether every
+/// value lies within [`Z_RANGE`].
 fn standardise(
     window: &[f32],
     mean: &[f32; CHANNELS],
     scale: &[f32; CHANNELS],
-) -> Result<[f32; WINDOW_VALUES], NetError> {
+) -> Result<([f32; WINDOW_VALUES], bool), NetError> {
     check_input(window, WINDOW_VALUES)?;
     let z: [f32; WINDOW_VALUES] =
         core::array::from_fn(|i| (window[i] - mean[i / WINDOW]) / scale[i / WINDOW]);
-    // A finite input can still overflow the standardisation: report it as the overflow it is.
-    check_output(&z)?;
-    Ok(z)
+    // One pass answers both questions for a window in range (a NaN or infinity is not within
+    // it); only a window outside is checked for the overflow a finite input can still cause.
+    let in_range = z.iter().all(|v| v.abs() <= Z_RANGE);
+    if !in_range {
+        check_output(&z)?;
+    }
+    Ok((z, in_range))
 }
 /// Index of the largest value (ties: the lower; NaN never wins).
 fn argmax(v: &[f32]) -> u8 {

@@ -162,7 +162,7 @@ impl DfdxCnn {
     /// The 9 logits of a raw window through dfdx's forward (errors as
     /// [`ContactCnn::logits`]).
     pub fn logits(&self, window: &[f32]) -> Result<[f32; REGIONS], NetError> {
-        let z = standardise(window, &self.mean, &self.scale)?;
+        let (z, _) = standardise(window, &self.mean, &self.scale)?;
         let x = self
             .dev
             .try_tensor_from_vec(z.to_vec(), (1, Const::<WINDOW_VALUES>))?;
