@@ -106,7 +106,10 @@ pub enum RigError {
     #[error("grasp loop configuration: {0}")]
     Config(#[from] ConfigError),
     /// The loop never sent a torque, so there is nothing to settle (it faulted from the start).
-    #[error("the grasp loop sent no torque in {cycles} cycles (first fault: {fault:?})")]
+    #[error(
+        "the grasp loop sent no torque in {cycles} cycles (first fault: {})",
+        fault.map_or_else(|| "none".to_owned(), |f| f.to_string())
+    )]
     NoTorque {
         /// Cycles run.
         cycles: usize,

@@ -65,6 +65,11 @@ where
 }
 
 /// The kind of a [`LoopFault`], without the payload: what the per-cycle log keeps.
+///
+/// ```
+/// use hand_control::grasp_loop::FaultKind;
+/// assert_eq!(FaultKind::Command.to_string(), "command refused or lost");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FaultKind {
     /// See [`LoopFault::Source`].
@@ -83,6 +88,22 @@ pub enum FaultKind {
     SafeStop,
     /// See [`LoopFault::Reboot`].
     Reboot,
+}
+
+/// In words: `tactile source failed`, `hardware error: overload`, …
+impl core::fmt::Display for FaultKind {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            FaultKind::Source => f.write_str("tactile source failed"),
+            FaultKind::Estimate => f.write_str("unusable frame"),
+            FaultKind::Policy => f.write_str("policy chose no effort"),
+            FaultKind::Command => f.write_str("command refused or lost"),
+            FaultKind::State => f.write_str("actuator state unreadable"),
+            FaultKind::Hardware(faults) => write!(f, "hardware error: {faults}"),
+            FaultKind::SafeStop => f.write_str("safe stop failed"),
+            FaultKind::Reboot => f.write_str("recovery reboot failed"),
+        }
+    }
 }
 
 impl<SE: core::fmt::Debug, PE: core::fmt::Debug, AE: core::fmt::Debug> LoopFault<SE, PE, AE> {
