@@ -174,8 +174,10 @@ fn gid_at(bytes: &[u8], at: usize) -> [u8; 16] {
 mod tests {
     use super::{Attachment, AttachmentError, LEGACY_LEN, Layout};
 
-    /// Written by hand from the rule in attachment_helpers.cpp (rmw_zenoh 0.2.4+) and the Zenoh
-    /// serialization format: seq 1, stamp 1 764 100 000 123 456 789 ns, GID 00 01 … 0f.
+    /// Written by hand from `AttachmentData::serialize_to_zbytes` in attachment_helpers.cpp
+    /// (rmw_zenoh 0.2.4+) and the Zenoh serialization format — rmw_zenoh's own tests serialise
+    /// no attachment to take a vector from: seq 1, stamp 1 764 100 000 123 456 789 ns, GID
+    /// 00 01 … 0f.
     const CURRENT: &str = "0100000000000000\
                            150da07f9a577b18\
                            10\
