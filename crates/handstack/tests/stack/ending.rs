@@ -1,8 +1,9 @@
 //! Every way a run ends leaves the hand in its declared end state — tested as a user meets it:
 //! `handstack`'s command line (the `bench_rig` example: [`handstack::cli::main`] with model
 //! MS5611 fingertip buses, everything else the binary's) as its own process, `dxl-sim` as
-//! another on a pseudo-terminal, real signals (SIGINT, SIGTERM; SIGKILL of the servo bus), and
-//! what the servos were left doing read back over Protocol 2.0 and from `dxl-sim --trace`.
+//! another on a pseudo-terminal, real signals (SIGINT, SIGTERM, SIGHUP; SIGKILL of the servo
+//! bus), and what the servos were left doing read back over Protocol 2.0 and from `dxl-sim
+//! --trace`.
 //!
 //! "Within two control cycles" is counted on the bus: the state reads (one SYNC READ a cycle)
 //! the simulator executed after the signal was sent and before the end action's first packet.
@@ -172,6 +173,42 @@ fn sigterm_mid_grasp_releases_the_hand_then_turns_the_torque_off_through_a_secon
     for (torque, position) in read_back(&servos) {
         assert_eq!(torque, 0, "torque left on");
         assert!((position - 2048).abs() <= 40, "not opened: {position}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// SIGHUP (the terminal closing) with `on_end = "hold"`: the loop stops commanding within two
+/// cycles and the hand keeps its grip, torque on, as the scene asked.
+#[test]
+fn sighup_mid_grasp_with_on_end_hold_keeps_the_grip_torque_on() {
+    let servos = servos();
+    let dir = dir("sighup");
+    let run = start_run(&scene(&dir, &servos.path, Some("hold"), 20.0), "0.3");
+    let sent_at = grasp_then_signal(&servos, &run, "HUP");
+    let out = finish(run);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(129), "{err}");
+    assert!(
+        err.contains("stopped by SIGHUP at ")
+            && err.contains("; hand holding its last safe effort (torque on)"),
+        "{err}"
+    );
+    let trace = servos.lines.snapshot();
+    let commands = trace[sent_at..]
+        .iter()
+        .filter(|l| is_torque_limit(l))
+        .count();
+    assert!(commands <= 2, "{commands} loop commands after SIGHUP");
+    assert!(
+        !trace[sent_at..]
+            .iter()
+            .any(|l| is_torque_off(l) || is_opening(l)),
+        "the hold was not kept: {:?}",
+        &trace[sent_at..]
+    );
+    for (torque, position) in read_back(&servos) {
+        assert_eq!(torque, 1, "torque off");
+        assert!(position < 2048 - 100, "not gripping: {position}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
