@@ -210,6 +210,46 @@ fn an_overload_ends_the_hold_unless_the_scene_recovers_from_it() {
     assert_eq!(torque_on(&mut bus), [false, false]);
 }
 
+/// A recovery that does not come in time, or runs out of reboots, ends the run saying which.
+#[test]
+fn a_recovery_that_runs_out_of_time_or_reboots_ends_the_run() {
+    let once = |bus: &mut SimBus, n: u64| {
+        if n == 60 {
+            bus.with_servo(1, |s| s.raise_hardware_error(0x20));
+        }
+    };
+    // The reboot comes after 0.5 s in the safe state: later than 0.2 s allows.
+    let hurried = Recover {
+        attempts: 2,
+        within_s: 0.2,
+    };
+    let (result, _, mut bus) = run(4.0, Some(hurried), &Stop::new(), once);
+    let text = result.expect_err("not recovered in time").to_string();
+    assert!(
+        text.contains("not recovered within 0.2 s of its fault"),
+        "{text}"
+    );
+    assert_eq!(torque_on(&mut bus), [false, false]);
+    // Overloaded again after its one reboot: the reboots are used up.
+    let twice = |bus: &mut SimBus, n: u64| {
+        if n == 60 || n == 200 {
+            bus.with_servo(1, |s| s.raise_hardware_error(0x20));
+        }
+    };
+    let one = Recover {
+        attempts: 1,
+        within_s: 3.0,
+    };
+    let (result, frames, mut bus) = run(4.0, Some(one), &Stop::new(), twice);
+    let text = result.expect_err("reboots used up").to_string();
+    assert!(
+        text.contains("still faulted after 1 recovery reboots"),
+        "{text} after {frames} frames"
+    );
+    assert!(frames < 400, "{frames}");
+    assert_eq!(torque_on(&mut bus), [false, false]);
+}
+
 #[test]
 fn a_panic_in_the_hold_leaves_the_torque_off() {
     let (mut bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
