@@ -188,3 +188,73 @@ fn a_controller_that_dies_mid_move_ends_the_arm_node_saying_so() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// SIGTERM to `handstack node --part arm` mid-move: the arm is stopped (stopL) short of its
+/// goal, and the node exits with the signal's status (143).
+#[test]
+fn sigterm_mid_move_stops_the_arm_and_ends_the_node_with_its_status() {
+    use crate::process::{finish, signal, text};
+    use std::process::{Command, Stdio};
+    if std::env::var_os("HANDSTACK_PYTHON").is_none() {
+        eprintln!(
+            "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"
+        );
+        return;
+    }
+    let host = "127.0.0.97";
+    let ur = UrSim::start(host);
+    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
+    let _router = Router::open(&endpoint).unwrap();
+    let dir = std::env::temp_dir().join(format!("handstack-arm-term-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let scene = dir.join("arm.toml");
+    std::fs::write(
+        &scene,
+        format!("title = \"arm\"\n[arm]\nmodel = \"ur3\"\nhost = \"{host}\"\n"),
+    )
+    .expect("scene");
+    let mut arm_node = Command::new(env!("CARGO_BIN_EXE_handstack"))
+        .arg("node")
+        .arg(&scene)
+        .args([
+            "--part",
+            "arm",
+            "--namespace",
+            "/arm0",
+            "--connect",
+            &endpoint,
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("handstack node starts");
+    let _stdin = arm_node.stdin.take();
+    let (_commander, _tcp, _goal, target) = move_under_way(&endpoint);
+    signal(arm_node.id(), "TERM");
+    let out = finish(arm_node);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(143), "{err}");
+    assert!(err.contains("/arm0 arm: "), "{err}");
+    // Read back from the controller: at rest, short of the goal.
+    let arm = UrArm::connect(UrConfig::new(host)).expect("ur_rtde");
+    let deadline = Instant::now() + WAIT;
+    let mut last = arm.tool_pose().expect("pose");
+    let rest = loop {
+        std::thread::sleep(Duration::from_millis(200));
+        let pose = arm.tool_pose().expect("pose");
+        if pose.distance_m(&last) < 1e-6 {
+            break pose;
+        }
+        assert!(Instant::now() < deadline, "the arm never came to rest");
+        last = pose;
+    };
+    assert!(
+        rest.distance_m(&target) > 0.01,
+        "the arm went on to its goal: {:.4} m from it",
+        rest.distance_m(&target)
+    );
+    drop(arm);
+    ur.kill();
+    let _ = std::fs::remove_dir_all(&dir);
+}

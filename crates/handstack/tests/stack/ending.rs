@@ -301,3 +301,54 @@ fn closing_on_nothing_is_a_failed_grasp_not_a_met_target() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `handstack node --part hand` ends the same way (feature `cell`): SIGINT to a node waiting for
+/// its first goal → the scene's end action, the signal's exit status, what the hand was left
+/// doing said.
+#[cfg(feature = "cell")]
+#[test]
+fn sigint_ends_a_hand_node_through_its_end_action() {
+    let servos = servos();
+    let dir = dir("node-sigint");
+    let endpoint = hand_zenoh::config::free_loopback_endpoint().expect("a loopback port");
+    let _router = hand_zenoh::node::Router::open(&endpoint).expect("router");
+    let scene = scene(&dir, &servos.path, Some("torque_off"), 20.0);
+    let mut node = Command::new(built("examples/bench_rig"))
+        .arg("node")
+        .arg(&scene)
+        .args([
+            "--part",
+            "hand",
+            "--namespace",
+            "/hand0",
+            "--connect",
+            &endpoint,
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("handstack node starts");
+    // Held open: a closed stdin is the node's normal stop, not what this test is about.
+    let _stdin = node.stdin.take();
+    // Ready: both servos powered (the node then waits for a goal).
+    servos.lines.wait_for("torque on", |l| {
+        l.iter().filter(|l| l.ends_with("Torque Enable=1")).count() >= 2
+    });
+    let sent_at = servos.lines.snapshot().len();
+    signal(node.id(), "INT");
+    let out = finish(node);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(
+        err.contains("/hand0 hand: ") && err.ends_with("; hand torque off\n"),
+        "{err}"
+    );
+    servos.lines.wait_for("torque off", |l| {
+        l[sent_at..].iter().any(|l| is_torque_off(l))
+    });
+    for (torque, _) in read_back(&servos) {
+        assert_eq!(torque, 0, "torque left on");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
