@@ -32,7 +32,8 @@
 //! - **Multiply-adds: `i16 × i16` into an `i64` accumulator** (one `SMLAL` on a Cortex-M3; a
 //!   3 × 3 patch's nine products already pass `i32`), the bias shifted to the products'
 //!   exponent — or, when that shift would overflow (an input block of tiny values), the
-//!   products rounded to 24 bits above the bias's; an input of zeros gives the biases exactly.
+//!   inputs first rounded to 24 bits above the bias's; an input of zeros gives the biases
+//!   exactly.
 //!   ReLU and max-pool are compares.
 //! - **The logistic function and the decode's `exp`: tables with linear interpolation**
 //!   ([`logistic_q15`]: `σ(x)` over `[-12, 12)` in steps of 1/16 (385 values), Q15, within
@@ -119,28 +120,6 @@ fn pow2(e: i32) -> f32 {
     f32::from_bits(((e.clamp(-126, 127) + 127) as u32) << 23)
 }
 
-/// `x · 2^-s` for `s ≥ 0`, rounding half up; 0 past 62 bits. ([`shift`] for a shift known not
-/// to go left: fewer instructions in the kernel's row loop.)
-#[inline]
-fn round_right(x: i64, s: i32) -> i64 {
-    if s == 0 {
-        x
-    } else if s < 63 {
-        (x + (1 << (s - 1))) >> s
-    } else {
-        0
-    }
-}
-
-/// [`round_right`] for a layer's products that meet its bias below their exponent: out of
-/// line, as that happens only for inputs of tiny values (the row loop of each layer a firmware
-/// inlines stays as small as without it).
-#[cold]
-#[inline(never)]
-fn dropped(sum: i64, drop: i32) -> i64 {
-    round_right(sum, drop)
-}
-
 /// Accumulators at exponent `exp` as a [`Block`]: shifted so the largest fills 15 bits.
 #[inline]
 fn normalise<const N: usize>(acc: &[i64; N], exp: i32) -> Block<N> {
@@ -195,6 +174,21 @@ where
     /// reads more than 15 bits of its input (the table logistic's Q12) takes.
     #[inline]
     fn accumulate(&self, x: &Block<I>) -> ([i64; O], i32) {
+        // The products meet the bias at their own exponent, unless the bias would overflow
+        // there (an input block of tiny values has a large exponent): then the inputs are
+        // first rounded to the exponent BIAS_HEADROOM above the bias's — bits far below the
+        // largest bias, which the block's 15 do not keep. Once per call, and only then: the
+        // row loop stays as it is without it.
+        let over = self.weight_exp + x.exp - (self.bias_exp + BIAS_HEADROOM);
+        let mut coarse;
+        let x = if over > 0 {
+            coarse = *x;
+            coarse.exp -= over;
+            coarsen(&mut coarse.v, over);
+            &coarse
+        } else {
+            x
+        };
         // The non-zero inputs, compacted: after a ReLU about half are zero, and a skipped
         // input is a multiply-add saved in every row.
         let mut index = [0u16; I];
@@ -206,25 +200,21 @@ where
             n += usize::from(v != 0);
         }
         let (index, value) = (&index[..n], &value[..n]);
-        // The products meet at `exp`, unless the bias would overflow there (an input block of
-        // tiny values has a large exponent): then at the bias's exponent plus its headroom,
-        // each row's products summed first and rounded to it once — bits far below the
-        // bias's, which the block's 15 do not keep. Without products (all inputs zero) the
-        // outputs are the biases, at their own exponent: exact.
+        // Without products (all inputs zero) the outputs are the biases, at their own
+        // exponent: exact.
         let exp = if n == 0 {
             self.bias_exp
         } else {
             self.weight_exp + x.exp
         };
-        let at = exp.min(self.bias_exp + BIAS_HEADROOM);
-        let (drop, to_bias) = (exp - at, at - self.bias_exp);
         let mut acc = [0i64; O];
         for ((a, row), &b) in acc
             .iter_mut()
             .zip(self.weight.borrow())
             .zip(self.bias.borrow())
         {
-            let mut sum = 0i64;
+            // At most BIAS_HEADROOM bits left.
+            let mut sum = shift(i64::from(b), exp - self.bias_exp);
             for (&j, &v) in index.iter().zip(value) {
                 // SAFETY: every `j` in `index` is the position of an element of `x.v`, an
                 // `[i16; I]`, so `j < I`, and `row` is an `[i16; I]`. Why unchecked: the check
@@ -236,15 +226,19 @@ where
                 // `i16 × i16` into `i64`: one SMLAL on a Cortex-M3.
                 sum += i64::from(w) * i64::from(v);
             }
-            // The bias's shift is at most BIAS_HEADROOM left: no overflow to check.
-            let bias = if to_bias >= 0 {
-                i64::from(b) << to_bias
-            } else {
-                round_right(i64::from(b), -to_bias)
-            };
-            *a = bias + if drop == 0 { sum } else { dropped(sum, drop) };
+            *a = sum;
         }
-        (acc, at)
+        (acc, exp)
+    }
+}
+
+/// Each value rounded `by` bits right (its block's exponent `by` lower). Out of line, one copy
+/// for every width: only the inputs of tiny values a [`QDense`] meets need it.
+#[cold]
+#[inline(never)]
+fn coarsen(v: &mut [i16], by: i32) {
+    for v in v {
+        *v = shift(i64::from(*v), -by) as i16;
     }
 }
 
@@ -313,7 +307,8 @@ fn quantise_tensor(
 
 /// How far left a bias (within `2^30`) may be shifted to meet its layer's products: it then
 /// stays within `2^54`, and the products (each below `2^30`) of any layer narrower than
-/// `2^32` inputs add less than `2^62` to it: no `i64` overflow.
+/// `2^32` inputs add less than `2^62` to it: no `i64` overflow. (The products are then below
+/// `2^-24` of the largest bias each: under the 15 bits of the block the layer gives.)
 const BIAS_HEADROOM: i32 = 24;
 
 impl<const I: usize, const O: usize, W, B> Layer<Block<I>> for QDense<I, O, W, B>
