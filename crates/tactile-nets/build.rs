@@ -84,29 +84,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-/// The largest magnitude a quantised weight takes (`i16`).
-const WEIGHT_LIMIT: f64 = 32767.0;
-/// The largest magnitude a quantised bias takes (`i32`, with headroom for the sum it joins).
-const BIAS_LIMIT: f64 = 1_073_741_824.0;
-/// Exponents stay within what the fixed-point layers shift by.
-const MAX_EXP: i32 = 60;
+/// The fixed-point forms' quantisation rule (one copy, shared with `crate::fixed`).
+#[allow(dead_code)]
+#[path = "src/fixed/quantise.rs"]
+mod quantise;
 
-/// `values` as integers `round(x · 2^e)` with `e` the largest exponent (at most [`MAX_EXP`])
-/// that keeps every magnitude within `limit`, and `e`.
-fn quantise(values: &[f32], limit: f64) -> (Vec<i64>, i32) {
-    let max = values
-        .iter()
-        .fold(0.0f64, |m, &v| m.max(f64::from(v).abs()));
-    let exp = if max > 0.0 {
-        ((limit / max).log2().floor() as i32).min(MAX_EXP)
-    } else {
-        0
-    };
-    let scale = 2f64.powi(exp);
-    let q = values
-        .iter()
-        .map(|&v| (f64::from(v) * scale).round() as i64)
-        .collect();
+/// `values` as integers `round(x · 2^e)` with `e` the exponent of [`quantise::scale_exp`]
+/// (`limit`: [`quantise::WEIGHT_LIMIT`] or [`quantise::BIAS_LIMIT`]), and `e`.
+fn quantised(values: &[f32], limit: i64) -> (Vec<i64>, i32) {
+    let exp = quantise::scale_exp(values, limit);
+    let q = values.iter().map(|&v| quantise::fixed_of(v, exp)).collect();
     (q, exp)
 }
 
@@ -220,7 +207,7 @@ fn arrays_module(name: &str, bytes: &[u8]) -> Result<String, String> {
             let (ty, value, exp) = match (view.shape(), tensor.ends_with(".weight")) {
                 ([o, i], true) => {
                     layers.push((ident.trim_end_matches("_WEIGHT").to_owned(), *i, *o));
-                    let (q, exp) = quantise(&v, WEIGHT_LIMIT);
+                    let (q, exp) = quantised(&v, quantise::WEIGHT_LIMIT);
                     let rows: Vec<String> = q.chunks_exact((*i).max(1)).map(list).collect();
                     (
                         format!("[[i16; {i}]; {o}]"),
@@ -229,7 +216,7 @@ fn arrays_module(name: &str, bytes: &[u8]) -> Result<String, String> {
                     )
                 }
                 ([o], false) => {
-                    let (q, exp) = quantise(&v, BIAS_LIMIT);
+                    let (q, exp) = quantised(&v, quantise::BIAS_LIMIT);
                     (format!("[i32; {o}]"), list(&q), exp)
                 }
                 _ => continue,
@@ -238,10 +225,16 @@ fn arrays_module(name: &str, bytes: &[u8]) -> Result<String, String> {
             m += &format!("    pub(crate) const {ident}_Q_EXP: i32 = {exp};\n");
         }
     }
+    // Each layer over the `'static` arrays, and holding them by value (the form of a small
+    // network that can also be quantised at run time, as the softness net's).
     for (layer, i, o) in layers {
         m += &format!(
             "    pub(crate) static {layer}_Q: crate::fixed::QDense<{i}, {o}> = crate::fixed::QDense::new(\
              &{layer}_WEIGHT_Q, {layer}_WEIGHT_Q_EXP, &{layer}_BIAS_Q, {layer}_BIAS_Q_EXP);\n"
+        );
+        m += &format!(
+            "    pub(crate) static {layer}_Q_ARRAY: crate::fixed::QDenseArray<{i}, {o}> = crate::fixed::QDense::new(\
+             {layer}_WEIGHT_Q, {layer}_WEIGHT_Q_EXP, {layer}_BIAS_Q, {layer}_BIAS_Q_EXP);\n"
         );
     }
     m += "}\n";

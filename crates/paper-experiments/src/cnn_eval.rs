@@ -256,8 +256,18 @@ pub fn split(
 
 /// Fraction of `idx` that `model` classifies right.
 pub fn accuracy(model: &ContactCnn, data: &Augmented, idx: &[usize]) -> Result<f64, NetError> {
+    accuracy_with(|w| model.classify_batch(w), data, idx)
+}
+
+/// Fraction of `idx` that `classify` (a batch of raw windows → their regions; a model's
+/// `classify_batch`, float or fixed point) classifies right.
+pub fn accuracy_with(
+    classify: impl Fn(&[[f32; WINDOW_VALUES]]) -> Result<Vec<u8>, NetError>,
+    data: &Augmented,
+    idx: &[usize],
+) -> Result<f64, NetError> {
     let (w, r) = data.pick(idx);
-    let got = model.classify_batch(&w)?;
+    let got = classify(&w)?;
     let hits = got.iter().zip(&r).filter(|(a, b)| a == b).count();
     Ok(hits as f64 / idx.len().max(1) as f64)
 }
@@ -431,14 +441,21 @@ pub fn evaluate_committed(
     taps: &Dataset,
     which: Committed,
 ) -> Result<(f64, [[u32; REGIONS]; REGIONS]), NetError> {
-    let job = which.job();
     let model = ContactCnn::load(&root.join(MODEL_DIR).join(which.file()))?;
-    let data = augment(taps, &job.case.taps(taps), NOISY_COPIES, SNR_DB, SEED);
-    let (_, test) = split(&data, job.protocol, job.grouping, job.run, SEED);
+    let (data, test) = held_out(taps, which);
     Ok((
         accuracy(&model, &data, &test)?,
         confusion(&model, &data, &test)?,
     ))
+}
+
+/// The augmented windows of the committed model `which`'s case and the indices of its
+/// held-out split (the windows [`evaluate_committed`] scores it on).
+pub fn held_out(taps: &Dataset, which: Committed) -> (Augmented, Vec<usize>) {
+    let job = which.job();
+    let data = augment(taps, &job.case.taps(taps), NOISY_COPIES, SNR_DB, SEED);
+    let (_, test) = split(&data, job.protocol, job.grouping, job.run, SEED);
+    (data, test)
 }
 
 /// The committed-model rows: accuracy and the confusion counts (`c{truth}{predicted}`).

@@ -19,7 +19,7 @@ use hand_traits::{Softness, SoftnessClassifier};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tactile_nets::error::NetError;
+use tactile_nets::error::{NetError, RunError};
 use tactile_nets::metrics::{MetricsFile, MetricsRow};
 use tactile_nets::softness::{CLASSES, SoftnessNet};
 use tactile_nets::softness_features::Features;
@@ -106,19 +106,19 @@ pub fn training_mse(
     net: &SoftnessNet,
     pairs: &[(&[[f32; N_VARIABLES]], Softness)],
 ) -> Result<f64, NetError> {
-    rows_mse(net, pairs, STRIDE)
+    rows_mse(|s| net.sample_outputs(s), pairs, STRIDE)
 }
 
-/// The mean squared error over every `stride`-th row of `pairs`.
+/// The mean squared error of `sample_outputs` over every `stride`-th row of `pairs`.
 fn rows_mse(
-    net: &SoftnessNet,
+    sample_outputs: impl Fn(&[f32]) -> Result<[f32; CLASSES], RunError>,
     pairs: &[(&[[f32; N_VARIABLES]], Softness)],
     stride: usize,
 ) -> Result<f64, NetError> {
     let (mut sum, mut n) = (0.0f64, 0usize);
     for (series, truth) in pairs {
         for s in series.iter().step_by(stride.max(1)) {
-            let y = net.sample_outputs(s)?;
+            let y = sample_outputs(s)?;
             for (k, v) in y.iter().enumerate() {
                 let t = if k == truth.index() { 1.0 } else { 0.0 };
                 sum += (f64::from(*v) - t).powi(2);
@@ -190,11 +190,26 @@ pub fn class_name(s: Softness) -> &'static str {
 
 /// Evaluates `net` on the dataset's three sets.
 pub fn evaluate(net: &SoftnessNet, grasps: &[Grasp]) -> Result<Evaluation, NetError> {
+    evaluate_with(
+        |series| net.predict(series),
+        |sample| net.sample_outputs(sample),
+        grasps,
+    )
+}
+
+/// Evaluates a classifier given as its `predict` (a whole series, flat) and its
+/// `sample_outputs` (one sample's three outputs) — a net's, float or fixed point — as
+/// [`evaluate`] does.
+pub fn evaluate_with(
+    predict: impl Fn(&[f32]) -> Result<Softness, RunError>,
+    sample_outputs: impl Fn(&[f32]) -> Result<[f32; CLASSES], RunError>,
+    grasps: &[Grasp],
+) -> Result<Evaluation, NetError> {
     let train = labelled(grasps, GraspSet::Train);
     scored(
         grasps,
-        |g| Ok(net.predict(g.series.as_flattened())?),
-        training_mse(net, &refs(&train))?,
+        |g| Ok(predict(g.series.as_flattened())?),
+        rows_mse(sample_outputs, &refs(&train), STRIDE)?,
     )
 }
 
@@ -550,7 +565,11 @@ pub fn evaluate_pooled(model: &Pooled, grasps: &[Grasp]) -> Result<Evaluation, N
     scored(
         grasps,
         |g| model.predict(&g.series.samples()),
-        rows_mse(&model.net, &refs(&pairs), model.features.stride())?,
+        rows_mse(
+            |s| model.net.sample_outputs(s),
+            &refs(&pairs),
+            model.features.stride(),
+        )?,
     )
 }
 

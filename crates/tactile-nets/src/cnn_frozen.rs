@@ -23,6 +23,9 @@ const CONV: &str = "net.0.1";
 const HIDDEN: &str = "net.1.0";
 const OUT: &str = "net.1.2";
 
+/// One stored tensor: its name, shape and row-major values.
+pub(crate) type Tensor = (String, Vec<usize>, Vec<f32>);
+
 /// A contact CNN with `F` filters, `FLAT = 18 · F` pooled features and a dense width `H`, as
 /// plain arrays.
 #[derive(Debug, Clone, PartialEq)]
@@ -87,21 +90,31 @@ impl<const F: usize, const FLAT: usize, const H: usize> FrozenCnn<F, FLAT, H> {
 
     /// Adds the network's tensors to `file` under the names [`FrozenCnn::from_file`] reads.
     pub fn to_file(&self, file: &mut TensorFile) -> Result<(), NetError> {
+        for (name, shape, values) in self.tensors() {
+            file.insert(&name, &shape, &values)?;
+        }
+        Ok(())
+    }
+
+    /// The network's tensors as a weights file stores them: name, shape, row-major values —
+    /// the conv kernel and bias, the hidden layer's weight and bias, the output layer's.
+    pub(crate) fn tensors(&self) -> [Tensor; 6] {
         let conv: Vec<f32> = (0..F * PATCH)
             .map(|i| self.conv[i % PATCH][i / PATCH])
             .collect();
-        file.insert(&format!("{CONV}.weight"), &[F, PATCH], &conv)?;
-        file.insert(&format!("{CONV}.bias"), &[F], &self.conv_bias)?;
         let (hidden, out) = &self.head;
-        file.insert(
-            &format!("{HIDDEN}.weight"),
-            &[H, FLAT],
-            &hidden.weight_rows(),
-        )?;
-        file.insert(&format!("{HIDDEN}.bias"), &[H], hidden.bias())?;
-        file.insert(&format!("{OUT}.weight"), &[REGIONS, H], &out.weight_rows())?;
-        file.insert(&format!("{OUT}.bias"), &[REGIONS], out.bias())?;
-        Ok(())
+        [
+            (format!("{CONV}.weight"), vec![F, PATCH], conv),
+            (format!("{CONV}.bias"), vec![F], self.conv_bias.to_vec()),
+            (
+                format!("{HIDDEN}.weight"),
+                vec![H, FLAT],
+                hidden.weight_rows(),
+            ),
+            (format!("{HIDDEN}.bias"), vec![H], hidden.bias().to_vec()),
+            (format!("{OUT}.weight"), vec![REGIONS, H], out.weight_rows()),
+            (format!("{OUT}.bias"), vec![REGIONS], out.bias().to_vec()),
+        ]
     }
 
     /// Logits of a standardised window (channel-major 4 × 38).

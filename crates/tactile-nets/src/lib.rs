@@ -27,7 +27,8 @@
 //! - `error`: typed errors (wrong shape, non-finite input or output, bad files);
 //! - `activations`: sigmoid / softmax that stay finite for any logit;
 //! - `frozen`: the allocation-free inference form of a dense stack;
-//! - `fixed`: the fingertip's models in fixed point, for cores without an FPU;
+//! - `fixed`: the models in fixed point, for cores without an FPU (the force DNNs, contact MLPs
+//!   and softness net built in; the contact CNNs quantised at run time, `std`);
 //! - `norm`: input standardisation;
 //! - `force_dnn`: the force / weight DNN and its [`hand_traits::ForceEstimator`];
 //! - `contact_mlp`: the MLP, its two heads and its [`hand_traits::ContactLocator`] (the pad

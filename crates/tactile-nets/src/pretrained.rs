@@ -9,6 +9,8 @@
 //! | contact CNN, every [`Variant`] | Al & Martinez-Hernandez, §IV-A, and our variants | [`contact_cnn`] (`std`) |
 //! | the force DNNs and contact MLPs in fixed point ([`crate::fixed`]) | the same weights, quantised at build time | [`FIXED_FORCE_DNN_SIM`], [`FIXED_FORCE_DNN_TABLE1`], [`FIXED_CONTACT_MLP_OSR256`] …, [`fixed_contact_mlp_static`] |
 //! | softness net | the underactuated-hand softness paper ("Distinguish the Textures of Grasped Objects…"), §3.3: Levenberg–Marquardt, the selected training seed | [`SOFTNESS`]; [`softness`] (`std`) |
+//! | the softness net in fixed point | the same weights, quantised at build time | [`FIXED_SOFTNESS`] |
+//! | the contact CNNs in fixed point | quantised at run time from [`contact_cnn`]'s ([`crate::fixed::FixedContactCnn::quantise`], `std`) | — |
 //!
 //! Without `std` the force DNN, the contact MLPs and the softness net are `'static` arrays
 //! (flash on a microcontroller) behind [`StaticForceDnn`], [`StaticContactMlp`] and
@@ -34,7 +36,7 @@
 //! ```
 
 use crate::contact_mlp::{StaticContactMlp, StaticNet as MlpNet};
-use crate::fixed::{FixedContactMlp, FixedForceDnn, FixedForceNet, FixedMlpNet};
+use crate::fixed::{FixedContactMlp, FixedForceDnn, FixedForceNet, FixedMlpNet, FixedSoftnessNet};
 use crate::force_dnn::{StaticForceDnn, StaticNet as ForceNet};
 use crate::frozen::{Identity, Logistic, Relu, StaticDense};
 use crate::softness::{InputScale, SoftnessNet};
@@ -344,6 +346,18 @@ pub static SOFTNESS: SoftnessNet = SoftnessNet::new(
     weights::softness_selected::NET_1_BIAS,
     weights::softness_selected::NET_2_WEIGHT,
     weights::softness_selected::NET_2_BIAS,
+    InputScale {
+        min: weights::softness_selected::INPUT_MIN,
+        gain: weights::softness_selected::INPUT_GAIN,
+    },
+);
+
+/// [`SOFTNESS`] in fixed point ([`crate::fixed`]): quantised at build time, as
+/// [`FixedSoftnessNet::quantise`] would at run time.
+pub static FIXED_SOFTNESS: FixedSoftnessNet = FixedSoftnessNet::new(
+    weights::softness_selected::NET_0_Q_ARRAY,
+    weights::softness_selected::NET_1_Q_ARRAY,
+    weights::softness_selected::NET_2_Q_ARRAY,
     InputScale {
         min: weights::softness_selected::INPUT_MIN,
         gain: weights::softness_selected::INPUT_GAIN,

@@ -267,20 +267,9 @@ impl SoftnessNet {
     /// Errors: [`RunError::Shape`] when the series is empty or not whole samples (`expected`
     /// is then the next whole length), [`RunError::NonFinite`] at the first bad reading.
     pub fn scores(&self, series: &[f32]) -> Result<[f32; CLASSES], RunError> {
-        if series.is_empty() || !series.len().is_multiple_of(N_VARIABLES) {
-            return Err(RunError::Shape {
-                expected: series.len().div_ceil(N_VARIABLES).max(1) * N_VARIABLES,
-                got: series.len(),
-            });
-        }
         let mut sum = [0.0f64; CLASSES];
-        for (i, sample) in series.chunks_exact(N_VARIABLES).enumerate() {
-            let y = self.sample_outputs(sample).map_err(|e| match e {
-                RunError::NonFinite { index } => RunError::NonFinite {
-                    index: i * N_VARIABLES + index,
-                },
-                other => other,
-            })?;
+        for (i, sample) in samples(series)?.enumerate() {
+            let y = self.sample_outputs(sample).map_err(|e| in_series(e, i))?;
             for k in 0..CLASSES {
                 sum[k] += f64::from(y[k]);
             }
@@ -298,22 +287,52 @@ impl SoftnessNet {
     /// the network was trained on ([`InputScale::outside`]): a class read from readings far
     /// outside it is an extrapolation, and says so. Errors as [`SoftnessNet::scores`].
     pub fn assess(&self, series: &[f32]) -> Result<Assessment, RunError> {
-        let scores = self.scores(series)?;
-        let readings_outside = series
-            .chunks_exact(N_VARIABLES)
-            .map(|s| self.scale.outside(&core::array::from_fn(|j| s[j])))
-            .sum();
-        Ok(Assessment {
-            class: class_of(&scores),
-            scores,
-            samples: series.len() / N_VARIABLES,
-            readings_outside,
-        })
+        Ok(assessment(&self.scale, series, self.scores(series)?))
+    }
+}
+
+/// `series` (flat, [`N_VARIABLES`] readings per sample) as its samples.
+///
+/// Errors: [`RunError::Shape`] when it is empty or not whole samples (`expected` is then the
+/// next whole length).
+pub(crate) fn samples(series: &[f32]) -> Result<core::slice::ChunksExact<'_, f32>, RunError> {
+    if series.is_empty() || !series.len().is_multiple_of(N_VARIABLES) {
+        return Err(RunError::Shape {
+            expected: series.len().div_ceil(N_VARIABLES).max(1) * N_VARIABLES,
+            got: series.len(),
+        });
+    }
+    Ok(series.chunks_exact(N_VARIABLES))
+}
+
+/// Sample `i`'s error as the series' error: a non-finite reading's index counts from the
+/// series' start.
+pub(crate) fn in_series(e: RunError, i: usize) -> RunError {
+    match e {
+        RunError::NonFinite { index } => RunError::NonFinite {
+            index: i * N_VARIABLES + index,
+        },
+        other => other,
+    }
+}
+
+/// The assessment of a series (whole samples) from its `scores` and the readings `scale`
+/// finds outside the training range.
+pub(crate) fn assessment(scale: &InputScale, series: &[f32], scores: [f32; CLASSES]) -> Assessment {
+    let readings_outside = series
+        .chunks_exact(N_VARIABLES)
+        .map(|s| scale.outside(&core::array::from_fn(|j| s[j])))
+        .sum();
+    Assessment {
+        class: class_of(&scores),
+        scores,
+        samples: series.len() / N_VARIABLES,
+        readings_outside,
     }
 }
 
 /// The class of largest score (ties: the softer).
-fn class_of(scores: &[f32; CLASSES]) -> Softness {
+pub(crate) fn class_of(scores: &[f32; CLASSES]) -> Softness {
     let best = (1..CLASSES).fold(0, |b, k| if scores[k] > scores[b] { k } else { b });
     Softness::ALL[best]
 }
@@ -334,7 +353,7 @@ pub struct Assessment {
 /// The weights file's tensors: `net.{0,1,2}.{weight,bias}` in [`SoftnessNet::from_flat`]'s
 /// order (weights row-major, outputs × inputs).
 #[cfg(feature = "std")]
-const TENSORS: [(&str, &[usize]); 6] = [
+pub(crate) const TENSORS: [(&str, &[usize]); 6] = [
     ("net.0.weight", &[HIDDEN, N_VARIABLES]),
     ("net.0.bias", &[HIDDEN]),
     ("net.1.weight", &[HIDDEN, HIDDEN]),

@@ -72,9 +72,14 @@ pub fn run(root: &Path, mut progress: impl FnMut(&str)) -> Result<Trade, TradeEr
     progress("force DNN widths: 13 leave-one-out models per width");
     let (force, force_note) = force_width::points(root)?;
     points.extend(force);
-    progress("fixed point vs f32: contact MLPs and force DNNs on their held-out sets");
+    progress(
+        "fixed point vs f32: contact MLPs, force DNNs, contact CNNs and the softness net on \
+         their held-out sets",
+    );
     points.extend(fixed_point::mlp_points(root, true)?);
     points.extend(fixed_point::force_points(root, true)?);
+    points.extend(fixed_point::cnn_points(root, true)?);
+    points.extend(fixed_point::softness_points(root, true)?);
     progress("ICM-20789 pressure modes");
     points.extend(icm_mode::points()?);
     progress("grasp controller defuzzifiers, f32 and f64");

@@ -56,14 +56,16 @@ fn icm_noise_and_osr_frame_periods_match_the_committed_points() {
     }
 }
 
-/// The fixed-point and float forms of the fingertip's models on their held-out sets.
+/// The fixed-point and float forms of the models on their held-out sets.
 #[test]
 fn fixed_point_accuracies_match_the_committed_points() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
     let rows = committed();
     let mut fresh = fixed_point::mlp_points(&root, false).unwrap();
     fresh.extend(fixed_point::force_points(&root, false).unwrap());
-    assert_eq!(fresh.len(), 14);
+    fresh.extend(fixed_point::cnn_points(&root, false).unwrap());
+    fresh.extend(fixed_point::softness_points(&root, false).unwrap());
+    assert_eq!(fresh.len(), 26);
     for p in fresh {
         let r = row(&rows, p.task, &p.setting);
         assert!(

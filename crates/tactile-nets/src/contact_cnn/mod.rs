@@ -41,7 +41,7 @@
 //! ```
 
 use crate::activations::softmax_into;
-use crate::cnn_frozen::FrozenCnn;
+use crate::cnn_frozen::{FrozenCnn, Tensor};
 use crate::error::{NetError, check_input, check_output};
 use crate::io::TensorFile;
 use hand_traits::{Contact, ContactLocator, ImuFrame};
@@ -148,7 +148,7 @@ impl Variant {
     }
 
     /// (conv filters, dense width).
-    pub fn sizes(self) -> (usize, usize) {
+    pub const fn sizes(self) -> (usize, usize) {
         match self {
             Variant::Paper => (8, 320),
             Variant::Small => (4, 32),
@@ -182,12 +182,17 @@ impl Variant {
     }
 }
 
+/// Each variant's (filters, dense width), for the networks' const generics.
+pub(crate) const PAPER: (usize, usize) = Variant::Paper.sizes();
+pub(crate) const SMALL: (usize, usize) = Variant::Small.sizes();
+pub(crate) const WIDE: (usize, usize) = Variant::Wide.sizes();
+
 /// The plain-array network of each [`Variant`].
 #[derive(Debug, Clone, PartialEq)]
 enum Fast {
-    Paper(FrozenCnn<8, { 8 * POOLED }, 320>),
-    Small(FrozenCnn<4, { 4 * POOLED }, 32>),
-    Wide(FrozenCnn<16, { 16 * POOLED }, 64>),
+    Paper(FrozenCnn<{ PAPER.0 }, { PAPER.0 * POOLED }, { PAPER.1 }>),
+    Small(FrozenCnn<{ SMALL.0 }, { SMALL.0 * POOLED }, { SMALL.1 }>),
+    Wide(FrozenCnn<{ WIDE.0 }, { WIDE.0 * POOLED }, { WIDE.1 }>),
 }
 
 impl Fast {
@@ -204,6 +209,14 @@ impl Fast {
             Fast::Paper(f) => f.to_file(file),
             Fast::Small(f) => f.to_file(file),
             Fast::Wide(f) => f.to_file(file),
+        }
+    }
+
+    fn tensors(&self) -> [Tensor; 6] {
+        match self {
+            Fast::Paper(f) => f.tensors(),
+            Fast::Small(f) => f.tensors(),
+            Fast::Wide(f) => f.tensors(),
         }
     }
 
@@ -240,6 +253,18 @@ pub struct Prediction {
     /// Whether every standardised value of the window lay within [`Z_RANGE`] training spreads
     /// of its channel's training mean; `false`: a window unlike any the model was trained on.
     pub in_range: bool,
+}
+
+/// As a [`Contact`] over the 9 regions of §IV-A.
+impl From<Prediction> for Contact {
+    fn from(p: Prediction) -> Contact {
+        Contact {
+            region: u16::from(p.region),
+            regions: REGIONS as u16,
+            confidence: p.confidence,
+            in_range: p.in_range,
+        }
+    }
 }
 
 /// How far from its channel's training mean, in training spreads, a standardised window value
@@ -283,6 +308,13 @@ impl ContactCnn {
     /// The per-channel input standardisation `(mean, spread)` of the training set.
     pub fn input_scale(&self) -> ([f32; CHANNELS], [f32; CHANNELS]) {
         (self.mean, self.scale)
+    }
+
+    /// The network's tensors as its weights file stores them (the conv kernel and bias, the
+    /// hidden layer's weight and bias, the output layer's): what its fixed-point form is
+    /// quantised from.
+    pub(crate) fn tensors(&self) -> [Tensor; 6] {
+        self.frozen.tensors()
     }
 
     /// Standardised window and whether it lies within [`Z_RANGE`]; errors as
@@ -408,7 +440,7 @@ impl ContactCnn {
 
 /// `window` checked and standardised with the per-channel `mean` and `scale`, and whether every
 /// value lies within [`Z_RANGE`].
-fn standardise(
+pub(crate) fn standardise(
     window: &[f32],
     mean: &[f32; CHANNELS],
     scale: &[f32; CHANNELS],
@@ -425,7 +457,7 @@ fn standardise(
     Ok((z, in_range))
 }
 /// Index of the largest value (ties: the lower; NaN never wins).
-fn argmax(v: &[f32]) -> u8 {
+pub(crate) fn argmax(v: &[f32]) -> u8 {
     let mut best = 0;
     for (i, &x) in v.iter().enumerate() {
         if x > v[best] {
@@ -442,12 +474,6 @@ impl ContactLocator for ContactCnn {
     type Error = NetError;
 
     fn locate(&mut self, input: &[f32]) -> Result<Contact, NetError> {
-        let p = self.predict(input)?;
-        Ok(Contact {
-            region: u16::from(p.region),
-            regions: REGIONS as u16,
-            confidence: p.confidence,
-            in_range: p.in_range,
-        })
+        Ok(self.predict(input)?.into())
     }
 }

@@ -1,33 +1,74 @@
-//! Integer inference for cores without an FPU (the fingertip's Cortex-M3): the built-in force
-//! DNN and contact MLPs in fixed point, every multiply-add an integer one.
+//! Integer inference for cores without an FPU (the fingertip's Cortex-M3): the models in fixed
+//! point, every multiply-add an integer one.
 //!
-//! # The quantisation (done once, at build time, from the float weights)
+//! | model | fixed-point form | quantised |
+//! |---|---|---|
+//! | force DNNs | [`FixedForceDnn`] | at build time: `pretrained::FIXED_FORCE_DNN_*` |
+//! | contact MLPs (cell-set head) | [`FixedContactMlp`] | at build time: `pretrained::FIXED_CONTACT_MLP_OSR*` |
+//! | softness net | [`FixedSoftnessNet`] | at build time: `pretrained::FIXED_SOFTNESS`; at run time: [`FixedSoftnessNet::quantise`] (`std`) |
+//! | contact CNNs (every variant) | [`FixedContactCnn`] (`std`) | at run time, from the float model its file gave: [`FixedContactCnn::quantise`] |
+//!
+//! Each takes its float model's inputs and gives its outputs and errors. Without `std` the
+//! force DNNs, contact MLPs and softness net run allocation-free from `'static` values.
+//!
+//! # The quantisation (once, from the float weights)
 //! - **Weights: Q15-style `i16`, one power-of-two scale per layer.** A layer's weights `W` are
-//!   stored as `round(W · 2^e)` with `e` the largest integer such that `max |W| · 2^e ≤ 32767`:
-//!   at least 15 significant bits for the layer's largest weight, no division or multiplier to
-//!   undo at run time (a shift does).
+//!   stored as `round(W · 2^e)` with `e` the largest integer (at most 60) such that
+//!   `max |W| · 2^e ≤ 32767`: at least 15 significant bits for the layer's largest weight, no
+//!   division or multiplier to undo at run time (a shift does).
 //! - **Biases: `i32`**, `round(b · 2^e_b)` with `max |b| · 2^e_b ≤ 2^30`.
+//! - One rule, one copy (`src/fixed/quantise.rs`): `build.rs` applies it to the built-in
+//!   weights, the `quantise` functions at run time, to the same integers.
+//! - **Weights no scale can be chosen for.** A NaN or infinite weight or bias cannot be
+//!   quantised: [`NetError::NonFiniteWeight`] names the tensor (a weights file cannot hold one;
+//!   a model built in memory can). A tensor of zeros has no scale to choose and needs none:
+//!   its zeros are stored at the largest exponent, 60, where the products of a weight tensor
+//!   of zeros meet the bias without rounding it. A tensor whose largest magnitude is below
+//!   `32767 · 2^-60` (~3e-14) is stored at that exponent too, its values rounded there (the
+//!   smaller ones to 0).
 //! - **Activations: block floating point.** A layer's outputs are `i16` values sharing one
 //!   exponent ([`Block`]), chosen per call so that the largest magnitude fills 15 bits: no
 //!   calibration data, no overflow, whatever the input's size.
-//! - **Multiply-adds: `i16 × i16` into an `i64` accumulator** (one `SMLAL` on a Cortex-M3),
-//!   the bias shifted to the products' exponent; ReLU is a compare.
-//! - **The logistic function and the decode's `exp`: tables with linear interpolation** ([`logistic_q15`]: `σ(x)` over `[-12, 12)` in steps of 1/16 (385 values),
-//!   Q15, within 1e-4 of `σ`; [`exp_neg_q16`]: `e^-x` over `[0, 16)` (257 values), Q16,
-//!   within 6e-4).
+//! - **Multiply-adds: `i16 × i16` into an `i64` accumulator** (one `SMLAL` on a Cortex-M3; a
+//!   3 × 3 patch's nine products already pass `i32`), the bias shifted to the products'
+//!   exponent — or, when that shift would overflow (an input block of tiny values), the
+//!   inputs first rounded to 24 bits above the bias's; an input of zeros gives the biases
+//!   exactly.
+//!   ReLU and max-pool are compares.
+//! - **The logistic function and the decode's `exp`: tables with linear interpolation**
+//!   ([`logistic_q15`]: `σ(x)` over `[-12, 12)` in steps of 1/16 (385 values), Q15, within
+//!   1e-4 of `σ`; [`exp_neg_q16`]: `e^-x` over `[0, 16)` (257 values), Q16, within 6e-4). The
+//!   softness net's logistic layers read their accumulators into the table's Q12 directly.
 //!
 //! The inputs are standardised in `f32` (a handful of operations per call) and the last layer's
-//! output turned back into `f32` once: the network between is integer.
+//! output turned back into `f32` once (±∞ past `f32`'s range, which the output check reports
+//! as the float model's does): the network between is integer.
 //!
 //! What it costs in accuracy is measured on the models' held-out sets beside the float models
 //! (`docs/trade.md`, "Fixed point vs f32"); what it saves, in instructions on the Cortex-M3
 //! (`docs/embedded.md`).
 
+#[cfg(feature = "std")]
+mod cnn;
 mod models;
+// Without `std` only its conversions run: the rule itself is applied by `build.rs` and, with
+// `std`, by the run-time `quantise` functions.
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
+mod quantise;
+mod softness;
 
+#[cfg(feature = "std")]
+pub use cnn::FixedContactCnn;
 pub use models::{FixedContactMlp, FixedForceDnn, FixedForceNet, FixedMlpNet};
+pub use softness::FixedSoftnessNet;
 
+#[cfg(feature = "std")]
+use crate::NetError;
 use crate::frozen::{Identity, Layer, Logistic, Relu};
+use core::borrow::Borrow;
+#[cfg(feature = "std")]
+use quantise::{BIAS_LIMIT, WEIGHT_LIMIT, scale_exp};
+use quantise::{fixed_of, shift};
 
 /// Generated by `build.rs`: the logistic and `exp` tables.
 #[allow(clippy::unreadable_literal)]
@@ -64,47 +105,19 @@ impl<const N: usize> Block<N> {
         }
     }
 
-    /// The values as `f32`.
+    /// The values as `f32`: ±∞ or 0 past `f32`'s range, as the float's own arithmetic would
+    /// give (a model's output check then fails as its float model's does).
     pub fn to_f32(&self) -> [f32; N] {
-        let f = pow2(-self.exp);
-        self.v.map(|v| f32::from(v) * f)
-    }
-}
-
-/// `round(x · 2^exp)` from `x`'s bits (0 for zero and subnormals; finite `x`).
-fn fixed_of(x: f32, exp: i32) -> i64 {
-    let bits = x.to_bits();
-    let biased = ((bits >> 23) & 0xff) as i32;
-    if biased == 0 {
-        return 0;
-    }
-    // |x| = mantissa · 2^(biased − 150), the mantissa with its implicit leading 1.
-    let mantissa = i64::from((bits & 0x7f_ffff) | 0x80_0000);
-    let magnitude = shift(mantissa, biased - 150 + exp);
-    if bits >> 31 == 1 {
-        -magnitude
-    } else {
-        magnitude
+        // `2^-exp` in two factors, each within `f32`'s normal range.
+        let e = -self.exp;
+        let (a, b) = (pow2(e / 2), pow2(e - e / 2));
+        self.v.map(|v| f32::from(v) * a * b)
     }
 }
 
 /// `2^e` as an `f32` (`e` clamped to the normal range).
 fn pow2(e: i32) -> f32 {
     f32::from_bits(((e.clamp(-126, 127) + 127) as u32) << 23)
-}
-
-/// `x · 2^by`: a left shift, or a right shift rounding half up; 0 past 62 bits right.
-#[inline]
-fn shift(x: i64, by: i32) -> i64 {
-    if by >= 0 {
-        x.checked_shl(by as u32)
-            .unwrap_or(if x < 0 { i64::MIN } else { i64::MAX })
-    } else if by > -63 {
-        let s = (-by) as u32;
-        (x + (1 << (s - 1))) >> s
-    } else {
-        0
-    }
 }
 
 /// Accumulators at exponent `exp` as a [`Block`]: shifted so the largest fills 15 bits.
@@ -123,24 +136,26 @@ fn normalise<const N: usize>(acc: &[i64; N], exp: i32) -> Block<N> {
     }
 }
 
-/// A dense layer `y = W x + b` in fixed point over `'static` quantised weights (flash).
+/// A dense layer `y = W x + b` in fixed point: `weight · 2^-weight_exp` (row-major, `O` rows
+/// of `I`) and `bias · 2^-bias_exp`. `W` and `B` hold them: `'static` references (the
+/// default: flash, the built-in models), arrays by value (a small network quantised at run
+/// time) or boxes (a large one, with `std`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct QDense<const I: usize, const O: usize> {
-    weight: &'static [[i16; I]; O],
+pub struct QDense<const I: usize, const O: usize, W = &'static [[i16; I]; O], B = &'static [i32; O]>
+{
+    weight: W,
     weight_exp: i32,
-    bias: &'static [i32; O],
+    bias: B,
     bias_exp: i32,
 }
 
-impl<const I: usize, const O: usize> QDense<I, O> {
+/// A dense layer holding its weights by value (a small network quantised at run time).
+pub type QDenseArray<const I: usize, const O: usize> = QDense<I, O, [[i16; I]; O], [i32; O]>;
+
+impl<const I: usize, const O: usize, W, B> QDense<I, O, W, B> {
     /// A layer over `weight · 2^-weight_exp` (row-major, `O` rows of `I`) and
     /// `bias · 2^-bias_exp`.
-    pub const fn new(
-        weight: &'static [[i16; I]; O],
-        weight_exp: i32,
-        bias: &'static [i32; O],
-        bias_exp: i32,
-    ) -> Self {
+    pub const fn new(weight: W, weight_exp: i32, bias: B, bias_exp: i32) -> Self {
         Self {
             weight,
             weight_exp,
@@ -150,12 +165,30 @@ impl<const I: usize, const O: usize> QDense<I, O> {
     }
 }
 
-impl<const I: usize, const O: usize> Layer<Block<I>> for QDense<I, O> {
-    type Output = Block<O>;
-
+impl<const I: usize, const O: usize, W, B> QDense<I, O, W, B>
+where
+    W: Borrow<[[i16; I]; O]>,
+    B: Borrow<[i32; O]>,
+{
+    /// `W x + b` as accumulators and their exponent, before [`normalise`]: what a layer that
+    /// reads more than 15 bits of its input (the table logistic's Q12) takes.
     #[inline]
-    fn forward(&self, x: Block<I>) -> Block<O> {
-        let exp = self.weight_exp + x.exp;
+    fn accumulate(&self, x: &Block<I>) -> ([i64; O], i32) {
+        // The products meet the bias at their own exponent, unless the bias would overflow
+        // there (an input block of tiny values has a large exponent): then the inputs are
+        // first rounded to the exponent BIAS_HEADROOM above the bias's — bits far below the
+        // largest bias, which the block's 15 do not keep. Once per call, and only then: the
+        // row loop stays as it is without it.
+        let over = self.weight_exp + x.exp - (self.bias_exp + BIAS_HEADROOM);
+        let mut coarse;
+        let x = if over > 0 {
+            coarse = *x;
+            coarse.exp -= over;
+            coarsen(&mut coarse.v, over);
+            &coarse
+        } else {
+            x
+        };
         // The non-zero inputs, compacted: after a ReLU about half are zero, and a skipped
         // input is a multiply-add saved in every row.
         let mut index = [0u16; I];
@@ -167,8 +200,20 @@ impl<const I: usize, const O: usize> Layer<Block<I>> for QDense<I, O> {
             n += usize::from(v != 0);
         }
         let (index, value) = (&index[..n], &value[..n]);
+        // Without products (all inputs zero) the outputs are the biases, at their own
+        // exponent: exact.
+        let exp = if n == 0 {
+            self.bias_exp
+        } else {
+            self.weight_exp + x.exp
+        };
         let mut acc = [0i64; O];
-        for ((a, row), &b) in acc.iter_mut().zip(self.weight).zip(self.bias) {
+        for ((a, row), &b) in acc
+            .iter_mut()
+            .zip(self.weight.borrow())
+            .zip(self.bias.borrow())
+        {
+            // At most BIAS_HEADROOM bits left.
             let mut sum = shift(i64::from(b), exp - self.bias_exp);
             for (&j, &v) in index.iter().zip(value) {
                 // SAFETY: every `j` in `index` is the position of an element of `x.v`, an
@@ -183,6 +228,99 @@ impl<const I: usize, const O: usize> Layer<Block<I>> for QDense<I, O> {
             }
             *a = sum;
         }
+        (acc, exp)
+    }
+}
+
+/// Each value rounded `by` bits right (its block's exponent `by` lower). Out of line, one copy
+/// for every width: only the inputs of tiny values a [`QDense`] meets need it.
+#[cold]
+#[inline(never)]
+fn coarsen(v: &mut [i16], by: i32) {
+    for v in v {
+        *v = shift(i64::from(*v), -by) as i16;
+    }
+}
+
+/// A dense layer quantised at run time by the build-time rule (`quantise.rs`): `weight` (its
+/// name and row-major `O × I` values) and `bias` (name, `O` values), into whatever holds them
+/// (arrays, boxes).
+///
+/// Errors: [`NetError::TensorMismatch`] for another count of values,
+/// [`NetError::NonFiniteWeight`] for a NaN or infinite one (each naming its tensor).
+#[cfg(feature = "std")]
+fn quantise_layer<const I: usize, const O: usize, W, B>(
+    (weight_name, weight): (&str, &[f32]),
+    (bias_name, bias): (&str, &[f32]),
+) -> Result<QDense<I, O, W, B>, NetError>
+where
+    W: TryFrom<Vec<[i16; I]>>,
+    B: TryFrom<Vec<i32>>,
+{
+    let (weight, weight_exp) = quantise_tensor(weight_name, weight, O * I, WEIGHT_LIMIT)?;
+    let (bias, bias_exp) = quantise_tensor(bias_name, bias, O, BIAS_LIMIT)?;
+    // Within the limits (±32767, ±2^30) by the rule: the casts are exact.
+    let rows: Vec<[i16; I]> = weight
+        .chunks_exact(I.max(1))
+        .map(|r| core::array::from_fn(|i| r[i] as i16))
+        .collect();
+    let bias: Vec<i32> = bias.iter().map(|&b| b as i32).collect();
+    // The lengths were checked: a holder that still refuses them holds another shape.
+    let mismatch = |name: &str, n: usize| NetError::TensorMismatch {
+        name: name.to_owned(),
+        stored: format!("{n} values"),
+        expected: "the layer's shape".to_owned(),
+    };
+    Ok(QDense::new(
+        W::try_from(rows).map_err(|_| mismatch(weight_name, O * I))?,
+        weight_exp,
+        B::try_from(bias).map_err(|_| mismatch(bias_name, O))?,
+        bias_exp,
+    ))
+}
+
+/// `values` (`len` of them, finite) as integers by the rule, and their exponent; errors as
+/// [`quantise_layer`].
+#[cfg(feature = "std")]
+fn quantise_tensor(
+    name: &str,
+    values: &[f32],
+    len: usize,
+    limit: i64,
+) -> Result<(Vec<i64>, i32), NetError> {
+    if values.len() != len {
+        return Err(NetError::TensorMismatch {
+            name: name.to_owned(),
+            stored: format!("{} values", values.len()),
+            expected: format!("{len} values"),
+        });
+    }
+    if let Some(index) = values.iter().position(|v| !v.is_finite()) {
+        return Err(NetError::NonFiniteWeight {
+            tensor: name.to_owned(),
+            index,
+        });
+    }
+    let exp = scale_exp(values, limit);
+    Ok((values.iter().map(|&v| fixed_of(v, exp)).collect(), exp))
+}
+
+/// How far left a bias (within `2^30`) may be shifted to meet its layer's products: it then
+/// stays within `2^54`, and the products (each below `2^30`) of any layer narrower than
+/// `2^32` inputs add less than `2^62` to it: no `i64` overflow. (The products are then below
+/// `2^-24` of the largest bias each: under the 15 bits of the block the layer gives.)
+const BIAS_HEADROOM: i32 = 24;
+
+impl<const I: usize, const O: usize, W, B> Layer<Block<I>> for QDense<I, O, W, B>
+where
+    W: Borrow<[[i16; I]; O]>,
+    B: Borrow<[i32; O]>,
+{
+    type Output = Block<O>;
+
+    #[inline]
+    fn forward(&self, x: Block<I>) -> Block<O> {
+        let (acc, exp) = self.accumulate(&x);
         normalise(&acc, exp)
     }
 }
@@ -214,25 +352,67 @@ impl<const N: usize> Layer<Block<N>> for Logistic {
     #[inline]
     fn forward(&self, x: Block<N>) -> Block<N> {
         let by = 12 - x.exp;
+        // A 16-bit mantissa shifted left by up to 15 fits an `i32`: the common case, without
+        // 64-bit shifts.
+        if !(-31..=15).contains(&by) {
+            return logistic_of(&x.v.map(i64::from), x.exp);
+        }
         Block {
-            // A 16-bit mantissa shifted left by up to 15 fits an `i32`: the common case, without
-            // 64-bit shifts.
-            v: if (-31..=15).contains(&by) {
-                x.v.map(|v| {
-                    let v = i32::from(v);
-                    let q = if by >= 0 {
-                        v << by
-                    } else {
-                        (v + (1 << (-by - 1))) >> -by
-                    };
-                    logistic_q15(q)
-                })
-            } else {
-                x.v.map(|v| logistic_q15(shift(i64::from(v), by).clamp(-(1 << 30), 1 << 30) as i32))
-            },
+            v: x.v.map(|v| {
+                let v = i32::from(v);
+                let q = if by >= 0 {
+                    v << by
+                } else {
+                    (v + (1 << (-by - 1))) >> -by
+                };
+                logistic_q15(q)
+            }),
             exp: 15,
         }
     }
+}
+
+/// `σ` of values `acc · 2^-exp` (a layer's accumulators, or a block's mantissas) as a Q15
+/// block: each value to Q12, saturating at `±2^30` (far past the table's ±12), then
+/// [`logistic_q15`].
+fn logistic_of<const N: usize>(acc: &[i64; N], exp: i32) -> Block<N> {
+    const LIMIT: i64 = 1 << 30;
+    let by = 12 - exp;
+    // Left, the values that would pass the limit saturate before the shift (a large
+    // accumulator shifted far would overflow `i64`).
+    let fits = LIMIT >> by.clamp(0, 31);
+    Block {
+        v: acc.map(|a| {
+            let q = if by >= 31 || (by >= 0 && a.unsigned_abs() > fits.unsigned_abs()) {
+                a.signum() * LIMIT
+            } else {
+                shift(a, by).clamp(-LIMIT, LIMIT)
+            };
+            logistic_q15(q as i32)
+        }),
+        exp: 15,
+    }
+}
+
+/// The posterior share of the best of some scores, `1 / Σ_j e^-gap_j`, from each score's gap
+/// below the best (`gaps`, non-negative, in units of `2^-exp`; the best's own 0 among them),
+/// through [`exp_neg_q16`]; `None` when no gap is counted. From a gap of 16 on, `e^-gap` is
+/// below the table's resolution: those are not looked up.
+fn top_share(gaps: impl Iterator<Item = i32>, exp: i32) -> Option<f32> {
+    // A gap of `g` in score units is `g · 2^-exp`; in Q12, `g · 2^(12 − exp)`.
+    let to_q12 = 12 - exp;
+    let cutoff = match 16 - to_q12 {
+        e if e <= 0 => 1,
+        e if e < 31 => 1i32 << e,
+        _ => i32::MAX,
+    };
+    let mut sum = 0i64;
+    for gap in gaps {
+        if gap < cutoff {
+            sum += i64::from(exp_neg_q16(shift(i64::from(gap), to_q12)));
+        }
+    }
+    (sum > 0).then(|| 65536.0 / sum as f32)
 }
 
 /// `σ(x)` in Q15 for `x` in Q12 (`x / 4096`): the table's value at `x`'s 1/16 step,
@@ -292,5 +472,91 @@ mod tests {
         assert_eq!(big.v[1], -32767);
         let small = normalise(&[3, -1], 0);
         assert_eq!(small.to_f32(), [3.0, -1.0]);
+    }
+
+    #[test]
+    fn the_rule_picks_the_largest_exponent_within_the_limit() {
+        use quantise::{BIAS_LIMIT, MAX_EXP, WEIGHT_LIMIT, scale_exp};
+        let mut x = 0x1234_5678u32;
+        for _ in 0..20_000 {
+            // A xorshift over magnitudes from subnormal to huge.
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let v = f32::from_bits(x & 0x7f7f_ffff);
+            for limit in [WEIGHT_LIMIT, BIAS_LIMIT] {
+                let e = scale_exp(&[0.5 * v, -v], limit);
+                let scaled = |e: i32| f64::from(v) * 2f64.powi(e);
+                assert!(scaled(e) <= limit as f64, "{v} {limit}");
+                assert!(e == MAX_EXP || scaled(e + 1) > limit as f64, "{v} {limit}");
+            }
+        }
+        assert_eq!(scale_exp(&[0.0, -0.0], WEIGHT_LIMIT), MAX_EXP);
+        assert_eq!(scale_exp(&[], BIAS_LIMIT), MAX_EXP);
+        // Exactly at the limit: 32767 · 2^0.
+        assert_eq!(scale_exp(&[32767.0], WEIGHT_LIMIT), 0);
+        assert_eq!(scale_exp(&[32767.5], WEIGHT_LIMIT), -1);
+    }
+
+    #[test]
+    fn shifts_round_half_up_and_the_logistic_saturates() {
+        assert_eq!((shift(3, 2), shift(5, -1), shift(-5, -1)), (12, 3, -2));
+        assert_eq!(
+            (shift(-1, 64), shift(0, 64), shift(7, -70)),
+            (i64::MIN, 0, 0)
+        );
+        // Accumulators far past the table, at exponents that would overflow a plain shift.
+        let half = 1 << 14;
+        for (acc, exp) in [
+            (1i64 << 40, -20),
+            (-(1i64 << 50), -10),
+            (3, -60),
+            (-5, -100),
+        ] {
+            let want = if acc > 0 { 32767 } else { 0 };
+            assert_eq!(logistic_of(&[acc, 0], exp).v, [want, half], "{acc} {exp}");
+        }
+        assert_eq!(
+            logistic_of(&[4096, -4096], 12).v,
+            [logistic_q15(4096), logistic_q15(-4096)]
+        );
+        assert_eq!(fixed_of(-2.5, 0), -3);
+        assert_eq!(fixed_of(1e-40, 60), 0);
+    }
+
+    #[test]
+    fn a_layer_keeps_its_bias_whatever_its_input_block() {
+        static W: [[i16; 2]; 2] = [[16384, -16384], [32767, 1]];
+        static B: [i32; 2] = [1 << 29, -(1 << 30)];
+        // Weights 0.5, -0.5, 1, 2^-15; biases 0.5, -1 (exponent 30).
+        let layer: QDense<2, 2> = QDense::new(&W, 15, &B, 30);
+        // Tiny inputs: a block exponent of ~140 would shift the bias far past `i64`.
+        let tiny = Block::from_f32(&[3e-38f32, -1e-38]);
+        assert!(tiny.exp > 130);
+        assert_eq!(layer.forward(tiny).to_f32(), [0.5, -1.0]);
+        // No input at all: the biases, exactly.
+        assert_eq!(
+            layer.forward(Block::from_f32(&[0.0; 2])).to_f32(),
+            [0.5, -1.0]
+        );
+        let y = layer.forward(Block::from_f32(&[1.0, 0.5])).to_f32();
+        assert!(
+            (y[0] - 0.75).abs() < 1e-4 && (y[1] - 0.0).abs() < 1e-4,
+            "{y:?}"
+        );
+        // Values past `f32`'s range read as the float arithmetic gives them.
+        let huge = Block {
+            v: [16384, -3],
+            exp: -200,
+        };
+        assert_eq!(huge.to_f32(), [f32::INFINITY, f32::NEG_INFINITY]);
+        assert_eq!(
+            Block {
+                v: [5, -7],
+                exp: 300
+            }
+            .to_f32(),
+            [0.0, -0.0]
+        );
     }
 }

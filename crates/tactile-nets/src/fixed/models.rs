@@ -3,7 +3,7 @@
 //! [`StaticContactMlp`](crate::contact_mlp::StaticContactMlp) (same inputs, same outputs,
 //! same errors).
 
-use super::{Block, QDense, exp_neg_q16, shift};
+use super::{Block, QDense, top_share};
 use crate::contact_mlp::{self, Head, N_FEATURES, Prediction};
 use crate::error::{RunError, check_output};
 use crate::force_dnn::{self, N_INPUTS};
@@ -97,7 +97,8 @@ pub type FixedMlpNet = (
 );
 
 /// A cell-set contact MLP in fixed point over `'static` weights and catalogue; the catalogue
-/// decode in integers too (sums of logits, the posterior through [`exp_neg_q16`]).
+/// decode in integers too (sums of logits, the posterior through
+/// [`exp_neg_q16`](super::exp_neg_q16)).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FixedContactMlp {
     net: FixedMlpNet,
@@ -177,23 +178,11 @@ fn decode_cells(logits: &Block<CELLS>, catalogue: &[u32]) -> Option<(u32, f32)> 
     let Some((contact, top)) = best else {
         return Some((first, 1.0 / catalogue.len() as f32));
     };
-    // A gap of `g` in logit units is `g · 2^-exp`; in Q12, `g · 2^(12 − exp)`. From 16 on,
-    // `e^-gap` is below the table's resolution: those entries are not looked up.
-    let to_q12 = 12 - logits.exp;
-    let cutoff = match 16 - to_q12 {
-        e if e <= 0 => 1,
-        e if e < 31 => 1i32 << e,
-        _ => i32::MAX,
-    };
-    let mut sum = 0i64;
-    for &m in catalogue {
-        if let Some(gap) = score(m).map(|ll| top - ll) {
-            if gap < cutoff {
-                sum += i64::from(exp_neg_q16(shift(i64::from(gap), to_q12)));
-            }
-        }
-    }
-    (sum > 0).then(|| (contact, 65536.0 / sum as f32))
+    let gaps = catalogue
+        .iter()
+        .filter_map(|&m| score(m))
+        .map(|ll| top - ll);
+    top_share(gaps, logits.exp).map(|share| (contact, share))
 }
 
 /// Input: the [`N_FEATURES`] raw features of [`contact_mlp::features`]; regions: the 24

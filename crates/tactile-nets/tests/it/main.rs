@@ -14,6 +14,7 @@ mod contact_cnn;
 mod contact_mlp;
 mod contact_mlp_model;
 mod fixed;
+mod fixed_forms;
 mod force_dnn;
 mod frozen;
 mod io;
