@@ -112,6 +112,15 @@ fn lawful() -> Vec<Package> {
         package("ur-bridge", false, &[("ur-bridge", "dev", false)]),
         package("ur-sim", false, &[("ur-bridge", "normal", false)]),
         package("hand-zenoh", false, &[("hand-traits", "normal", false)]),
+        package("firmata-host", false, &[]),
+        package(
+            "firmata-sim",
+            false,
+            &[
+                ("firmata-host", "normal", false),
+                ("baro-drivers", "normal", false),
+            ],
+        ),
         package(
             "dxl-sim",
             false,
@@ -412,6 +421,8 @@ fn the_packaged_crates_are_the_tables_published_crates() {
             "aot-locate",
             "baro-drivers",
             "dxl-sim",
+            "firmata-host",
+            "firmata-sim",
             "fuzzy-mamdani",
             "hand-control",
             "hand-traits",
