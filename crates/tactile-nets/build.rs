@@ -1,5 +1,6 @@
 //! The models built into the crate: each shipped weights file becomes `'static` `f32` arrays
-//! (the force DNN, the contact MLPs and the selected softness net, which run without `std`)
+//! (the force DNN, the contact MLPs, the contact CNNs and the selected softness net, which run
+//! without `std`)
 //! and, with `std`, an
 //! `include_bytes!` entry any model type can load; each model kind's metrics file an
 //! `include_str!` entry. The output is `$OUT_DIR/pretrained.rs`, included by
@@ -19,9 +20,9 @@ const SHIPPED: [(&str, bool); 15] = [
     ("contact_mlp/osr1024-chosen", true),
     ("contact_mlp/osr2048-chosen", true),
     ("contact_mlp/osr4096-chosen", true),
-    ("contact_cnn/paper", false),
-    ("contact_cnn/small", false),
-    ("contact_cnn/wide", false),
+    ("contact_cnn/paper", true),
+    ("contact_cnn/small", true),
+    ("contact_cnn/wide", true),
     ("softness/lm-seed1", false),
     ("softness/lm-seed2", false),
     ("softness/lm-seed3", false),
@@ -236,6 +237,21 @@ fn arrays_module(name: &str, bytes: &[u8]) -> Result<String, String> {
             "    pub(crate) static {layer}_Q_ARRAY: crate::fixed::QDenseArray<{i}, {o}> = crate::fixed::QDense::new(\
              {layer}_WEIGHT_Q, {layer}_WEIGHT_Q_EXP, {layer}_BIAS_Q, {layer}_BIAS_Q_EXP);\n"
         );
+    }
+    // Where a CNN's training windows sat after a tap's trigger (its metadata says, or not).
+    let (_, meta) = SafeTensors::read_metadata(bytes).map_err(|e| e.to_string())?;
+    let offset = meta
+        .metadata()
+        .as_ref()
+        .and_then(|m| m.get("handstack"))
+        .and_then(|json| serde_json::from_str::<serde_json::Value>(json).ok())
+        .and_then(|j| {
+            j.get("window_centre_after_trigger_frames")
+                .and_then(|v| v.as_u64())
+        });
+    if let Some(frames) = offset {
+        let frames = u8::try_from(frames).map_err(|_| format!("trigger offset {frames}"))?;
+        m += &format!("    pub(crate) const TRIGGER_OFFSET: Option<u8> = Some({frames});\n");
     }
     m += "}\n";
     Ok(m)

@@ -9,13 +9,14 @@
 //! indicatif progress bar only when its configuration asks for one).
 //!
 //! Three feature levels:
-//! - none (`default-features = false`): `no_std` and allocation-free — the built-in force DNN,
-//!   contact MLPs and softness nets run from `'static` arrays ([`force_dnn::StaticForceDnn`],
-//!   [`contact_mlp::StaticContactMlp`], [`softness::SoftnessNet`]) on a fingertip's Cortex-M3 /
-//!   M4F;
-//! - `std` (default): every model's inference on plain arrays, the contact CNN included, and
-//!   weights files (a user's own, or the built-in ones) read with the `safetensors` crate — no
-//!   ML framework in the dependency tree;
+//! - none (`default-features = false`): `no_std` and allocation-free — all four built-in
+//!   models run from `'static` arrays ([`force_dnn::StaticForceDnn`],
+//!   [`contact_mlp::StaticContactMlp`], [`contact_cnn::StaticContactCnn`],
+//!   [`softness::SoftnessNet`]), in `f32` or fixed point ([`fixed`]), on a fingertip's
+//!   Cortex-M3 / M4F;
+//! - `std` (default): every model's weights files (a user's own, or the built-in ones) read
+//!   with the `safetensors` crate and run on plain arrays — no ML framework in the dependency
+//!   tree;
 //! - `train`: training on [dfdx](https://docs.rs/dfdx) (CPU, stable Rust) and nalgebra
 //!   (Levenberg–Marquardt), and dfdx's forward of each model as a reference.
 //!
@@ -33,9 +34,10 @@
 //! - `force_dnn`: the force / weight DNN and its [`hand_traits::ForceEstimator`];
 //! - `contact_mlp`: the MLP, its two heads and its [`hand_traits::ContactLocator`] (the pad
 //!   and its eq. 4 labels are `aot-locate`'s);
-//! - `contact_cnn`, `cnn_frozen` (`std`): the contact CNN of Al & Martinez-Hernandez, §IV-A, its
-//!   plain-array inference and its [`hand_traits::ContactLocator`]; `cnn_layers` (`train`):
-//!   im2col convolution and max-pool on stable dfdx;
+//! - `contact_cnn`: the contact CNN of Al & Martinez-Hernandez, §IV-A, its `'static` and
+//!   weights-file (`std`, through `cnn_frozen`) plain-array inference and its
+//!   [`hand_traits::ContactLocator`]; `cnn_layers` (`train`): im2col convolution and max-pool
+//!   on stable dfdx;
 //! - `softness`: the 8 → 4 → 4 → 3 softness classifier (the underactuated-hand softness
 //!   paper, §3.3) and its [`hand_traits::SoftnessClassifier`]; `softness_train` (`train`): its
 //!   Levenberg–Marquardt (and Adam) training; `softness_features` (`train`): our variant's
@@ -82,7 +84,6 @@ pub mod softness;
 pub mod cnn_frozen;
 #[cfg(feature = "train")]
 pub mod cnn_layers;
-#[cfg(feature = "std")]
 pub mod contact_cnn;
 #[cfg(feature = "std")]
 pub mod io;

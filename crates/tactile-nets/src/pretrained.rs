@@ -6,17 +6,16 @@
 //! | force DNN, [`ForceModel::Sim`] | hand-sim's weight series, OSR 4096 (Kim et al. 2020, §2.2) | [`FORCE_DNN_SIM`]; with `train` also [`force_dnn`] |
 //! | force DNN, [`ForceModel::Table1`] | Kim et al. 2020, Table 1 | [`FORCE_DNN_TABLE1`]; [`force_dnn`] |
 //! | contact MLP, cell-set head, per OSR in [`CONTACT_MLP_OSRS`] | the validation-chosen model (Kim et al. 2020, §4) | [`contact_mlp_static`]; [`contact_mlp`] |
-//! | contact CNN, every [`Variant`] | Al & Martinez-Hernandez, §IV-A, and our variants | [`contact_cnn`] (`std`) |
+//! | contact CNN, every [`Variant`] | Al & Martinez-Hernandez, §IV-A, and our variants | [`CONTACT_CNN_PAPER`], [`CONTACT_CNN_SMALL`], [`CONTACT_CNN_WIDE`]; [`contact_cnn`] (`std`) |
 //! | the force DNNs and contact MLPs in fixed point ([`crate::fixed`]) | the same weights, quantised at build time | [`FIXED_FORCE_DNN_SIM`], [`FIXED_FORCE_DNN_TABLE1`], [`FIXED_CONTACT_MLP_OSR256`] …, [`fixed_contact_mlp_static`] |
 //! | softness net | the underactuated-hand softness paper ("Distinguish the Textures of Grasped Objects…"), §3.3: Levenberg–Marquardt, the selected training seed | [`SOFTNESS`]; [`softness`] (`std`) |
 //! | the softness net in fixed point | the same weights, quantised at build time | [`FIXED_SOFTNESS`] |
 //! | the contact CNNs in fixed point | quantised at run time from [`contact_cnn`]'s ([`crate::fixed::FixedContactCnn::quantise`], `std`) | — |
 //!
-//! Without `std` the force DNN, the contact MLPs and the softness net are `'static` arrays
-//! (flash on a microcontroller) behind [`StaticForceDnn`], [`StaticContactMlp`] and
-//! [`SoftnessNet`]; with `std` the contact CNN and the softness net also load from their
-//! weights files' bytes (no ML framework), with `train` the force DNN and the contact MLPs load
-//! as their full, trainable dfdx types, and with `std` [`metrics`] gives the metrics file each
+//! Without `std` every model is `'static` arrays (flash on a microcontroller) behind
+//! [`StaticForceDnn`], [`StaticContactMlp`], [`StaticContactCnn`] and [`SoftnessNet`]; with
+//! `std` each also loads from its weights file's bytes (no ML framework: [`force_dnn`],
+//! [`contact_mlp`], [`contact_cnn`], [`softness`]), and [`metrics`] gives the metrics file each
 //! kind was trained to (accuracy on its held-out sets, cited in the crate's
 //! README). The weights of every built-in model together stay under [`SIZE_BUDGET_BYTES`].
 //!
@@ -35,18 +34,16 @@
 //! # Ok::<(), tactile_nets::RunError>(())
 //! ```
 
+use crate::contact_cnn::{
+    PAPER, POOLED, SMALL, StaticCnn, StaticContactCnn, Variant, WIDE, transposed,
+};
 use crate::contact_mlp::{StaticContactMlp, StaticNet as MlpNet};
 use crate::fixed::{FixedContactMlp, FixedForceDnn, FixedForceNet, FixedMlpNet, FixedSoftnessNet};
 use crate::force_dnn::{StaticForceDnn, StaticNet as ForceNet};
 use crate::frozen::{Identity, Logistic, Relu, StaticDense};
 use crate::softness::{InputScale, SoftnessNet};
 #[cfg(feature = "std")]
-use crate::{
-    NetError,
-    contact_cnn::{ContactCnn, Variant},
-    io::TensorFile,
-    metrics::MetricsFile,
-};
+use crate::{NetError, contact_cnn::ContactCnn, io::TensorFile, metrics::MetricsFile};
 #[cfg(feature = "std")]
 use crate::{contact_mlp::ContactMlp, force_dnn::ForceDnn};
 
@@ -313,6 +310,37 @@ pub fn contact_mlp(osr: u16) -> Result<ContactMlp, NetError> {
         ContactMlp::from_file,
     )
 }
+
+/// A built-in contact CNN from its weights module `$m` (`contact_cnn_paper`, …) as the
+/// `'static` model of `$variant`.
+macro_rules! contact_cnn {
+    ($m:ident, $variant:expr) => {
+        StaticContactCnn::new(
+            $variant,
+            StaticCnn::new(
+                &const { transposed(&weights::$m::NET_0_1_WEIGHT) },
+                &weights::$m::NET_0_1_BIAS,
+                StaticDense::new(&weights::$m::NET_1_0_WEIGHT, &weights::$m::NET_1_0_BIAS),
+                StaticDense::new(&weights::$m::NET_1_2_WEIGHT, &weights::$m::NET_1_2_BIAS),
+            ),
+            &weights::$m::INPUT_MEAN,
+            &weights::$m::INPUT_SCALE,
+            weights::$m::TRIGGER_OFFSET,
+        )
+    };
+}
+
+/// The built-in paper contact CNN (Al & Martinez-Hernandez, §IV-A: 8 filters, dense 320),
+/// `'static`, no allocation: it locates as [`contact_cnn`]`(Variant::Paper)` does, without
+/// `std`.
+pub static CONTACT_CNN_PAPER: StaticContactCnn<{ PAPER.0 }, { PAPER.0 * POOLED }, { PAPER.1 }> =
+    contact_cnn!(contact_cnn_paper, Variant::Paper);
+/// The built-in [`Variant::Small`] contact CNN (4 filters, dense 32), `'static`.
+pub static CONTACT_CNN_SMALL: StaticContactCnn<{ SMALL.0 }, { SMALL.0 * POOLED }, { SMALL.1 }> =
+    contact_cnn!(contact_cnn_small, Variant::Small);
+/// The built-in [`Variant::Wide`] contact CNN (16 filters, dense 64), `'static`.
+pub static CONTACT_CNN_WIDE: StaticContactCnn<{ WIDE.0 }, { WIDE.0 * POOLED }, { WIDE.1 }> =
+    contact_cnn!(contact_cnn_wide, Variant::Wide);
 
 /// The built-in contact CNN of `variant` (Al & Martinez-Hernandez's, §IV-A, or one of ours).
 #[cfg(feature = "std")]

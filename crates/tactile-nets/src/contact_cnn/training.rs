@@ -2,8 +2,9 @@
 //! with the crate's Adam loop and frozen into a [`ContactCnn`]; and [`DfdxCnn`], dfdx's forward
 //! of a model, the reference the plain-array path is checked against.
 
+use super::model::Fast;
 use super::{
-    CHANNELS, ContactCnn, Fast, PATCH, POOLED, REGIONS, Variant, WINDOW, WINDOW_VALUES, standardise,
+    CHANNELS, ContactCnn, PATCH, POOLED, REGIONS, Variant, WINDOW, WINDOW_VALUES, standardise,
 };
 use crate::cnn_frozen::FrozenCnn;
 use crate::cnn_layers::{Im2Col, PoolFlatten};

@@ -303,7 +303,7 @@ impl ContactMlp {
     }
 }
 
-/// Input: the [`N_FEATURES`] raw features of [`features`]; regions: the 24 cells, row-major.
+/// Input: the [`N_FEATURES`] raw features of [`features`](super::features); regions: the 24 cells, row-major.
 impl ContactLocator for ContactMlp {
     type Input = [f32];
     type Error = NetError;

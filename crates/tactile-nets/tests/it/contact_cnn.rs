@@ -8,7 +8,9 @@ use rand::Rng;
 use tactile_nets::ContactLocator;
 use tactile_nets::NetError;
 use tactile_nets::activations::softmax;
-use tactile_nets::contact_cnn::{ContactCnn, DfdxCnn, REGIONS, Variant, WINDOW, WINDOW_VALUES};
+use tactile_nets::contact_cnn::{
+    ContactCnn, DfdxCnn, REGIONS, StaticContactCnn, Variant, WINDOW, WINDOW_VALUES,
+};
 use tactile_nets::pretrained;
 use tactile_nets::train::TrainConfig;
 
@@ -191,4 +193,66 @@ proptest! {
             Err(e) => prop_assert!(false, "unexpected error {e}"),
         }
     }
+}
+
+/// `stat` locates as `file` on `taps`: the same regions and range flags, logits within 1e-4 of
+/// the largest (the dense layers add in another order and skip no zeros), the same trigger
+/// offset and typed errors.
+fn agree<const F: usize, const FLAT: usize, const H: usize>(
+    stat: &StaticContactCnn<F, FLAT, H>,
+    file: &ContactCnn,
+    taps: &[[f32; WINDOW_VALUES]],
+) -> Result<(), NetError> {
+    let variant = file.variant();
+    assert_eq!(stat.variant(), variant);
+    assert_eq!(stat.trigger_offset(), file.trigger_offset());
+    for w in taps {
+        let (a, b) = (file.predict(w)?, stat.predict(w)?);
+        assert_eq!(
+            (a.region, a.in_range),
+            (b.region, b.in_range),
+            "{variant:?}"
+        );
+        let (la, lb) = (file.logits(w)?, stat.logits(w)?);
+        let top = la.iter().fold(1.0f32, |m, v| m.max(v.abs()));
+        for (x, y) in la.iter().zip(lb) {
+            assert!((x - y).abs() <= 1e-4 * top, "{variant:?}: {x} vs {y}");
+        }
+    }
+    assert!(stat.predict(&[0.0; 3]).is_err());
+    let mut nan = [0.0f32; WINDOW_VALUES];
+    nan[5] = f32::NAN;
+    assert!(stat.predict(&nan).is_err());
+    Ok(())
+}
+
+/// The `'static` built-in CNNs (no `std`) locate as their weights files do.
+#[test]
+fn the_static_built_in_cnns_locate_as_their_weights_files() -> Result<(), NetError> {
+    use tactile_nets::pretrained::{CONTACT_CNN_PAPER, CONTACT_CNN_SMALL, CONTACT_CNN_WIDE};
+    let mut rng = rng(11);
+    let (mut taps, _) = windows(4);
+    // Random windows too, some far outside the training range.
+    for k in 0..40 {
+        let spread = if k % 10 == 0 { 1e6 } else { 800.0 };
+        taps.push(core::array::from_fn(|_| rng.random_range(-spread..spread)));
+    }
+    agree(
+        &CONTACT_CNN_PAPER,
+        &pretrained::contact_cnn(Variant::Paper)?,
+        &taps,
+    )?;
+    agree(
+        &CONTACT_CNN_SMALL,
+        &pretrained::contact_cnn(Variant::Small)?,
+        &taps,
+    )?;
+    agree(
+        &CONTACT_CNN_WIDE,
+        &pretrained::contact_cnn(Variant::Wide)?,
+        &taps,
+    )?;
+    let mut cnn = CONTACT_CNN_PAPER;
+    assert_eq!(cnn.locate(&[0.0; WINDOW_VALUES])?.regions, 9);
+    Ok(())
 }
