@@ -423,6 +423,12 @@ impl SoftnessNet {
     pub fn load(path: &Path) -> Result<SoftnessNet, NetError> {
         TensorFile::load_with(path, Self::from_file)
     }
+
+    /// A classifier from the bytes of a weights file (one embedded with `include_bytes!`, or
+    /// received); errors name it as `name`.
+    pub fn from_bytes(name: &str, bytes: &[u8]) -> Result<SoftnessNet, NetError> {
+        TensorFile::parse_with(name, bytes, Self::from_file)
+    }
 }
 
 /// Input: a grasp's series, flat, [`N_VARIABLES`] readings per sample (see the module docs).

@@ -229,6 +229,12 @@ impl ContactCnn {
     pub fn load(path: &Path) -> Result<ContactCnn, NetError> {
         TensorFile::load_with(path, Self::from_file)
     }
+
+    /// A model from the bytes of a weights file (one embedded with `include_bytes!`, or
+    /// received); errors name it as `name`.
+    pub fn from_bytes(name: &str, bytes: &[u8]) -> Result<ContactCnn, NetError> {
+        TensorFile::parse_with(name, bytes, Self::from_file)
+    }
 }
 
 /// Input: one raw 4 × 38 window (152 values, see [`ContactCnn::logits`]); regions: the 9 of

@@ -133,6 +133,52 @@ fn damaged_files_are_typed_errors_naming_file_and_tensor() -> Result<(), NetErro
     Ok(())
 }
 
+/// Every model's weights file loads from bytes without dfdx, and a damaged one is a typed error
+/// naming it: truncated, a force DNN of a width none is built with.
+#[test]
+fn every_model_loads_from_bytes_and_names_them_in_its_errors() -> Result<(), NetError> {
+    use tactile_nets::contact_cnn::ContactCnn;
+    use tactile_nets::softness::SoftnessNet;
+    let force = force_dnn(ForceModel::Table1)?.to_file()?.to_bytes()?;
+    let mlp = contact_mlp(1024)?.to_file()?.to_bytes()?;
+    let cnn = contact_cnn(Variant::Small)?.to_file()?.to_bytes()?;
+    let soft = softness()?.to_file(serde_json::json!({}))?.to_bytes()?;
+    assert_eq!(
+        ForceDnn::from_bytes("f", &force)?,
+        force_dnn(ForceModel::Table1)?
+    );
+    assert_eq!(ContactMlp::from_bytes("m", &mlp)?, contact_mlp(1024)?);
+    assert_eq!(
+        ContactCnn::from_bytes("c", &cnn)?,
+        contact_cnn(Variant::Small)?
+    );
+    assert_eq!(SoftnessNet::from_bytes("s", &soft)?, softness()?);
+    let cut = |b: &[u8]| b[..b.len() - 5].to_vec();
+    let errors = [
+        ForceDnn::from_bytes("tip-force.safetensors", &cut(&force)).map(|_| ()),
+        ContactMlp::from_bytes("tip-mlp.safetensors", &cut(&mlp)).map(|_| ()),
+        ContactCnn::from_bytes("pad-cnn.safetensors", &cut(&cnn)).map(|_| ()),
+        SoftnessNet::from_bytes("hand-soft.safetensors", &cut(&soft)).map(|_| ()),
+    ];
+    for (e, name) in errors
+        .into_iter()
+        .zip(["tip-force", "tip-mlp", "pad-cnn", "hand-soft"])
+    {
+        let text = e.expect_err("truncated").to_string();
+        assert!(text.starts_with(&format!("{name}.safetensors: ")), "{text}");
+    }
+    let mut odd = force_dnn(ForceModel::Table1)?.to_file()?;
+    odd.insert("net.0.0.weight", &[5, 3], &[0.1; 15])?;
+    let text = ForceDnn::from_bytes("odd.safetensors", &odd.to_bytes()?)
+        .expect_err("width 5")
+        .to_string();
+    assert!(
+        text.contains("odd.safetensors: tensor `net.0.0.weight`: stored [5, 3]"),
+        "{text}"
+    );
+    Ok(())
+}
+
 /// Kim et al. 2020, Table 1: 100 gf raised the sensors by 0.71, 0.53 and 0.63 hPa; a press
 /// 40 times as hard (4 kgf, past the 0–200 gf the models were trained on) saturates the
 /// network, and the estimate says so instead of passing for a measurement.
