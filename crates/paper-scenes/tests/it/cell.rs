@@ -233,6 +233,12 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
     let mut force = commander
         .subscription::<WrenchStamped>("/hand0/force", 4096)
         .unwrap();
+    let mut joints = commander
+        .subscription::<hand_zenoh::msg::sensor_msgs::JointState>(
+            "/hand0/gripper/joint_states",
+            4096,
+        )
+        .unwrap();
     let mut command = commander
         .publisher::<GripperCommand>("/hand0/gripper/command")
         .unwrap();
@@ -283,6 +289,22 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
         z.push(m.message.wrench.force.z);
     }
     assert!(z.len() > 10 && z.iter().all(|f| f.is_finite()), "{z:?}");
+    // `joint_states`: one joint's position and velocity; no effort, which JointState defines in
+    // N·m or N and the servo reports only as a load fraction (that is in `grasp/state`).
+    let joint = joints
+        .recv_timeout(Duration::from_millis(200))
+        .unwrap()
+        .expect("a joint state")
+        .message;
+    assert_eq!(
+        (
+            joint.position.len(),
+            joint.velocity.len(),
+            joint.effort.len()
+        ),
+        (1, 1, 0),
+        "{joint:?}"
+    );
     let (first, peak) = (z[0], z.iter().copied().fold(f64::MIN, f64::max));
     assert!(
         first.abs() < 0.2,
