@@ -245,9 +245,35 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
     assert!(command.wait_matched(wait).unwrap());
     let mut start = commander.client::<Trigger>("/hand0/grasp/start").unwrap();
     assert!(start.call(&TriggerRequest {}, wait).unwrap().success);
+    let first = state.recv_timeout(wait).unwrap().expect("a state").message;
+    // Goals whose attachment no rmw_zenoh writes (3 bytes; 33 with a GID length of 3): counted
+    // as unreadable, never acted on.
+    {
+        use hand_zenoh::msg::Message as _;
+        use zenoh::Wait as _;
+        let goal = GripperCommand {
+            position_rad: first.position_rad + 0.3,
+            ..Default::default()
+        }
+        .to_cdr();
+        let mut gid3 = hand_zenoh::attachment::Attachment {
+            sequence_number: 1,
+            source_timestamp: 2,
+            source_gid: [5; 16],
+        }
+        .encode();
+        gid3[16] = 3;
+        for attachment in [vec![1, 2, 3], gid3.to_vec()] {
+            commander
+                .session()
+                .put(command.key(), goal.clone())
+                .attachment(attachment)
+                .wait()
+                .unwrap();
+        }
+    }
     // A goal 0.3 rad past the servo's start (inside the rig's limits), and one far outside
     // them: taken, and refused.
-    let first = state.recv_timeout(wait).unwrap().expect("a state").message;
     for position_rad in [first.position_rad + 0.3, first.position_rad + 3.0] {
         command
             .publish(&GripperCommand {
@@ -328,7 +354,10 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
         "{report}"
     );
     assert!(report.contains(" 1 safe stops;"), "{report}");
-    assert!(report.contains("goals: 1 taken, 1 refused"), "{report}");
+    assert!(
+        report.contains("goals: 1 taken, 1 refused, 2 unreadable"),
+        "{report}"
+    );
     assert!(report.contains("; 1 starts,"), "{report}");
     // However the node ends, the hand gets its end action (release, then torque off).
     assert!(report.ends_with("then torque off (cube)"), "{report}");
