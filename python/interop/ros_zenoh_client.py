@@ -5,7 +5,7 @@ Everything ROS-specific is derived here from the `.msg` files and rosbags' ROS 2
 (type hashes, CDR), and everything Zenoh-specific from eclipse-zenoh and rmw_zenoh's own texts:
 `docs/design.md` (key expressions, liveliness tokens, attachments), `attachment_helpers.cpp`
 (attachment serialization) and `liveliness_utils.cpp` (entity GIDs). Subcommands: hashes, cdr,
-encode, attachment, gid, subscribe, publish, call, router, selftest. Every command prints one
+encode, attachment, gid, subscribe, publish, call, serve, router, selftest. Every command prints one
 JSON object (`encode`: one hex line); failures print {"error": ...} and exit 1. rosbags and
 xxhash are imported lazily so that `router` runs under any eclipse-zenoh 1.x without them.
 """
@@ -607,6 +607,94 @@ def cmd_call(args: argparse.Namespace) -> dict[str, Any]:
                                             "reply_seq", "roundtrip_identical")}}
 
 
+REPLY_ATTACHMENTS = ("echo", "none", "next-seq", "other-gid")  # `serve --reply-attachment`: only "echo" is right
+
+
+def reply_attachment(mode: str, seq: int, client_gid: bytes) -> bytes | None:
+    """The reply's attachment: design.md's (request seq, server's timestamp, client GID), or a fault."""
+    if mode == "none":
+        return None
+    if mode == "next-seq":
+        seq += 1
+    if mode == "other-gid":
+        client_gid = bytes(b ^ 0xFF for b in client_gid)
+    return make_attachment(seq, time.time_ns(), client_gid)
+
+
+def cmd_serve(args: argparse.Namespace) -> dict[str, Any]:
+    """Serve a service like an rmw_zenoh server (SS token, replies echo seq and client GID), N requests."""
+    store, deadline, hash_, key = endpoint(args, args.service)
+    name, fields = args.type, json.loads(args.json)
+    response = encode(store, f"{name}_Response", from_plain(store, f"{name}_Response", fields))
+    count, lock, done = min(args.count, MAX_COUNT), threading.Lock(), threading.Event()
+    out: dict[str, Any] = {"key": key, "token": None, "reply_attachment": args.reply_attachment,
+                           "served": 0, "refused": [], "extra": 0, "requests": []}
+    client_tokens: set[str] = set()  # SC tokens of this service seen in the graph
+    mangled = args.service.replace("/", "%")
+
+    def on_token(sample: zenoh.Sample) -> None:
+        p = str(sample.key_expr).split("/")
+        if sample.kind == zenoh.SampleKind.PUT and len(p) >= 13 and (p[5], p[9]) == ("SC", mangled):
+            with lock:
+                client_tokens.add(str(sample.key_expr))
+
+    def on_query(q: zenoh.Query) -> None:
+        """design.md "Service Servers": read the request's attachment, reply with the response and
+        an attachment carrying the request's sequence number and the client's GID."""
+        with lock:
+            if len(out["requests"]) + len(out["refused"]) >= count:
+                out["extra"] += 1
+                q.reply_err(f"this server answers {count} request(s)")
+                return
+            raw = q.attachment.to_bytes() if q.attachment is not None else None
+            try:
+                seq, stamp, client_gid = parse_attachment(raw)
+            except AttachmentError as exc:
+                out["refused"].append({"why": str(exc), **exc.info})
+                q.reply_err(f"request attachment: {exc}")
+            else:
+                payload = q.payload.to_bytes() if q.payload is not None else b""
+                try:
+                    same = roundtrip(store, f"{name}_Request", payload)[1]
+                except Exception as exc:  # noqa: BLE001 - a request that does not decode gets an error reply
+                    out["refused"].append({"why": f"request does not decode: {exc}", "payload_hex": payload.hex()})
+                    q.reply_err(f"bad request: {exc}")
+                else:
+                    att = reply_attachment(args.reply_attachment, seq, client_gid)
+                    q.reply(q.key_expr, response, attachment=att)
+                    out["requests"].append({"seq": seq, "client_gid_hex": client_gid.hex(), "stamp": stamp,
+                                            "request_roundtrip_identical": same,
+                                            "reply_attachment_hex": None if att is None else att.hex()})
+            if len(out["requests"]) + len(out["refused"]) >= count:
+                done.set()
+
+    with zenoh.open(make_config("peer", [args.connect], ["tcp/127.0.0.1:0"])) as s:
+        zid, live = str(s.info.zid()), s.liveliness()
+        token = entity_token(args.domain, zid, 10, "SS", args.service, name, hash_, SUB_QOS)
+        out["token"] = token
+        graph = live.declare_subscriber(f"@ros2_lv/{args.domain}/**", on_token, history=True)
+        # The queryable before the token: a client that sees the token can reach the server.
+        queryable = s.declare_queryable(key, on_query, complete=True)
+        tokens = [live.declare_token(node_token(args.domain, zid)), live.declare_token(token)]
+        try:
+            finished = done.wait(max(0.0, deadline - time.monotonic()))
+            time.sleep(0.2)  # let the last reply leave before the session closes
+        finally:
+            for t in tokens:
+                t.undeclare()
+            queryable.undeclare()
+            graph.undeclare()
+        with lock:  # a copy, no longer shared with the callbacks
+            gids = {entity_gid(t).hex() for t in client_tokens}
+            # Informational: is each client GID rmw_zenoh's (XXH3-128 of an SC token of this service)?
+            requests = [{**r, "client_gid_matches_token": r["client_gid_hex"] in gids} for r in out["requests"]]
+            result = {**out, "served": len(requests), "refused": list(out["refused"]), "requests": requests}
+    if not finished:
+        raise Failure(f"timed out after {len(result['requests']) + len(result['refused'])} of {count} requests",
+                      **result)
+    return result
+
+
 def cmd_router(args: argparse.Namespace) -> None:
     """A Zenoh router on one endpoint until `--seconds` pass or stdin closes."""
     deadline = time.monotonic() + args.seconds
@@ -689,8 +777,27 @@ def check_inbox(store: Typestore, inbox: list[tuple[bytes, bytes | None]], sent:
             and inbox[0][1].hex() == sent["first_attachment_hex"]}
 
 
+def serve_and_call(common: dict[str, Any]) -> dict[str, Any]:
+    """Selftest of `serve`: it answers `call` (sequence number 43) on a service of its own."""
+    served: list[dict[str, Any]] = []
+    def serve() -> None:
+        with contextlib.suppress(Failure):  # a timeout shows as no summary
+            served.append(cmd_serve(argparse.Namespace(
+                **common, service=SELFTEST_SERVICE + "_served", type="std_srvs/srv/Trigger",
+                json=json.dumps({"success": True, "message": "served"}), count=1, reply_attachment="echo",
+                timeout=15)))
+    server = threading.Thread(target=serve)
+    server.start()
+    try:
+        call = cmd_call(argparse.Namespace(**common, service=SELFTEST_SERVICE + "_served",
+                                           type="std_srvs/srv/Trigger", json="{}", seq=43, timeout=15))
+    finally:
+        server.join()
+    return {"call": call, "served": served[0] if served else None}
+
+
 def cmd_selftest(args: argparse.Namespace) -> dict[str, Any]:
-    """Hashes, attachment layouts, GIDs, then router + mimic node + subscribe / publish / call."""
+    """Hashes, attachment layouts, GIDs, then router + mimic node + subscribe / publish / call / serve."""
     store, ours = load_typestore(args.msgs)
     wrong = {n: ros_hash(store, n) for n, h in PUBLISHED.items() if ros_hash(store, n) != f"RIHS01_{h}"}
     gid = bytes(range(16))
@@ -755,6 +862,7 @@ def cmd_selftest(args: argparse.Namespace) -> dict[str, Any]:
                 run["publish_received"] = check_inbox(store, list(inbox), run["publish"])
                 run["call"] = cmd_call(argparse.Namespace(
                     **common, service=SELFTEST_SERVICE, type="std_srvs/srv/Trigger", json="{}", seq=42, timeout=15))
+                run["serve"] = serve_and_call(common)
             finally:
                 stop.set()
                 node.join()
@@ -771,7 +879,14 @@ def cmd_selftest(args: argparse.Namespace) -> dict[str, Any]:
                 and got["gid_is_xxh3_of_token"] and got["first_attachment_matches"]
                 and call["response"]["success"] is True and call["seq_echoed"] and call["gid_echoed"]
                 and call["reply_seq"] == 42 and call["reply_attachment_len"] == ATTACHMENT_LEN
-                and call["gid_hex"] == entity_gid(call["token"]).hex())
+                and call["gid_hex"] == entity_gid(call["token"]).hex()
+                and serve_ok(r["serve"]))
+    def serve_ok(r: dict[str, Any]) -> bool:
+        call, served = r["call"], r["served"]
+        return (call["response"] == {"success": True, "message": "served"} and call["seq_echoed"]
+                and call["gid_echoed"] and served is not None and served["served"] == 1 and not served["refused"]
+                and served["requests"][0]["seq"] == 43 and served["requests"][0]["client_gid_hex"] == call["gid_hex"]
+                and served["requests"][0]["client_gid_matches_token"] is True)
     if wrong or not checks["attachment_layout"] or not checks["legacy_layout"] or not all(rejected.values()) \
             or not checks["xxh3_reference"] or not checks["default_roundtrips"] or checks["router_udp_sockets"] \
             or not all(run_ok(checks[k]) for k in ("hashed", "humble")):
@@ -785,9 +900,9 @@ def main() -> int:
     sub = ap.add_subparsers(dest="cmd", required=True)
     commands = {"hashes": cmd_hashes, "cdr": cmd_cdr, "encode": cmd_encode, "attachment": cmd_attachment,
                 "gid": cmd_gid, "subscribe": cmd_subscribe, "publish": cmd_publish, "call": cmd_call,
-                "router": cmd_router, "selftest": cmd_selftest}
+                "serve": cmd_serve, "router": cmd_router, "selftest": cmd_selftest}
     ps = {name: sub.add_parser(name, help=fn.__doc__.splitlines()[0]) for name, fn in commands.items()}
-    for name in ("hashes", "cdr", "encode", "subscribe", "publish", "call", "selftest"):
+    for name in ("hashes", "cdr", "encode", "subscribe", "publish", "call", "serve", "selftest"):
         ps[name].add_argument("--msgs", type=Path, default=DEFAULT_MSGS, help="handstack_msgs or its msg/ folder")
     for name, extra in (("cdr", "--hex"), ("encode", "--json")):
         ps[name].add_argument("--type", required=True)
@@ -806,7 +921,7 @@ def main() -> int:
                 raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
             return value
         return parse
-    for name in ("subscribe", "publish", "call"):
+    for name in ("subscribe", "publish", "call", "serve"):
         p = ps[name]
         p.add_argument("--connect", required=True)
         p.add_argument("--domain", type=int, default=0)
@@ -829,6 +944,13 @@ def main() -> int:
     p.add_argument("--type", default="std_srvs/srv/Trigger", choices=sorted(SERVICES))
     p.add_argument("--json", default="{}", help="request fields")
     p.add_argument("--seq", type=int, default=1, help="the request's sequence number")
+    p = ps["serve"]
+    p.add_argument("--service", default=SELFTEST_SERVICE)
+    p.add_argument("--type", default="std_srvs/srv/Trigger", choices=sorted(SERVICES))
+    p.add_argument("--json", default='{"success": true, "message": "served"}', help="response fields")
+    p.add_argument("--count", type=positive(int), default=1, help="requests to answer, then stop")
+    p.add_argument("--reply-attachment", choices=REPLY_ATTACHMENTS, default="echo",
+                   help="echo: design.md's; the others are faults, to test a client")
     ps["router"].add_argument("--listen", required=True)
     ps["router"].add_argument("--seconds", type=float, default=3600.0)
     args = ap.parse_args()
