@@ -676,6 +676,16 @@ impl<S: Service> Client<S> {
             }),
         }
     }
+
+    /// The client's GID: every request's attachment carries it, and a reply must echo it.
+    pub fn gid(&self) -> [u8; 16] {
+        self.ep.gid
+    }
+
+    /// The service's fully qualified name.
+    pub fn name(&self) -> &str {
+        &self.ep.name
+    }
 }
 
 /// One change of the graph, read from a liveliness token.

@@ -1,18 +1,21 @@
 //! Both directions with an rmw_zenoh client written from rmw_zenoh's own specification, not
 //! from this crate (`python/interop/ros_zenoh_client.py`: eclipse-zenoh's own serializer for
 //! the attachment, the `xxhash` package for the GID): the attachment bytes, the GIDs, a
-//! current-layout publisher commanding our subscription, and a current-layout service client
-//! calling our service and getting its sequence number and GID back.
+//! current-layout publisher commanding our subscription, a current-layout service client
+//! calling our service and getting its sequence number and GID back, and our client calling a
+//! current-layout service server (and refusing replies that do not echo).
 
 use crate::common::{free_endpoint, node};
-use crate::python::{client, hex, msgs_dir, python};
+use crate::python::{Background, background, client, hex, msgs_dir, python, unhex};
 
-use hand_zenoh::attachment::{Attachment, LEN};
-use hand_zenoh::keys;
+use hand_zenoh::NodeError;
+use hand_zenoh::attachment::{Attachment, LEN, Layout};
+use hand_zenoh::keys::{self, EntityKind};
 use hand_zenoh::msg::Message as _;
 use hand_zenoh::msg::handstack_msgs::GripperCommand;
-use hand_zenoh::msg::std_srvs::{Trigger, TriggerResponse};
+use hand_zenoh::msg::std_srvs::{Trigger, TriggerRequest, TriggerResponse};
 use hand_zenoh::node::Router;
+use std::path::Path;
 use std::time::Duration;
 
 /// The attachments of the unit tests' vectors and the edges of each field, as the Python
@@ -189,4 +192,118 @@ fn a_current_layout_client_gets_its_sequence_number_and_gid_back() {
     assert_eq!(report["seq_echoed"], true, "{report}");
     assert_eq!(report["gid_echoed"], true, "{report}");
     assert_eq!((server.handled(), server.refused()), (1, 0));
+}
+
+/// The Python client's `serve` of `std_srvs/srv/Trigger` on `/hand0/<service>`, answering
+/// `count` requests with `{success: true, message: "tared by python"}` and a reply attachment
+/// made as `mode` says (`echo`: design.md's; the others are faults).
+fn python_server(py: &Path, endpoint: &str, service: &str, mode: &str, count: u32) -> Background {
+    let msgs = msgs_dir();
+    let (service, count) = (format!("/hand0/{service}"), count.to_string());
+    background(
+        py,
+        &[
+            "serve",
+            "--connect",
+            endpoint,
+            "--msgs",
+            msgs.to_str().unwrap(),
+            "--service",
+            &service,
+            "--json",
+            r#"{"success": true, "message": "tared by python"}"#,
+            "--count",
+            &count,
+            "--reply-attachment",
+            mode,
+            "--timeout",
+            "60",
+        ],
+    )
+}
+
+/// Our client calls a service server of the Python client (design.md "Service Servers"): three
+/// calls answered; each reply carried that request's sequence number (1, 2, 3) and our
+/// client's GID, which our client checks; and the server saw those sequence numbers and our
+/// client's GID, the XXH3-128 of our client's `SC` token.
+#[test]
+fn our_client_calls_a_current_layout_server() {
+    let Some(py) = python() else { return };
+    let endpoint = free_endpoint();
+    let _router = Router::open(&endpoint).unwrap();
+    let server = python_server(&py, &endpoint, "tactile/tare", "echo", 3);
+    let grasp = node(&endpoint, "/hand0", "grasp");
+    let found = grasp
+        .wait_for(EntityKind::Service, "tactile/tare", Duration::from_secs(30))
+        .unwrap();
+    assert!(found, "no service-server token for /hand0/tactile/tare");
+    let mut tare = grasp.client::<Trigger>("tactile/tare").unwrap();
+    assert_eq!(tare.name(), "/hand0/tactile/tare");
+    for _ in 0..3 {
+        let response = tare
+            .call(&TriggerRequest::default(), Duration::from_secs(10))
+            .unwrap();
+        assert!(response.success);
+        assert_eq!(response.message, "tared by python");
+    }
+    let report = server.finish();
+    assert_eq!(report["served"], 3, "{report}");
+    assert_eq!(report["refused"], serde_json::json!([]), "{report}");
+    assert_eq!(report["extra"], 0, "{report}");
+    let gid = hex(&tare.gid());
+    let requests = report["requests"].as_array().unwrap();
+    for (r, seq) in requests.iter().zip(1..) {
+        assert_eq!(r["seq"], seq, "{report}");
+        assert_eq!(r["client_gid_hex"], gid.as_str(), "{report}");
+        assert_eq!(r["client_gid_matches_token"], true, "{report}");
+        assert_eq!(r["request_roundtrip_identical"], true, "{report}");
+        // What our client received and accepted: the 33-byte layout, the request's sequence
+        // number and our GID.
+        let sent = unhex(r["reply_attachment_hex"].as_str().unwrap());
+        let (a, layout) = Attachment::read(&sent).unwrap();
+        assert_eq!(layout, Layout::Current);
+        assert_eq!((a.sequence_number, a.source_gid), (seq, tare.gid()));
+    }
+    assert_eq!(requests.len(), 3);
+}
+
+/// A server whose reply does not echo the request — no attachment, the next sequence number,
+/// another GID — is answered by our client with [`NodeError::Refused`], not the response.
+#[test]
+fn our_client_refuses_a_reply_that_does_not_echo() {
+    let Some(py) = python() else { return };
+    let endpoint = free_endpoint();
+    let _router = Router::open(&endpoint).unwrap();
+    let grasp = node(&endpoint, "/hand0", "grasp");
+    // A service of its own for each server: the last one's token may not be gone yet.
+    for (mode, name) in [
+        ("none", "tare_no_attachment"),
+        ("next-seq", "tare_next_seq"),
+        ("other-gid", "tare_other_gid"),
+    ] {
+        let server = python_server(&py, &endpoint, name, mode, 1);
+        let found = grasp
+            .wait_for(EntityKind::Service, name, Duration::from_secs(30))
+            .unwrap();
+        assert!(found, "{mode}: no service-server token");
+        let mut tare = grasp.client::<Trigger>(name).unwrap();
+        let err = tare
+            .call(&TriggerRequest::default(), Duration::from_secs(10))
+            .unwrap_err();
+        match &err {
+            NodeError::Refused { service, reason } => {
+                assert_eq!(service, &format!("/hand0/{name}"));
+                assert!(reason.contains("echo"), "{mode}: {err}");
+            }
+            other => panic!("{mode}: {other:?}"),
+        }
+        let report = server.finish();
+        assert_eq!(report["served"], 1, "{mode}: {report}");
+        assert_eq!(report["requests"][0]["seq"], 1, "{mode}: {report}");
+        assert_eq!(
+            report["requests"][0]["client_gid_hex"],
+            hex(&tare.gid()).as_str(),
+            "{mode}: {report}"
+        );
+    }
 }
