@@ -31,6 +31,16 @@ pub enum NodeError {
         /// What it said.
         reason: String,
     },
+    /// A reply that is not this request's answer: its attachment is missing, unreadable, or does
+    /// not echo the request's sequence number and this client's GID (rmw_zenoh's design.md,
+    /// "Service Servers"). The response is not used.
+    #[error("`{service}` sent a reply that is not this request's: {reason}")]
+    NotEchoed {
+        /// The service's name.
+        service: String,
+        /// What the reply's attachment said instead.
+        reason: String,
+    },
     /// A payload that is not the expected message.
     #[error("payload: {0}")]
     Payload(#[from] CdrError),

@@ -654,18 +654,23 @@ impl<S: Service> Client<S> {
         match reply.into_result() {
             Ok(sample) => {
                 // The reply echoes this request's sequence number and this client's GID.
-                let echoed = sample
-                    .attachment()
-                    .and_then(|a| Attachment::read(&a.to_bytes()).ok())
-                    .is_some_and(|(a, _)| {
-                        a.sequence_number == self.seq && a.source_gid == self.ep.gid
-                    });
-                if !echoed {
-                    return Err(NodeError::Refused {
+                let not_echoed = match sample.attachment().map(|a| Attachment::read(&a.to_bytes()))
+                {
+                    None => Some("no attachment".to_owned()),
+                    Some(Err(e)) => Some(format!("attachment: {e}")),
+                    Some(Ok((a, _))) if a.sequence_number != self.seq => Some(format!(
+                        "sequence number {}, not this request's {}",
+                        a.sequence_number, self.seq
+                    )),
+                    Some(Ok((a, _))) if a.source_gid != self.ep.gid => {
+                        Some("another client's GID".to_owned())
+                    }
+                    Some(Ok(_)) => None,
+                };
+                if let Some(reason) = not_echoed {
+                    return Err(NodeError::NotEchoed {
                         service: self.ep.name.clone(),
-                        reason: "the reply does not echo the request's sequence number and \
-                                 client GID"
-                            .into(),
+                        reason,
                     });
                 }
                 Ok(S::Response::from_cdr(&sample.payload().to_bytes())?)

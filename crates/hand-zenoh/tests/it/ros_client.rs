@@ -268,7 +268,8 @@ fn our_client_calls_a_current_layout_server() {
 }
 
 /// A server whose reply does not echo the request — no attachment, the next sequence number,
-/// another GID — is answered by our client with [`NodeError::Refused`], not the response.
+/// another GID — is answered by our client with [`NodeError::NotEchoed`] saying which, not the
+/// response.
 #[test]
 fn our_client_refuses_a_reply_that_does_not_echo() {
     let Some(py) = python() else { return };
@@ -291,9 +292,14 @@ fn our_client_refuses_a_reply_that_does_not_echo() {
             .call(&TriggerRequest::default(), Duration::from_secs(10))
             .unwrap_err();
         match &err {
-            NodeError::Refused { service, reason } => {
+            NodeError::NotEchoed { service, reason } => {
                 assert_eq!(service, &format!("/hand0/{name}"));
-                assert!(reason.contains("echo"), "{mode}: {err}");
+                let said = match mode {
+                    "none" => "no attachment",
+                    "next-seq" => "sequence number 2, not this request's 1",
+                    _ => "another client's GID",
+                };
+                assert_eq!(reason, said, "{mode}: {err}");
             }
             other => panic!("{mode}: {other:?}"),
         }
