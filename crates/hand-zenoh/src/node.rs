@@ -645,6 +645,11 @@ impl<S: Service> Client<S> {
         let replies = self
             .session
             .get(self.ep.key.clone())
+            // As rmw_zenoh's clients query (`rmw_client_data.cpp`, ClientData::make: target
+            // ALL_COMPLETE, consolidation NONE): each reply is delivered as it comes, not held
+            // for the query's end.
+            .target(zenoh::query::QueryTarget::AllComplete)
+            .consolidation(zenoh::query::ConsolidationMode::None)
             .payload(request.to_cdr())
             .attachment(att.encode())
             .timeout(deadline.saturating_duration_since(Instant::now()))

@@ -391,7 +391,7 @@ fn a_force_estimate_is_published_once_tared_and_a_refusal_is_counted() {
     let force = tactile.force().unwrap();
     assert_eq!(force.beyond_range(), 1);
     assert_eq!(force.refused(), 1);
-    assert_eq!(force.last_refusal(), Some("\"beyond the rated range\""));
+    assert_eq!(force.last_refusal(), Some("beyond the rated range"));
     for m in &got {
         let w = &m.wrench;
         assert_eq!(
