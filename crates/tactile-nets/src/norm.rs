@@ -31,3 +31,18 @@ pub fn mean_and_scale<const N: usize>(rows: &[[f32; N]]) -> ([f32; N], [f32; N])
 pub fn standardise<const N: usize>(x: &[f32; N], mean: &[f32; N], scale: &[f32; N]) -> [f32; N] {
     core::array::from_fn(|j| (x[j] - mean[j]) / scale[j])
 }
+
+/// Whether every standardised value of `z` lies within `±limit` (a NaN does not). On the
+/// floats' bits: a finite float's magnitude orders as its bits without the sign do, so the
+/// test is an integer compare — no floating-point call on a core without an FPU.
+///
+/// ```
+/// use tactile_nets::norm::within;
+/// assert!(within(&[-4.0, 0.5, 4.0], 4.0));
+/// assert!(!within(&[4.0001, 0.0], 4.0));
+/// assert!(!within(&[f32::NAN], 4.0) && !within(&[f32::NEG_INFINITY], 4.0));
+/// ```
+pub fn within<const N: usize>(z: &[f32; N], limit: f32) -> bool {
+    let limit = limit.abs().to_bits();
+    z.iter().all(|v| v.to_bits() & 0x7fff_ffff <= limit)
+}

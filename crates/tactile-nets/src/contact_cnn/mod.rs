@@ -240,7 +240,7 @@ pub(crate) fn standardise(
         core::array::from_fn(|i| (window[i] - mean[i / WINDOW]) / scale[i / WINDOW]);
     // One pass answers both questions for a window in range (a NaN or infinity is not within
     // it); only a window outside is checked for the overflow a finite input can still cause.
-    let in_range = z.iter().all(|v| v.abs() <= Z_RANGE);
+    let in_range = crate::norm::within(&z, Z_RANGE);
     if !in_range {
         check_output(&z)?;
     }

@@ -264,7 +264,7 @@ pub const Z_RANGE: f32 = 4.0;
 
 /// Whether the standardised inputs `z` lie within [`Z_RANGE`] of the training mean.
 pub fn in_range(z: &[f32; N_FEATURES]) -> bool {
-    z.iter().all(|v| v.abs() <= Z_RANGE)
+    crate::norm::within(z, Z_RANGE)
 }
 
 /// The raw input features of one reading ([`FEATURE_NAMES`]).
