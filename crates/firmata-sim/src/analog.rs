@@ -5,7 +5,12 @@
 //! pin ([`ConstantVolts`], which the binary's `--analog A0=1.25` sets) is what tests need now;
 //! a simulation of the hand (finger potentiometers, FSR dividers) implements the trait — or
 //! passes a closure `FnMut(channel, time since start) -> volts` — and drives the pins from its
-//! state.
+//! state. A model whose state the board's own outputs move (a stepper pulling a tendon that
+//! closes the fingers the sensors sit on) also hears each stepper's steps
+//! ([`AnalogInputs::stepper_moved`]), before the pins are sampled in the same pass.
+//!
+//! The time a model is given restarts at 0 when the sketch restarts (each open of the port
+//! resets the board); the motors and the world they move do not restart with it.
 
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -14,6 +19,14 @@ use std::time::Duration;
 pub trait AnalogInputs: Send {
     /// The voltage at analog `channel` (A0 = 0) at `now` since the board started, in volts.
     fn volts(&mut self, channel: u8, now: Duration) -> f32;
+
+    /// Stepper `device`'s motor turned `steps` whole steps (negative: backwards) in the board's
+    /// pass that ended at `now`. Motion only: zeroing the position counter, a reset of the
+    /// board or a new configuration does not turn the shaft, so it is not heard here. Nothing
+    /// by default.
+    fn stepper_moved(&mut self, device: u8, steps: i32, now: Duration) {
+        let _ = (device, steps, now);
+    }
 }
 
 impl<F: FnMut(u8, Duration) -> f32 + Send> AnalogInputs for F {

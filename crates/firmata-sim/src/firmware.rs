@@ -690,8 +690,9 @@ impl Firmware {
         }
     }
 
-    /// One pass of `loop()` at `now`: steppers move (and report completed moves); every
-    /// sampling interval, the enabled analog inputs and the continuous I2C reads are reported.
+    /// One pass of `loop()` at `now`: steppers move (and report completed moves; `analog`
+    /// hears the steps they took); every sampling interval, the enabled analog inputs and the
+    /// continuous I2C reads are reported.
     /// The time until the next pass has work, at most.
     pub fn tick(
         &mut self,
@@ -705,7 +706,14 @@ impl Firmware {
         let mut any_running = false;
         for (device, slot) in self.steppers.iter_mut().enumerate() {
             if let Some(s) = slot {
-                if s.advance(dt) {
+                let before = s.position();
+                let done = s.advance(dt);
+                let moved = i64::from(s.position()) - i64::from(before);
+                if moved != 0 {
+                    let moved = moved.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+                    analog.stepper_moved(device as u8, moved, now);
+                }
+                if done {
                     p::encode_stepper_position(out, device as u8, s.position(), true);
                 }
                 any_running |= s.running();

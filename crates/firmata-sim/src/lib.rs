@@ -11,7 +11,8 @@
 //! The sketch is StandardFirmata 2.5.9 or ConfigurableFirmata 2.10.1 with AccelStepperFirmata
 //! ([`FirmwareKind`]) on an Uno or a Mega 2560 pin set ([`BoardKind`]), answering as their
 //! sources do: version and firmware reports, capability and analog-mapping responses, pin
-//! modes, analog reporting every sampling interval ([`AnalogInputs`] gives the voltages), digital
+//! modes, analog reporting every sampling interval ([`AnalogInputs`] gives the voltages and
+//! hears the steppers' steps, so a physics model can close a hand the sensors sit on), digital
 //! port reports, I2C on a bus of the drivers' chip models ([`ChipBus`]: three MS5611s behind a
 //! TCA9548A, an ICM-20789), and steppers moving in wall-clock time ([`stepper::Stepper`]).
 //!
@@ -147,6 +148,33 @@ impl SimConfig {
     /// At this baud rate.
     pub fn baud(mut self, baud: u32) -> SimConfig {
         self.baud = baud;
+        self
+    }
+
+    /// With this I2C bus.
+    pub fn bus(mut self, bus: ChipBus) -> SimConfig {
+        self.bus = bus;
+        self
+    }
+
+    /// With the analog pins driven by `inputs` (a physics model) instead of
+    /// [`volts`](Self::volts).
+    ///
+    /// ```
+    /// use firmata_host::{Board, Options};
+    /// use firmata_sim::{ChipBus, SimBoard, SimConfig};
+    /// use std::time::Duration;
+    ///
+    /// // A0 rises 1 V a second from the board's start.
+    /// let ramp = |channel: u8, now: Duration| if channel == 0 { now.as_secs_f32() } else { 0.0 };
+    /// let config = SimConfig::default().bus(ChipBus::empty()).analog(ramp);
+    /// let sim = SimBoard::spawn(config.boot_delay(Duration::from_millis(50)))?;
+    /// let mut board = Board::open(sim.path(), &Options::default())?;
+    /// assert!(board.enable_analog(0)?.volts < 1.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn analog(mut self, inputs: impl AnalogInputs + 'static) -> SimConfig {
+        self.analog = Some(Box::new(inputs));
         self
     }
 }

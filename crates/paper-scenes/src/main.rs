@@ -30,6 +30,11 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         report: Option<PathBuf>,
     },
+    /// Seed 001's underactuated hand behind a simulated Arduino Mega running
+    /// ConfigurableFirmata on a pty: prints the pty's path, serves until SIGINT / SIGTERM.
+    /// Stepper 0 on D2 (STEP) / D3 (DIR) pulls the tendon, 0.01 mm a step; A0–A3 are the
+    /// fingers' FSR dividers, A4–A7 their distal potentiometers.
+    HandBoard(HandBoardArgs),
     /// Run a scene's stack (or one part: pad, arm, fingertip or hand) on its simulated devices
     /// as ROS 2 nodes on Zenoh, until stdin closes.
     #[cfg(feature = "cell")]
@@ -46,8 +51,85 @@ enum Command {
     Cell(handstack::cell::cli::CellCommand),
 }
 
+/// `paper-scenes hand-board`'s options.
+#[derive(clap::Args)]
+struct HandBoardArgs {
+    /// The object's softness: soft (sponge), moderate (silicone rubber) or hard (wood).
+    #[arg(long, value_enum, default_value_t = Softness::Moderate)]
+    object: Softness,
+    /// The object's shape.
+    #[arg(long, value_enum, default_value_t = Shape::Cylinder)]
+    shape: Shape,
+    /// The object's size, mm (seed 001 Table 1: 65, 80 or 90; 0 for an empty grasp).
+    #[arg(long, default_value_t = 80.0)]
+    size_mm: f64,
+    /// The seed of the object's pose and the sensors' spread.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// From the port opening to the version report, ms (bootloader and setup()).
+    #[arg(long = "boot-ms", default_value_t = 1600)]
+    boot_ms: u64,
+    /// The physics' quasi-static step, ms.
+    #[arg(long = "step-ms", default_value_t = 10.0)]
+    step_ms: f64,
+    /// Read noise at the analog pins, LSB (σ).
+    #[arg(long = "noise-lsb", default_value_t = 0.5)]
+    noise_lsb: f64,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Softness {
+    Soft,
+    Moderate,
+    Hard,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Shape {
+    Rectangular,
+    Cylinder,
+    Sphere,
+}
+
+fn hand_board(args: &HandBoardArgs) -> ExitCode {
+    use hand_sim::underactuated::{Material, Shape as S};
+    use paper_scenes::devices::hand_board::{HandBoard, HandBoardConfig};
+    let stop = handstack::stop::signal_stop();
+    let mut config = HandBoardConfig::new(match args.object {
+        Softness::Soft => Material::Sponge,
+        Softness::Moderate => Material::SiliconeRubber,
+        Softness::Hard => Material::Wood,
+    });
+    config.hand.object.shape = match args.shape {
+        Shape::Rectangular => S::Rectangular,
+        Shape::Cylinder => S::Cylinder,
+        Shape::Sphere => S::Sphere,
+    };
+    config.hand.object.size_mm = args.size_mm;
+    config.hand.step_ms = args.step_ms;
+    config.hand.sensors.noise_lsb = args.noise_lsb;
+    config.seed = args.seed;
+    config.boot_delay = std::time::Duration::from_millis(args.boot_ms);
+    let board = match HandBoard::spawn(config) {
+        Ok(board) => board,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(handstack::summary::ExitStatus::exit_code(&e).max(1));
+        }
+    };
+    println!("{}", board.path().display());
+    // A test or script waits for this line through a pipe: it must not sit in a buffer.
+    let _ = std::io::Write::flush(&mut std::io::stdout());
+    while !stop.is_set() {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    drop(board);
+    ExitCode::SUCCESS
+}
+
 fn main() -> ExitCode {
     match Cli::parse().command {
+        Command::HandBoard(args) => hand_board(&args),
         Command::Run {
             scenes,
             json,

@@ -162,6 +162,10 @@ fn lawful() -> Vec<Package> {
             &[
                 ("handstack", "normal", false),
                 ("paper-experiments", "normal", false),
+                // Seed 001's hand behind the simulated Arduino: a published simulator plugged
+                // with hand-sim's physics where both may be used, never the other way round.
+                ("firmata-sim", "normal", false),
+                ("hand-sim", "normal", false),
             ],
         ),
         package(
@@ -223,6 +227,14 @@ fn a_simulator_uses_the_product_crate_of_its_protocol_never_the_reproduction() {
         bad.iter()
             .any(|b| b.contains("`ur-sim` → `paper-experiments`")
                 && b.contains("never depends on a reproduction crate")),
+        "{bad:?}"
+    );
+    // The underactuated hand's physics reaches the Arduino simulator from the composition
+    // root (paper-scenes' hand board); the simulator never reaches for it.
+    let bad = after(|p| add(p, "firmata-sim", "hand-sim", "normal", false));
+    assert!(
+        bad.iter().any(|b| b.contains("`firmata-sim` → `hand-sim`")
+            && b.contains("never depends on a reproduction crate")),
         "{bad:?}"
     );
     // Nor a product crate other than the ones its row names.

@@ -71,11 +71,25 @@ impl Fsr {
     /// assert_eq!(fsr.decode(&adc, 0), 0.0);
     /// ```
     pub fn decode(&self, adc: &Adc, code: u16) -> f64 {
-        let v = adc.volts(code);
-        if v >= adc.vref_v {
+        self.force_from_volts(adc.volts(code), adc.vref_v)
+    }
+
+    /// The force a divider voltage `v` stands for with supply `vcc_v`, by the nominal law (the
+    /// inverse of [`volts`](Self::volts) at unit gain): 0 below the rated floor, the ceiling
+    /// at or above it; always finite.
+    ///
+    /// ```
+    /// use hand_sim::underactuated::Fsr;
+    /// let fsr = Fsr::default();
+    /// assert!((fsr.force_from_volts(fsr.volts(20.0, 1.0, 5.0), 5.0) - 20.0).abs() < 1e-9);
+    /// assert_eq!(fsr.force_from_volts(0.0, 5.0), 0.0);
+    /// assert_eq!(fsr.force_from_volts(5.0, 5.0), fsr.max_force_n);
+    /// ```
+    pub fn force_from_volts(&self, v: f64, vcc_v: f64) -> f64 {
+        if v >= vcc_v {
             return self.max_force_n;
         }
-        let r = self.divider_ohm * (adc.vref_v - v) / v;
+        let r = self.divider_ohm * (vcc_v - v) / v;
         let f = KGF_N * (r / self.r_1kgf_ohm).powf(-1.0 / self.exponent);
         if f.is_nan() || f < self.min_force_n {
             0.0

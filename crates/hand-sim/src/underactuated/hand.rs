@@ -27,6 +27,16 @@ pub struct SensorCodes {
     pub angle: [u16; 4],
 }
 
+/// The eight sensor voltages at the ADC's inputs, before it converts them (no read noise):
+/// what an Arduino's analog pins see.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SensorVolts {
+    /// FSR divider outputs, per finger, V.
+    pub force: [f64; 4],
+    /// Distal potentiometer wipers, per finger, V.
+    pub angle: [f64; 4],
+}
+
 /// The underactuated four-finger hand of seed 001 grasping one object.
 ///
 /// ```
@@ -170,11 +180,17 @@ impl Underactuated {
             / 4.0
     }
 
-    /// One quasi-static step to `(steps + 1) · step`.
+    /// One quasi-static step to `(steps + 1) · step` with the stepper's own constant-speed
+    /// travel.
     fn advance(&mut self) {
+        let t_s = ((self.steps + 1) * self.step_ns) as f64 * 1e-9;
+        self.advance_toward(self.commanded_travel_m(t_s));
+    }
+
+    /// One quasi-static step to `(steps + 1) · step` with the differential's input at `target`
+    /// (m of tendon pulled).
+    fn advance_toward(&mut self, target: f64) {
         let t_ns = (self.steps + 1) * self.step_ns;
-        let t_s = t_ns as f64 * 1e-9;
-        let target = self.commanded_travel_m(t_s);
         let stall = self.config.stall_tension_n;
         let tension = increasing_root_near(
             |t| self.mean_travel(&self.equilibria(t)) - target,
@@ -211,23 +227,71 @@ impl Underactuated {
         adc.code(volts + z * self.config.sensors.noise_lsb * adc.vref_v / 1024.0)
     }
 
+    /// Drives the differential's input from outside — a stepper on a board, whose steps give
+    /// the tendon pulled — instead of at `closing_speed_mm_s`: integrates whole steps up to
+    /// `t_ns` with the input at `travel_m` (m; 0 = open, clamped there), whatever the grasp's
+    /// end. The same quasi-static physics as [`Model::step_to`], which it must not be mixed
+    /// with on one hand.
+    ///
+    /// ```
+    /// use hand_sim::underactuated::{Underactuated, UnderactuatedConfig};
+    /// let mut hand = Underactuated::new(&UnderactuatedConfig::default(), 1)?;
+    /// hand.drive_to(1_000_000_000, 0.004)?; // 4 mm of tendon after 1 s: closing, not touching
+    /// let closed = hand.fingers()[0].proximal_rad;
+    /// assert!(closed > 0.1);
+    /// hand.drive_to(2_000_000_000, 0.004)?; // held: the fingers stay
+    /// assert_eq!(hand.fingers()[0].proximal_rad, closed);
+    /// assert!(hand.drive_to(3_000_000_000, f64::NAN).is_err());
+    /// # Ok::<(), hand_sim::SimError>(())
+    /// ```
+    pub fn drive_to(&mut self, t_ns: u64, travel_m: f64) -> Result<(), SimError> {
+        if !travel_m.is_finite() {
+            let why = format!("must be finite, got {travel_m}");
+            return Err(SimError::config("travel_m", why));
+        }
+        let target = travel_m.max(0.0);
+        while (self.steps + 1).saturating_mul(self.step_ns) <= t_ns {
+            self.advance_toward(target);
+        }
+        self.now_ns = self.now_ns.max(t_ns);
+        Ok(())
+    }
+
+    /// The eight channels' voltages at the ADC's inputs now (each FSR's unit gain and each
+    /// potentiometer's mounting error included, no read noise).
+    pub fn sensor_volts(&self) -> SensorVolts {
+        let s = &self.config.sensors;
+        let mut volts = SensorVolts {
+            force: [0.0; 4],
+            angle: [0.0; 4],
+        };
+        for (i, f) in self.fingers.iter().enumerate() {
+            volts.force[i] = s
+                .fsr
+                .volts(f.distal_force_n, self.fsr_gain[i], s.adc.vref_v);
+            volts.angle[i] = s.pot.volts(f.distal_rad, s.pot_offset_deg[i], s.adc.vref_v);
+        }
+        volts
+    }
+
     /// Reads all eight channels through the ADC, with read noise.
     pub fn read_codes(&mut self) -> SensorCodes {
-        let s = self.config.sensors;
-        let fingers = self.fingers;
+        let volts = self.sensor_volts();
         let mut codes = SensorCodes {
             force: [0; 4],
             angle: [0; 4],
         };
-        for (i, f) in fingers.iter().enumerate() {
-            let v = s
-                .fsr
-                .volts(f.distal_force_n, self.fsr_gain[i], s.adc.vref_v);
-            codes.force[i] = self.noisy_code(v);
-            let v = s.pot.volts(f.distal_rad, s.pot_offset_deg[i], s.adc.vref_v);
-            codes.angle[i] = self.noisy_code(v);
+        // Finger by finger, force then angle: the order the noise is drawn in.
+        for i in 0..4 {
+            codes.force[i] = self.noisy_code(volts.force[i]);
+            codes.angle[i] = self.noisy_code(volts.angle[i]);
         }
         codes
+    }
+
+    /// The configuration the hand was built with.
+    pub fn config(&self) -> &UnderactuatedConfig {
+        &self.config
     }
 
     /// Decodes codes by the nominal sensor laws (the Arduino-side calibration) into a frame

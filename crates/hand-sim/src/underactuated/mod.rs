@@ -38,6 +38,6 @@ pub use config::{SensorConfig, UnderactuatedConfig};
 pub use finger::{FingerParams, FingerState};
 pub use fsr::Fsr;
 pub use grasp::{GraspSeries, record_grasp};
-pub use hand::{SensorCodes, Underactuated};
+pub use hand::{SensorCodes, SensorVolts, Underactuated};
 pub use object::{Material, ObjectConfig, Pose, PoseConfig, Shape};
 pub use pot::Pot;

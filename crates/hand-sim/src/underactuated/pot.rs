@@ -40,6 +40,18 @@ impl Pot {
     /// assert!((pot.decode(&adc, code) - 0.5).abs() < 270f64.to_radians() / 1024.0);
     /// ```
     pub fn decode(&self, adc: &Adc, code: u16) -> f64 {
-        (adc.volts(code) / adc.vref_v * self.travel_deg - self.zero_deg).to_radians()
+        self.angle_from_volts(adc.volts(code), adc.vref_v)
+    }
+
+    /// The joint angle a wiper voltage `v` stands for with supply `vcc_v`, rad, by the
+    /// nominal mounting (the inverse of [`volts`](Self::volts) without mounting error).
+    ///
+    /// ```
+    /// use hand_sim::underactuated::Pot;
+    /// let pot = Pot::default();
+    /// assert!((pot.angle_from_volts(pot.volts(0.7, 0.0, 5.0), 5.0) - 0.7).abs() < 1e-12);
+    /// ```
+    pub fn angle_from_volts(&self, v: f64, vcc_v: f64) -> f64 {
+        (v / vcc_v * self.travel_deg - self.zero_deg).to_radians()
     }
 }

@@ -46,3 +46,30 @@ fn a_scene_with_the_hand_builds_and_steps_it() {
     assert_eq!(hand.steps(), 20, "1 s of 50 ms steps");
     assert!(SceneConfig::from_toml("seed = 3\n[underactuated]\nspeed = 1\n").is_err());
 }
+
+/// Driven from outside with the travel its own stepper would command at each step, the hand
+/// is the same hand to the bit: `drive_to` is the constant-speed close with the input given.
+#[test]
+fn driving_the_tendon_from_outside_is_the_same_close() {
+    use hand_sim::underactuated::{Material, Underactuated, UnderactuatedConfig};
+    for material in Material::ALL {
+        let mut config = UnderactuatedConfig::default();
+        config.object.material = material;
+        config.duration_s = 600.0;
+        let mut own = Underactuated::new(&config, 9).unwrap();
+        let mut driven = Underactuated::new(&config, 9).unwrap();
+        let step = own.step_ns();
+        for k in 1..=400u64 {
+            let t = k * step;
+            own.step_to(t).unwrap();
+            let res = config.stepper_resolution_mm;
+            let t_s = t as f64 * 1e-9;
+            let steps = (config.closing_speed_mm_s * t_s / res).floor();
+            driven.drive_to(t, steps * res * 1e-3).unwrap();
+            assert_eq!(own.fingers(), driven.fingers(), "{material:?} at step {k}");
+            assert_eq!(own.sensor_volts(), driven.sensor_volts());
+        }
+        assert!(own.first_contact_ns().is_some(), "{material:?}: 20 s touch");
+        assert_eq!(own.first_contact_ns(), driven.first_contact_ns());
+    }
+}

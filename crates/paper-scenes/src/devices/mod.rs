@@ -4,8 +4,13 @@
 //! the Table 5 world's servo-bus simulator behind `ServoHand`, the ICM-20789 chip model behind
 //! the real driver, ur-sim's UR controller simulator on loopback behind the real ur_rtde
 //! client. The runners get handles and cannot tell which they hold.
+//!
+//! [`hand_board`] is a device for a user's own code rather than a scene's: seed 001's
+//! underactuated hand behind a simulated Arduino running Firmata on a pty (`paper-scenes
+//! hand-board` runs it as a process).
 
 pub mod arm;
 pub mod fingertip;
 pub mod grasp;
+pub mod hand_board;
 pub mod pad;

@@ -1,5 +1,6 @@
 //! paper-scenes' tests, one binary: the papers' scenes run as written against the committed
-//! figures, bad scenes, the command line, the report, the devices, the full hand and the cell;
+//! figures, bad scenes, the command line, the report, the devices (seed 001's hand behind a
+//! simulated Arduino among them), the full hand and the cell;
 //! and handstack's grasp hold on simulated devices.
 
 mod bad_scenes;
@@ -10,6 +11,7 @@ mod contact_location;
 mod devices;
 mod full_hand;
 mod grasp_table5;
+mod hand_board;
 mod hand_loop_faults;
 #[cfg(feature = "cell")]
 mod pad_node;
