@@ -71,12 +71,61 @@ fn move_under_way(
     (commander, tcp, goal, target)
 }
 
-#[test]
-fn the_arm_stops_when_its_commander_leaves_mid_move() {
-    if std::env::var_os("HANDSTACK_PYTHON").is_none() {
+/// Whether ur_rtde's Python is missing (the test is then skipped, saying so).
+fn no_python() -> bool {
+    let missing = std::env::var_os("HANDSTACK_PYTHON").is_none();
+    if missing {
         eprintln!(
             "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"
         );
+    }
+    missing
+}
+
+/// `handstack node SCENE --part arm` as `/arm0` for a UR3 at `host`, on the router at
+/// `endpoint`: the process, its stdin held open (a closed stdin is the node's normal stop, not
+/// what these tests are about) and the directory of its scene file (`name` tells it apart).
+fn arm_node(
+    host: &str,
+    endpoint: &str,
+    name: &str,
+) -> (
+    std::process::Child,
+    Option<std::process::ChildStdin>,
+    std::path::PathBuf,
+) {
+    use std::process::{Command, Stdio};
+    let dir = std::env::temp_dir().join(format!("handstack-arm-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let scene = dir.join("arm.toml");
+    std::fs::write(
+        &scene,
+        format!("title = \"arm\"\n[arm]\nmodel = \"ur3\"\nhost = \"{host}\"\n"),
+    )
+    .expect("scene");
+    let mut node = Command::new(env!("CARGO_BIN_EXE_handstack"))
+        .arg("node")
+        .arg(&scene)
+        .args([
+            "--part",
+            "arm",
+            "--namespace",
+            "/arm0",
+            "--connect",
+            endpoint,
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("handstack node starts");
+    let stdin = node.stdin.take();
+    (node, stdin, dir)
+}
+
+#[test]
+fn the_arm_stops_when_its_commander_leaves_mid_move() {
+    if no_python() {
         return;
     }
     let address = "127.0.0.95";
@@ -133,43 +182,14 @@ fn the_arm_stops_when_its_commander_leaves_mid_move() {
 #[test]
 fn a_controller_that_dies_mid_move_ends_the_arm_node_saying_so() {
     use crate::process::{finish, text};
-    use std::process::{Command, Stdio};
-    if std::env::var_os("HANDSTACK_PYTHON").is_none() {
-        eprintln!(
-            "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"
-        );
+    if no_python() {
         return;
     }
     let host = "127.0.0.96";
     let ur = UrSim::start(host);
     let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
     let _router = Router::open(&endpoint).unwrap();
-    let dir = std::env::temp_dir().join(format!("handstack-arm-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let scene = dir.join("arm.toml");
-    std::fs::write(
-        &scene,
-        format!("title = \"arm\"\n[arm]\nmodel = \"ur3\"\nhost = \"{host}\"\n"),
-    )
-    .expect("scene");
-    let mut arm_node = Command::new(env!("CARGO_BIN_EXE_handstack"))
-        .arg("node")
-        .arg(&scene)
-        .args([
-            "--part",
-            "arm",
-            "--namespace",
-            "/arm0",
-            "--connect",
-            &endpoint,
-        ])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("handstack node starts");
-    // Held open: a closed stdin is the node's normal stop, not what this test is about.
-    let _stdin = arm_node.stdin.take();
+    let (arm_node, _stdin, dir) = arm_node(host, &endpoint, "dies");
     let _moving = move_under_way(&endpoint);
     let killed = Instant::now();
     ur.kill();
@@ -194,42 +214,14 @@ fn a_controller_that_dies_mid_move_ends_the_arm_node_saying_so() {
 #[test]
 fn sigterm_mid_move_stops_the_arm_and_ends_the_node_with_its_status() {
     use crate::process::{finish, signal, text};
-    use std::process::{Command, Stdio};
-    if std::env::var_os("HANDSTACK_PYTHON").is_none() {
-        eprintln!(
-            "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"
-        );
+    if no_python() {
         return;
     }
     let host = "127.0.0.97";
     let ur = UrSim::start(host);
     let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
     let _router = Router::open(&endpoint).unwrap();
-    let dir = std::env::temp_dir().join(format!("handstack-arm-term-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let scene = dir.join("arm.toml");
-    std::fs::write(
-        &scene,
-        format!("title = \"arm\"\n[arm]\nmodel = \"ur3\"\nhost = \"{host}\"\n"),
-    )
-    .expect("scene");
-    let mut arm_node = Command::new(env!("CARGO_BIN_EXE_handstack"))
-        .arg("node")
-        .arg(&scene)
-        .args([
-            "--part",
-            "arm",
-            "--namespace",
-            "/arm0",
-            "--connect",
-            &endpoint,
-        ])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("handstack node starts");
-    let _stdin = arm_node.stdin.take();
+    let (arm_node, _stdin, dir) = arm_node(host, &endpoint, "term");
     let (_commander, _tcp, _goal, target) = move_under_way(&endpoint);
     signal(arm_node.id(), "TERM");
     let out = finish(arm_node);

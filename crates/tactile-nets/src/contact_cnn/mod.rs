@@ -42,6 +42,7 @@
 //! # Ok::<(), tactile_nets::NetError>(())
 //! ```
 
+use crate::activations::softmax_into;
 #[cfg(feature = "std")]
 use crate::error::NetError;
 use crate::error::{RunError, check_input, check_output};
@@ -207,6 +208,23 @@ pub struct Prediction {
     /// Whether every standardised value of the window lay within [`Z_RANGE`] training spreads
     /// of its channel's training mean; `false`: a window unlike any the model was trained on.
     pub in_range: bool,
+}
+
+impl Prediction {
+    /// The region of the largest of `logits` (ties: the lower) and its softmax probability.
+    ///
+    /// Errors: [`RunError::NonFiniteOutput`] for a NaN or infinite logit.
+    pub(crate) fn of(logits: &[f32; REGIONS], in_range: bool) -> Result<Prediction, RunError> {
+        check_output(logits)?;
+        let mut p = [0.0f32; REGIONS];
+        softmax_into(logits, &mut p);
+        let region = argmax(logits);
+        Ok(Prediction {
+            region,
+            confidence: p[usize::from(region)],
+            in_range,
+        })
+    }
 }
 
 /// As a [`Contact`] over the 9 regions of §IV-A.

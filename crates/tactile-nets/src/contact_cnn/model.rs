@@ -4,7 +4,6 @@ use super::{
     CHANNELS, PAPER, POOLED, Prediction, REGIONS, SMALL, Variant, WIDE, WINDOW, WINDOW_VALUES,
     argmax, standardise,
 };
-use crate::activations::softmax_into;
 use crate::cnn_frozen::{FrozenCnn, Tensor};
 use crate::error::{NetError, check_output};
 use crate::io::TensorFile;
@@ -142,15 +141,7 @@ impl ContactCnn {
     pub fn predict(&self, window: &[f32]) -> Result<Prediction, NetError> {
         let (z, in_range) = self.standardise(window)?;
         let logits = self.frozen.logits(&z);
-        check_output(&logits)?;
-        let mut p = [0.0f32; REGIONS];
-        softmax_into(&logits, &mut p);
-        let region = argmax(&logits);
-        Ok(Prediction {
-            region,
-            confidence: p[usize::from(region)],
-            in_range,
-        })
+        Ok(Prediction::of(&logits, in_range)?)
     }
 
     /// Weights and input scaling as a [`TensorFile`].

@@ -4,8 +4,7 @@
 //! weights up to the order of the dense layers' additions (it skips no zeros).
 
 use super::kernel::pool;
-use super::{CHANNELS, PATCH, Prediction, REGIONS, Variant, WINDOW_VALUES, argmax, standardise};
-use crate::activations::softmax_into;
+use super::{CHANNELS, PATCH, Prediction, REGIONS, Variant, WINDOW_VALUES, standardise};
 use crate::error::{RunError, check_output};
 use crate::frozen::{Layer, Relu, StaticDense};
 use hand_traits::{Contact, ContactLocator};
@@ -119,15 +118,7 @@ impl<const F: usize, const FLAT: usize, const H: usize> StaticContactCnn<F, FLAT
     pub fn predict(&self, window: &[f32]) -> Result<Prediction, RunError> {
         let (z, in_range) = standardise(window, self.mean, self.scale)?;
         let logits = self.net.logits(&z);
-        check_output(&logits)?;
-        let mut p = [0.0f32; REGIONS];
-        softmax_into(&logits, &mut p);
-        let region = argmax(&logits);
-        Ok(Prediction {
-            region,
-            confidence: p[usize::from(region)],
-            in_range,
-        })
+        Prediction::of(&logits, in_range)
     }
 }
 
