@@ -110,8 +110,9 @@ pub(crate) struct Shared {
 /// connection to release them before the answer is `IN_USE`. A client that reconnects (as
 /// ur_rtde's control interface does when it finds its link down) has closed the old
 /// connection first, but the simulator reads that close on the old connection's own thread,
-/// which a loaded machine can run after the new connection's claim.
-pub(crate) const CLAIM_WAIT: Duration = Duration::from_secs(1);
+/// which a loaded machine can run after the new connection's claim (1 s was seen too short
+/// while a whole test suite ran on two cores).
+pub(crate) const CLAIM_WAIT: Duration = Duration::from_secs(3);
 
 impl Shared {
     /// Simulator state without sockets: the controller at the configured start pose and mode.
