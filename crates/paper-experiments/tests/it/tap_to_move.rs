@@ -55,12 +55,14 @@ impl ContactLocator for Scheduled {
     }
 }
 
-#[test]
-fn every_region_moves_the_arm_to_its_grid_pose() {
+/// One round of 9 taps, one per region, on the UR simulator at 127.0.0.`octet` with the
+/// stand-in locator (tap `outside` reported outside its range): the run's 9 rows.
+fn one_round(octet: u8, outside: Option<usize>) -> Vec<run::Row> {
     let taps = run::schedule(run::PAD_SEED, 1);
     let mut locator = Scheduled::new(&taps).unwrap();
+    locator.outside = outside;
     let rows = run::run(
-        21,
+        octet,
         TimeScale::new(run::TIME_SCALE).unwrap(),
         taps,
         TapToMoveConfig::default(),
@@ -69,6 +71,12 @@ fn every_region_moves_the_arm_to_its_grid_pose() {
     )
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(rows.len(), 9);
+    rows
+}
+
+#[test]
+fn every_region_moves_the_arm_to_its_grid_pose() {
+    let rows = one_round(21, None);
     for (k, r) in rows.iter().enumerate() {
         assert_eq!(usize::from(r.region), k, "one tap per region, in order");
         assert_eq!(r.located, r.region);
@@ -96,19 +104,7 @@ fn every_region_moves_the_arm_to_its_grid_pose() {
 /// arm stays at home for that tap and moves for the others.
 #[test]
 fn a_contact_outside_the_locators_range_leaves_the_arm_at_home() {
-    let taps = run::schedule(run::PAD_SEED, 1);
-    let mut locator = Scheduled::new(&taps).unwrap();
-    locator.outside = Some(4);
-    let rows = run::run(
-        22,
-        TimeScale::new(run::TIME_SCALE).unwrap(),
-        taps,
-        TapToMoveConfig::default(),
-        &mut locator,
-        run::window,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(rows.len(), 9);
+    let rows = one_round(22, Some(4));
     for (k, r) in rows.iter().enumerate() {
         if k == 4 {
             // At home, centimetres from region 4's grid pose; no move was timed.
