@@ -179,6 +179,7 @@ pub struct Board {
     seq: u64,
     version: Option<(u8, u8)>,
     version_seq: u64,
+    version_reports: u64,
     firmware: Option<Firmware>,
     firmware_seq: u64,
     capabilities: Option<Vec<PinCapabilities>>,
@@ -222,6 +223,7 @@ impl Board {
             seq: 0,
             version: None,
             version_seq: 0,
+            version_reports: 0,
             firmware: None,
             firmware_seq: 0,
             capabilities: None,
@@ -307,6 +309,14 @@ impl Board {
         self.version
     }
 
+    /// How many protocol version reports have arrived since the port opened. A sketch sends
+    /// one when it starts, and otherwise only when asked ([`query_version`](Self::query_version)):
+    /// a count that rises without being asked means the board restarted (a reset, a brown-out,
+    /// a watchdog), losing its pin modes, reporting and steppers.
+    pub fn version_reports(&self) -> u64 {
+        self.version_reports
+    }
+
     /// The firmware name and version the board reported.
     pub fn firmware(&self) -> Option<&Firmware> {
         self.firmware.as_ref()
@@ -349,6 +359,8 @@ impl Board {
             Ok(n) => n,
             Err(e) if e.kind() == std::io::ErrorKind::TimedOut => return Ok(false),
             Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => return Ok(false),
+            // A signal arrived meanwhile (the host's own Ctrl-C handler): nothing read.
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => return Ok(false),
             // EIO: the other end of the line is gone (a pty's master closed, a USB unplug).
             Err(e) if e.raw_os_error() == Some(5) => {
                 return Err(self.error(ErrorKind::Disconnected));
@@ -402,6 +414,7 @@ impl Board {
             Event::Version { major, minor } => {
                 self.version = Some((major, minor));
                 self.version_seq = seq;
+                self.version_reports += 1;
             }
             Event::Firmware { major, minor, name } => {
                 let name: String = protocol::pairs(name).map(char::from).collect();

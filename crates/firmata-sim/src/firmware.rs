@@ -234,6 +234,11 @@ impl Firmware {
         self.kind
     }
 
+    /// A stepper, if configured.
+    pub fn stepper_at(&self, device: u8) -> Option<&Stepper> {
+        self.steppers.get(usize::from(device))?.as_ref()
+    }
+
     /// A stepper's position, if configured.
     pub fn stepper_position(&self, device: u8) -> Option<i32> {
         self.steppers

@@ -189,6 +189,17 @@ pub enum Fault {
     TruncateNextReply,
 }
 
+/// A configured stepper as of the board's last pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StepperState {
+    /// Its position, steps (AccelStepper's counter).
+    pub position: i32,
+    /// Whether a move is under way.
+    pub running: bool,
+    /// Whether the driver's outputs are enabled.
+    pub enabled: bool,
+}
+
 /// What the simulator shares with its handle.
 #[derive(Debug, Default)]
 struct Shared {
@@ -197,7 +208,7 @@ struct Shared {
     boots: u64,
     bytes_in: u64,
     bytes_out: u64,
-    stepper_positions: [Option<i32>; 10],
+    steppers: [Option<StepperState>; 10],
     client_baud: Option<u32>,
     open: bool,
 }
@@ -281,8 +292,15 @@ impl SimBoard {
 
     /// A stepper's position as of the board's last pass.
     pub fn stepper_position(&self, device: u8) -> Option<i32> {
+        self.stepper(device).map(|s| s.position)
+    }
+
+    /// A stepper as of the board's last pass: its position, whether it moves, whether its
+    /// outputs are on. The sketch runs on while no client has the port open (as an Arduino's
+    /// does when its host closes the port), so a move a client left under way goes on.
+    pub fn stepper(&self, device: u8) -> Option<StepperState> {
         lock(&self.shared)
-            .stepper_positions
+            .steppers
             .get(usize::from(device))
             .copied()
             .flatten()
@@ -362,11 +380,21 @@ impl Line {
 
     fn run(mut self) {
         let mut buf = [0u8; 256];
+        let mut booted = false;
         'closed: while !self.stop.load(Ordering::Relaxed) {
             // Closed: the pty hangs up until a client opens it.
             match self.read(&mut buf, OPEN_POLL) {
                 Read::HungUp => {
                     lock(&self.shared).open = false;
+                    if booted {
+                        // The sketch runs on with no host: its steppers keep moving.
+                        self.out.clear();
+                        let now = self.start.elapsed();
+                        self.firmware
+                            .tick(now, &mut self.bus, self.analog.as_mut(), &mut self.out);
+                        self.out.clear();
+                        self.publish();
+                    }
                     std::thread::sleep(OPEN_POLL);
                     continue;
                 }
@@ -384,6 +412,7 @@ impl Line {
                 }
             }
             self.boot();
+            booted = true;
             loop {
                 if self.stop.load(Ordering::Relaxed) {
                     return;
@@ -469,7 +498,11 @@ impl Line {
     fn publish(&mut self) {
         let mut s = lock(&self.shared);
         for d in 0..10u8 {
-            s.stepper_positions[usize::from(d)] = self.firmware.stepper_position(d);
+            s.steppers[usize::from(d)] = self.firmware.stepper_at(d).map(|st| StepperState {
+                position: st.position(),
+                running: st.running(),
+                enabled: st.enabled(),
+            });
         }
     }
 

@@ -123,6 +123,24 @@ fn hand_board(args: &HandBoardArgs) -> ExitCode {
     while !stop.is_set() {
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
+    // What the hand was left doing, for whoever ran it (a test reads this line back).
+    let truth = board.truth();
+    let stepper = board
+        .board()
+        .stepper(paper_scenes::devices::hand_board::STEPPER_DEVICE);
+    println!(
+        "left: stepper {}, tendon {:.2} mm ({} steps turned), tension {:.2} N",
+        stepper.map_or_else(
+            || "not configured".to_owned(),
+            |s| format!(
+                "position={} running={} enabled={}",
+                s.position, s.running, s.enabled
+            )
+        ),
+        truth.travel_m * 1e3,
+        truth.shaft_steps,
+        truth.tension_n
+    );
     drop(board);
     ExitCode::SUCCESS
 }

@@ -44,6 +44,6 @@ impl Adc {
 
     /// The voltage a code stands for: the middle of its bin, so decoding is unbiased.
     pub fn volts(&self, code: u16) -> f64 {
-        (f64::from(code.min(ADC_MAX_CODE)) + 0.5) * self.vref_v / 1024.0
+        underactuated_hand::calibration::adc_volts(code, self.vref_v)
     }
 }

@@ -9,9 +9,10 @@
 
 use super::Adc;
 use serde::Deserialize;
+use underactuated_hand::calibration::FsrLaw;
 
 /// One kilogram-force, N.
-pub const KGF_N: f64 = 9.806_65;
+pub use underactuated_hand::calibration::KGF_N;
 
 /// The FSR's force → resistance law and its divider.
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
@@ -86,15 +87,18 @@ impl Fsr {
     /// assert_eq!(fsr.force_from_volts(5.0, 5.0), fsr.max_force_n);
     /// ```
     pub fn force_from_volts(&self, v: f64, vcc_v: f64) -> f64 {
-        if v >= vcc_v {
-            return self.max_force_n;
-        }
-        let r = self.divider_ohm * (vcc_v - v) / v;
-        let f = KGF_N * (r / self.r_1kgf_ohm).powf(-1.0 / self.exponent);
-        if f.is_nan() || f < self.min_force_n {
-            0.0
-        } else {
-            f.min(self.max_force_n)
+        self.law().force_n(v, vcc_v)
+    }
+
+    /// The calibration a user of the real hand states for this strip (underactuated-hand's
+    /// law, whose inverse the hand's readings go through).
+    pub fn law(&self) -> FsrLaw {
+        FsrLaw {
+            r_1kgf_ohm: self.r_1kgf_ohm,
+            exponent: self.exponent,
+            divider_ohm: self.divider_ohm,
+            min_force_n: self.min_force_n,
+            max_force_n: self.max_force_n,
         }
     }
 }

@@ -3,6 +3,7 @@
 
 use super::Adc;
 use serde::Deserialize;
+use underactuated_hand::calibration::PotMount;
 
 /// A linear rotary potentiometer mounted so that joint angle 0 sits at `zero_deg` of its travel.
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
@@ -52,6 +53,11 @@ impl Pot {
     /// assert!((pot.angle_from_volts(pot.volts(0.7, 0.0, 5.0), 5.0) - 0.7).abs() < 1e-12);
     /// ```
     pub fn angle_from_volts(&self, v: f64, vcc_v: f64) -> f64 {
-        (v / vcc_v * self.travel_deg - self.zero_deg).to_radians()
+        PotMount {
+            travel_deg: self.travel_deg,
+            zero_deg: self.zero_deg,
+        }
+        .angle_deg(v, vcc_v)
+        .to_radians()
     }
 }

@@ -1,11 +1,13 @@
 //! The experiments of a `handstack` scene, each on the real devices the scene names: a grasp
-//! hold ([`grasp`]) and a fingertip readout ([`readout`]); [`run`] joins their figures into
+//! hold ([`grasp`]), a fingertip readout ([`readout`]) and the underactuated hand's softness
+//! classification ([`softness`]); [`run`] joins their figures into
 //! the scene's [`Outcome`]. The functions under them take opened devices, so a program with
 //! its own devices (the papers' simulated ones) runs the same code.
 
 pub mod figure;
 pub mod grasp;
 pub mod readout;
+pub mod softness;
 
 use crate::error::RunError;
 use crate::progress::Progress;
@@ -100,6 +102,9 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
             cx.progress,
             &cx.stop,
         )?);
+    }
+    if let Some(s) = &x.softness {
+        parts.push(softness::run(scene, s.get_ref(), cx)?);
     }
     Ok(Part::join(scene, parts, start))
 }

@@ -15,6 +15,63 @@ pub struct Experiments {
     pub grasp: Option<Spanned<Grasp>>,
     /// `[experiment.readout]`: read the fingertip at rest, report its rate and noise.
     pub readout: Option<Spanned<Readout>>,
+    /// `[experiment.softness]`: close the underactuated hand on an object and classify it.
+    pub softness: Option<Spanned<Softness>>,
+}
+
+/// Closes the underactuated hand on what it holds at constant velocity, open loop, records its
+/// four forces and four distal angles from first contact for `window_s` at 10 Hz, holds, and
+/// classifies the object soft, moderate or hard with tactile-nets' built-in softness net (the
+/// underactuated-hand softness paper, §3.1–3.3). The built-in net was trained on closes at
+/// 1.5 mm/s recorded for 14 s: other values run, outside the conditions it learned.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Softness {
+    /// The class the object should get (`soft`, `moderate` or `hard`): the run fails (exit
+    /// status 4) when the hand says otherwise. Absent: the class is reported only.
+    pub expect: Option<Spanned<String>>,
+    /// The tendon's closing speed, mm/s (default 1.5; 0.1…20).
+    pub closing_speed_mm_s: Option<Spanned<f64>>,
+    /// The window from first contact, s (default 14, the paper's; 1…60).
+    pub window_s: Option<Spanned<f64>>,
+    /// The longest approach before first contact, s (default 60; 1…600): a hand that has
+    /// touched nothing by then is empty, and the run fails.
+    pub approach_timeout_s: Option<Spanned<f64>>,
+}
+
+impl Softness {
+    /// The class it expects, if any (checked when the scene is read).
+    pub fn expected(&self) -> Option<hand_traits::Softness> {
+        self.expect.as_ref().and_then(|e| class_named(e.get_ref()))
+    }
+
+    /// The close and recording it asks for.
+    pub fn plan(&self) -> underactuated_hand::grasp::GraspPlan {
+        let d = underactuated_hand::grasp::GraspPlan::default();
+        let or = |v: &Option<Spanned<f64>>, x: f64| v.as_ref().map_or(x, |v| *v.get_ref());
+        underactuated_hand::grasp::GraspPlan {
+            closing_speed_mm_s: or(&self.closing_speed_mm_s, d.closing_speed_mm_s),
+            window_s: or(&self.window_s, d.window_s),
+            approach_timeout_s: or(&self.approach_timeout_s, d.approach_timeout_s),
+            ..d
+        }
+    }
+}
+
+/// A softness class by its name in a scene file.
+pub fn class_named(name: &str) -> Option<hand_traits::Softness> {
+    hand_traits::Softness::ALL
+        .into_iter()
+        .find(|c| class_name(*c) == name)
+}
+
+/// A softness class's name in a scene file and a report.
+pub fn class_name(class: hand_traits::Softness) -> &'static str {
+    match class {
+        hand_traits::Softness::Soft => "soft",
+        hand_traits::Softness::Moderate => "moderate",
+        hand_traits::Softness::Hard => "hard",
+    }
 }
 
 /// Closes the hand on what it holds and keeps the grip for `hold_s` with the fuzzy grasp loop
@@ -119,12 +176,13 @@ pub fn check_grasp_parts<X>(
 }
 
 impl ExperimentTable for Experiments {
-    const ALLOWED: &'static str = "[experiment.grasp], [experiment.readout]";
+    const ALLOWED: &'static str = "[experiment.grasp], [experiment.readout], [experiment.softness]";
 
     fn names(&self) -> Vec<&'static str> {
         [
             ("grasp", self.grasp.is_some()),
             ("readout", self.readout.is_some()),
+            ("softness", self.softness.is_some()),
         ]
         .into_iter()
         .filter_map(|(n, on)| on.then_some(n))
@@ -141,12 +199,13 @@ impl ExperimentTable for Experiments {
                  ROS 2 node (feature `cell`)",
             ));
         }
-        if let (Some(hand), None) = (&scene.hand, &scene.experiment.get_ref().grasp) {
+        let x = scene.experiment.get_ref();
+        if let (Some(hand), None, None) = (&scene.hand, &x.grasp, &x.softness) {
             return Err(cx.err(
                 hand.span(),
                 "hand",
                 "is named, but no experiment of this scene moves it",
-                "[experiment.grasp] with it, or no [hand]",
+                "[experiment.grasp] or [experiment.softness] with it, or no [hand]",
             ));
         }
         check_experiments(scene, scene.experiment.get_ref(), cx)
@@ -168,6 +227,18 @@ impl ExperimentTable for NodeExperiments {
     }
 
     fn check(scene: &SceneFile<Self>, cx: &Checker<'_>) -> Result<(), SceneError> {
+        if let Some(h) = scene
+            .hand
+            .as_ref()
+            .filter(|h| h.get_ref().model.is_underactuated())
+        {
+            return Err(cx.err(
+                h.span(),
+                "hand.model",
+                "is the underactuated hand, which has no ROS 2 node",
+                "a servo hand for `handstack node`; `handstack run` runs the underactuated hand",
+            ));
+        }
         check_experiments(scene, &scene.experiment.get_ref().0, cx)
     }
 }
@@ -182,6 +253,19 @@ fn check_experiments<X>(
     hardware_only(scene, cx)?;
     if let Some(g) = &x.grasp {
         check_grasp_parts(scene, g, cx)?;
+        if let Some(h) = scene
+            .hand
+            .as_ref()
+            .filter(|h| h.get_ref().model.is_underactuated())
+        {
+            return Err(cx.err(
+                h.span(),
+                "hand.model",
+                "is the underactuated hand, which the servo grasp loop cannot drive",
+                "a servo hand (`mx28`, `xm430`, `rh_p12_rn`) for [experiment.grasp]; \
+                 [experiment.softness] runs the underactuated hand",
+            ));
+        }
         let band = &g.get_ref().torque_band;
         let [lo, hi] = *band.get_ref();
         if lo > hi || hi > 1023 {
@@ -221,6 +305,71 @@ fn check_experiments<X>(
     if let Some(r) = &x.readout {
         check_readout(scene, r, cx)?;
     }
+    if let Some(s) = &x.softness {
+        check_softness(scene, s, cx)?;
+    }
+    Ok(())
+}
+
+/// A softness experiment's hand and its values.
+fn check_softness<X>(
+    scene: &SceneFile<X>,
+    s: &Spanned<Softness>,
+    cx: &Checker<'_>,
+) -> Result<(), SceneError> {
+    if !scene
+        .hand
+        .as_ref()
+        .is_some_and(|h| h.get_ref().model.is_underactuated())
+    {
+        return Err(cx.err(
+            s.span(),
+            "experiment.softness",
+            "needs the underactuated hand",
+            "[hand] with model = \"underactuated4\"",
+        ));
+    }
+    if scene.sensors.underactuated.is_none() || scene.estimators.softness.is_none() {
+        return Err(cx.err(
+            s.span(),
+            "experiment.softness",
+            "needs the hand's sensors and the softness classifier",
+            "[sensors.underactuated] and [estimators.softness] with it",
+        ));
+    }
+    let x = s.get_ref();
+    if let Some(e) = &x.expect {
+        if class_named(e.get_ref()).is_none() {
+            return Err(cx.err(
+                e.span(),
+                "experiment.softness.expect",
+                format!("is \"{}\"", e.get_ref()),
+                "\"soft\", \"moderate\" or \"hard\"",
+            ));
+        }
+    }
+    for (v, key, lo, hi) in [
+        (
+            &x.closing_speed_mm_s,
+            "experiment.softness.closing_speed_mm_s",
+            0.1,
+            20.0,
+        ),
+        (&x.window_s, "experiment.softness.window_s", 1.0, 60.0),
+        (
+            &x.approach_timeout_s,
+            "experiment.softness.approach_timeout_s",
+            1.0,
+            600.0,
+        ),
+    ] {
+        if let Some(v) = v {
+            let n = *v.get_ref();
+            if !(n.is_finite() && (lo..=hi).contains(&n)) {
+                return Err(cx.err(v.span(), key, format!("is {n}"), format!("{lo}…{hi}")));
+            }
+        }
+    }
     Ok(())
 }
 
@@ -243,7 +392,20 @@ fn hardware_only<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(), SceneE
             .map(|p| (p.span(), "sensors.imu_pad", "i2c_bus")),
         s.underactuated
             .as_ref()
-            .map(|u| (u.span(), "sensors.underactuated", "(none: simulated only)")),
+            // Read through the underactuated hand's board (whose `serial_port` is checked below).
+            .filter(|_| {
+                !scene
+                    .hand
+                    .as_ref()
+                    .is_some_and(|h| h.get_ref().model.is_underactuated())
+            })
+            .map(|u| {
+                (
+                    u.span(),
+                    "sensors.underactuated",
+                    "[hand] model = \"underactuated4\"",
+                )
+            }),
         scene
             .hand
             .as_ref()

@@ -8,6 +8,8 @@ use hand_control::grasp_loop::EndAction;
 use imu_icm20789::BaroMode;
 use serde::Deserialize;
 use toml::Spanned;
+use underactuated_hand::calibration::{Calibration, FsrLaw, PotMount};
+use underactuated_hand::{Drive, Wiring};
 
 /// `[sensors]`: the tactile sensors of the stack.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -61,12 +63,51 @@ fn low_noise() -> BaroMode {
     BaroMode::LowNoise
 }
 
-/// The underactuated hand's FSRs and potentiometers (simulated only: the underactuated-hand
-/// softness paper reads them through an Arduino's analog inputs (§3.2) and names no ADC chip,
-/// so there is no real driver to open).
-#[derive(Debug, Clone, Default, Deserialize)]
+/// The underactuated hand's FSRs and potentiometers: their calibration from ADC counts to
+/// newtons and degrees (the underactuated-hand softness paper, §3.1, calibrates both; its laws
+/// are not published, so the defaults are underactuated-hand's stated model of the SF10-60 strip
+/// and a 270° potentiometer on a 5 V, 10-bit ADC). Real when the scene's `[hand]` is an
+/// `underactuated4` on a `serial_port`: the sensors are read through that hand's board.
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Underactuated {}
+pub struct Underactuated {
+    /// The ADC's reference and the dividers' supply, V (default 5).
+    #[serde(default = "five_volts")]
+    pub vref_v: f64,
+    /// The FSR divider and law, fingers 1–4 (`{ r_1kgf_ohm, exponent, divider_ohm,
+    /// min_force_n, max_force_n }`, each defaulted).
+    #[serde(default)]
+    pub fsr: FsrLaw,
+    /// Each finger's potentiometer mounting (`[{ travel_deg, zero_deg }, …]`, four).
+    #[serde(default)]
+    pub pot: [PotMount; 4],
+}
+
+impl Default for Underactuated {
+    fn default() -> Underactuated {
+        let c = Calibration::default();
+        Underactuated {
+            vref_v: c.vref_v,
+            fsr: c.fsr,
+            pot: c.pot,
+        }
+    }
+}
+
+impl Underactuated {
+    /// The calibration it states.
+    pub fn calibration(&self) -> Calibration {
+        Calibration {
+            vref_v: self.vref_v,
+            fsr: self.fsr,
+            pot: self.pot,
+        }
+    }
+}
+
+fn five_volts() -> f64 {
+    Calibration::default().vref_v
+}
 
 /// `[estimators]`: what turns readings into force, contact and softness.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -157,24 +198,56 @@ pub struct Controller {
     pub preset: Spanned<String>,
 }
 
-/// A servo hand model: one of hand-control's control tables, named by its key (`mx28`,
-/// `xm430`, `rh_p12_rn`: the names `dxl-sim --servo` takes too).
+/// A hand model: one of hand-control's servo control tables, named by its key (`mx28`,
+/// `xm430`, `rh_p12_rn`: the names `dxl-sim --servo` takes too), or the underactuated
+/// four-finger hand on an Arduino (`underactuated4`, underactuated-hand).
 #[derive(Debug, Clone, Copy)]
-pub struct HandModel(&'static ControlTable);
+pub struct HandModel(Kind);
+
+#[derive(Debug, Clone, Copy)]
+enum Kind {
+    Servo(&'static ControlTable),
+    Underactuated4,
+}
 
 impl HandModel {
-    /// Two ROBOTIS MX-28 (Protocol 2.0 firmware), the paper's hand.
-    pub const MX28: HandModel = HandModel(&hand_control::control_table::MX_28);
+    /// Two ROBOTIS MX-28 (Protocol 2.0 firmware), the grasping paper's hand.
+    pub const MX28: HandModel = HandModel(Kind::Servo(&hand_control::control_table::MX_28));
+    /// The tendon-driven underactuated four-finger hand of the softness paper: one stepper, an
+    /// FSR and a distal potentiometer per finger, on an Arduino over Firmata.
+    pub const UNDERACTUATED4: HandModel = HandModel(Kind::Underactuated4);
+    /// Its name in a scene file.
+    pub const UNDERACTUATED4_NAME: &'static str = "underactuated4";
 
-    /// Its control table.
-    pub fn table(self) -> &'static ControlTable {
-        self.0
+    /// The servos' control table (`None` for the underactuated hand, which has no servos).
+    pub fn table(self) -> Option<&'static ControlTable> {
+        match self.0 {
+            Kind::Servo(t) => Some(t),
+            Kind::Underactuated4 => None,
+        }
+    }
+
+    /// Whether it is the underactuated hand on a Firmata board.
+    pub fn is_underactuated(self) -> bool {
+        matches!(self.0, Kind::Underactuated4)
+    }
+
+    /// Its name in a scene file.
+    pub fn name(self) -> &'static str {
+        match self.0 {
+            Kind::Servo(t) => t.key,
+            Kind::Underactuated4 => Self::UNDERACTUATED4_NAME,
+        }
     }
 }
 
 impl PartialEq for HandModel {
     fn eq(&self, other: &HandModel) -> bool {
-        self.0.model_number == other.0.model_number
+        match (self.0, other.0) {
+            (Kind::Servo(a), Kind::Servo(b)) => a.model_number == b.model_number,
+            (Kind::Underactuated4, Kind::Underactuated4) => true,
+            _ => false,
+        }
     }
 }
 
@@ -183,12 +256,18 @@ impl Eq for HandModel {}
 impl<'de> Deserialize<'de> for HandModel {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<HandModel, D::Error> {
         let name = String::deserialize(d)?;
-        ControlTable::by_name(&name).map(HandModel).ok_or_else(|| {
-            serde::de::Error::custom(format!(
-                "unknown model `{name}`, expected one of {}",
-                ControlTable::keys()
-            ))
-        })
+        if name == Self::UNDERACTUATED4_NAME {
+            return Ok(Self::UNDERACTUATED4);
+        }
+        ControlTable::by_name(&name)
+            .map(|t| HandModel(Kind::Servo(t)))
+            .ok_or_else(|| {
+                serde::de::Error::custom(format!(
+                    "unknown model `{name}`, expected one of {}, {}",
+                    ControlTable::keys(),
+                    Self::UNDERACTUATED4_NAME
+                ))
+            })
     }
 }
 
@@ -207,18 +286,20 @@ fn end_action<'de, D: serde::Deserializer<'de>>(d: D) -> Result<EndAction, D::Er
     })
 }
 
-/// `[hand]`: the Dynamixel hand.
+/// `[hand]`: a Dynamixel servo hand, or the underactuated hand on an Arduino.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Hand {
-    /// `mx28`, `xm430` or `rh_p12_rn`; the servos on the bus must be this model.
+    /// `mx28`, `xm430` or `rh_p12_rn` (the servos on the bus must be this model), or
+    /// `underactuated4` (an Arduino running ConfigurableFirmata with AccelStepperFirmata).
     pub model: HandModel,
-    /// Servo IDs on the bus (default `[1, 2]`).
+    /// Servo IDs on the bus (default `[1, 2]`; servo hands).
     #[serde(default = "default_ids")]
     pub ids: Vec<u8>,
     /// Real bus: the serial port of the RS-485 adapter. Absent: a simulated hand.
     pub serial_port: Option<Spanned<String>>,
-    /// Baud rate (default 1 000 000, the paper's).
+    /// Baud rate (default: 1 000 000 for servos, the grasping paper's; 57 600 for a Firmata
+    /// board, StandardFirmata's and ConfigurableFirmata's).
     pub baud: Option<Spanned<u32>>,
     /// How long to wait for a status packet, ms (default: the servo's 34 ms; USB adapters or
     /// a simulator on a loaded machine may need more).
@@ -228,9 +309,15 @@ pub struct Hand {
     /// `torque_off` (at once).
     #[serde(default, deserialize_with = "end_action")]
     pub on_end: EndAction,
+    /// The underactuated hand's wiring on its board (default: A0–A3 FSRs, A4–A7
+    /// potentiometers, stepper device 0 on STEP D2 / DIR D3).
+    pub wiring: Option<Spanned<Wiring>>,
+    /// The underactuated hand's steps to tendon (default `{ mm_per_step = 0.01 }`).
+    pub drive: Option<Spanned<Drive>>,
 }
 
-fn default_ids() -> Vec<u8> {
+/// The servo IDs a `[hand]` without `ids` has.
+pub(crate) fn default_ids() -> Vec<u8> {
     vec![1, 2]
 }
 

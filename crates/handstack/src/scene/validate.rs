@@ -1,14 +1,18 @@
 //! Checks after parsing: values in range and parts that can work together. Each error keeps
 //! the span of the offending key.
 
-use super::parts::Locator;
+use super::parts::{Hand, Locator};
 use super::{Location, SceneError, SceneFile};
 use std::ops::Range;
+use toml::Spanned;
 
 /// Baud rates a Dynamixel Protocol 2.0 servo accepts (ROBOTIS e-manual, Baud Rate (8)).
 const DXL_BAUDS: [u32; 8] = [
     9_600, 57_600, 115_200, 1_000_000, 2_000_000, 3_000_000, 4_000_000, 4_500_000,
 ];
+
+/// Baud rates a Firmata host and sketch commonly agree on (StandardFirmata's 57600 the default).
+const FIRMATA_BAUDS: [u32; 5] = [9_600, 19_200, 38_400, 57_600, 115_200];
 
 /// Where checks report: the file's name and text, so an error names line, column and key.
 #[derive(Debug, Clone, Copy)]
@@ -131,6 +135,16 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
             }
         }
     }
+    if let Some(u) = &s.underactuated {
+        if let Err(why) = u.get_ref().calibration().check() {
+            return Err(cx.err(
+                u.span(),
+                "sensors.underactuated",
+                "states a calibration that cannot be",
+                why,
+            ));
+        }
+    }
     if let Some(soft) = &e.softness {
         if s.underactuated.is_none() {
             return Err(cx.err(
@@ -163,35 +177,7 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
         }
     }
     if let Some(h) = &scene.hand {
-        let hr = h.get_ref();
-        let mut ids = hr.ids.clone();
-        ids.sort_unstable();
-        ids.dedup();
-        if hr.ids.is_empty() || ids.len() != hr.ids.len() || ids.iter().any(|&i| i > 252) {
-            return Err(cx.err(
-                h.span(),
-                "hand.ids",
-                format!(
-                    "is [{}]",
-                    hr.ids
-                        .iter()
-                        .map(u8::to_string)
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-                "one or more distinct IDs 0…252",
-            ));
-        }
-        if let Some(b) = &hr.baud {
-            if !DXL_BAUDS.contains(b.get_ref()) {
-                return Err(cx.err(
-                    b.span(),
-                    "hand.baud",
-                    format!("is {}", b.get_ref()),
-                    "9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000, 4500000",
-                ));
-            }
-        }
+        check_hand(h, cx)?;
     }
     if let Some(a) = &scene.arm {
         let m = &a.get_ref().model;
@@ -205,5 +191,94 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
         }
     }
 
+    Ok(())
+}
+
+/// `[hand]`: the keys of its model, each in range.
+fn check_hand(h: &Spanned<Hand>, cx: &Checker<'_>) -> Result<(), SceneError> {
+    let hr = h.get_ref();
+    if hr.model.is_underactuated() {
+        for (key, named) in [
+            ("hand.reply_timeout_ms", hr.reply_timeout_ms.is_some()),
+            ("hand.ids", hr.ids != super::parts::default_ids()),
+        ] {
+            if named {
+                return Err(cx.err(
+                    h.span(),
+                    key,
+                    "is a servo hand's key",
+                    "no servo keys with model = \"underactuated4\"",
+                ));
+            }
+        }
+        if let Some(b) = &hr.baud {
+            if !FIRMATA_BAUDS.contains(b.get_ref()) {
+                return Err(cx.err(
+                    b.span(),
+                    "hand.baud",
+                    format!("is {}", b.get_ref()),
+                    "9600, 19200, 38400, 57600 (Firmata's default) or 115200",
+                ));
+            }
+        }
+        if let Some(w) = &hr.wiring {
+            if let Err(why) = w.get_ref().check() {
+                return Err(cx.err(
+                    w.span(),
+                    "hand.wiring",
+                    why,
+                    "eight distinct channels A0…A15, stepper device 0…9, STEP ≠ DIR",
+                ));
+            }
+        }
+        if let Some(d) = &hr.drive {
+            if let Err(why) = d.get_ref().check() {
+                return Err(cx.err(d.span(), "hand.drive", why, "mm_per_step in (0, 10]"));
+            }
+        }
+        return Ok(());
+    }
+    if let Some(key) = [
+        ("hand.wiring", hr.wiring.is_some()),
+        ("hand.drive", hr.drive.is_some()),
+    ]
+    .into_iter()
+    .find_map(|(k, named)| named.then_some(k))
+    {
+        return Err(cx.err(
+            h.span(),
+            key,
+            "is the underactuated hand's key",
+            "model = \"underactuated4\" with it, or no such key for a servo hand",
+        ));
+    }
+    let mut ids = hr.ids.clone();
+    ids.sort_unstable();
+    ids.dedup();
+    if hr.ids.is_empty() || ids.len() != hr.ids.len() || ids.iter().any(|&i| i > 252) {
+        return Err(cx.err(
+            h.span(),
+            "hand.ids",
+            format!(
+                "is [{}]",
+                hr.ids
+                    .iter()
+                    .map(u8::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            "one or more distinct IDs 0…252",
+        ));
+    }
+    if let Some(b) = &hr.baud {
+        if !DXL_BAUDS.contains(b.get_ref()) {
+            return Err(cx.err(
+                b.span(),
+                "hand.baud",
+                format!("is {}", b.get_ref()),
+                "9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000, 4500000",
+            ));
+        }
+    }
     Ok(())
 }

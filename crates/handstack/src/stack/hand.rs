@@ -24,7 +24,10 @@ pub fn open(hand: &Hand, port: &str) -> Result<ServoHand, RunError> {
     let serial = serial2::SerialPort::open(port, baud).map_err(|e| fail(e.to_string()))?;
     let mut servo = ServoHand::with_reply_latency(serial, &hand.ids, latency)
         .map_err(|e| fail(format!("servos {}: {e}", ids(&hand.ids))))?;
-    let (found, named) = (servo.table(), hand.model.table());
+    let Some(named) = hand.model.table() else {
+        return Err(fail(format!("`{}` is not a servo hand", hand.model.name())));
+    };
+    let found = servo.table();
     if found.model_number != named.model_number {
         return Err(fail(format!(
             "the servos are {}, the scene names `{}` ({})",

@@ -6,6 +6,7 @@ pub mod fingertip;
 pub mod hand;
 pub mod pad;
 pub mod platform;
+pub mod underactuated;
 
 use crate::error::RunError;
 use crate::scene::SceneOf;
@@ -25,7 +26,13 @@ pub fn check_real_devices<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Res
             drop(pad::open(platform, bus.get_ref(), pad.pressure_mode)?);
         }
     }
-    if let Some(h) = &scene.file.hand {
+    // The underactuated hand is opened once, by its experiment: opening resets its board.
+    if let Some(h) = scene
+        .file
+        .hand
+        .as_ref()
+        .filter(|h| !h.get_ref().model.is_underactuated())
+    {
         if let Some(port) = &h.get_ref().serial_port {
             // Opened to check it, then left unpowered until a run commands it.
             hand::open(h.get_ref(), port.get_ref())?

@@ -107,3 +107,108 @@ fn a_torque_band_the_servos_cannot_take_is_refused() {
     ));
     assert!(e.to_string().contains("unknown field `weight`"), "{e}");
 }
+
+const SOFTNESS: &str = r#"title = "softness"
+[sensors.underactuated]
+[estimators.softness]
+[hand]
+model = "underactuated4"
+serial_port = "/dev/ttyACM0"
+[experiment.softness]
+expect = "hard"
+"#;
+
+#[test]
+fn the_underactuated_hand_runs_the_softness_experiment_and_nothing_else() {
+    let s = Scene::parse("sponge.toml", SOFTNESS).expect("valid");
+    let x = s
+        .file
+        .experiment
+        .get_ref()
+        .softness
+        .as_ref()
+        .expect("softness");
+    assert_eq!(x.get_ref().plan().window_s, 14.0);
+    assert_eq!(x.get_ref().expected(), Some(hand_traits::Softness::Hard));
+    // A servo hand cannot run it, the underactuated hand cannot run the servo grasp loop.
+    let servo = SOFTNESS.replace("underactuated4", "mx28");
+    says(
+        &err(&servo),
+        2,
+        "sensors.underactuated",
+        &["[hand] model = \"underactuated4\""],
+    );
+    let grasp = format!(
+        "{}[sensors.fingertip]\nosr = 1024\ni2c_buses = [\"/dev/i2c-1\", \"/dev/i2c-3\", \
+         \"/dev/i2c-4\"]\n[controller]\npreset = \"grasp\"\n[experiment.grasp]\n\
+         torque_band = [250, 320]\nhold_s = 30\n",
+        SOFTNESS.replace("[experiment.softness]\nexpect = \"hard\"\n", "")
+    );
+    says(
+        &err(&grasp),
+        4,
+        "hand.model",
+        &["servo grasp loop cannot drive"],
+    );
+    // Its sensors are read through its board: real only with the hand's serial port.
+    let no_port = SOFTNESS.replace("serial_port = \"/dev/ttyACM0\"\n", "");
+    says(
+        &err(&no_port),
+        4,
+        "hand",
+        &["names no hardware (`serial_port`)"],
+    );
+    // No ROS 2 node for it.
+    let e = handstack::scene::NodeScene::parse("bad.toml", SOFTNESS).expect_err("no node");
+    says(&e, 4, "hand.model", &["no ROS 2 node"]);
+}
+
+#[test]
+fn the_underactuated_hands_keys_are_checked_where_they_are_written() {
+    let with = |extra: &str| SOFTNESS.replace("[experiment", &format!("{extra}[experiment"));
+    says(
+        &err(&SOFTNESS.replace("\"hard\"", "\"squishy\"")),
+        8,
+        "experiment.softness.expect",
+        &["\"soft\", \"moderate\" or \"hard\""],
+    );
+    says(
+        &err(&with("wiring = { pot_channels = [3, 5, 6, 7] }\n")),
+        7,
+        "hand.wiring",
+        &["analog channel A3 is wired twice"],
+    );
+    says(
+        &err(&with("ids = [1, 2, 3]\n")),
+        4,
+        "hand.ids",
+        &["a servo hand's key"],
+    );
+    says(&err(&with("baud = 1000000\n")), 7, "hand.baud", &["57600"]);
+    says(
+        &err(&with("closing_speed_mm_s = 0\n")
+            .replace(
+                "expect = \"hard\"\n",
+                "expect = \"hard\"\nclosing_speed_mm_s = 0\n",
+            )
+            .replace("closing_speed_mm_s = 0\n[experiment", "[experiment")),
+        9,
+        "experiment.softness.closing_speed_mm_s",
+        &["0.1…20"],
+    );
+    let cal = SOFTNESS.replace(
+        "[sensors.underactuated]\n",
+        "[sensors.underactuated]\nfsr = { exponent = -1 }\n",
+    );
+    says(&err(&cal), 2, "sensors.underactuated", &["exponent"]);
+    // A servo hand's table takes none of the underactuated hand's keys.
+    says(
+        &err(&HAND.replace(
+            "serial_port = \"/dev/ttyUSB0\"\n",
+            "serial_port = \"/dev/ttyUSB0\"\ndrive = { mm_per_step = 0.02 }\n",
+        )),
+        7,
+        "hand.drive",
+        &["underactuated hand's key"],
+    );
+}

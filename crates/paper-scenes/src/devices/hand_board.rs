@@ -44,20 +44,23 @@ use hand_sim::underactuated::{FingerState, Material, Underactuated, Underactuate
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
+use underactuated_hand::Wiring;
 
 use crate::Error;
 use crate::error::device;
 
+/// The board's wiring: the one a real hand's user states (underactuated-hand's default).
+pub const WIRING: Wiring = Wiring::PAPER_BUILD;
 /// The analog channels of the four FSR dividers, finger 1 … 4.
-pub const FSR_CHANNELS: [u8; 4] = [0, 1, 2, 3];
+pub const FSR_CHANNELS: [u8; 4] = WIRING.fsr_channels;
 /// The analog channels of the four distal potentiometers, finger 1 … 4.
-pub const POT_CHANNELS: [u8; 4] = [4, 5, 6, 7];
+pub const POT_CHANNELS: [u8; 4] = WIRING.pot_channels;
 /// The AccelStepperFirmata device number of the hand's stepper.
-pub const STEPPER_DEVICE: u8 = 0;
+pub const STEPPER_DEVICE: u8 = WIRING.stepper_device;
 /// The stepper driver's STEP pin.
-pub const STEP_PIN: u8 = 2;
+pub const STEP_PIN: u8 = WIRING.step_pin;
 /// The stepper driver's DIR pin.
-pub const DIR_PIN: u8 = 3;
+pub const DIR_PIN: u8 = WIRING.dir_pin;
 /// The board: eight analog inputs need a Mega 2560 (an Uno has six).
 pub const BOARD: BoardKind = BoardKind::Mega2560;
 

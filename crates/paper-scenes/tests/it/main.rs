@@ -18,6 +18,7 @@ mod pad_node;
 mod report_render;
 mod scene_props;
 mod softness;
+mod softness_run;
 mod stack_hold;
 mod tap_to_ur3;
 mod weight_estimation;

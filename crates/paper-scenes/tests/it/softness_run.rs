@@ -1,0 +1,234 @@
+//! Seed 001's softness experiment through the installed `handstack` binary, on the simulated
+//! hand board over its pty, as a user with the real hand runs it: `handstack run SCENE` closes
+//! the hand at 1.5 mm/s, records 14 s from first contact, classifies, and leaves the hand as
+//! `[hand] on_end` says — read back from the board afterwards. Also a Ctrl-C mid-close, a host
+//! killed mid-close (the close is leased: the stepper stops by itself) and a board that
+//! vanishes mid-run.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use hand_sim::underactuated::Material;
+use paper_scenes::devices::hand_board::{HandBoard, HandBoardConfig, STEPPER_DEVICE};
+
+/// A whole run: the boot, about 6–8 s of approach to a 90 mm object, the 14 s window, the
+/// release; generous for a loaded machine.
+const RUN_TIMEOUT: Duration = Duration::from_secs(120);
+/// How long a state the test waits for may take to come.
+const WAIT: Duration = Duration::from_secs(20);
+
+/// The `handstack` binary the workspace's tests built beside this one.
+fn handstack() -> PathBuf {
+    let exe = std::env::current_exe().expect("the test binary's path");
+    let path = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("target/<profile>")
+        .join("handstack");
+    assert!(
+        path.exists(),
+        "{} is not built: run the workspace's tests (`cargo xtask test`)",
+        path.display()
+    );
+    path
+}
+
+/// The hand's board with `material` (a 90 mm cylinder), a short boot.
+fn board(material: Material) -> HandBoard {
+    let mut config = HandBoardConfig::new(material);
+    config.hand.object.size_mm = 90.0;
+    config.boot_delay = Duration::from_millis(150);
+    HandBoard::spawn(config).expect("the hand's board starts")
+}
+
+/// A scene for the hand on `board`'s port, in a directory of its own; `extra` goes at the end
+/// of `[hand]`, `expect` is the class it should get.
+fn scene(name: &str, board: &HandBoard, extra: &str, expect: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("handstack-softness-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scene dir");
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(
+        &path,
+        format!(
+            "title = \"What the hand holds\"\n[sensors.underactuated]\n[estimators.softness]\n\
+             [hand]\nmodel = \"underactuated4\"\nserial_port = \"{}\"\n{extra}\
+             [experiment.softness]\nexpect = \"{expect}\"\n",
+            board.path().display()
+        ),
+    )
+    .expect("scene written");
+    path
+}
+
+fn start(scene: &Path) -> Child {
+    Command::new(handstack())
+        .arg("run")
+        .arg(scene)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("handstack starts")
+}
+
+/// Waits (bounded) for `child` to end, with what it printed.
+fn finish(child: Child, within: Duration) -> Output {
+    let pid = child.id();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(child.wait_with_output());
+    });
+    match rx.recv_timeout(within) {
+        Ok(out) => out.expect("output"),
+        Err(_) => {
+            signal(pid, "KILL");
+            panic!("handstack did not end within {within:?}");
+        }
+    }
+}
+
+fn signal(pid: u32, name: &str) {
+    let ok = Command::new("kill")
+        .arg(format!("-{name}"))
+        .arg(pid.to_string())
+        .status()
+        .expect("kill runs");
+    assert!(ok.success(), "kill -{name} {pid}");
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Waits until `done` holds for the board's stepper, polling its state (bounded).
+fn wait_stepper(board: &HandBoard, what: &str, done: impl Fn(firmata_sim::StepperState) -> bool) {
+    let deadline = Instant::now() + WAIT;
+    loop {
+        if board.board().stepper(STEPPER_DEVICE).is_some_and(&done) {
+            return;
+        }
+        assert!(Instant::now() < deadline, "no {what} within {WAIT:?}");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+#[test]
+fn handstack_run_classifies_soft_moderate_and_hard_objects_and_releases_the_hand() {
+    let boards = [
+        (Material::Sponge, "soft"),
+        (Material::SiliconeRubber, "moderate"),
+        (Material::Wood, "hard"),
+    ]
+    .map(|(m, class)| (board(m), class));
+    // The three hands close at once, each from its own `handstack` process.
+    let runs: Vec<Child> = boards
+        .iter()
+        .map(|(b, class)| start(&scene(class, b, "", class)))
+        .collect();
+    for ((b, class), run) in boards.iter().zip(runs) {
+        let out = finish(run, RUN_TIMEOUT);
+        let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+        assert_eq!(out.status.code(), Some(0), "{class}: {stdout}\n{stderr}");
+        let row = stdout
+            .lines()
+            .find(|l| l.contains("class: "))
+            .unwrap_or_else(|| panic!("no class row: {stdout}"));
+        assert!(row.contains(&format!("class: {class} ")), "{row}");
+        assert!(row.trim_end().ends_with("yes"), "{row}");
+        assert!(
+            stdout.contains("samples from t₁ to t₁ + 14 s                            141")
+                || stdout
+                    .lines()
+                    .any(|l| l.contains("samples from t₁") && l.contains(" 141 ")),
+            "{stdout}"
+        );
+        // `on_end` by default: released — back at open, the driver's outputs off, not moving.
+        assert!(
+            stdout.contains("hand released: opened to 0 steps"),
+            "{stdout}"
+        );
+        let s = b.board().stepper(STEPPER_DEVICE).expect("configured");
+        assert_eq!(
+            (s.position, s.running, s.enabled),
+            (0, false, false),
+            "{class}"
+        );
+        let truth = b.truth();
+        assert_eq!(truth.shaft_steps, 0, "{class}: the tendon is let out again");
+    }
+}
+
+#[test]
+fn the_wrong_class_fails_the_run_and_the_hand_is_still_released() {
+    // A sponge the scene calls hard.
+    let b = board(Material::Sponge);
+    let out = finish(start(&scene("wrong", &b, "", "hard")), RUN_TIMEOUT);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(4), "{stderr}");
+    assert!(
+        stderr.contains("the hand classified the object soft")
+            && stderr.contains("the scene expects hard")
+            && stderr.contains("hand released"),
+        "{stderr}"
+    );
+    let s = b.board().stepper(STEPPER_DEVICE).expect("configured");
+    assert_eq!((s.position, s.running, s.enabled), (0, false, false));
+}
+
+#[test]
+fn ctrl_c_mid_close_stops_the_stepper_and_applies_on_end_hold() {
+    let b = board(Material::Wood);
+    let run = start(&scene("sigint", &b, "on_end = \"hold\"\n", "hard"));
+    // Closing: the stepper has left zero.
+    wait_stepper(&b, "closing stepper", |s| s.running && s.position > 50);
+    signal(run.id(), "INT");
+    let out = finish(run, WAIT);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(
+        stderr.contains("stopped by SIGINT") && stderr.contains("holds at"),
+        "{stderr}"
+    );
+    // Hold: stopped where it was, outputs on.
+    let s = b.board().stepper(STEPPER_DEVICE).expect("configured");
+    assert!(!s.running && s.enabled && s.position > 50, "{s:?}");
+}
+
+#[test]
+fn a_host_killed_mid_close_leaves_the_stepper_stopping_within_its_lease() {
+    let b = board(Material::Wood);
+    let run = start(&scene("sigkill", &b, "", "hard"));
+    wait_stepper(&b, "closing stepper", |s| s.running && s.position > 50);
+    let killed = Instant::now();
+    signal(run.id(), "KILL");
+    let _ = finish(run, WAIT);
+    // No end action could run: the lease the host last renewed runs out on the board.
+    wait_stepper(&b, "stopped stepper", |s| !s.running);
+    let stopped_after = killed.elapsed();
+    let lease = underactuated_hand::LEASE;
+    assert!(
+        stopped_after <= lease + Duration::from_millis(300),
+        "the stepper ran {stopped_after:?} after the host died (lease {lease:?})"
+    );
+}
+
+#[test]
+fn a_board_that_vanishes_mid_close_ends_the_run_as_a_fault_naming_it() {
+    let b = board(Material::Wood);
+    let path = b.path().display().to_string();
+    let run = start(&scene("vanish", &b, "", "hard"));
+    wait_stepper(&b, "closing stepper", |s| s.running && s.position > 50);
+    drop(b);
+    let out = finish(run, WAIT);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{stderr}");
+    assert!(
+        stderr.contains(&format!("hand: board on {path}")) && stderr.contains("leased"),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains("Os {") && !stderr.contains("kind:"),
+        "{stderr}"
+    );
+}
