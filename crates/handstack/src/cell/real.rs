@@ -103,11 +103,11 @@ pub fn run_node(
                     device: "sensors.imu_pad",
                     reason: "the scene has no [sensors.imu_pad]".into(),
                 })?;
-            let bus = pad.i2c_bus.as_ref().ok_or_else(|| CellError::Device {
+            let wiring = pad.wiring().ok_or_else(|| CellError::Device {
                 device: "sensors.imu_pad",
-                reason: "the scene's [sensors.imu_pad] names no i2c_bus".into(),
+                reason: "the scene's [sensors.imu_pad] names no i2c_bus or firmata_port".into(),
             })?;
-            let mut source = crate::stack::pad::open(platform, bus.get_ref(), pad.pressure_mode)?;
+            let mut source = crate::stack::pad::open_wired(platform, wiring, pad.pressure_mode)?;
             let node = Node::open(args.options())?;
             // With `cnn` among the scene's locators, each tap's window goes through the built-in
             // contact CNN (Al & Martinez-Hernandez, §IV-A: the paper's variant), cut where its

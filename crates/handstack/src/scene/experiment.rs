@@ -388,8 +388,8 @@ fn hardware_only<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(), SceneE
             .map(|t| (t.span(), "sensors.fingertip", "i2c_buses")),
         s.imu_pad
             .as_ref()
-            .filter(|p| p.get_ref().i2c_bus.is_none())
-            .map(|p| (p.span(), "sensors.imu_pad", "i2c_bus")),
+            .filter(|p| !p.get_ref().is_real())
+            .map(|p| (p.span(), "sensors.imu_pad", "i2c_bus` or `firmata_port")),
         s.underactuated
             .as_ref()
             // Read through the underactuated hand's board (whose `serial_port` is checked below).

@@ -55,8 +55,78 @@ pub struct ImuPad {
     /// `UltraLowNoise`.
     #[serde(default = "low_noise")]
     pub pressure_mode: BaroMode,
-    /// Real chip: the Linux I2C bus (accel / gyro at 0x68, barometer at 0x63).
+    /// Real chip on the host: the Linux I2C bus (accel / gyro at 0x68, barometer at 0x63).
     pub i2c_bus: Option<Spanned<String>>,
+    /// Real chip on an Arduino's I2C: the serial port of the board, which runs StandardFirmata
+    /// or ConfigurableFirmata (e.g. `/dev/ttyACM0`). A scene names this or `i2c_bus`.
+    pub firmata_port: Option<Spanned<String>>,
+    /// The Firmata sketch's baud rate (default [`FIRMATA_BAUD`], StandardFirmata's);
+    /// only with `firmata_port`.
+    pub firmata_baud: Option<Spanned<u32>>,
+}
+
+/// StandardFirmata's baud rate, the default of `firmata_baud`.
+pub const FIRMATA_BAUD: u32 = 57_600;
+
+/// Where a real pad's chip is wired, as its scene names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PadWiring<'a> {
+    /// On an I2C bus of the host (`i2c_bus`).
+    I2c {
+        /// The bus's device path.
+        bus: &'a str,
+    },
+    /// On the I2C of a Firmata board (`firmata_port`, `firmata_baud`).
+    Firmata {
+        /// The board's serial port.
+        port: &'a str,
+        /// Its baud rate.
+        baud: u32,
+    },
+}
+
+impl PadWiring<'_> {
+    /// The bus or port, as errors name it.
+    pub fn path(&self) -> &str {
+        match self {
+            PadWiring::I2c { bus } => bus,
+            PadWiring::Firmata { port, .. } => port,
+        }
+    }
+}
+
+impl ImuPad {
+    /// Where the chip is wired: its `i2c_bus`, else its `firmata_port`; `None` when the scene
+    /// names neither (a simulated pad, in a program that simulates one).
+    ///
+    /// ```
+    /// use handstack::scene::NodeScene;
+    /// use handstack::scene::parts::PadWiring;
+    ///
+    /// let text = "title = \"pad\"\n[sensors.imu_pad]\nfirmata_port = \"/dev/ttyACM0\"\n";
+    /// let scene = NodeScene::parse("pad.toml", text)?;
+    /// let pad = scene.file.sensors.imu_pad.as_ref().map(|p| p.get_ref());
+    /// let wiring = pad.and_then(|p| p.wiring());
+    /// assert_eq!(wiring, Some(PadWiring::Firmata { port: "/dev/ttyACM0", baud: 57_600 }));
+    /// # Ok::<(), handstack::scene::SceneError>(())
+    /// ```
+    pub fn wiring(&self) -> Option<PadWiring<'_>> {
+        if let Some(bus) = &self.i2c_bus {
+            return Some(PadWiring::I2c { bus: bus.get_ref() });
+        }
+        self.firmata_port.as_ref().map(|port| PadWiring::Firmata {
+            port: port.get_ref(),
+            baud: self
+                .firmata_baud
+                .as_ref()
+                .map_or(FIRMATA_BAUD, |b| *b.get_ref()),
+        })
+    }
+
+    /// Whether the pad is read from a real chip (it names `i2c_bus` or `firmata_port`).
+    pub fn is_real(&self) -> bool {
+        self.wiring().is_some()
+    }
 }
 
 fn low_noise() -> BaroMode {

@@ -1,7 +1,7 @@
 //! Checks after parsing: values in range and parts that can work together. Each error keeps
 //! the span of the offending key.
 
-use super::parts::{Hand, Locator};
+use super::parts::{Hand, ImuPad, Locator};
 use super::{Location, SceneError, SceneFile};
 use std::ops::Range;
 use toml::Spanned;
@@ -10,9 +10,6 @@ use toml::Spanned;
 const DXL_BAUDS: [u32; 8] = [
     9_600, 57_600, 115_200, 1_000_000, 2_000_000, 3_000_000, 4_000_000, 4_500_000,
 ];
-
-/// Baud rates a Firmata host and sketch commonly agree on (StandardFirmata's 57600 the default).
-const FIRMATA_BAUDS: [u32; 5] = [9_600, 19_200, 38_400, 57_600, 115_200];
 
 /// Where checks report: the file's name and text, so an error names line, column and key.
 #[derive(Debug, Clone, Copy)]
@@ -55,6 +52,48 @@ impl<'a> Checker<'a> {
     }
 }
 
+/// Baud rates a Firmata sketch is built with: the Arduino core's standard rates
+/// (StandardFirmata's is 57 600).
+const FIRMATA_BAUDS: [u32; 12] = [
+    9_600, 14_400, 19_200, 28_800, 38_400, 57_600, 74_880, 115_200, 230_400, 250_000, 500_000,
+    1_000_000,
+];
+
+/// The pad's hardware: at most one of `i2c_bus` and `firmata_port` (a program that requires
+/// real hardware checks that one is named), and `firmata_baud` only with a board, at a rate a
+/// sketch runs at.
+fn check_imu_pad(pad: &ImuPad, cx: &Checker<'_>) -> Result<(), SceneError> {
+    if let (Some(_), Some(port)) = (&pad.i2c_bus, &pad.firmata_port) {
+        return Err(cx.err(
+            port.span(),
+            "sensors.imu_pad.firmata_port",
+            "is named beside `i2c_bus`",
+            "one of `i2c_bus` (an I2C bus of this computer) or `firmata_port` (the serial port \
+             of a Firmata board the chip is wired to)",
+        ));
+    }
+    if let Some(baud) = &pad.firmata_baud {
+        if pad.firmata_port.is_none() {
+            return Err(cx.err(
+                baud.span(),
+                "sensors.imu_pad.firmata_baud",
+                "is named without `firmata_port`",
+                "`firmata_baud` only with the board's `firmata_port`",
+            ));
+        }
+        if !FIRMATA_BAUDS.contains(baud.get_ref()) {
+            let rates: Vec<String> = FIRMATA_BAUDS.iter().map(u32::to_string).collect();
+            return Err(cx.err(
+                baud.span(),
+                "sensors.imu_pad.firmata_baud",
+                format!("is {}", baud.get_ref()),
+                format!("a Firmata sketch's baud rate: {}", rates.join(", ")),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Validates the parts of `scene` (sensors, estimators, controller, hand, arm): each in range,
 /// and each estimator with the sensor it reads.
 pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(), SceneError> {
@@ -90,6 +129,10 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
                 ));
             }
         }
+    }
+
+    if let Some(pad) = &s.imu_pad {
+        check_imu_pad(pad.get_ref(), cx)?;
     }
 
     // Estimators.
@@ -213,11 +256,12 @@ fn check_hand(h: &Spanned<Hand>, cx: &Checker<'_>) -> Result<(), SceneError> {
         }
         if let Some(b) = &hr.baud {
             if !FIRMATA_BAUDS.contains(b.get_ref()) {
+                let rates: Vec<String> = FIRMATA_BAUDS.iter().map(u32::to_string).collect();
                 return Err(cx.err(
                     b.span(),
                     "hand.baud",
                     format!("is {}", b.get_ref()),
-                    "9600, 19200, 38400, 57600 (Firmata's default) or 115200",
+                    format!("a Firmata sketch's rate: {}", rates.join(", ")),
                 ));
             }
         }

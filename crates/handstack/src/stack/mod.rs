@@ -12,18 +12,18 @@ use crate::error::RunError;
 use crate::scene::SceneOf;
 use platform::Platform;
 
-/// Opens every real device `scene` names (fingertip buses, pad bus, hand port, arm host) and
-/// closes them again (the hand with its torque off): a wrong path or an absent device is a typed [`RunError::Open`] before
-/// any experiment starts. The sensors are opened first, so a hand is never commanded when its
-/// fingertip cannot be read.
+/// Opens every real device `scene` names (fingertip buses, pad bus or Firmata board, hand
+/// port, arm host) and closes them again (the hand with its torque off): a wrong path or an
+/// absent device is a typed [`RunError::Open`] before any experiment starts. The sensors are
+/// opened first, so a hand is never commanded when its fingertip cannot be read.
 pub fn check_real_devices<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Result<(), RunError> {
     let s = &scene.file.sensors;
     if s.real_fingertip() {
         drop(fingertip::open(scene, platform)?);
     }
     if let Some(pad) = s.imu_pad.as_ref().map(|p| p.get_ref()) {
-        if let Some(bus) = &pad.i2c_bus {
-            drop(pad::open(platform, bus.get_ref(), pad.pressure_mode)?);
+        if let Some(wiring) = pad.wiring() {
+            drop(pad::open_wired(platform, wiring, pad.pressure_mode)?);
         }
     }
     // The underactuated hand is opened once, by its experiment: opening resets its board.

@@ -1,10 +1,17 @@
-//! A real ICM-20789 pad on an I2C bus of the run's [`Platform`]: opened and identified
-//! (WHO_AM_I, barometer OTP) when a scene names `i2c_bus`, so a wrong bus or a missing chip is a
-//! typed error before any experiment starts; then read one frame per call (an IMU burst during
-//! a barometer conversion), over I2C as Al & Martinez-Hernandez read theirs (§III-A).
+//! A real ICM-20789 pad on an I2C bus of the run's [`Platform`], or on the I2C of an Arduino
+//! running Firmata: opened and identified (WHO_AM_I, barometer OTP) when a scene names
+//! `i2c_bus` or `firmata_port`, so a wrong bus, a board that does not answer or a missing chip
+//! is a typed error before any experiment starts; then read one frame per call (an IMU burst
+//! during a barometer conversion), over I2C as Al & Martinez-Hernandez read theirs (§III-A).
+//!
+//! Through a Firmata board each I2C transfer is a round trip over the serial line, so the
+//! frame rate depends on the board's baud rate: in the paper's `LowNoise` mode it stays under
+//! [`FRAME_RATE_HZ`] at 57 600 and at 115 200 baud, while `Normal` passes it at either (the
+//! handstack README gives the measured rates).
 
 use super::platform::{I2cBus, Platform};
 use crate::error::RunError;
+use crate::scene::parts::PadWiring;
 use embedded_hal::delay::DelayNs;
 use hand_control::grasp_loop::LoopClock;
 use hand_traits::{ImuFrame, TactileSource};
@@ -37,12 +44,38 @@ pub struct RealPad {
 /// Opens `bus` on `platform`, initialises the ICM-20789's IMU (with the tap pad's settings) and
 /// barometer on it; its frames' pressures are converted in `mode`.
 pub fn open(platform: &dyn Platform, bus: &str, mode: BaroMode) -> Result<RealPad, RunError> {
+    open_wired(platform, PadWiring::I2c { bus }, mode)
+}
+
+/// Opens the pad where `wiring` says (a scene's
+/// [`ImuPad::wiring`](crate::scene::parts::ImuPad::wiring)): an I2C bus of `platform`, or the
+/// I2C of the Firmata board on a serial port ([`Platform::open_firmata_i2c`]); then as
+/// [`open`]. An error names the bus or port and what failed.
+///
+/// ```no_run
+/// use handstack::scene::parts::PadWiring;
+/// use handstack::stack::{pad, platform::LinuxPlatform};
+/// use imu_icm20789::BaroMode;
+///
+/// let wiring = PadWiring::Firmata { port: "/dev/ttyACM0", baud: 115_200 };
+/// let mut pad = pad::open_wired(&LinuxPlatform::new(), wiring, BaroMode::LowNoise)?;
+/// # Ok::<(), handstack::RunError>(())
+/// ```
+pub fn open_wired(
+    platform: &dyn Platform,
+    wiring: PadWiring<'_>,
+    mode: BaroMode,
+) -> Result<RealPad, RunError> {
     let fail = |reason: String| RunError::Open {
         device: "sensors.imu_pad",
-        path: bus.to_owned(),
+        path: wiring.path().to_owned(),
         reason,
     };
-    let dev = platform.open_i2c(bus).map_err(fail)?;
+    let dev = match wiring {
+        PadWiring::I2c { bus } => platform.open_i2c(bus),
+        PadWiring::Firmata { port, baud } => platform.open_firmata_i2c(port, baud),
+    }
+    .map_err(fail)?;
     let mut delay = platform.delay();
     let mut chip = Icm20789::new_with_i2c(dev);
     chip.init(&mut &mut *delay)

@@ -1,14 +1,18 @@
 //! Where the stack opens hardware. [`LinuxPlatform`], the default, opens Linux I2C device files
 //! through linux-embedded-hal, sleeps for a driver's delays and stamps frames with the wall
-//! clock. Another platform (a USB–I2C bridge, another OS, or a test's substitute bus) supplies
-//! its own buses, delay and clock; the stack holds every bus as an [`I2cBus`], so the drivers
-//! above it and the runners above them never know which platform they are on.
+//! clock; every platform reaches the I2C of an Arduino running Firmata on a serial port
+//! ([`Platform::open_firmata_i2c`]). Another platform (a USB–I2C bridge, another OS, or a
+//! test's substitute bus) supplies its own buses, delay and clock; the stack holds every bus as
+//! an [`I2cBus`], so the drivers above it and the runners above them never know which platform
+//! they are on.
 //!
 //! ```no_run
 //! use handstack::stack::platform::{LinuxPlatform, Platform};
 //!
 //! let platform = LinuxPlatform::new();
 //! let bus = platform.open_i2c("/dev/i2c-1")?; // any embedded-hal `I2c`, errors as text
+//! // An Arduino's I2C, through StandardFirmata at its 57 600 baud.
+//! let board = platform.open_firmata_i2c("/dev/ttyACM0", 57_600)?;
 //! # Ok::<(), String>(())
 //! ```
 
@@ -103,11 +107,44 @@ pub trait Platform {
     /// Opens the I2C bus at `path` (a device file such as `/dev/i2c-1` on Linux); the error
     /// says why it cannot be opened.
     fn open_i2c(&self, path: &str) -> Result<I2cBus, String>;
+    /// Opens the I2C bus of the Arduino on the serial port `port`, running StandardFirmata or
+    /// ConfigurableFirmata at `baud`: through the reset the board makes when its port opens,
+    /// to its version report (firmata-host). The error says what the board did not do. The
+    /// default is [`open_firmata_i2c`], on any serial port serial2 opens.
+    fn open_firmata_i2c(&self, port: &str, baud: u32) -> Result<I2cBus, String> {
+        open_firmata_i2c(port, baud)
+    }
     /// A delay for the drivers' conversion waits.
     fn delay(&self) -> Box<dyn DelayNs + Send>;
     /// A clock for the devices' frame stamps and the loops. Every clock a platform hands out
     /// shares one epoch, so a frame's stamp and the loop reading it agree.
     fn clock(&self) -> Box<dyn LoopClock + Send>;
+}
+
+/// The I2C bus of the Firmata board on `port` at `baud`, opened with firmata-host's defaults
+/// otherwise (5 s for the board's reset, 1 s per reply); a board that does not answer, or
+/// answers with something other than Firmata, is an error in words:
+///
+/// ```no_run
+/// let bus = handstack::stack::platform::open_firmata_i2c("/dev/ttyACM0", 57_600)?;
+/// # Ok::<(), String>(())
+/// ```
+pub fn open_firmata_i2c(port: &str, baud: u32) -> Result<I2cBus, String> {
+    let options = firmata_host::Options {
+        baud,
+        ..firmata_host::Options::default()
+    };
+    match firmata_host::Board::open(port, &options) {
+        Ok(board) => Ok(I2cBus::new(board)),
+        Err(e) => Err(match e.kind {
+            firmata_host::ErrorKind::Timeout { .. } => format!(
+                "Firmata board: {} (at {baud} baud; is StandardFirmata or ConfigurableFirmata \
+                 running on it?)",
+                e.kind
+            ),
+            kind => format!("Firmata board: {kind}"),
+        }),
+    }
 }
 
 /// Linux: I2C through `/dev/i2c-*` (linux-embedded-hal), delays by sleeping, the wall clock

@@ -5,6 +5,7 @@
 mod cell_arm;
 mod cli;
 mod ending;
+mod firmata_pad;
 mod hardware;
 mod process;
 mod scenes;

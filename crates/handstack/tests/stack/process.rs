@@ -14,8 +14,8 @@ pub(crate) const WAIT: Duration = Duration::from_secs(30);
 /// on a loaded machine answers later than a real servo's 34 ms).
 pub(crate) const SIM_REPLY_TIMEOUT_MS: u64 = 1000;
 
-/// A binary the workspace's `cargo test` built beside this test (`dxl-sim`, `ur-sim`), or one
-/// of this package's examples (`examples/bench_rig`).
+/// A binary the workspace's `cargo test` built beside this test (`dxl-sim`, `ur-sim`,
+/// `firmata-sim`), or one of this package's examples (`examples/bench_rig`).
 pub(crate) fn built(name: &str) -> PathBuf {
     let exe = std::env::current_exe().expect("the test binary's path");
     // target/<profile>/deps/<this test> → target/<profile>/<name>
@@ -27,7 +27,8 @@ pub(crate) fn built(name: &str) -> PathBuf {
     assert!(
         path.exists(),
         "{} is not built: run the workspace's tests (`cargo xtask test`, or `cargo test \
-         --workspace --all-features`), which build dxl-sim, ur-sim and this package's examples",
+         --workspace --all-features`), which build dxl-sim, ur-sim, firmata-sim and this \
+         package's examples",
         path.display()
     );
     path
@@ -163,6 +164,40 @@ impl DxlSim {
 }
 
 impl Drop for DxlSim {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// A simulated Arduino Mega 2560 running ConfigurableFirmata on a pty, an ICM-20789 on its I2C
+/// (at rest: 1 g on z, 1013.25 hPa) and no fingertip barometers: the workspace's `firmata-sim`
+/// as its own process, as a user runs it. A scene names the pty as it would /dev/ttyACM0.
+pub(crate) struct FirmataSim {
+    child: Child,
+    pub(crate) path: String,
+}
+
+impl FirmataSim {
+    /// Starts `firmata-sim --board mega2560 --boot-ms 200 --no-fingertips EXTRA…` and waits for
+    /// its pty path.
+    pub(crate) fn start(extra: &[&str]) -> FirmataSim {
+        let mut child = Command::new(built("firmata-sim"))
+            .args(["--board", "mega2560", "--boot-ms", "200", "--no-fingertips"])
+            .args(extra)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("firmata-sim starts");
+        let lines = Lines::read(child.stdout.take().expect("stdout"));
+        lines.wait_for("pty path", |l| !l.is_empty());
+        let path = lines.snapshot()[0].clone();
+        assert!(path.starts_with("/dev/"), "{path}");
+        FirmataSim { child, path }
+    }
+}
+
+impl Drop for FirmataSim {
     fn drop(&mut self) {
         let _ = self.child.kill();
         let _ = self.child.wait();

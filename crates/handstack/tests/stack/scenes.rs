@@ -184,7 +184,7 @@ fn the_underactuated_hands_keys_are_checked_where_they_are_written() {
         "hand.ids",
         &["a servo hand's key"],
     );
-    says(&err(&with("baud = 1000000\n")), 7, "hand.baud", &["57600"]);
+    says(&err(&with("baud = 2000000\n")), 7, "hand.baud", &["57600"]);
     says(
         &err(&with("closing_speed_mm_s = 0\n")
             .replace(
@@ -210,5 +210,74 @@ fn the_underactuated_hands_keys_are_checked_where_they_are_written() {
         7,
         "hand.drive",
         &["underactuated hand's key"],
+    );
+}
+
+#[test]
+fn a_pad_names_one_bus_or_one_board() {
+    use handstack::scene::parts::PadWiring;
+    // HAND is 12 lines; the pad's table follows on line 13.
+    let pad = |keys: &str| format!("{HAND}[sensors.imu_pad]\n{keys}");
+    let wiring = |keys: &str| {
+        let s = Scene::parse("ok.toml", &pad(keys)).expect("valid");
+        let p = s.file.sensors.imu_pad.expect("the pad").into_inner();
+        p.wiring()
+            .map(|w| (w.path().to_owned(), matches!(w, PadWiring::Firmata { .. })))
+    };
+    assert_eq!(
+        wiring("i2c_bus = \"/dev/i2c-2\"\n"),
+        Some(("/dev/i2c-2".into(), false))
+    );
+    let s = Scene::parse("ok.toml", &pad("firmata_port = \"/dev/ttyACM0\"\n")).expect("valid");
+    let p = s.file.sensors.imu_pad.expect("the pad").into_inner();
+    assert_eq!(
+        p.wiring(),
+        Some(PadWiring::Firmata {
+            port: "/dev/ttyACM0",
+            baud: 57_600
+        })
+    );
+    let s = Scene::parse(
+        "ok.toml",
+        &pad("firmata_port = \"/dev/ttyACM0\"\nfirmata_baud = 115200\n"),
+    )
+    .expect("valid");
+    let p = s.file.sensors.imu_pad.expect("the pad").into_inner();
+    assert!(matches!(
+        p.wiring(),
+        Some(PadWiring::Firmata { baud: 115_200, .. })
+    ));
+
+    let e = err(&pad(""));
+    says(
+        &e,
+        13,
+        "sensors.imu_pad",
+        &["names no hardware (`i2c_bus` or `firmata_port`)"],
+    );
+    let e = err(&pad(
+        "i2c_bus = \"/dev/i2c-2\"\nfirmata_port = \"/dev/ttyACM0\"\n",
+    ));
+    says(
+        &e,
+        15,
+        "sensors.imu_pad.firmata_port",
+        &["is named beside `i2c_bus`", "one of `i2c_bus`"],
+    );
+    let e = err(&pad("i2c_bus = \"/dev/i2c-2\"\nfirmata_baud = 57600\n"));
+    says(
+        &e,
+        15,
+        "sensors.imu_pad.firmata_baud",
+        &["is named without `firmata_port`"],
+    );
+    let e = err(&pad(
+        "firmata_port = \"/dev/ttyACM0\"\nfirmata_baud = 57000\n",
+    ));
+    says(
+        &e,
+        15,
+        "sensors.imu_pad.firmata_baud",
+        &["is 57000", "57600, 74880, 115200"],
     );
 }

@@ -1,8 +1,8 @@
 //! The ICM-20789 pad a paper scene names, as a frame source: hand-sim's pad with its chip
 //! model behind the real driver, its taps the protocol's schedule (who presses where is the
-//! environment, not the device). A real pad (`i2c_bus`) is opened and identified by
-//! `handstack::stack::pad`, but no driver-level frame source for it exists yet, so asking for
-//! its frames is an error naming it.
+//! environment, not the device). A real pad (`i2c_bus` or `firmata_port`) is opened and
+//! identified by `handstack::stack::pad`, but no driver-level frame source for it exists yet,
+//! so asking for its frames is an error naming it.
 
 use crate::Error;
 use crate::error::device;
@@ -16,11 +16,11 @@ pub fn open(scene: &PaperScene, taps: Vec<TapSpec>) -> Result<ImuPad, Error> {
         .sensors
         .imu_pad
         .as_ref()
-        .and_then(|p| p.get_ref().i2c_bus.as_ref());
-    if let Some(bus) = real {
+        .and_then(|p| p.get_ref().wiring());
+    if let Some(wiring) = real {
         return Err(device(
             "sensors.imu_pad",
-            format!("{}: a real pad is not yet a frame source", bus.get_ref()),
+            format!("{}: a real pad is not yet a frame source", wiring.path()),
         ));
     }
     let mut config = scene.sim.imu_pad.clone().unwrap_or_default();

@@ -104,15 +104,12 @@ impl ExperimentTable for Experiments {
                     "[sensors.imu_pad], [estimators.contact] locators with \"cnn\", and [arm]",
                 ));
             }
-            if s.imu_pad
-                .as_ref()
-                .is_some_and(|p| p.get_ref().i2c_bus.is_some())
-            {
+            if s.imu_pad.as_ref().is_some_and(|p| p.get_ref().is_real()) {
                 return Err(cx.err(
                     t.span(),
                     "experiment.tap",
                     "schedules its taps on the simulated pad",
-                    "sensors.imu_pad without i2c_bus",
+                    "sensors.imu_pad without i2c_bus or firmata_port",
                 ));
             }
             let per = &t.get_ref().taps_per_region;

@@ -134,7 +134,7 @@ pub(crate) fn check(
     }
     // The ICM-20789 pad.
     match &s.imu_pad {
-        Some(pad) if pad.get_ref().i2c_bus.is_none() => {
+        Some(pad) if !pad.get_ref().is_real() => {
             let mut pad_sim = sim.imu_pad.take().unwrap_or_default();
             pad_sim.baro_mode = pad.get_ref().pressure_mode;
             sim.imu_pad = Some(pad_sim);
@@ -144,7 +144,7 @@ pub(crate) fn check(
                 sim_span,
                 "sim.imu_pad",
                 "simulates a pad the scene reads from a real chip",
-                "no [sim.imu_pad] with sensors.imu_pad.i2c_bus",
+                "no [sim.imu_pad] with sensors.imu_pad.i2c_bus or firmata_port",
             ));
         }
         Some(_) => {}

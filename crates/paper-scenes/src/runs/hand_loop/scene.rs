@@ -39,7 +39,7 @@ pub fn applies(scene: &PaperScene) -> bool {
         || f.sensors
             .imu_pad
             .as_ref()
-            .is_some_and(|p| p.get_ref().i2c_bus.is_some());
+            .is_some_and(|p| p.get_ref().is_real());
     x.grasp.is_some() && x.tap.is_some() && f.sensors.imu_pad.is_some() && !real
 }
 
