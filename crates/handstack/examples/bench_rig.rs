@@ -11,6 +11,10 @@
 //!
 //! The model fingertip rests at 1000 mbar and is pressed by 1, 2 and 3 mbar (sensors 1–3)
 //! from `HANDSTACK_RIG_PRESS_S` seconds after start (default 0.3; `never`: an empty hand).
+//! For the tests of a run's endings, two faults of the rig's own: `HANDSTACK_RIG_PANIC_S`
+//! makes a sensor read panic from that many seconds after start on (a bug in a part's code),
+//! `HANDSTACK_RIG_SLOW_MS` adds that much to every conversion wait (a bus far slower than the
+//! loop's rate).
 
 use baro_drivers::sim::{Conditions, Ms5611Sim, SimClock};
 use embedded_hal::delay::DelayNs;
@@ -26,15 +30,19 @@ struct Rig {
     wall: StdClock,
     /// When the pad is pressed (`None`: never).
     press_at: Option<Duration>,
+    /// When a sensor read starts to panic (`None`: never).
+    panic_at: Option<Duration>,
+    /// Added to every conversion wait.
+    slow: Duration,
     start: Instant,
 }
 
-/// Sleeps as a driver asks, and moves the chips' clock on by as much.
-struct RigDelay(SimClock);
+/// Sleeps as a driver asks (and `slow` more), and moves the chips' clock on by as much.
+struct RigDelay(SimClock, Duration);
 
 impl DelayNs for RigDelay {
     fn delay_ns(&mut self, ns: u32) {
-        std::thread::sleep(Duration::from_nanos(u64::from(ns)));
+        std::thread::sleep(Duration::from_nanos(u64::from(ns)) + self.1);
         self.0.advance_ns(u64::from(ns));
     }
 }
@@ -47,8 +55,14 @@ impl Platform for Rig {
             .next()
             .and_then(|n| n.parse::<u32>().ok())
             .unwrap_or(2);
-        let (press_at, start) = (self.press_at, self.start);
+        let (press_at, panic_at, start) = (self.press_at, self.panic_at, self.start);
         let env = move |_t_ns: u64| {
+            if panic_at.is_some_and(|at| start.elapsed() >= at) {
+                panic!(
+                    "the rig's sensor {} model failed (HANDSTACK_RIG_PANIC_S)",
+                    k + 1
+                );
+            }
             let pressed = press_at.is_some_and(|at| start.elapsed() >= at);
             Conditions {
                 pressure_mbar: 1000.0 + if pressed { f64::from(k) + 1.0 } else { 0.0 },
@@ -59,7 +73,7 @@ impl Platform for Rig {
     }
 
     fn delay(&self) -> Box<dyn DelayNs + Send> {
-        Box::new(RigDelay(self.chips.clone()))
+        Box::new(RigDelay(self.chips.clone(), self.slow))
     }
 
     fn clock(&self) -> Box<dyn LoopClock + Send> {
@@ -67,17 +81,31 @@ impl Platform for Rig {
     }
 }
 
-fn main() -> std::process::ExitCode {
-    let press_at = match std::env::var("HANDSTACK_RIG_PRESS_S") {
-        Ok(v) if v == "never" => None,
+/// The seconds in environment variable `name` (`never` or absent: `default`).
+fn seconds(name: &str, default: Option<Duration>) -> Result<Option<Duration>, String> {
+    match std::env::var(name) {
+        Ok(v) if v == "never" => Ok(None),
         Ok(v) => match v.parse::<f64>() {
-            Ok(s) if s.is_finite() && s >= 0.0 => Some(Duration::from_secs_f64(s)),
-            _ => {
-                eprintln!("error: HANDSTACK_RIG_PRESS_S is `{v}`: seconds, or `never`");
-                return std::process::ExitCode::from(2);
-            }
+            Ok(s) if s.is_finite() && s >= 0.0 => Ok(Some(Duration::from_secs_f64(s))),
+            _ => Err(format!("error: {name} is `{v}`: seconds, or `never`")),
         },
-        Err(_) => Some(Duration::from_millis(300)),
+        Err(_) => Ok(default),
+    }
+}
+
+fn main() -> std::process::ExitCode {
+    let env =
+        seconds("HANDSTACK_RIG_PRESS_S", Some(Duration::from_millis(300))).and_then(|press| {
+            let panic = seconds("HANDSTACK_RIG_PANIC_S", None)?;
+            let slow = seconds("HANDSTACK_RIG_SLOW_MS", None)?.map(|s| s / 1000);
+            Ok((press, panic, slow.unwrap_or_default()))
+        });
+    let (press_at, panic_at, slow) = match env {
+        Ok(v) => v,
+        Err(e) => {
+            eprintln!("{e}");
+            return std::process::ExitCode::from(2);
+        }
     };
     let start = Instant::now();
     handstack::cli::main(&|| {
@@ -85,6 +113,8 @@ fn main() -> std::process::ExitCode {
             chips: SimClock::new(),
             wall: StdClock::new(),
             press_at,
+            panic_at,
+            slow,
             start,
         })
     })

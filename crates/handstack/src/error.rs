@@ -49,6 +49,8 @@ pub enum Ending {
     /// The experiment could not do what it is for (the loop never commanded; the fingertip
     /// never saw contact).
     Failed,
+    /// A bug: the run's own code (or a part's) panicked; the hand got its end action first.
+    Bug,
 }
 
 /// Exit status of a run that could not start: a bad scene, a device that cannot be opened.
@@ -57,11 +59,13 @@ pub const EXIT_NOT_STARTED: u8 = 1;
 pub const EXIT_FAULT: u8 = 3;
 /// Exit status of a run whose experiment failed.
 pub const EXIT_FAILED: u8 = 4;
+/// Exit status of a run a bug ended: Rust's for a panic.
+pub const EXIT_BUG: u8 = 101;
 
 impl RunError {
     /// The exit status this error ends `handstack` with: 1 the run could not start (scene,
     /// opening), 3 a device fault ended it, 4 its experiment failed, 128 + n a signal n
-    /// stopped it (130 for Ctrl-C), 1 another stop request.
+    /// stopped it (130 for Ctrl-C), 1 another stop request, 101 a bug (a panic) ended it.
     pub fn exit_code(&self) -> u8 {
         match self {
             RunError::Scene(_) | RunError::Open { .. } => EXIT_NOT_STARTED,
@@ -70,6 +74,7 @@ impl RunError {
                 Ending::Stopped(r) => r.exit_code(),
                 Ending::Fault => EXIT_FAULT,
                 Ending::Failed => EXIT_FAILED,
+                Ending::Bug => EXIT_BUG,
             },
         }
     }

@@ -7,8 +7,9 @@
 //! Every way a hold ends goes through one path: the hand gets the scene's end action
 //! (`[hand] on_end`, hand-control's [`GraspLoop::end`]) in the cycle the ending is seen —
 //! the end of the hold, a [`Stop`] (a signal), the first fault the scene's recovery does not
-//! clear, a device lost, a hold that never commanded or never saw contact — and so does a
-//! panic in between, through the loop's drop guard.
+//! clear, a device lost, a hold that never commanded or never saw contact, a panic in a cycle
+//! (caught, then the end action) — and a panic anywhere else between, through the loop's drop
+//! guard (torque off).
 
 use super::figure::{Target, measured, paper, target};
 use super::{Part, RunContext};
@@ -280,7 +281,22 @@ where
             device: "grasp loop",
             reason: e.to_string(),
         })?;
-    let ended = watch(&mut l, &config, plan);
+    // A panic in a cycle (a bug in the run's own code or a part's) ends the hold like any other
+    // ending: the hand still gets the scene's end action.
+    let ended = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        watch(&mut l, &config, plan)
+    })) {
+        Ok(ended) => ended,
+        Err(payload) => {
+            let first = l.log().first().map_or(0, |s| s.t_us);
+            let at = l.log().last().map_or(0, |s| s.t_us.saturating_sub(first));
+            Some((
+                Ending::Bug,
+                format!("a bug in handstack: {}", panic_text(payload.as_ref())),
+                at,
+            ))
+        }
+    };
     // The one shutdown path: whatever ended the hold, the end action in this cycle.
     let report = l.end();
     let last_torque = l.log().iter().rev().find_map(|s| s.torque_raw);
@@ -297,6 +313,15 @@ where
             ),
         }),
     }
+}
+
+/// A panic's message, as `panic!` was given it.
+fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| (*s).to_owned())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic without a message".to_owned())
 }
 
 /// Runs `l`'s cycles until its hold ends; `None` at its planned end, else how it ended, what

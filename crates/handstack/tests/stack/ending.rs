@@ -74,10 +74,15 @@ fn dir(name: &str) -> PathBuf {
 
 /// `handstack run SCENE` on the rig, the pad pressed at `press` (`never`: an empty hand).
 fn start_run(scene: &Path, press: &str) -> Child {
+    start_rig(scene, &[("HANDSTACK_RIG_PRESS_S", press)])
+}
+
+/// `handstack run SCENE` on the rig with its environment `env` (see `examples/bench_rig.rs`).
+fn start_rig(scene: &Path, env: &[(&str, &str)]) -> Child {
     Command::new(built("examples/bench_rig"))
         .arg("run")
         .arg(scene)
-        .env("HANDSTACK_RIG_PRESS_S", press)
+        .envs(env.iter().copied())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -347,6 +352,81 @@ fn sigint_ends_a_hand_node_through_its_end_action() {
     servos.lines.wait_for("torque off", |l| {
         l[sent_at..].iter().any(|l| is_torque_off(l))
     });
+    for (torque, _) in read_back(&servos) {
+        assert_eq!(torque, 0, "torque left on");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A panic in a cycle (here a sensor model's code, as a bug in any part would) ends the hold
+/// like any other ending: the hand gets the scene's end action — `hold`, so the torque stays on,
+/// where the drop guard alone would have turned it off — and the status is a panic's, 101.
+#[test]
+fn a_panic_mid_grasp_still_gives_the_hand_the_scenes_end_action() {
+    let servos = servos();
+    let dir = dir("panic");
+    let run = start_rig(
+        &scene(&dir, &servos.path, Some("hold"), 20.0),
+        &[
+            ("HANDSTACK_RIG_PRESS_S", "0.3"),
+            ("HANDSTACK_RIG_PANIC_S", "1.5"),
+        ],
+    );
+    let out = finish(run);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(101), "{err}");
+    assert!(
+        err.contains("error: ")
+            && err.contains("a bug in handstack: the rig's sensor")
+            && err.contains("; hand holding its last safe effort (torque on)"),
+        "{err}"
+    );
+    let trace = servos.lines.snapshot();
+    assert!(
+        trace.iter().any(|l| is_torque_limit(l)),
+        "the loop grasped before the panic"
+    );
+    for (torque, _) in read_back(&servos) {
+        assert_eq!(torque, 1, "`hold` keeps the torque on");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A fingertip far slower than the loop's rate: the loop's tare never finishes, so it never
+/// commands; the run fails with that reason (exit 4) and the servos never get a torque limit.
+#[test]
+fn a_grasp_whose_loop_never_commands_fails_with_that_reason() {
+    let servos = servos();
+    let dir = dir("no-command");
+    let run = start_rig(
+        &scene(&dir, &servos.path, None, 20.0),
+        &[
+            ("HANDSTACK_RIG_PRESS_S", "0.3"),
+            ("HANDSTACK_RIG_SLOW_MS", "400"),
+        ],
+    );
+    let out = finish(run);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(4), "{err}");
+    assert!(
+        err.contains("grasp: the loop sent no command in 2.0 s (its tare did not finish)"),
+        "{err}"
+    );
+    // The only motion written is the release (end action) back to where the hand was found:
+    // one torque limit and one goal at the starting 2048, never the loop's closing goal.
+    servos
+        .lines
+        .wait_for("torque off", |l| l.iter().any(|l| is_torque_off(l)));
+    let trace = servos.lines.snapshot();
+    let pwm = trace.iter().filter(|l| is_torque_limit(l)).count();
+    let goals: Vec<&String> = trace
+        .iter()
+        .filter(|l| l.contains(" Goal Position "))
+        .collect();
+    assert!(
+        pwm == 1 && goals.len() == 1 && goals[0].ends_with("Goal Position 1=2048 2=2048"),
+        "a loop command was sent: {trace:?}"
+    );
     for (torque, _) in read_back(&servos) {
         assert_eq!(torque, 0, "torque left on");
     }
