@@ -153,8 +153,14 @@ pub fn run_each<E: core::fmt::Display + ExitStatus>(
         }
     }
     if let Some(reason) = stop.reason() {
-        // A signal's status says so, whatever the stopped run returned.
+        // A signal's status says so, whatever the stopped run returned; a run that returned
+        // its figures when stopped (a cell's taps so far) has not said it was stopped.
         runs.exit_code = reason.exit_code();
+        if runs.failures.is_empty() {
+            bars.suspend(|| {
+                eprintln!("stopped by {reason}: the figures above cover the run up to then")
+            });
+        }
     }
     bars.finish();
     if json {

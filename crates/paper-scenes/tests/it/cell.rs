@@ -555,3 +555,75 @@ fn commanded_by_a_ros2_client(endpoint: &str, watcher: &Node) {
         assert_eq!(sent["published"], 1, "{sent}");
     }
 }
+
+/// The node processes `pid` started (its children).
+fn children(pid: u32) -> Vec<u32> {
+    std::fs::read_to_string(format!("/proc/{pid}/task/{pid}/children"))
+        .unwrap_or_default()
+        .split_whitespace()
+        .filter_map(|p| p.parse().ok())
+        .collect()
+}
+
+/// `handstack cell` as a user runs it, stopped by Ctrl-C mid-run: the nodes are stopped through
+/// their own shutdown (each prints its report), none is left running, and the status is 130.
+#[test]
+fn handstack_cell_stopped_by_sigint_stops_its_nodes_and_says_so() {
+    use std::process::{Command, Stdio};
+    use std::time::Duration;
+    if !python_ok() {
+        return;
+    }
+    let _one = ONE_CELL.lock().unwrap_or_else(|e| e.into_inner());
+    let path = cell_file("sigint");
+    let handstack = program().with_file_name("handstack");
+    let cell = Command::new(&handstack)
+        .arg("cell")
+        .arg(&path)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("handstack cell starts");
+    // Mid-run: both node processes started (the coordinator then waits for them, then taps).
+    let deadline = Instant::now() + Duration::from_secs(30);
+    let nodes = loop {
+        let nodes = children(cell.id());
+        if nodes.len() >= 2 {
+            break nodes;
+        }
+        assert!(Instant::now() < deadline, "the cell started no nodes");
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let ok = Command::new("kill")
+        .args(["-INT", &cell.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(ok.success());
+    let (tx, rx) = std::sync::mpsc::channel();
+    let waiter = std::thread::spawn(move || {
+        let out = cell.wait_with_output();
+        let _ = tx.send(());
+        out
+    });
+    rx.recv_timeout(Duration::from_secs(30))
+        .expect("the cell ended within 30 s of SIGINT");
+    let out = waiter.join().unwrap().expect("output");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("stopped by SIGINT"), "{stderr}");
+    // Each node ended through its shutdown path (stdin closed): its last report line.
+    for ns in ["/pad0", "/arm0"] {
+        assert!(
+            stderr.contains(&format!("[{ns}] {ns} ")),
+            "no report from {ns}: {stderr}"
+        );
+    }
+    for pid in nodes {
+        assert!(
+            !std::path::Path::new(&format!("/proc/{pid}")).exists()
+                || std::fs::read_to_string(format!("/proc/{pid}/stat"))
+                    .is_ok_and(|s| s.contains(") Z ")),
+            "node process {pid} still running"
+        );
+    }
+}
