@@ -35,6 +35,12 @@ enum Command {
     /// Stepper 0 on D2 (STEP) / D3 (DIR) pulls the tendon, 0.01 mm a step; A0–A3 are the
     /// fingers' FSR dividers, A4–A7 their distal potentiometers.
     HandBoard(HandBoardArgs),
+    /// Seed 000's grasp rig as two devices on ptys, in real time: the hand's MX-28 (ID 1) on a
+    /// Protocol 2.0 servo bus, and the fingertip's three MS5611 behind a TCA9548A (channels
+    /// 0–2) on a simulated Arduino Mega running ConfigurableFirmata; the servo closing on a
+    /// Table 5 object presses the fingertip. Prints both ports as a scene names them, serves
+    /// until SIGINT / SIGTERM, then prints what the hand was left doing.
+    GraspRig(GraspRigArgs),
     /// Run a scene's stack (or one part: pad, arm, fingertip or hand) on its simulated devices
     /// as ROS 2 nodes on Zenoh, until stdin closes.
     #[cfg(feature = "cell")]
@@ -75,6 +81,23 @@ struct HandBoardArgs {
     /// Read noise at the analog pins, LSB (σ).
     #[arg(long = "noise-lsb", default_value_t = 0.5)]
     noise_lsb: f64,
+}
+
+/// `paper-scenes grasp-rig`'s options.
+#[derive(clap::Args)]
+struct GraspRigArgs {
+    /// The Table 5 object: cube, cylinder, cone, ellipsoid, paper-cup or scroll-tissue.
+    #[arg(long, default_value = "cylinder")]
+    object: String,
+    /// The seed of the fingertip sensors' baselines and noise.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The fingertip board's baud rate.
+    #[arg(long, default_value_t = 115_200)]
+    baud: u32,
+    /// From the board's port opening to its version report, ms.
+    #[arg(long = "boot-ms", default_value_t = 1600)]
+    boot_ms: u64,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -145,9 +168,70 @@ fn hand_board(args: &HandBoardArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
+fn grasp_rig(args: &GraspRigArgs) -> ExitCode {
+    use paper_scenes::devices::grasp_board::{GraspBoard, GraspBoardConfig};
+    let stop = handstack::stop::signal_stop();
+    let name = args.object.replace('-', "_");
+    let Some(object) = hand_sim::grasp::ObjectKind::from_name(&name) else {
+        eprintln!(
+            "error: --object {}: one of cube, cylinder, cone, ellipsoid, paper-cup, scroll-tissue",
+            args.object
+        );
+        return ExitCode::from(2);
+    };
+    let config = GraspBoardConfig {
+        seed: args.seed,
+        baud: args.baud,
+        boot_delay: std::time::Duration::from_millis(args.boot_ms),
+        ..GraspBoardConfig::new(object)
+    };
+    let rig = match GraspBoard::spawn(&config) {
+        Ok(rig) => rig,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(handstack::summary::ExitStatus::exit_code(&e).max(1));
+        }
+    };
+    println!(
+        "serial_port = \"{}\"    # [hand]: the MX-28, ID 1, 1 000 000 baud",
+        rig.servo_path().display()
+    );
+    println!(
+        "firmata_port = \"{}\"   # [sensors.fingertip]: three MS5611 behind a TCA9548A, {} baud",
+        rig.board_path().display(),
+        args.baud
+    );
+    let _ = std::io::Write::flush(&mut std::io::stdout());
+    while !stop.is_set() {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    // What the hand was left doing, for whoever ran it (a test reads this line back).
+    match rig.state() {
+        Some(s) => println!(
+            "left: torque {}, position {:.3} rad, grip force {:.2} N, object {}",
+            if s.torque_enabled { "on" } else { "off" },
+            s.position_rad,
+            s.grip_force_n,
+            if s.dropped {
+                "dropped"
+            } else if s.damaged {
+                "crushed"
+            } else {
+                "intact"
+            }
+        ),
+        None => println!("left: the servo is not on the bus"),
+    }
+    if let Some(e) = rig.error() {
+        eprintln!("error: the pad's physics: {e}");
+    }
+    ExitCode::SUCCESS
+}
+
 fn main() -> ExitCode {
     match Cli::parse().command {
         Command::HandBoard(args) => hand_board(&args),
+        Command::GraspRig(args) => grasp_rig(&args),
         Command::Run {
             scenes,
             json,

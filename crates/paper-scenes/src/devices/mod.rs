@@ -12,5 +12,6 @@
 pub mod arm;
 pub mod fingertip;
 pub mod grasp;
+pub mod grasp_board;
 pub mod hand_board;
 pub mod pad;

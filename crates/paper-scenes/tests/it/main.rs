@@ -10,6 +10,7 @@ mod common;
 mod contact_location;
 mod devices;
 mod full_hand;
+mod grasp_board;
 mod grasp_table5;
 mod hand_board;
 mod hand_loop_faults;
