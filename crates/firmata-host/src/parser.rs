@@ -79,7 +79,8 @@ pub enum Event<'a> {
         /// Its state (7 bits per byte, up to 3 bytes).
         state: u32,
     },
-    /// I2C reply: the data as 7-bit pairs.
+    /// I2C reply: the data as 7-bit pairs. A reply whose address does not fit 7 bits is
+    /// [`FrameError::Malformed`]: it answers no request of this host.
     I2cReply {
         /// The 7-bit address read.
         address: u8,
@@ -126,7 +127,7 @@ pub enum FrameError {
     TruncatedSysex {
         /// Its ID (`None` if cut before the ID).
         id: Option<u8>,
-        /// Bytes received after `F0`.
+        /// Bytes received after `F0`, those beyond [`SYSEX_CAPACITY`] included.
         len: usize,
     },
     /// A two-byte message cut short by a status byte.
@@ -193,8 +194,8 @@ pub struct Parser {
     state: State,
     data: [u8; 2],
     buf: Box<[u8; SYSEX_CAPACITY]>,
+    /// Bytes of the open sysex received after `F0`; the first [`SYSEX_CAPACITY`] are in `buf`.
     len: usize,
-    overflow: bool,
 }
 
 impl Default for Parser {
@@ -211,7 +212,6 @@ impl Parser {
             data: [0; 2],
             buf: Box::new([0; SYSEX_CAPACITY]),
             len: 0,
-            overflow: false,
         }
     }
 
@@ -255,7 +255,6 @@ impl Parser {
                 protocol::START_SYSEX => {
                     self.state = State::Sysex;
                     self.len = 0;
-                    self.overflow = false;
                     None
                 }
                 other => Some(FrameError::UnknownCommand(other)),
@@ -291,22 +290,21 @@ impl Parser {
                 }))
             }
             State::Sysex => {
-                if self.len < SYSEX_CAPACITY {
-                    self.buf[self.len] = byte;
-                    self.len += 1;
-                } else {
-                    self.overflow = true;
+                if let Some(slot) = self.buf.get_mut(self.len) {
+                    *slot = byte;
                 }
+                self.len = self.len.saturating_add(1);
                 None
             }
         }
     }
 
     fn finish_sysex(&self) -> Result<Event<'_>, FrameError> {
-        let Some((&id, payload)) = self.buf[..self.len].split_first() else {
+        let kept = &self.buf[..self.len.min(SYSEX_CAPACITY)];
+        let Some((&id, payload)) = kept.split_first() else {
             return Err(FrameError::TruncatedSysex { id: None, len: 0 });
         };
-        if self.overflow {
+        if self.len > SYSEX_CAPACITY {
             return Err(FrameError::SysexOverflow { id });
         }
         decode_sysex(id, payload)
@@ -341,12 +339,16 @@ pub fn decode_sysex(id: u8, payload: &[u8]) -> Result<Event<'_>, FrameError> {
             },
             _ => return Err(malformed),
         },
+        // The address's second byte is 0: the host asks 7-bit addresses only, and a wider one
+        // would alias a 7-bit one if its upper bits were dropped.
         protocol::I2C_REPLY => match payload {
-            [al, am, rl, rm, data @ ..] if data.len() % 2 == 0 => Event::I2cReply {
-                address: from_7bit_pair(*al, *am) as u8,
-                register: from_7bit_pair(*rl, *rm),
-                data,
-            },
+            [al, am, rl, rm, data @ ..] if am & 0x7F == 0 && data.len() % 2 == 0 => {
+                Event::I2cReply {
+                    address: al & 0x7F,
+                    register: from_7bit_pair(*rl, *rm),
+                    data,
+                }
+            }
             _ => return Err(malformed),
         },
         protocol::STRING_DATA => Event::Text(payload),

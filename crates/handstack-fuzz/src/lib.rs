@@ -28,6 +28,7 @@ pub mod cargo_fuzz;
 pub mod corpus;
 pub mod dxl;
 pub mod files;
+pub mod firmata;
 pub mod network;
 pub mod seeds;
 pub mod ur;
@@ -45,7 +46,7 @@ pub struct Target {
 }
 
 /// Every target, in the order `docs/reliability.md` lists them.
-pub const TARGETS: [Target; 11] = [
+pub const TARGETS: [Target; 12] = [
     Target {
         name: "dxl_status",
         about: "Protocol 2.0 framing and the driver's status-packet checks (hand-control)",
@@ -55,6 +56,11 @@ pub const TARGETS: [Target; 11] = [
         name: "dxl_sim",
         about: "the simulated servo bus's request handling (dxl-sim)",
         run: dxl::sim,
+    },
+    Target {
+        name: "firmata",
+        about: "the host's Firmata parser on a board's byte stream (firmata-host)",
+        run: firmata::parser,
     },
     Target {
         name: "ur_rtde",

@@ -1,5 +1,6 @@
 //! The seed corpora: valid inputs for each target, from the repository's fixtures, the
-//! trained models and exchanges captured from the simulators (`cargo xtask fuzz --seed`
+//! trained models, the protocols' documented byte vectors and exchanges captured from the
+//! simulators (`cargo xtask fuzz --seed`
 //! writes them to `fuzz/seeds/TARGET/`).
 
 use std::path::Path;
@@ -29,6 +30,7 @@ pub fn seeds(root: &Path, name: &str) -> std::io::Result<Vec<Seed>> {
             .into_iter()
             .map(|(n, wire)| (n, [&[16u8][..], &wire].concat()))
             .collect(),
+        "firmata" => firmata(),
         "ur_rtde" => ur_rtde(),
         "ur_dashboard" => ur_dashboard(),
         "ur_script" => ur_script(),
@@ -358,4 +360,229 @@ fn ur_script() -> Vec<Seed> {
             b"def other():\n  movej([0,0,0,0,0,0])\nend\n".to_vec(),
         ),
     ]
+}
+
+/// The byte vectors of firmata-host's tests (`tests/it/vectors.rs`, `tests/it/parser.rs`:
+/// protocol.md, i2c.md and AccelStepperFirmata's reports, and streams cut, interleaved and
+/// garbled), the reports its encoders make, and sessions of the simulated Arduino
+/// (firmata-sim) answering a host, one seed each, read in chunks of 5 bytes: `[5, bytes…]`.
+fn firmata() -> Vec<Seed> {
+    use firmata_host::parser::SYSEX_CAPACITY;
+    use firmata_host::protocol as p;
+
+    fn with(f: impl FnOnce(&mut Vec<u8>)) -> Vec<u8> {
+        let mut out = Vec::new();
+        f(&mut out);
+        out
+    }
+    let firmware = with(|o| p::encode_firmware_report(o, 2, 5, "StandardFirmata"));
+    let i2c_reply = with(|o| p::encode_i2c_reply(o, 0x77, 0xA2, &[0x9C, 0xBF]));
+    let mut interleaved = vec![0xE0, 0x10, 0x02, 0x91, 0x01, 0x00];
+    p::encode_i2c_reply(&mut interleaved, 0x68, 0x75, &[0x03]);
+    interleaved.extend_from_slice(&[0xE1, 0x7F, 0x07]);
+    let mut overlong = vec![p::START_SYSEX, p::STRING_DATA];
+    overlong.extend(std::iter::repeat_n(0x41, SYSEX_CAPACITY + 10));
+    overlong.extend_from_slice(&[p::END_SYSEX, 0xF9, 2, 6]);
+    let host = with(|o| {
+        p::encode_version_query(o);
+        p::encode_sysex_query(o, p::CAPABILITY_QUERY);
+        p::encode_set_pin_mode(o, 13, firmata_host::PinMode::Output);
+        p::encode_set_digital_pin_value(o, 13, true);
+        p::encode_report_analog(o, 2, true);
+        p::encode_sampling_interval(o, 19);
+        p::encode_i2c_write(o, 0x77, &[0x1E]);
+    });
+    let mut seeds: Vec<(&str, Vec<u8>)> = vec![
+        ("analog", vec![0xE0, 0x7F, 0x07]),
+        ("digital", vec![0x92, 0x05, 0x01]),
+        ("version", with(|o| p::encode_version_report(o, 2, 6))),
+        ("firmware", firmware.clone()),
+        (
+            "capabilities_uno_a0",
+            vec![
+                0xF0, 0x6C, 0x7F, 0x7F, 0x00, 0x01, 0x0B, 0x01, 0x01, 0x01, 0x02, 0x0A, 0x04, 0x0E,
+                0x7F, 0xF7,
+            ],
+        ),
+        (
+            "analog_mapping",
+            vec![0xF0, 0x6A, 0x7F, 0x7F, 0x00, 0x01, 0xF7],
+        ),
+        ("pin_state", vec![0xF0, 0x6E, 13, 0x01, 0x01, 0xF7]),
+        ("i2c_reply", i2c_reply.clone()),
+        (
+            "stepper_position",
+            with(|o| p::encode_stepper_position(o, 0, 123_456_789, false)),
+        ),
+        (
+            "stepper_move_complete",
+            with(|o| p::encode_stepper_position(o, 1, -2000, true)),
+        ),
+        (
+            "multistepper_complete",
+            vec![
+                0xF0,
+                p::ACCELSTEPPER_DATA,
+                p::MULTISTEPPER_MOVE_COMPLETE,
+                0x00,
+                0xF7,
+            ],
+        ),
+        (
+            "string",
+            with(|o| p::encode_string(o, "I2C: Too few bytes received")),
+        ),
+        ("other_sysex", vec![0xF0, 0x61, 0x01, 0xF7]),
+        ("interleaved", interleaved),
+        ("cut_sysex", vec![0xF0, 0x6C, 0x00, 0x01, 0xE2, 0x05, 0x00]),
+        ("cut_analog", vec![0xE0, 0x05, 0xF9, 2, 5]),
+        ("cut_firmware", firmware[..firmware.len() - 5].to_vec()),
+        ("empty_sysex", vec![0xF0, 0xF7]),
+        (
+            "stray_and_unknown",
+            vec![0x42, 0xF2, 0xA5, 0x01, 0xF9, 2, 6],
+        ),
+        (
+            "i2c_reply_odd",
+            vec![0xF0, 0x77, 0x68, 0x00, 0x75, 0x00, 0x03, 0xF7],
+        ),
+        ("i2c_reply_garbled", {
+            let mut r = i2c_reply;
+            r[3] = 0x02; // the address's second byte
+            r
+        }),
+        ("overlong", overlong),
+        ("host_requests", host),
+    ];
+    let sessions = firmata_sessions();
+    seeds.extend(sessions.iter().map(|(n, b)| (*n, b.clone())));
+    seeds
+        .into_iter()
+        .map(|(name, bytes)| (name.to_owned(), [&[5u8][..], &bytes].concat()))
+        .collect()
+}
+
+/// The simulated Arduino's answers to a host (a capture of the board's side): its start-up
+/// reports, the queries' answers on an Uno and a Mega 2560, analog reporting, I2C register
+/// reads (answered, and not), a stepper's move; and the start-up as a host at twice the
+/// board's baud rate hears it.
+fn firmata_sessions() -> Vec<(&'static str, Vec<u8>)> {
+    use firmata_host::StepperConfig;
+    use firmata_host::protocol as p;
+    use firmata_sim::{BoardKind, ConstantVolts, Firmware, FirmwareKind, SimConfig};
+
+    /// A board that has booted; its start-up reports and its answers to `host` at 10 ms,
+    /// then `ticks` passes of its loop 10 ms apart.
+    fn session(
+        kind: FirmwareKind,
+        board: BoardKind,
+        host: impl FnOnce(&mut Vec<u8>),
+        ticks: u32,
+    ) -> Vec<u8> {
+        let mut fw = Firmware::new(kind, board);
+        let mut bus = SimConfig::default().bus;
+        let mut volts = ConstantVolts::new(&[(0, 1.25), (1, 3.3)]);
+        let mut out = Vec::new();
+        fw.boot_report(&mut out);
+        let mut sent = Vec::new();
+        host(&mut sent);
+        fw.receive(
+            &sent,
+            Duration::from_millis(10),
+            &mut bus,
+            &mut volts,
+            &mut out,
+        );
+        for k in 1..=ticks {
+            fw.tick(
+                Duration::from_millis(10 + 10 * u64::from(k)),
+                &mut bus,
+                &mut volts,
+                &mut out,
+            );
+        }
+        out
+    }
+    let queries = |o: &mut Vec<u8>| {
+        p::encode_version_query(o);
+        for id in [
+            p::REPORT_FIRMWARE,
+            p::CAPABILITY_QUERY,
+            p::ANALOG_MAPPING_QUERY,
+        ] {
+            p::encode_sysex_query(o, id);
+        }
+        o.extend_from_slice(&[p::START_SYSEX, p::PIN_STATE_QUERY, 13, p::END_SYSEX]);
+        // An ID the sketch does not handle: ConfigurableFirmata answers with a string.
+        p::encode_sysex_query(o, 0x61);
+    };
+    let (configurable, standard) = (FirmwareKind::Configurable, FirmwareKind::Standard);
+    let boot = session(configurable, BoardKind::Uno, |_| {}, 0);
+    let mut sessions = vec![
+        ("sim_boot", boot.clone()),
+        (
+            "sim_queries_uno",
+            session(configurable, BoardKind::Uno, queries, 0),
+        ),
+        (
+            "sim_queries_mega",
+            session(standard, BoardKind::Mega2560, queries, 0),
+        ),
+        (
+            "sim_analog",
+            session(
+                standard,
+                BoardKind::Uno,
+                |o| {
+                    p::encode_sampling_interval(o, 10);
+                    p::encode_report_analog(o, 0, true);
+                    p::encode_report_analog(o, 1, true);
+                    p::encode_set_pin_mode(o, 2, firmata_host::PinMode::Input);
+                    p::encode_report_digital(o, 0, true);
+                },
+                5,
+            ),
+        ),
+        (
+            "sim_i2c",
+            session(
+                configurable,
+                BoardKind::Uno,
+                |o| {
+                    p::encode_i2c_config(o, 0);
+                    // Fingertip 0 behind the mux, then its PROM word 1 (a fixed value).
+                    p::encode_i2c_write(o, firmata_sim::MUX_ADDRESS, &[0x01]);
+                    let read = p::I2C_MODE_READ_ONCE | p::I2C_AUTO_RESTART;
+                    p::encode_i2c_request(o, firmata_sim::MS5611_ADDRESS, read, &[0xA2, 2]);
+                    // The ICM-20789's WHO_AM_I, and a device that is not there.
+                    p::encode_i2c_request(o, 0x68, read, &[0x75, 1]);
+                    p::encode_i2c_request(o, 0x50, read, &[0x00, 2]);
+                },
+                0,
+            ),
+        ),
+        (
+            "sim_stepper",
+            session(
+                configurable,
+                BoardKind::Uno,
+                |o| {
+                    let config = StepperConfig::driver(2, 3);
+                    let config = [config.interface_byte(), 2, 3, 0];
+                    p::encode_stepper(o, p::ACCELSTEPPER_CONFIG, 0, &config);
+                    let speed = p::encode_custom_float(2000.0).unwrap_or_default();
+                    p::encode_stepper(o, p::ACCELSTEPPER_SET_SPEED, 0, &speed);
+                    let to = p::encode_stepper_i32(-40).unwrap_or_default();
+                    p::encode_stepper(o, p::ACCELSTEPPER_TO, 0, &to);
+                    p::encode_stepper(o, p::ACCELSTEPPER_REPORT_POSITION, 0, &[]);
+                },
+                4,
+            ),
+        ),
+    ];
+    sessions.push((
+        "sim_boot_at_115200",
+        firmata_sim::uart::resample(&boot, 57_600, 115_200),
+    ));
+    sessions
 }

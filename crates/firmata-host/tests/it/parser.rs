@@ -85,6 +85,55 @@ fn malformed_and_overlong_sysex_are_errors() {
     );
 }
 
+/// Found by the fuzz target `firmata` (`fuzz/regressions/firmata/i2c-reply-14-bit-address`):
+/// an I2C reply whose address bytes say 0x264C was read as a reply from 0x4C, its upper bits
+/// dropped. The host asks 7-bit addresses only, so such a reply answers none of its requests.
+#[test]
+fn an_i2c_reply_from_an_address_beyond_7_bits_is_malformed() {
+    assert_eq!(
+        all(&[0xF0, 0x77, 0x4C, 0x4C, 0x4C, 0x4C, 0xF7]),
+        [Err(FrameError::Malformed { id: 0x77, len: 4 })]
+    );
+    // 0x177 is not 0x77, nor 0xF7 a byte.
+    for high in [0x01, 0x02] {
+        let mut reply = Vec::new();
+        firmata_host::protocol::encode_i2c_reply(&mut reply, 0x77, 0xA2, &[0x9C]);
+        reply[3] = high;
+        assert_eq!(
+            all(&reply),
+            [Err(FrameError::Malformed { id: 0x77, len: 6 })]
+        );
+    }
+}
+
+/// Found by the fuzz target `firmata` (`fuzz/regressions/firmata/cut-overlong-sysex`): a sysex
+/// longer than the buffer and then cut by a status byte reported the buffer's length, not the
+/// bytes received.
+#[test]
+fn a_cut_overlong_sysex_counts_every_byte_received() {
+    let mut long = vec![0xF0, 0x71];
+    long.extend(std::iter::repeat_n(0x41, SYSEX_CAPACITY + 10));
+    long.extend_from_slice(&[0xF9, 2, 6]);
+    let got = all(&long);
+    assert_eq!(
+        got[0],
+        Err(FrameError::TruncatedSysex {
+            id: Some(0x71),
+            len: SYSEX_CAPACITY + 11
+        })
+    );
+    assert_eq!(got[1].as_deref(), Ok("Version { major: 2, minor: 6 }"));
+    // At the capacity exactly, the sysex is kept whole.
+    let mut full = vec![0xF0, 0x71];
+    full.extend(std::iter::repeat_n(0x41, SYSEX_CAPACITY - 1));
+    full.push(0xF7);
+    assert!(
+        all(&full)[0]
+            .as_deref()
+            .is_ok_and(|e| e.starts_with("Text("))
+    );
+}
+
 proptest! {
     /// Any bytes: no panic, and each byte completes at most one message or error.
     #[test]
