@@ -187,6 +187,10 @@ pub enum Fault {
     Raw(Vec<u8>),
     /// Cut the board's next reply after half its bytes (lost on the line).
     TruncateNextReply,
+    /// The sketch restarts at once (a brown-out, a watchdog, a reset button): what it was
+    /// sending is lost, pin modes, reporting and steppers start afresh, and it sends its
+    /// version and firmware reports again.
+    Reset,
 }
 
 /// A configured stepper as of the board's last pass.
@@ -513,6 +517,12 @@ impl Line {
         let mut truncate = false;
         for f in faults {
             match f {
+                Fault::Reset => {
+                    self.out.clear();
+                    // `boot` clears the other faults queued and sends the start-up reports.
+                    self.boot();
+                    return true;
+                }
                 Fault::Raw(bytes) => {
                     let mut raw = bytes;
                     raw.extend_from_slice(&self.out);

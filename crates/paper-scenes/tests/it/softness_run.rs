@@ -232,3 +232,22 @@ fn a_board_that_vanishes_mid_close_ends_the_run_as_a_fault_naming_it() {
         "{stderr}"
     );
 }
+
+#[test]
+fn a_board_that_resets_mid_close_ends_the_run_as_a_fault_and_its_stepper_stops() {
+    let b = board(Material::Wood);
+    let run = start(&scene("reset", &b, "", "hard"));
+    wait_stepper(&b, "closing stepper", |s| s.running && s.position > 50);
+    b.board().inject(firmata_sim::Fault::Reset);
+    let out = finish(run, WAIT);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{stderr}");
+    assert!(
+        stderr.contains("it restarted (reset or power loss); its stepper stopped"),
+        "{stderr}"
+    );
+    // The restarted sketch has no stepper configured: nothing drives the tendon any more.
+    assert_eq!(b.board().stepper(STEPPER_DEVICE), None);
+    let at = b.truth().shaft_steps;
+    assert!(at > 50, "{at}");
+}
