@@ -227,11 +227,7 @@ impl ExperimentTable for NodeExperiments {
     }
 
     fn check(scene: &SceneFile<Self>, cx: &Checker<'_>) -> Result<(), SceneError> {
-        if let Some(h) = scene
-            .hand
-            .as_ref()
-            .filter(|h| h.get_ref().model.is_underactuated())
-        {
+        if let Some(h) = scene.underactuated_hand() {
             return Err(cx.err(
                 h.span(),
                 "hand.model",
@@ -253,11 +249,7 @@ fn check_experiments<X>(
     hardware_only(scene, cx)?;
     if let Some(g) = &x.grasp {
         check_grasp_parts(scene, g, cx)?;
-        if let Some(h) = scene
-            .hand
-            .as_ref()
-            .filter(|h| h.get_ref().model.is_underactuated())
-        {
+        if let Some(h) = scene.underactuated_hand() {
             return Err(cx.err(
                 h.span(),
                 "hand.model",
@@ -317,11 +309,7 @@ fn check_softness<X>(
     s: &Spanned<Softness>,
     cx: &Checker<'_>,
 ) -> Result<(), SceneError> {
-    if !scene
-        .hand
-        .as_ref()
-        .is_some_and(|h| h.get_ref().model.is_underactuated())
-    {
+    if scene.underactuated_hand().is_none() {
         return Err(cx.err(
             s.span(),
             "experiment.softness",
@@ -393,12 +381,7 @@ fn hardware_only<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(), SceneE
         s.underactuated
             .as_ref()
             // Read through the underactuated hand's board (whose `serial_port` is checked below).
-            .filter(|_| {
-                !scene
-                    .hand
-                    .as_ref()
-                    .is_some_and(|h| h.get_ref().model.is_underactuated())
-            })
+            .filter(|_| scene.underactuated_hand().is_none())
             .map(|u| {
                 (
                     u.span(),

@@ -88,6 +88,15 @@ pub struct SceneFile<X = experiment::Experiments> {
     pub experiment: Spanned<X>,
 }
 
+impl<X> SceneFile<X> {
+    /// The scene's `[hand]` when it is the underactuated hand (`model = "underactuated4"`).
+    pub fn underactuated_hand(&self) -> Option<&Spanned<parts::Hand>> {
+        self.hand
+            .as_ref()
+            .filter(|h| h.get_ref().model.is_underactuated())
+    }
+}
+
 /// An `[experiment]` table the file does not have.
 fn no_experiment<X: Default>() -> Spanned<X> {
     Spanned::new(0..0, X::default())

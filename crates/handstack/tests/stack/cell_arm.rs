@@ -94,7 +94,6 @@ fn arm_node(
     Option<std::process::ChildStdin>,
     std::path::PathBuf,
 ) {
-    use std::process::{Command, Stdio};
     let dir = std::env::temp_dir().join(format!("handstack-arm-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let scene = dir.join("arm.toml");
@@ -103,22 +102,7 @@ fn arm_node(
         format!("title = \"arm\"\n[arm]\nmodel = \"ur3\"\nhost = \"{host}\"\n"),
     )
     .expect("scene");
-    let mut node = Command::new(env!("CARGO_BIN_EXE_handstack"))
-        .arg("node")
-        .arg(&scene)
-        .args([
-            "--part",
-            "arm",
-            "--namespace",
-            "/arm0",
-            "--connect",
-            endpoint,
-        ])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("handstack node starts");
+    let mut node = crate::process::start_node(&scene, "arm", "/arm0", endpoint);
     let stdin = node.stdin.take();
     (node, stdin, dir)
 }

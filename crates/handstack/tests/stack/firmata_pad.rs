@@ -24,7 +24,7 @@ mod node {
     use hand_zenoh::msg::handstack_msgs::PressureFrame;
     use hand_zenoh::msg::sensor_msgs::Imu;
     use hand_zenoh::node::{Node, NodeOptions, Router};
-    use std::process::{Child, ChildStdin, Command, Stdio};
+    use std::process::{Child, ChildStdin};
     use std::time::Duration;
 
     const WAIT: Duration = Duration::from_secs(20);
@@ -46,22 +46,7 @@ mod node {
     /// `handstack node SCENE --part pad --namespace /pad0 [--connect endpoint]`, its stdin
     /// held open (closing it is the node's normal stop).
     fn pad_node(scene: &std::path::Path, endpoint: &str) -> (Child, ChildStdin) {
-        let mut node = Command::new(env!("CARGO_BIN_EXE_handstack"))
-            .arg("node")
-            .arg(scene)
-            .args([
-                "--part",
-                "pad",
-                "--namespace",
-                "/pad0",
-                "--connect",
-                endpoint,
-            ])
-            .stdin(Stdio::piped())
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("handstack node starts");
+        let mut node = crate::process::start_node(scene, "pad", "/pad0", endpoint);
         let stdin = node.stdin.take().expect("stdin");
         (node, stdin)
     }

@@ -238,3 +238,25 @@ pub(crate) fn signal(pid: u32, signal: &str) {
 pub(crate) fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).into_owned()
 }
+
+/// `handstack node SCENE --part PART --namespace NS --connect ENDPOINT` as its own process, its
+/// stdin and stderr piped (closing stdin is a node's normal stop).
+#[cfg(feature = "cell")]
+pub(crate) fn start_node(scene: &Path, part: &str, namespace: &str, endpoint: &str) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_handstack"))
+        .arg("node")
+        .arg(scene)
+        .args([
+            "--part",
+            part,
+            "--namespace",
+            namespace,
+            "--connect",
+            endpoint,
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("handstack node starts")
+}
