@@ -1,7 +1,7 @@
 //! `[experiment.*]` of the `handstack` binary: what it runs on a user's own, real hand. Every
-//! device a scene names must name its hardware (`i2c_buses`, `i2c_bus`, `serial_port`,
-//! `host`): this binary holds no simulator, and a device without hardware is an error here,
-//! never a silent simulation.
+//! device a scene names must name its hardware (`i2c_buses`, `i2c_bus`, `firmata_port`,
+//! `serial_port`, `host`): this binary holds no simulator, and a device without hardware is an
+//! error here, never a silent simulation.
 
 use super::{Checker, ExperimentTable, SceneError, SceneFile};
 use serde::Deserialize;
@@ -372,8 +372,8 @@ fn hardware_only<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(), SceneE
     let missing = [
         s.fingertip
             .as_ref()
-            .filter(|t| t.get_ref().i2c_buses.is_none())
-            .map(|t| (t.span(), "sensors.fingertip", "i2c_buses")),
+            .filter(|t| !t.get_ref().is_real())
+            .map(|t| (t.span(), "sensors.fingertip", "i2c_buses` or `firmata_port")),
         s.imu_pad
             .as_ref()
             .filter(|p| !p.get_ref().is_real())

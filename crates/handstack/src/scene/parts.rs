@@ -1,5 +1,6 @@
 //! The parts a scene file names: sensors, estimators, controller, hand and arm. A device is
-//! real when the scene names its hardware (`i2c_buses`, `i2c_bus`, `serial_port`, `host`);
+//! real when the scene names its hardware (`i2c_buses`, `i2c_bus`, `firmata_port`,
+//! `serial_port`, `host`);
 //! a program that simulates devices (the papers' `paper-scenes`) simulates the others, and the
 //! `handstack` binary refuses them.
 
@@ -25,11 +26,12 @@ pub struct Sensors {
 }
 
 impl Sensors {
-    /// Whether the fingertip is read from real chips (it names `i2c_buses`).
+    /// Whether the fingertip is read from real chips (it names `i2c_buses` or
+    /// `firmata_port`).
     pub fn real_fingertip(&self) -> bool {
         self.fingertip
             .as_ref()
-            .is_some_and(|t| t.get_ref().i2c_buses.is_some())
+            .is_some_and(|t| t.get_ref().is_real())
     }
 }
 
@@ -39,12 +41,108 @@ impl Sensors {
 pub struct Fingertip {
     /// Oversampling ratio: 256, 512, 1024, 2048 or 4096 (the speed / noise knob).
     pub osr: Spanned<u16>,
-    /// Real chips: one Linux I2C bus per sensor (the MS5611 has two addresses, so three
-    /// sensors need three buses), e.g. `["/dev/i2c-1", "/dev/i2c-3", "/dev/i2c-4"]`.
-    /// Absent: a simulated fingertip (in a program that simulates one).
+    /// Real chips on the host: one Linux I2C bus per sensor (the MS5611 has two addresses, so
+    /// three sensors on one bus need a switch), e.g. `["/dev/i2c-1", "/dev/i2c-3",
+    /// "/dev/i2c-4"]`. A scene names this or `firmata_port`; neither: a simulated fingertip
+    /// (in a program that simulates one).
     pub i2c_buses: Option<Spanned<Vec<String>>>,
-    /// The MS5611's I2C address on each bus: 0x76 (CSB high) or 0x77 (CSB low, default).
+    /// The MS5611's I2C address on each bus or switch channel: 0x76 (CSB high) or 0x77 (CSB
+    /// low, default).
     pub address: Option<Spanned<u8>>,
+    /// Real chips on an Arduino's I2C: the serial port of the board, which runs
+    /// StandardFirmata or ConfigurableFirmata (e.g. `/dev/ttyACM0`); the three sensors sit
+    /// behind a TCA9548A I2C switch on its SDA / SCL (`mux_address`, `mux_channels`).
+    pub firmata_port: Option<Spanned<String>>,
+    /// The Firmata sketch's baud rate (default [`FIRMATA_BAUD`], StandardFirmata's);
+    /// only with `firmata_port`.
+    pub firmata_baud: Option<Spanned<u32>>,
+    /// The TCA9548A's address, 0x70…0x77 (default [`MUX_ADDRESS`], A2…A0 low); only with
+    /// `firmata_port`.
+    pub mux_address: Option<Spanned<u8>>,
+    /// The switch channel of sensors 1, 2 and 3, each 0…7 (default [`MUX_CHANNELS`]); only
+    /// with `firmata_port`.
+    pub mux_channels: Option<Spanned<Vec<u8>>>,
+}
+
+/// The TCA9548A's address with A2…A0 low, the default of `mux_address`.
+pub const MUX_ADDRESS: u8 = 0x70;
+/// The switch channels of sensors 1, 2 and 3, the default of `mux_channels`.
+pub const MUX_CHANNELS: [u8; 3] = [0, 1, 2];
+
+/// Where a real fingertip's three MS5611 are wired, as its scene names them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FingertipWiring<'a> {
+    /// One I2C bus of the host per sensor (`i2c_buses`).
+    I2c {
+        /// The buses' device paths, sensor 1 first.
+        buses: &'a [String],
+    },
+    /// Behind a TCA9548A switch on the I2C of a Firmata board (`firmata_port`,
+    /// `firmata_baud`, `mux_address`, `mux_channels`).
+    Firmata {
+        /// The board's serial port.
+        port: &'a str,
+        /// Its baud rate.
+        baud: u32,
+        /// The switch's I2C address.
+        mux_address: u8,
+        /// The switch channel of each sensor, sensor 1 first.
+        mux_channels: &'a [u8],
+    },
+}
+
+impl Fingertip {
+    /// Where the chips are wired: its `i2c_buses`, else its `firmata_port` (with the
+    /// switch's defaults for keys it leaves out); `None` when the scene names neither (a
+    /// simulated fingertip, in a program that simulates one).
+    ///
+    /// ```
+    /// use handstack::scene::NodeScene;
+    /// use handstack::scene::parts::FingertipWiring;
+    ///
+    /// let text = "title = \"tip\"\n[sensors.fingertip]\nosr = 1024\n\
+    ///             firmata_port = \"/dev/ttyACM0\"\n";
+    /// let scene = NodeScene::parse("tip.toml", text)?;
+    /// let tip = scene.file.sensors.fingertip.as_ref().map(|t| t.get_ref());
+    /// let wiring = tip.and_then(|t| t.wiring());
+    /// assert_eq!(
+    ///     wiring,
+    ///     Some(FingertipWiring::Firmata {
+    ///         port: "/dev/ttyACM0",
+    ///         baud: 57_600,
+    ///         mux_address: 0x70,
+    ///         mux_channels: &[0, 1, 2],
+    ///     })
+    /// );
+    /// # Ok::<(), handstack::scene::SceneError>(())
+    /// ```
+    pub fn wiring(&self) -> Option<FingertipWiring<'_>> {
+        if let Some(buses) = &self.i2c_buses {
+            return Some(FingertipWiring::I2c {
+                buses: buses.get_ref(),
+            });
+        }
+        self.firmata_port
+            .as_ref()
+            .map(|port| FingertipWiring::Firmata {
+                port: port.get_ref(),
+                baud: baud_or_default(self.firmata_baud.as_ref()),
+                mux_address: self
+                    .mux_address
+                    .as_ref()
+                    .map_or(MUX_ADDRESS, |a| *a.get_ref()),
+                mux_channels: self
+                    .mux_channels
+                    .as_ref()
+                    .map_or(&MUX_CHANNELS[..], |c| c.get_ref()),
+            })
+    }
+
+    /// Whether the fingertip is read from real chips (it names `i2c_buses` or
+    /// `firmata_port`).
+    pub fn is_real(&self) -> bool {
+        self.wiring().is_some()
+    }
 }
 
 /// The ICM-20789 pad.
@@ -67,6 +165,11 @@ pub struct ImuPad {
 
 /// StandardFirmata's baud rate, the default of `firmata_baud`.
 pub const FIRMATA_BAUD: u32 = 57_600;
+
+/// A scene's `firmata_baud`, else [`FIRMATA_BAUD`].
+fn baud_or_default(baud: Option<&Spanned<u32>>) -> u32 {
+    baud.map_or(FIRMATA_BAUD, |b| *b.get_ref())
+}
 
 /// Where a real pad's chip is wired, as its scene names it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -116,10 +219,7 @@ impl ImuPad {
         }
         self.firmata_port.as_ref().map(|port| PadWiring::Firmata {
             port: port.get_ref(),
-            baud: self
-                .firmata_baud
-                .as_ref()
-                .map_or(FIRMATA_BAUD, |b| *b.get_ref()),
+            baud: baud_or_default(self.firmata_baud.as_ref()),
         })
     }
 

@@ -1,7 +1,7 @@
 //! Checks after parsing: values in range and parts that can work together. Each error keeps
 //! the span of the offending key.
 
-use super::parts::{Hand, ImuPad, Locator};
+use super::parts::{Fingertip, Hand, ImuPad, Locator};
 use super::{Location, SceneError, SceneFile};
 use std::ops::Range;
 use toml::Spanned;
@@ -72,23 +72,121 @@ fn check_imu_pad(pad: &ImuPad, cx: &Checker<'_>) -> Result<(), SceneError> {
              of a Firmata board the chip is wired to)",
         ));
     }
-    if let Some(baud) = &pad.firmata_baud {
-        if pad.firmata_port.is_none() {
+    check_firmata_baud(
+        "sensors.imu_pad",
+        pad.firmata_port.is_some(),
+        pad.firmata_baud.as_ref(),
+        cx,
+    )
+}
+
+/// A sensor's `firmata_baud` (in `table`): only with a board (`has_port`), at a rate a sketch
+/// runs at.
+fn check_firmata_baud(
+    table: &str,
+    has_port: bool,
+    baud: Option<&Spanned<u32>>,
+    cx: &Checker<'_>,
+) -> Result<(), SceneError> {
+    let Some(baud) = baud else {
+        return Ok(());
+    };
+    let key = format!("{table}.firmata_baud");
+    if !has_port {
+        return Err(cx.err(
+            baud.span(),
+            &key,
+            "is named without `firmata_port`",
+            "`firmata_baud` only with the board's `firmata_port`",
+        ));
+    }
+    if !FIRMATA_BAUDS.contains(baud.get_ref()) {
+        let rates: Vec<String> = FIRMATA_BAUDS.iter().map(u32::to_string).collect();
+        return Err(cx.err(
+            baud.span(),
+            &key,
+            format!("is {}", baud.get_ref()),
+            format!("a Firmata sketch's baud rate: {}", rates.join(", ")),
+        ));
+    }
+    Ok(())
+}
+
+/// The fingertip's hardware: at most one of `i2c_buses` (three) and `firmata_port` (a program
+/// that requires real hardware checks that one is named); the board's keys (`firmata_baud`,
+/// `mux_address`, `mux_channels`) only with a board; the switch at a TCA9548A's address and
+/// three distinct channels of its eight.
+fn check_fingertip_wiring(tip: &Fingertip, cx: &Checker<'_>) -> Result<(), SceneError> {
+    if let Some(buses) = &tip.i2c_buses {
+        if buses.get_ref().len() != 3 {
             return Err(cx.err(
-                baud.span(),
-                "sensors.imu_pad.firmata_baud",
-                "is named without `firmata_port`",
-                "`firmata_baud` only with the board's `firmata_port`",
+                buses.span(),
+                "sensors.fingertip.i2c_buses",
+                format!("names {} buses", buses.get_ref().len()),
+                "three device paths, one per MS5611",
             ));
         }
-        if !FIRMATA_BAUDS.contains(baud.get_ref()) {
-            let rates: Vec<String> = FIRMATA_BAUDS.iter().map(u32::to_string).collect();
+        if let Some(port) = &tip.firmata_port {
             return Err(cx.err(
-                baud.span(),
-                "sensors.imu_pad.firmata_baud",
-                format!("is {}", baud.get_ref()),
-                format!("a Firmata sketch's baud rate: {}", rates.join(", ")),
+                port.span(),
+                "sensors.fingertip.firmata_port",
+                "is named beside `i2c_buses`",
+                "one of `i2c_buses` (three I2C buses of this computer) or `firmata_port` (the \
+                 serial port of a Firmata board the sensors are wired to, behind a TCA9548A \
+                 switch)",
             ));
+        }
+    }
+    let has_port = tip.firmata_port.is_some();
+    check_firmata_baud("sensors.fingertip", has_port, tip.firmata_baud.as_ref(), cx)?;
+    if let Some(a) = &tip.mux_address {
+        if !has_port {
+            return Err(cx.err(
+                a.span(),
+                "sensors.fingertip.mux_address",
+                "is named without `firmata_port`",
+                "`mux_address` only with the board's `firmata_port`",
+            ));
+        }
+        if !(0x70..=0x77).contains(a.get_ref()) {
+            return Err(cx.err(
+                a.span(),
+                "sensors.fingertip.mux_address",
+                format!("is {:#04x}", a.get_ref()),
+                "0x70…0x77 (TCA9548A pins A2…A0)",
+            ));
+        }
+    }
+    if let Some(channels) = &tip.mux_channels {
+        let key = "sensors.fingertip.mux_channels";
+        if !has_port {
+            return Err(cx.err(
+                channels.span(),
+                key,
+                "is named without `firmata_port`",
+                "`mux_channels` only with the board's `firmata_port`",
+            ));
+        }
+        let c = channels.get_ref();
+        let allowed = "three distinct switch channels 0…7, one per MS5611 (sensor 1 first)";
+        if c.len() != 3 {
+            return Err(cx.err(
+                channels.span(),
+                key,
+                format!("names {} channels", c.len()),
+                allowed,
+            ));
+        }
+        if let Some(bad) = c.iter().find(|&&ch| ch > 7) {
+            return Err(cx.err(
+                channels.span(),
+                key,
+                format!("names channel {bad}"),
+                allowed,
+            ));
+        }
+        if c[0] == c[1] || c[0] == c[2] || c[1] == c[2] {
+            return Err(cx.err(channels.span(), key, "names a channel twice", allowed));
         }
     }
     Ok(())
@@ -119,16 +217,7 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
                 ));
             }
         }
-        if let Some(buses) = &tip.get_ref().i2c_buses {
-            if buses.get_ref().len() != 3 {
-                return Err(cx.err(
-                    buses.span(),
-                    "sensors.fingertip.i2c_buses",
-                    format!("names {} buses", buses.get_ref().len()),
-                    "three device paths, one per MS5611",
-                ));
-            }
-        }
+        check_fingertip_wiring(tip.get_ref(), cx)?;
     }
 
     if let Some(pad) = &s.imu_pad {

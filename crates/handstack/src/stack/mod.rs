@@ -12,7 +12,7 @@ use crate::error::RunError;
 use crate::scene::SceneOf;
 use platform::Platform;
 
-/// Opens every real device `scene` names (fingertip buses, pad bus or Firmata board, hand
+/// Opens every real device `scene` names (fingertip buses or board, pad bus or board, hand
 /// port, arm host) and closes them again (the hand with its torque off): a wrong path or an
 /// absent device is a typed [`RunError::Open`] before any experiment starts. The sensors are
 /// opened first, so a hand is never commanded when its fingertip cannot be read.

@@ -6,6 +6,7 @@ mod cell_arm;
 mod cli;
 mod ending;
 mod firmata_pad;
+mod firmata_tip;
 mod hardware;
 mod process;
 mod scenes;

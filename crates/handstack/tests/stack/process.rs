@@ -37,7 +37,8 @@ pub(crate) fn built(name: &str) -> PathBuf {
 /// Lines a child process printed, shared with the thread reading them.
 #[derive(Default)]
 pub(crate) struct Lines {
-    lines: Mutex<Vec<String>>,
+    /// The lines so far, and whether the output has ended.
+    lines: Mutex<(Vec<String>, bool)>,
     more: Condvar,
 }
 
@@ -48,31 +49,51 @@ impl Lines {
         let keep = Arc::clone(&lines);
         std::thread::spawn(move || {
             for line in BufReader::new(from).lines().map_while(Result::ok) {
-                keep.lines.lock().expect("lines").push(line);
+                keep.lines.lock().expect("lines").0.push(line);
                 keep.more.notify_all();
             }
+            keep.lines.lock().expect("lines").1 = true;
+            keep.more.notify_all();
         });
         lines
     }
 
-    /// Waits until `done` holds for the lines so far; returns how many there were then.
-    pub(crate) fn wait_for(&self, what: &str, done: impl Fn(&[String]) -> bool) -> usize {
+    /// Waits until `done` holds for the lines so far; returns how many there were then, or
+    /// `None` when the output ended first or [`WAIT`] passed.
+    pub(crate) fn wait_until(&self, done: impl Fn(&[String]) -> bool) -> Option<usize> {
         let deadline = Instant::now() + WAIT;
         let mut lines = self.lines.lock().expect("lines");
-        while !done(&lines) {
+        while !done(&lines.0) {
             let left = deadline.saturating_duration_since(Instant::now());
-            assert!(
-                !left.is_zero(),
-                "no {what} within {WAIT:?}: {:?}",
-                lines.last()
-            );
+            if left.is_zero() || lines.1 {
+                return None;
+            }
             lines = self.more.wait_timeout(lines, left).expect("lines").0;
         }
-        lines.len()
+        Some(lines.0.len())
+    }
+
+    /// Waits until `done` holds for the lines so far; returns how many there were then.
+    pub(crate) fn wait_for(&self, what: &str, done: impl Fn(&[String]) -> bool) -> usize {
+        self.wait_until(done).unwrap_or_else(|| {
+            let lines = self.lines.lock().expect("lines");
+            let why = if lines.1 {
+                "before the output ended"
+            } else {
+                "within the wait"
+            };
+            panic!("no {what} {why} ({WAIT:?}): {:?}", lines.0.last())
+        })
+    }
+
+    /// Waits (bounded) for the output to end; the lines then.
+    pub(crate) fn all(&self) -> Vec<String> {
+        let _ = self.wait_until(|_| false);
+        self.snapshot()
     }
 
     pub(crate) fn snapshot(&self) -> Vec<String> {
-        self.lines.lock().expect("lines").clone()
+        self.lines.lock().expect("lines").0.clone()
     }
 }
 
@@ -170,27 +191,43 @@ impl Drop for DxlSim {
     }
 }
 
-/// A simulated Arduino Mega 2560 running ConfigurableFirmata on a pty, an ICM-20789 on its I2C
-/// (at rest: 1 g on z, 1013.25 hPa) and no fingertip barometers: the workspace's `firmata-sim`
-/// as its own process, as a user runs it. A scene names the pty as it would /dev/ttyACM0.
+/// A simulated Arduino Mega 2560 running ConfigurableFirmata on a pty, with an ICM-20789 on its
+/// I2C (at rest: 1 g on z, 1013.25 hPa) and, as asked, three fingertip MS5611 behind a
+/// TCA9548A at 0x70: the workspace's `firmata-sim` as its own process, as a user runs it. A
+/// scene names the pty as it would /dev/ttyACM0.
 pub(crate) struct FirmataSim {
     child: Child,
     pub(crate) path: String,
 }
 
 impl FirmataSim {
-    /// Starts `firmata-sim --board mega2560 --boot-ms 200 --no-fingertips EXTRA…` and waits for
-    /// its pty path.
+    /// Starts `firmata-sim --board mega2560 --boot-ms 200 --no-fingertips EXTRA…` (the pad's
+    /// board) and waits for its pty path.
     pub(crate) fn start(extra: &[&str]) -> FirmataSim {
+        let mut args = vec!["--no-fingertips"];
+        args.extend_from_slice(extra);
+        FirmataSim::with_args(&args)
+    }
+
+    /// Starts `firmata-sim --board mega2560 --boot-ms 200 ARGS…` and waits for its pty path.
+    pub(crate) fn with_args(args: &[&str]) -> FirmataSim {
         let mut child = Command::new(built("firmata-sim"))
-            .args(["--board", "mega2560", "--boot-ms", "200", "--no-fingertips"])
-            .args(extra)
+            .args(["--board", "mega2560", "--boot-ms", "200"])
+            .args(args)
             .stdout(Stdio::piped())
-            .stderr(Stdio::null())
+            .stderr(Stdio::piped())
             .spawn()
             .expect("firmata-sim starts");
         let lines = Lines::read(child.stdout.take().expect("stdout"));
-        lines.wait_for("pty path", |l| !l.is_empty());
+        let errors = Lines::read(child.stderr.take().expect("stderr"));
+        if lines.wait_until(|l| !l.is_empty()).is_none() {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!(
+                "firmata-sim {args:?} printed no pty path; its stderr:\n{}",
+                errors.all().join("\n")
+            );
+        }
         let path = lines.snapshot()[0].clone();
         assert!(path.starts_with("/dev/"), "{path}");
         FirmataSim { child, path }

@@ -53,7 +53,10 @@ fn a_device_without_its_hardware_is_refused() {
         &e,
         2,
         "sensors.fingertip",
-        &["names no hardware (`i2c_buses`)", "real devices only"],
+        &[
+            "names no hardware (`i2c_buses` or `firmata_port`)",
+            "real devices only",
+        ],
     );
     let e = err(&HAND.replace("serial_port = \"/dev/ttyUSB0\"\n", ""));
     says(&e, 7, "hand", &["names no hardware (`serial_port`)"]);

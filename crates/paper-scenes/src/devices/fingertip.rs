@@ -1,6 +1,6 @@
-//! The fingertip a paper scene names: three real MS5611 on its `i2c_buses`
-//! (`handstack::stack::fingertip`), or hand-sim's pad with three MS5611 chip models behind the
-//! real driver.
+//! The fingertip a paper scene names: three real MS5611 on its `i2c_buses` or behind a switch
+//! on its `firmata_port` (`handstack::stack::fingertip`), or hand-sim's pad with three MS5611
+//! chip models behind the real driver.
 
 use crate::scene::PaperScene;
 use hand_traits::{PressureFrame, TactileSource};
@@ -27,8 +27,8 @@ impl TactileSource for Fingertip {
     }
 }
 
-/// The scene's fingertip: real when it names `i2c_buses` (opened through `platform`), else
-/// hand-sim's, seeded by the scene.
+/// The scene's fingertip: real when it names `i2c_buses` or `firmata_port` (opened through
+/// `platform`), else hand-sim's, seeded by the scene.
 pub fn open(scene: &PaperScene, platform: &dyn Platform) -> Result<Fingertip, crate::Error> {
     if scene.file.sensors.real_fingertip() {
         return Ok(Fingertip::new(handstack::stack::fingertip::open(

@@ -135,7 +135,7 @@ impl ExperimentTable for Experiments {
                     g.span(),
                     "experiment.grasp",
                     "drives a real hand (serial_port) from a simulated fingertip",
-                    "sensors.fingertip.i2c_buses with a hardware hand",
+                    "sensors.fingertip.i2c_buses or firmata_port with a hardware hand",
                 ));
             }
             if h.get_ref().serial_port.is_none() {
@@ -180,7 +180,8 @@ impl ExperimentTable for Experiments {
                 return Err(cx.err(
                     scene.experiment.span(),
                     &format!("experiment.{name}"),
-                    "presses the simulated pad, but the fingertip is real (i2c_buses)",
+                    "presses the simulated pad, but the fingertip is real (i2c_buses or \
+                     firmata_port)",
                     "a simulated fingertip, or [experiment.readout] on real chips",
                 ));
             }

@@ -103,22 +103,19 @@ pub(crate) fn check(
     match &s.fingertip {
         Some(tip) => {
             let osr = &tip.get_ref().osr;
-            match &tip.get_ref().i2c_buses {
-                Some(_) => {
-                    if sim.fingertip.is_some() {
-                        return Err(cx.err(
-                            sim_span,
-                            "sim.fingertip",
-                            "simulates a fingertip the scene reads from real chips",
-                            "no [sim.fingertip] with sensors.fingertip.i2c_buses",
-                        ));
-                    }
+            if tip.get_ref().is_real() {
+                if sim.fingertip.is_some() {
+                    return Err(cx.err(
+                        sim_span,
+                        "sim.fingertip",
+                        "simulates a fingertip the scene reads from real chips",
+                        "no [sim.fingertip] with sensors.fingertip.i2c_buses or firmata_port",
+                    ));
                 }
-                None => {
-                    let mut tip_sim = sim.fingertip.take().unwrap_or_default();
-                    tip_sim.osr = *osr.get_ref();
-                    sim.fingertip = Some(tip_sim);
-                }
+            } else {
+                let mut tip_sim = sim.fingertip.take().unwrap_or_default();
+                tip_sim.osr = *osr.get_ref();
+                sim.fingertip = Some(tip_sim);
             }
         }
         None => {
