@@ -8,8 +8,8 @@
 //!
 //! The physics is the Table 5 world of `paper_experiments::grasp_rig` (the same object
 //! calibration, servo tuning and contact dead band), run at wall-clock pace instead of
-//! simulated time: the object is lifted [`LIFT_AT_S`] after the servo bus starts, as Table 5's
-//! arm lifts it.
+//! simulated time: the object is lifted [`LIFT_AT_S`] after the pads first touch it, as
+//! Table 5's arm lifts it 3 s into the grasp.
 
 use std::path::Path;
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -63,6 +63,7 @@ impl GraspBoardConfig {
 struct Pad {
     physics: FingertipPhysics,
     last_ns: u64,
+    lifted: bool,
     error: Option<String>,
 }
 
@@ -84,7 +85,8 @@ impl GraspBoard {
         let rig = RigParams::default();
         let object = ObjectParams::table5(config.object, &rig)?;
         let mut body = GraspBody::new(object, rig, OPEN_RAD);
-        body.lift_at(LIFT_AT_S);
+        // Lifted `LIFT_AT_S` after the pads first touch it (below): a client's grasp starts
+        // whenever it starts, where Table 5's in-process rig starts with the servo bus.
         body.log_contacts(CONTACT_DEAD_BAND_N);
         let plant = GraspPlant::new(body);
         let (bus, client) = SimBus::spawn(SimConfig {
@@ -118,6 +120,7 @@ impl GraspBoard {
         let pad = Arc::new(Mutex::new(Pad {
             physics,
             last_ns: 0,
+            lifted: false,
             error: None,
         }));
         let epoch = Instant::now();
@@ -128,13 +131,23 @@ impl GraspBoard {
                 // The servo bus's clock follows the wall clock from its start: the same epoch.
                 let now_ns = u64::try_from(epoch.elapsed().as_nanos()).unwrap_or(u64::MAX);
                 let mut p = lock(&pad);
-                for (at_ns, patch) in plant.body().take_contacts() {
+                let mut body = plant.body();
+                let mut touched_at = None;
+                for (at_ns, patch) in body.take_contacts() {
                     let at = at_ns.max(p.last_ns);
                     p.last_ns = at;
+                    if patch.force_n > 0.0 {
+                        touched_at.get_or_insert(at);
+                    }
                     if let Err(e) = p.physics.set_contact(at, patch) {
                         p.error.get_or_insert(e.to_string());
                     }
                 }
+                if let (Some(at), false) = (touched_at, p.lifted) {
+                    body.lift_at(at as f64 * 1e-9 + LIFT_AT_S);
+                    p.lifted = true;
+                }
+                drop(body);
                 let t_ns = now_ns.max(p.last_ns);
                 Conditions {
                     pressure_mbar: p.physics.pressure_hpa(k, t_ns),

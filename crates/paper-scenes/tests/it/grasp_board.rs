@@ -88,3 +88,60 @@ fn closing_the_servo_on_the_object_presses_the_fingertip_the_board_reads() {
         s.grip_force_n
     );
 }
+
+/// The README's first try, as a user runs it: the committed scene
+/// (`crates/handstack/examples/try-it.toml`) with the rig's two ports, the built `handstack`
+/// binary, a whole grasp: the loop settles inside the band while the fingertip reads the
+/// object, and the hand is released and powered down at the end.
+#[test]
+fn the_try_it_scene_grasps_the_object_through_the_handstack_binary() {
+    let config = GraspBoardConfig {
+        boot_delay: Duration::from_millis(150),
+        ..GraspBoardConfig::new(ObjectKind::Cylinder)
+    };
+    let rig = GraspBoard::spawn(&config).expect("the rig starts");
+    let root = crate::common::root();
+    let text = std::fs::read_to_string(root.join("crates/handstack/examples/try-it.toml"))
+        .expect("the try-it scene")
+        .replace("/dev/pts/1", &rig.board_path().display().to_string())
+        .replace("/dev/pts/0", &rig.servo_path().display().to_string())
+        .replace("hold_s = 8", "hold_s = 5");
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("try-it");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let scene = dir.join("try-it.toml");
+    std::fs::write(&scene, text).expect("scene");
+    let exe = std::env::current_exe().expect("the test binary");
+    let handstack = exe
+        .parent()
+        .and_then(std::path::Path::parent)
+        .expect("target/<profile>")
+        .join("handstack");
+    let run = std::process::Command::new(handstack)
+        .arg("run")
+        .arg(&scene)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("handstack runs");
+    // Mid-run: the servo squeezes the object (read from the rig's physics, which no client sees).
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while !rig.state().is_some_and(|s| s.grip_force_n > 0.5) {
+        assert!(Instant::now() < deadline, "no grip: {:?}", rig.state());
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let out = run.wait_with_output().expect("handstack ends");
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert_eq!(out.status.code(), Some(0), "{stdout}\n{stderr}");
+    let settled = stdout
+        .lines()
+        .find(|l| l.contains("settled torque limit"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(settled.trim_end().ends_with("yes"), "{settled}");
+    assert!(stdout.contains("hand released"), "{stdout}");
+    let s = rig.state().expect("the servo");
+    assert!(!s.torque_enabled && s.position_rad < 0.1, "{s:?}");
+    assert!(rig.error().is_none(), "{:?}", rig.error());
+}
