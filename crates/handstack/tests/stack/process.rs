@@ -120,6 +120,7 @@ impl UrSim {
     }
 
     /// Kills it at once (SIGKILL: every socket closes, no goodbye) and reaps it.
+    #[cfg(feature = "cell")]
     pub(crate) fn kill(mut self) {
         signal(self.child.id(), "KILL");
         let _ = self.child.wait();
