@@ -8,4 +8,5 @@ mod ending;
 mod firmata_pad;
 mod hardware;
 mod process;
+mod record;
 mod scenes;
