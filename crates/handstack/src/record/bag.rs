@@ -402,7 +402,66 @@ impl Bag {
 
 #[cfg(test)]
 mod tests {
-    use super::scalar;
+    use super::{Bag, scalar};
+    use hand_zenoh::msg::Message;
+    use hand_zenoh::msg::handstack_msgs::PressureFrame;
+
+    fn messages(path: &std::path::Path) -> Vec<(String, PressureFrame)> {
+        let bytes = std::fs::read(path).expect("mcap");
+        mcap::MessageStream::new(&bytes)
+            .expect("magic")
+            .map(|m| {
+                let m = m.expect("a message");
+                (
+                    m.channel.topic.clone(),
+                    PressureFrame::from_cdr(&m.data).expect("CDR"),
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_flushed_bag_reads_back_before_and_after_its_end() {
+        let dir = std::env::temp_dir().join(format!("handstack-bag-unit-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let mut bag = Bag::create(&dir).expect("bag");
+        let topic = bag
+            .topic::<PressureFrame>("/hand0/tactile/raw")
+            .expect("topic");
+        let frame = |p: f32| PressureFrame {
+            pressure_pa: vec![p; 3],
+            ..PressureFrame::default()
+        };
+        for (k, p) in [1.0, 2.0, 3.0].into_iter().enumerate() {
+            bag.write(topic, 1_000 + k as u64, &frame(p))
+                .expect("write");
+        }
+        let file = dir.join(format!(
+            "{}_0.mcap",
+            dir.file_name().unwrap().to_string_lossy()
+        ));
+        // Not flushed yet: the file holds the header and an open footer, no message.
+        assert!(messages(&file).is_empty());
+        bag.flush().expect("flush");
+        // Flushed, not finished (a run killed here): all three, behind an open footer.
+        let read = messages(&file);
+        assert_eq!(read.len(), 3);
+        assert_eq!(read[2].1, frame(3.0));
+        assert!(
+            std::fs::read_to_string(dir.join("metadata.yaml"))
+                .unwrap()
+                .contains("message_count: 3")
+        );
+        bag.write(topic, 2_000, &frame(4.0)).expect("write");
+        assert_eq!(bag.finish().expect("finish"), 4);
+        assert_eq!(messages(&file).len(), 4);
+        let bytes = std::fs::read(&file).unwrap();
+        let summary = mcap::Summary::read(&bytes)
+            .expect("summary")
+            .expect("a summary");
+        assert_eq!(summary.stats.expect("stats").message_count, 4);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     #[test]
     fn yaml_scalars_are_quoted_when_they_must_be() {
