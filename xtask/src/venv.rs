@@ -8,7 +8,7 @@ use std::process::Command;
 
 /// Every module a test or generator imports, checked once the install is done.
 const IMPORTS: &str = "import rtde_control, rtde_receive, dashboard_client, dynamixel_sdk, \
-     skfuzzy, fuzzylite, zenoh, rosbags, xxhash, pyfirmata2";
+     skfuzzy, fuzzylite, zenoh, rosbags, mcap, mcap_ros2, xxhash, pyfirmata2";
 
 /// A second Zenoh (rmw_zenoh's 1.6.x) for hand-zenoh's interop test, beside the venv's own.
 const ZENOH_16: &str = "python/requirements-zenoh-1.6.txt";

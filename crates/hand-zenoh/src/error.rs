@@ -50,6 +50,7 @@ pub enum NodeError {
 }
 
 impl NodeError {
+    #[cfg(feature = "node")]
     pub(crate) fn zenoh(e: impl core::fmt::Display) -> NodeError {
         NodeError::Zenoh(e.to_string())
     }

@@ -12,19 +12,28 @@
 //! - [`node`]: nodes, publishers, subscriptions, services and clients over a Zenoh session
 //!   ([`config`]: peer of a router on `tcp/127.0.0.1:7447`, multicast scouting off, TCP only).
 //!
+//! Feature `node` (default) is the Zenoh layer: [`node`], [`config`], [`force`], [`tactile`].
+//! Without it the crate is the messages alone — their CDR, type hashes, `ros2msg` definitions
+//! ([`msg::definition`]) and conversions — with no Zenoh to build (a recorder writing these
+//! messages to a file needs no network).
+//!
 //! The README lists the topic layout and shows a ROS 2 user how to see the topics.
-#![doc = include_str!("../README.md")]
+#![cfg_attr(feature = "node", doc = include_str!("../README.md"))]
 #![forbid(unsafe_code)]
 
 pub mod attachment;
 pub mod cdr;
+#[cfg(feature = "node")]
 pub mod config;
 pub mod convert;
 mod error;
+#[cfg(feature = "node")]
 pub mod force;
 pub mod keys;
 pub mod msg;
+#[cfg(feature = "node")]
 pub mod node;
+#[cfg(feature = "node")]
 pub mod tactile;
 pub mod types;
 

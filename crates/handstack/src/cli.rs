@@ -10,6 +10,7 @@
 //! every signal and the same exit statuses.
 
 use crate::progress::Bars;
+use crate::record::Recorder;
 use crate::runs::RunContext;
 #[cfg(feature = "cell")]
 use crate::scene::NodeScene;
@@ -40,6 +41,11 @@ enum Command {
         /// Print the outcomes as JSON on stdout (no progress, no table).
         #[arg(long)]
         json: bool,
+        /// Record the run into this directory as a ROS 2 bag (rosbag2, MCAP storage): every
+        /// frame, estimate, command, fault and figure, as it happens. The directory must be new
+        /// or empty.
+        #[arg(long, value_name = "DIR")]
+        record: Option<PathBuf>,
     },
     /// Parse and validate scene files without opening anything.
     Check {
@@ -60,7 +66,11 @@ enum Command {
 /// Parses the command line and runs it, opening hardware through `platforms`.
 pub fn main(platforms: Platforms<'_>) -> ExitCode {
     match Cli::parse().command {
-        Command::Run { scenes, json } => run(&scenes, json, platforms),
+        Command::Run {
+            scenes,
+            json,
+            record,
+        } => run(&scenes, json, record.as_deref(), platforms),
         Command::Check { scenes } => check(&scenes),
         #[cfg(feature = "cell")]
         Command::Node(cmd) => cmd.main(
@@ -96,14 +106,43 @@ fn check(scenes: &[PathBuf]) -> ExitCode {
     exit(failed)
 }
 
-fn run(scenes: &[PathBuf], json: bool, platforms: Platforms<'_>) -> ExitCode {
+fn run(
+    scenes: &[PathBuf],
+    json: bool,
+    record: Option<&std::path::Path>,
+    platforms: Platforms<'_>,
+) -> ExitCode {
+    // The bag is made before any scene is opened: a directory it cannot use stops the run
+    // before anything moves.
+    let recorder = match record.map(Recorder::create).transpose() {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(crate::error::EXIT_NOT_STARTED);
+        }
+    };
     let bars = Bars::new(!json);
     let mut cx = RunContext::new(&bars).with_stop(crate::stop::signal_stop());
+    if let Some(r) = &recorder {
+        cx = cx.with_record(r);
+    }
     cx.platform = platforms();
     let runs = crate::summary::run_each(scenes, json, &bars, &cx.stop, |path| {
         crate::run_file(path, &cx)
     });
-    ExitCode::from(runs.exit_code)
+    let mut code = runs.exit_code;
+    if let Some(r) = &recorder {
+        match r.finish() {
+            Ok(n) => eprintln!("recorded {n} messages to {}", r.dir().display()),
+            Err(e) => {
+                eprintln!("error: {e}");
+                if code == 0 {
+                    code = crate::error::EXIT_FAULT;
+                }
+            }
+        }
+    }
+    ExitCode::from(code)
 }
 
 fn exit(failed: bool) -> ExitCode {

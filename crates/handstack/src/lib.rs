@@ -21,6 +21,7 @@
 //!   [`Platform`](stack::platform::Platform) (Linux by default, or a substitute);
 //! - [`runs`]: the grasp hold and the fingertip readout, joined into the scene's [`Outcome`];
 //! - [`progress`]: where a run reports its stages;
+//! - [`record`]: a run recorded as a rosbag2 bag (MCAP) in the nodes' messages and topics;
 //! - [`cli`]: the command line, for the `handstack` binary and any program with a platform of its
 //!   own;
 //! - [`stop`]: what ends a run early (SIGINT, SIGTERM, SIGHUP), through its one shutdown path;
@@ -38,6 +39,7 @@ pub mod cli;
 pub mod error;
 pub mod outcome;
 pub mod progress;
+pub mod record;
 pub mod runs;
 pub mod scene;
 pub mod stack;

@@ -76,5 +76,64 @@ pub mod handstack_msgs {
             /// Effort, a fraction of the servo's torque limit (0 to 1).
             pub effort: f32,
         }
+
+        /// One reading of a hand's fingers (hand-traits' `FingerFrame`): each finger's force
+        /// sensor and distal joint angle.
+        pub struct FingerFrame = "handstack_msgs/msg/FingerFrame" {
+            /// When it was read; frame_id names the hand.
+            pub header: Header,
+            /// Normal force on each finger's force sensor (N).
+            pub force_n: Vec<f32>,
+            /// Each finger's distal joint angle (rad).
+            pub distal_angle_rad: Vec<f32>,
+        }
+
+        /// A grasped object's softness, as a classifier put it.
+        pub struct Softness = "handstack_msgs/msg/Softness" {
+            /// When it was classified; frame_id names the hand.
+            pub header: Header,
+            /// The class: 0 soft, 1 moderate, 2 hard.
+            pub level: u8,
+            /// The class in words (`soft`, `moderate`, `hard`).
+            pub label: String,
+            /// The classifier's mean output per class, in class order.
+            pub scores: [f32; 3],
+        }
+
+        /// One figure of a run: a measured value, with the published value and a target when it
+        /// has them.
+        pub struct Figure = "handstack_msgs/msg/Figure" {
+            /// When the run measured it; frame_id names the run's scene.
+            pub header: Header,
+            /// Its key (`grasp_settled_torque`).
+            pub name: String,
+            /// What it is, in words.
+            pub label: String,
+            /// The value.
+            pub value: f64,
+            /// Its unit (empty: a count or a ratio).
+            pub unit: String,
+            /// The published value (NaN: none).
+            pub paper: f64,
+            /// Where that value is published (empty: none).
+            pub source: String,
+            /// The target in words (empty: none).
+            pub target: String,
+            /// Whether the value meets it: -1 no target, 0 not met, 1 met.
+            pub met: i8,
+        }
+
+        /// Something that went wrong in a run: a device's fault, or what ended the run.
+        pub struct Fault = "handstack_msgs/msg/Fault" {
+            /// When it was seen; frame_id names the run's scene.
+            pub header: Header,
+            /// The part it came from, as the scene names it (`hand`, `sensors.fingertip`,
+            /// `controller`), or `run` for what ended the run.
+            pub source: String,
+            /// What happened, in words.
+            pub what: String,
+            /// Whether it ended the run.
+            pub ends_run: bool,
+        }
     }
 }

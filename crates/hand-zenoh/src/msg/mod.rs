@@ -106,6 +106,85 @@ fn field(name: &'static str, ty: FieldType) -> FieldDescription {
     FieldDescription { name, ty }
 }
 
+/// A message's definition as rosbag2 stores it in a bag (MCAP schema encoding `ros2msg`): its
+/// fields as `.msg` lines, then every type it refers to, each once, depth first, under rosbag2's
+/// delimiter — 80 `=` and `MSG: package/Name` (rosbag2_cpp's
+/// `local_message_definition_source.cpp`, ROS 2 Jazzy). Readers (rosbags, Foxglove,
+/// `mcap-ros2-support`) decode a bag's CDR from it.
+///
+/// ```
+/// use hand_zenoh::msg::{Message, definition, std_msgs::Header};
+///
+/// let text = definition(&Header::description());
+/// assert!(text.starts_with("builtin_interfaces/Time stamp\nstring frame_id\n"));
+/// assert!(text.contains("\nMSG: builtin_interfaces/Time\nint32 sec\nuint32 nanosec\n"));
+/// ```
+pub fn definition(description: &TypeDescription) -> String {
+    let mut out = String::new();
+    let mut seen = std::collections::BTreeSet::new();
+    definition_into(description, &mut out, &mut seen);
+    out
+}
+
+fn definition_into(
+    d: &TypeDescription,
+    out: &mut String,
+    seen: &mut std::collections::BTreeSet<&'static str>,
+) {
+    for f in &d.fields {
+        out.push_str(&field_type_text(&f.ty));
+        out.push(' ');
+        out.push_str(f.name);
+        out.push('\n');
+    }
+    for f in &d.fields {
+        if let Some(nested) = f.ty.nested {
+            let n = nested();
+            if seen.insert(n.name) {
+                out.push('\n');
+                out.push_str(&"=".repeat(80));
+                out.push_str("\nMSG: ");
+                out.push_str(&short_name(n.name));
+                out.push('\n');
+                definition_into(&n, out, seen);
+            }
+        }
+    }
+}
+
+/// `pkg/msg/Name` as a `.msg` file writes it: `pkg/Name`.
+fn short_name(name: &str) -> String {
+    name.replacen("/msg/", "/", 1)
+}
+
+/// A field's type as a `.msg` line writes it (`float32[]`, `float64[9]`, `std_msgs/Header`).
+fn field_type_text(ty: &crate::types::FieldType) -> String {
+    let (element, suffix) = match ty.type_id {
+        id @ 145.. => (id - 144, "[]".to_owned()),
+        id @ 97..=144 => (id - 96, format!("[<={}]", ty.capacity)),
+        id @ 49..=96 => (id - 48, format!("[{}]", ty.capacity)),
+        id => (id, String::new()),
+    };
+    let name = match element {
+        type_id::NESTED => ty.nested.map_or_else(String::new, |n| short_name(n().name)),
+        type_id::INT8 => "int8".into(),
+        type_id::UINT8 => "uint8".into(),
+        type_id::INT16 => "int16".into(),
+        type_id::UINT16 => "uint16".into(),
+        type_id::INT32 => "int32".into(),
+        type_id::UINT32 => "uint32".into(),
+        type_id::INT64 => "int64".into(),
+        type_id::UINT64 => "uint64".into(),
+        type_id::FLOAT32 => "float32".into(),
+        type_id::FLOAT64 => "float64".into(),
+        type_id::CHAR => "char".into(),
+        type_id::BOOL => "bool".into(),
+        type_id::STRING if ty.string_capacity > 0 => format!("string<={}", ty.string_capacity),
+        _ => "string".into(),
+    };
+    name + &suffix
+}
+
 /// A value that can be a message field: its type for the description, its CDR encoding.
 pub trait CdrField: Sized {
     /// Its field type.

@@ -15,7 +15,8 @@ use hand_zenoh::msg::geometry_msgs::{
     Point, Pose, PoseStamped, Quaternion, Vector3, Wrench, WrenchStamped,
 };
 use hand_zenoh::msg::handstack_msgs::{
-    Contact, ContactArray, GraspState, GripperCommand, PressureFrame, SensorInfo,
+    Contact, ContactArray, Fault, Figure, FingerFrame, GraspState, GripperCommand, PressureFrame,
+    SensorInfo, Softness,
 };
 use hand_zenoh::msg::sensor_msgs::{Imu, JointState};
 use hand_zenoh::msg::std_msgs::Header;
@@ -40,6 +41,10 @@ fn descriptions() -> Vec<TypeDescription> {
         SensorInfo::description(),
         GraspState::description(),
         GripperCommand::description(),
+        FingerFrame::description(),
+        Softness::description(),
+        Figure::description(),
+        Fault::description(),
         Imu::description(),
         JointState::description(),
         WrenchStamped::description(),

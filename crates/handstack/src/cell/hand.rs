@@ -17,12 +17,13 @@ use super::commanders::Commanders;
 use super::error::CellError;
 use super::pace::Pacer;
 use crate::error::{Ending, RunError};
+use crate::record::grasp::grasp_state;
 use crate::runs::grasp::{FaultWatch, left_text};
 use crate::scene::experiment::Recover;
 use crate::scene::parts::ForceModel;
 use crate::stop::Stop;
-use hand_control::grasp_loop::{GraspLoop, LoopClock, LoopConfig, Mode, RebootableActuator};
-use hand_traits::{Effort, PressureFrame, TactileSource};
+use hand_control::grasp_loop::{GraspLoop, LoopClock, LoopConfig, RebootableActuator};
+use hand_traits::{PressureFrame, TactileSource};
 use hand_zenoh::convert::header;
 use hand_zenoh::force::{ForceTopic, rise_hpa};
 use hand_zenoh::msg::handstack_msgs::{self as hs, GraspState, GripperCommand};
@@ -99,15 +100,6 @@ impl core::fmt::Display for HandNodeReport {
 const IDLE: u8 = 0;
 const START: u8 = 1;
 const STOP: u8 = 2;
-
-fn mode_code(m: Mode) -> u8 {
-    match m {
-        Mode::Tare => 0,
-        Mode::Grasp => 1,
-        Mode::Safe => 2,
-        Mode::Halted => 3,
-    }
-}
 
 /// Runs the hand node on `node` until `stop`: the paper's controller in `config.band` drives
 /// `hand` from `tip` on `clock`.
@@ -230,18 +222,7 @@ where
                     }
                 }
                 let gs = sample.state;
-                state.publish(&GraspState {
-                    header: h.clone(),
-                    mode: mode_code(sample.mode),
-                    pressure_pa: sample.estimate.map_or(f32::NAN, |e| e.pressure_pa),
-                    in_contact: sample.estimate.is_some_and(|e| e.in_contact),
-                    effort: sample
-                        .torque_raw
-                        .map_or(0.0, |r| Effort::from_torque_limit_raw(r).fraction()),
-                    position_rad: gs.map_or(f32::NAN, |s| s.position_rad),
-                    load_fraction: gs.map_or(f32::NAN, |s| s.load_fraction),
-                    faults: gs.map_or(0, |s| s.faults.bits()),
-                })?;
+                state.publish(&grasp_state(&sample, h.clone()))?;
                 if let Some(s) = gs {
                     joint_msg.header = h;
                     joint_msg.position[0] = f64::from(s.position_rad);

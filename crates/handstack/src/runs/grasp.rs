@@ -14,6 +14,8 @@
 use super::figure::{Target, measured, paper, target};
 use super::{Part, RunContext};
 use crate::error::{Ending, RunError};
+use crate::record::grasp::GraspTopics;
+use crate::record::{HAND_FRAME, Recorder};
 use crate::scene::Scene;
 use crate::scene::experiment::{Grasp, Recover};
 use crate::scene::parts::Hand;
@@ -50,6 +52,7 @@ pub fn run(scene: &Scene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part, RunE
         recover: exp.recover.as_ref().map(|r| *r.get_ref()),
         stop: &cx.stop,
         hand: &label,
+        record: cx.record,
     };
     let held = hold(tip, servo, cx.platform.clock(), config, &plan)?;
     cx.progress.advance(1);
@@ -120,6 +123,8 @@ pub struct Plan<'a> {
     pub stop: &'a Stop,
     /// What the hand is called in messages (`servo bus /dev/ttyUSB0`).
     pub hand: &'a str,
+    /// Where each cycle is recorded as it happens, if anywhere.
+    pub record: Option<&'a Recorder>,
 }
 
 /// What a hold leaves: the loop's log, the hand (for its own counters, such as the packets
@@ -347,6 +352,7 @@ where
     };
     let mut contact = false;
     let mut faults = FaultWatch::new(plan.recover, plan.hand);
+    let mut topics = plan.record.map(GraspTopics::new);
     loop {
         if let Some(reason) = plan.stop.reason() {
             let at = l.log().last().map_or(t0, |s| s.t_us);
@@ -358,6 +364,21 @@ where
         }
         let s = *l.cycle();
         let at = s.t_us - t0;
+        if let (Some(topics), Some(r)) = (&mut topics, plan.record) {
+            topics.record(&s);
+            if let Some(kind) = s.fault {
+                // The cycle's first fault, in its part's words; whether it ends the run is
+                // recorded with the run's ending.
+                let what = l
+                    .events()
+                    .iter()
+                    .rev()
+                    .take_while(|e| e.cycle == s.cycle)
+                    .last()
+                    .map_or_else(|| kind_text(kind), |e| fault_text(&e.fault));
+                r.fault(HAND_FRAME, fault_device(kind), &what, false);
+            }
+        }
         contact |= s.estimate.is_some_and(|e| e.in_contact);
         if let (None, Some(_), HoldFor::FirstCommand(hold_s)) = (until, s.torque_raw, plan.hold) {
             until = Some(s.t_us + (hold_s * 1e6) as u64);

@@ -11,6 +11,7 @@ pub mod softness;
 
 use crate::error::RunError;
 use crate::progress::Progress;
+use crate::record::Recorder;
 use crate::scene::{Scene, SceneOf};
 use crate::stack::platform::{LinuxPlatform, Platform};
 use crate::stop::Stop;
@@ -25,6 +26,8 @@ pub struct RunContext<'a> {
     pub platform: Box<dyn Platform>,
     /// Ends the run early (the `handstack` binary sets it on SIGINT, SIGTERM and SIGHUP).
     pub stop: Stop,
+    /// Where the run is recorded, as it happens (`--record DIR`), if it is.
+    pub record: Option<&'a Recorder>,
 }
 
 impl<'a> RunContext<'a> {
@@ -34,6 +37,15 @@ impl<'a> RunContext<'a> {
             progress,
             platform: Box::new(LinuxPlatform::new()),
             stop: Stop::new(),
+            record: None,
+        }
+    }
+
+    /// This context, recording into `recorder`.
+    pub fn with_record(self, recorder: &'a Recorder) -> Self {
+        Self {
+            record: Some(recorder),
+            ..self
         }
     }
 
@@ -84,27 +96,46 @@ impl Part {
 }
 
 /// Opens every device `scene` names (failing before anything moves), then runs its
-/// experiments in order and joins their figures and plots.
+/// experiments in order and joins their figures and plots. With [`RunContext::record`], each
+/// experiment's figures are recorded when it ends, and what ended the run, if something did.
 pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
     let start = Instant::now();
+    if let Some(r) = cx.record {
+        r.note("scene", &scene.name);
+    }
+    let ran = run_parts(scene, cx);
+    if let (Some(r), Err(e)) = (cx.record, &ran) {
+        r.fault(&scene.name, "run", &e.to_string(), true);
+    }
+    Ok(Part::join(scene, ran?, start))
+}
+
+fn run_parts(scene: &Scene, cx: &RunContext<'_>) -> Result<Vec<Part>, RunError> {
     let x = scene.file.experiment.get_ref();
     cx.progress.stage("opening real devices", 0);
     crate::stack::check_real_devices(scene, &*cx.platform)?;
     let mut parts = Vec::new();
+    let record = |part: Part| {
+        if let Some(r) = cx.record {
+            r.figures(&scene.name, &part.figures);
+        }
+        part
+    };
     if let Some(g) = &x.grasp {
-        parts.push(grasp::run(scene, g.get_ref(), cx)?);
+        parts.push(record(grasp::run(scene, g.get_ref(), cx)?));
     }
     if let Some(r) = &x.readout {
         let mut tip = crate::stack::fingertip::open(scene, &*cx.platform)?;
-        parts.push(readout::run(
+        parts.push(record(readout::run(
             &mut tip,
             *r.get_ref().frames.get_ref(),
             cx.progress,
             &cx.stop,
-        )?);
+            cx.record,
+        )?));
     }
     if let Some(s) = &x.softness {
-        parts.push(softness::run(scene, s.get_ref(), cx)?);
+        parts.push(record(softness::run(scene, s.get_ref(), cx)?));
     }
-    Ok(Part::join(scene, parts, start))
+    Ok(parts)
 }

@@ -5,17 +5,21 @@ use super::Part;
 use super::figure::measured;
 use crate::error::{Ending, RunError};
 use crate::progress::Progress;
+use crate::record::grasp::RawTopic;
+use crate::record::{Recorder, now_ns};
 use crate::stop::Stop;
 use crate::{Line, Plot};
 use hand_traits::{PressureFrame, TactileSource};
 
 /// Reads `n` frames from `source` (any fingertip of three sensors) and reports its rate and
 /// noise; a read error ends the readout with that error, `stop` with how many frames it read.
+/// With `record`, each frame is recorded as it is read (`/hand0/tactile/raw`).
 pub fn run<S>(
     source: &mut S,
     n: usize,
     progress: &dyn Progress,
     stop: &Stop,
+    record: Option<&Recorder>,
 ) -> Result<Part, RunError>
 where
     S: TactileSource<Frame = PressureFrame<3>> + ?Sized,
@@ -23,6 +27,7 @@ where
 {
     progress.stage("readout: fingertip frames", n as u64);
     let mut frames = Vec::with_capacity(n);
+    let mut raw = record.map(RawTopic::new);
     for _ in 0..n {
         if let Some(reason) = stop.reason() {
             return Err(RunError::Ended {
@@ -33,7 +38,11 @@ where
                 ),
             });
         }
-        frames.push(source.read_frame()?);
+        let frame = source.read_frame()?;
+        if let Some(raw) = &mut raw {
+            raw.record(now_ns(), &frame.pressure_pa);
+        }
+        frames.push(frame);
         progress.advance(1);
     }
     let mut part = Part::default();

@@ -14,6 +14,7 @@
 use super::figure::{Target, measured, target};
 use super::{Part, RunContext};
 use crate::error::{Ending, RunError};
+use crate::record::FingerTopic;
 use crate::scene::Scene;
 use crate::scene::experiment::{Softness, class_name};
 use crate::{Line, Plot};
@@ -49,6 +50,7 @@ pub fn run(scene: &Scene, exp: &Softness, cx: &RunContext<'_>) -> Result<Part, R
     hand.close_at(plan.closing_speed_mm_s)
         .map_err(|e| fault(&e, 0.0))?;
     let mut rec = Recorder::new(plan, hand.now_us());
+    let mut fingers = cx.record.map(FingerTopic::new);
     let mut counted = 0;
     let ending = loop {
         if let Some(reason) = cx.stop.reason() {
@@ -61,6 +63,9 @@ pub fn run(scene: &Scene, exp: &Softness, cx: &RunContext<'_>) -> Result<Part, R
             .next_reading(READ_WAIT)
             .map_err(|e| fault(&e, start.elapsed().as_secs_f64()))?;
         let Some(r) = reading else { continue };
+        if let Some(f) = &mut fingers {
+            f.record(&r.sample);
+        }
         match rec.push(r.t_us, r.sample) {
             Phase::Approaching => {}
             Phase::Recording(n) => {
@@ -104,6 +109,9 @@ pub fn run(scene: &Scene, exp: &Softness, cx: &RunContext<'_>) -> Result<Part, R
             device: "estimators.softness",
             reason: e.to_string(),
         })?;
+    if let Some(r) = cx.record {
+        record_class(r, &a);
+    }
     if let Some(want) = exp.expected().filter(|w| *w != a.class) {
         return Err(RunError::Ended {
             ending: Ending::Failed,
@@ -172,6 +180,29 @@ pub fn run(scene: &Scene, exp: &Softness, cx: &RunContext<'_>) -> Result<Part, R
     part.plots.push(series_plot(rec.series(), plan.sample_hz));
     part.notes.push(format!("hand {left}"));
     Ok(part)
+}
+
+/// Records the classification as `/hand0/softness`.
+fn record_class(r: &crate::record::Recorder, a: &tactile_nets::softness::Assessment) {
+    let level = hand_traits::Softness::ALL
+        .iter()
+        .position(|c| *c == a.class)
+        .unwrap_or(0);
+    let topic = r.topic::<hand_zenoh::msg::handstack_msgs::Softness>(&format!(
+        "{}/softness",
+        crate::record::HAND_NS
+    ));
+    let t = crate::record::now_ns();
+    r.write(
+        topic,
+        t,
+        &hand_zenoh::msg::handstack_msgs::Softness {
+            header: hand_zenoh::convert::header(t as i64, crate::record::HAND_FRAME),
+            level: level as u8,
+            label: class_name(a.class).to_owned(),
+            scores: a.scores,
+        },
+    );
 }
 
 /// Applies `on_end` to the hand; what it was left doing, in words.

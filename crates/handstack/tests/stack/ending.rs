@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 
 /// The servos of these runs: [`DxlSim`] with its bus trace, read back as (Torque Enable, Present
 /// Position).
-fn servos() -> DxlSim {
+pub(crate) fn servos() -> DxlSim {
     DxlSim::start(&["--trace"])
 }
 
@@ -29,7 +29,7 @@ fn read_back(servos: &DxlSim) -> Vec<(i32, i32)> {
 fn is_state_read(l: &str) -> bool {
     l.contains(" sync_read ")
 }
-fn is_torque_limit(l: &str) -> bool {
+pub(crate) fn is_torque_limit(l: &str) -> bool {
     l.contains(" sync_write Goal PWM ")
 }
 fn is_torque_off(l: &str) -> bool {
@@ -50,7 +50,7 @@ fn time_s(l: &str) -> f64 {
 
 /// A scene for the rig's fingertip and the servos at `port`, ending with `on_end` (none: the
 /// default), holding `hold_s`.
-fn scene(dir: &Path, port: &str, on_end: Option<&str>, hold_s: f64) -> PathBuf {
+pub(crate) fn scene(dir: &Path, port: &str, on_end: Option<&str>, hold_s: f64) -> PathBuf {
     let on_end = on_end.map_or_else(String::new, |a| format!("on_end = \"{a}\"\n"));
     let text = format!(
         "title = \"bench rig\"\n[sensors.fingertip]\nosr = 256\n\
@@ -65,7 +65,7 @@ fn scene(dir: &Path, port: &str, on_end: Option<&str>, hold_s: f64) -> PathBuf {
 }
 
 /// A fresh directory for one test's files.
-fn dir(name: &str) -> PathBuf {
+pub(crate) fn dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("handstack-end-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");

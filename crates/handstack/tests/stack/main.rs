@@ -9,4 +9,5 @@ mod firmata_pad;
 mod firmata_tip;
 mod hardware;
 mod process;
+mod record;
 mod scenes;

@@ -55,6 +55,7 @@ pub fn run(scene: &PaperScene, exp: &Grasp, cx: &RunContext<'_>) -> Result<Part,
             recover: None,
             stop: &cx.stop,
             hand: &label,
+            record: None,
         };
         let config = hand_control::grasp_loop::LoopConfig {
             end_action: EndAction::Hold,

@@ -89,6 +89,7 @@ pub fn run(scene: &PaperScene, cx: &RunContext<'_>) -> Result<Outcome, Error> {
             *r.get_ref().frames.get_ref(),
             cx.progress,
             &cx.stop,
+            None,
         )?);
     }
     // The whole hand named: its parts again, fused into one 100 Hz control loop.

@@ -63,9 +63,15 @@ fn scene(name: &str, board: &HandBoard, extra: &str, expect: &str) -> PathBuf {
 }
 
 fn start(scene: &Path) -> Child {
+    start_with(scene, &[])
+}
+
+/// `handstack run SCENE ARGS…`.
+fn start_with(scene: &Path, args: &[&std::ffi::OsStr]) -> Child {
     Command::new(handstack())
         .arg("run")
         .arg(scene)
+        .args(args)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -121,10 +127,19 @@ fn handstack_run_classifies_soft_moderate_and_hard_objects_and_releases_the_hand
         (Material::Wood, "hard"),
     ]
     .map(|(m, class)| (board(m), class));
-    // The three hands close at once, each from its own `handstack` process.
+    // The three hands close at once, each from its own `handstack` process; the hard object's
+    // run is recorded (`--record`).
+    let bag = std::env::temp_dir().join(format!("handstack-softness-bag-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&bag);
     let runs: Vec<Child> = boards
         .iter()
-        .map(|(b, class)| start(&scene(class, b, "", class)))
+        .map(|(b, class)| {
+            let scene = scene(class, b, "", class);
+            match *class {
+                "hard" => start_with(&scene, &["--record".as_ref(), bag.as_os_str()]),
+                _ => start(&scene),
+            }
+        })
         .collect();
     for ((b, class), run) in boards.iter().zip(runs) {
         let out = finish(run, RUN_TIMEOUT);
@@ -148,6 +163,8 @@ fn handstack_run_classifies_soft_moderate_and_hard_objects_and_releases_the_hand
             stdout.contains("hand released: opened to 0 steps"),
             "{stdout}"
         );
+        // The last bytes the run wrote (outputs off) may reach the board just after it exits.
+        wait_stepper(b, "outputs off", |s| !s.enabled);
         let s = b.board().stepper(STEPPER_DEVICE).expect("configured");
         assert_eq!(
             (s.position, s.running, s.enabled),
@@ -157,6 +174,26 @@ fn handstack_run_classifies_soft_moderate_and_hard_objects_and_releases_the_hand
         let truth = b.truth();
         assert_eq!(truth.shaft_steps, 0, "{class}: the tendon is let out again");
     }
+    // The recording: every reading of the hand (the approach and the 141 samples of the window),
+    // the class once, the figures; as metadata.yaml counts them.
+    let yaml = std::fs::read_to_string(bag.join("metadata.yaml")).expect("metadata.yaml");
+    let count = |topic: &str| -> u64 {
+        let at = yaml
+            .find(&format!("name: {topic}\n"))
+            .unwrap_or_else(|| panic!("no {topic}: {yaml}"));
+        yaml[at..]
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("message_count: "))
+            .and_then(|n| n.parse().ok())
+            .expect("a count")
+    };
+    assert!(count("/hand0/fingers/raw") > 141, "{yaml}");
+    assert_eq!(count("/hand0/softness"), 1, "{yaml}");
+    // first contact, samples, class, three mean outputs, readings outside the range.
+    assert_eq!(count("/handstack/figures"), 7, "{yaml}");
+    let file = format!("handstack-softness-bag-{}_0.mcap", std::process::id());
+    assert!(bag.join(file).exists());
+    let _ = std::fs::remove_dir_all(&bag);
 }
 
 #[test]

@@ -112,6 +112,7 @@ fn run(
             recover,
             stop,
             hand: "servo bus (test)",
+            record: None,
         };
         let config = LoopConfig {
             band: hand_control::grasp_loop::TorqueBand::new(250, 320).expect("band"),
@@ -267,6 +268,7 @@ fn a_panic_in_the_hold_leaves_the_torque_off() {
             recover: None,
             stop: &stop,
             hand: "servo bus (test)",
+            record: None,
         };
         hold(tip, hand, clock.clone(), LoopConfig::new(), &plan).map(|held| held.left)
     }));
