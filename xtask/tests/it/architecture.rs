@@ -114,6 +114,14 @@ fn lawful() -> Vec<Package> {
         package("hand-zenoh", false, &[("hand-traits", "normal", false)]),
         package("firmata-host", false, &[]),
         package(
+            "underactuated-hand",
+            false,
+            &[
+                ("hand-traits", "normal", false),
+                ("firmata-host", "normal", true),
+            ],
+        ),
+        package(
             "firmata-sim",
             false,
             &[
@@ -443,6 +451,7 @@ fn the_packaged_crates_are_the_tables_published_crates() {
             "imu-icm20789",
             "sim-clock",
             "tactile-nets",
+            "underactuated-hand",
             "ur-bridge",
             "ur-sim",
         ]
@@ -544,7 +553,7 @@ fn the_drawn_graph_is_the_one_cargo_metadata_declares() {
         assert!(experiments.contains(edge), "{edge} not in {experiments}");
     }
     assert!(row("handstack").contains("`tactile-nets[std]` (no default features)"));
-    assert!(row("handstack").contains("`hand-zenoh` (optional: `cell`)"));
+    assert!(row("handstack").contains("`hand-zenoh` (no default features; `cell` → `[node]`)"));
     for group in [
         "**Product crates (published)**",
         "**Reproduction crates (publish = false)**",

@@ -252,26 +252,33 @@ fn a_recovery_that_runs_out_of_time_or_reboots_ends_the_run() {
 }
 
 #[test]
-fn a_panic_in_the_hold_leaves_the_torque_off() {
+fn a_panic_in_a_hold_cycle_ends_it_with_the_end_action() {
     let (mut bus, port) = SimBus::spawn(SimConfig::with_ids(&[1, 2])).expect("pty");
     let mut hand = ServoHand::with_reply_latency(port, &[1, 2], REPLY_LATENCY).expect("servos");
     hand.set_torque(true).expect("torque on");
     let clock = SimClock::new();
     let stop = Stop::new();
-    let unwound = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        let tip = Tip::new(&clock, |n| {
-            // A bug in the run's own code, mid-grasp.
-            assert!(n < 30, "a bug");
-        });
-        let plan = Plan {
-            hold: HoldFor::FirstCommand(5.0),
-            recover: None,
-            stop: &stop,
-            hand: "servo bus (test)",
-            record: None,
-        };
-        hold(tip, hand, clock.clone(), LoopConfig::new(), &plan).map(|held| held.left)
-    }));
-    assert!(unwound.is_err(), "the hold did not panic");
+    let tip = Tip::new(&clock, |n| {
+        // A bug in the run's own code, mid-grasp.
+        assert!(n < 30, "a bug");
+    });
+    let plan = Plan {
+        hold: HoldFor::FirstCommand(5.0),
+        recover: None,
+        stop: &stop,
+        hand: "servo bus (test)",
+        record: None,
+    };
+    // The cycle's panic is caught: the hand gets the configuration's end action (release,
+    // then torque off), and the run ends as a bug.
+    let err = hold(tip, hand, clock.clone(), LoopConfig::new(), &plan)
+        .map(|held| held.left)
+        .expect_err("the panic ends the hold");
+    assert_eq!(err.exit_code(), handstack::error::EXIT_BUG, "{err}");
+    let text = err.to_string();
+    assert!(
+        text.contains("a bug in handstack: a bug") && text.contains("then torque off"),
+        "{text}"
+    );
     assert_eq!(torque_on(&mut bus), [false, false]);
 }
