@@ -209,6 +209,9 @@ fn the_wrong_class_fails_the_run_and_the_hand_is_still_released() {
             && stderr.contains("hand released"),
         "{stderr}"
     );
+    // The outputs-off the run sends last reaches the board at the line's pace, after the
+    // process may have ended.
+    wait_stepper(&b, "outputs off", |s| !s.enabled);
     let s = b.board().stepper(STEPPER_DEVICE).expect("configured");
     assert_eq!((s.position, s.running, s.enabled), (0, false, false));
 }
