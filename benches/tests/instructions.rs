@@ -29,11 +29,11 @@ const WARM_UP: usize = 100;
 /// MLP's catalogue (+7 % on `kernel/contact_mlp`).
 const TOLERANCE: f64 = 0.01;
 /// Runs of a workload over [`TOLERANCE`] before `--check` calls it a regression; the lowest
-/// count stands. Why: a workload that allocates does not always count the same. The same
-/// binary counted `kernel/protocol2_decode` (a `Vec` of parameters allocated and freed per
-/// packet) at 689 or 697 instructions per call, 697 in 3 of 8 runs: glibc's malloc takes a
-/// path that depends on the heap the run started with. A real regression is in every run; the
-/// allocator's high path, in 3 of 8, is in all eight with odds of (3/8)^8 ≈ 0.04 %.
+/// count stands. Why: a workload that allocates does not always count the same — glibc's
+/// malloc takes a path that depends on the heap the run started with (an allocating Protocol
+/// 2.0 parse counted 689 or 697 per call from one binary, and 697 in all eight runs of a fresh
+/// clone elsewhere). So the kernels count allocation-free paths; the repeat stays for any
+/// workload that allocates.
 const RUNS_OVER_TOLERANCE: usize = 8;
 /// The committed counts.
 const BASELINE: &str = "baselines/instructions.tsv";

@@ -52,6 +52,32 @@ pub enum FrameError {
     BadLength,
 }
 
+/// One packet as a view into the [`Parser`]'s buffer: what [`Parser::next_packet_ref`] returns
+/// without allocating. It borrows the parser, so it lives until the parser's next call.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PacketRef<'a> {
+    /// Packet ID (0…252, or 0xFE broadcast).
+    pub id: u8,
+    /// Instruction (for a status packet: 0x55).
+    pub instruction: u8,
+    /// Parameters, unstuffed.
+    pub params: &'a [u8],
+    /// Bytes the packet took on the wire (for wire-time accounting).
+    pub wire_len: usize,
+}
+
+impl PacketRef<'_> {
+    /// The packet with its parameters copied out.
+    pub fn to_packet(&self) -> Packet {
+        Packet {
+            id: self.id,
+            instruction: self.instruction,
+            params: self.params.to_vec(),
+            wire_len: self.wire_len,
+        }
+    }
+}
+
 /// A streaming parser: push received bytes, pop packets.
 ///
 /// ```
@@ -67,31 +93,61 @@ pub enum FrameError {
 #[derive(Debug, Default)]
 pub struct Parser {
     buf: Vec<u8>,
+    /// Bytes at the front of `buf` that the last [`PacketRef`] lent out; dropped on the next
+    /// call, once the borrow has ended.
+    lent: usize,
 }
 
 impl Parser {
     /// Appends received bytes.
     pub fn push(&mut self, bytes: &[u8]) {
+        self.drop_lent();
         self.buf.extend_from_slice(bytes);
     }
 
     /// Bytes held, waiting for the rest of a packet.
     pub fn pending(&self) -> usize {
-        self.buf.len()
+        self.buf.len() - self.lent
     }
 
     /// The next complete packet, a skipped bad frame, or `None` when more bytes are needed.
     pub fn next_packet(&mut self) -> Option<Result<Packet, FrameError>> {
-        Some(next_frame(&mut self.buf)?.map(|f| {
-            let params = self.buf[8..8 + f.params].to_vec();
-            self.buf.drain(..f.total);
-            Packet {
-                id: f.id,
-                instruction: f.instruction,
-                params,
-                wire_len: f.total,
+        Some(self.next_packet_ref()?.map(|p| p.to_packet()))
+    }
+
+    /// [`next_packet`](Self::next_packet) without allocating: the packet's parameters are
+    /// borrowed from the parser's buffer (a loop that only looks at them, as a servo or a
+    /// status reader does, runs with no heap traffic once the buffer has grown).
+    ///
+    /// ```
+    /// use hand_control::protocol::{encode, Parser};
+    /// let mut wire = Vec::new();
+    /// encode(&mut wire, 7, 0x02, &[132, 0, 4, 0]); // READ 4 bytes at 132 from id 7
+    /// let mut p = Parser::default();
+    /// p.push(&wire);
+    /// let pkt = p.next_packet_ref().unwrap().unwrap();
+    /// assert_eq!((pkt.id, pkt.instruction, pkt.params), (7, 0x02, &[132, 0, 4, 0][..]));
+    /// assert!(p.next_packet_ref().is_none());
+    /// assert_eq!(p.pending(), 0);
+    /// ```
+    pub fn next_packet_ref(&mut self) -> Option<Result<PacketRef<'_>, FrameError>> {
+        self.drop_lent();
+        Some(match next_frame(&mut self.buf)? {
+            Ok(f) => {
+                self.lent = f.total;
+                Ok(PacketRef {
+                    id: f.id,
+                    instruction: f.instruction,
+                    params: &self.buf[8..8 + f.params],
+                    wire_len: f.total,
+                })
             }
-        }))
+            Err(e) => Err(e),
+        })
+    }
+
+    fn drop_lent(&mut self) {
+        self.buf.drain(..std::mem::take(&mut self.lent));
     }
 }
 

@@ -95,7 +95,7 @@ pub fn status(data: &[u8]) {
 ///
 /// Oracle: whatever it is sent, everything the bus sends back frames as good status packets
 /// from a servo ID (0…252: a client may rename a servo through its ID register, as on an
-/// MX-28).
+/// MX-28), the same through the owning and the borrowing parse.
 pub fn sim(data: &[u8]) {
     let data = crate::bounded(data);
     let [mode, rest @ ..] = data else {
@@ -115,13 +115,17 @@ pub fn sim(data: &[u8]) {
         chunk,
         Duration::from_millis(100),
     );
-    let mut parser = Parser::default();
+    let (mut parser, mut borrowing) = (Parser::default(), Parser::default());
     parser.push(&answers);
+    borrowing.push(&answers);
     while let Some(frame) = parser.next_packet() {
         let p = frame.unwrap_or_else(|e| panic!("the simulated bus sent a bad frame: {e:?}"));
         assert_eq!(p.instruction, instruction_id::STATUS, "{p:?}");
         assert!(p.id <= MAX_ID, "{p:?}");
+        let r = borrowing.next_packet_ref();
+        assert_eq!(r.map(|r| r.map(|r| r.to_packet())), Some(Ok(p)));
     }
+    assert!(borrowing.next_packet_ref().is_none());
     assert_eq!(
         parser.pending(),
         0,

@@ -20,6 +20,8 @@ pub const ADC_CODES: u16 = 1024;
 /// assert!((adc_volts(512, 5.0) - 2.5024).abs() < 1e-4);
 /// assert_eq!(adc_volts(5000, 5.0), adc_volts(1023, 5.0));
 /// ```
+// The laws below run per sample, across crates (the hand, its simulator): inlined there.
+#[inline]
 pub fn adc_volts(code: u16, vref_v: f64) -> f64 {
     (f64::from(code.min(ADC_CODES - 1)) + 0.5) * vref_v / f64::from(ADC_CODES)
 }
@@ -70,6 +72,7 @@ impl FsrLaw {
     /// assert_eq!(fsr.force_n(5.0, 5.0), fsr.max_force_n);
     /// assert_eq!(fsr.force_n(f64::NAN, 5.0), 0.0);
     /// ```
+    #[inline]
     pub fn force_n(&self, v: f64, vcc_v: f64) -> f64 {
         if v >= vcc_v {
             return self.max_force_n;
@@ -130,6 +133,7 @@ impl PotMount {
     /// let pot = PotMount::default();
     /// assert!((pot.angle_deg(2.5, 5.0) - 90.0).abs() < 1e-12); // mid-travel: 135° − 45°
     /// ```
+    #[inline]
     pub fn angle_deg(&self, v: f64, vcc_v: f64) -> f64 {
         v / vcc_v * self.travel_deg - self.zero_deg
     }
@@ -169,11 +173,13 @@ impl Default for Calibration {
 
 impl Calibration {
     /// Finger `i`'s force, N, from its FSR channel's ADC code.
+    #[inline]
     pub fn force_n(&self, code: u16) -> f64 {
         self.fsr.force_n(adc_volts(code, self.vref_v), self.vref_v)
     }
 
     /// Finger `finger`'s distal angle, degrees, from its potentiometer channel's ADC code.
+    #[inline]
     pub fn angle_deg(&self, finger: usize, code: u16) -> f64 {
         self.pot[finger.min(3)].angle_deg(adc_volts(code, self.vref_v), self.vref_v)
     }

@@ -1,5 +1,6 @@
-//! proptest over arbitrary byte streams: the packet parser never panics, and a valid packet
-//! after any garbage is still found (resynchronisation).
+//! proptest over arbitrary byte streams: the packet parser never panics, a valid packet
+//! after any garbage is still found (resynchronisation), and the borrowing parse reads what the
+//! owning one does.
 
 use hand_control::protocol::{Parser, encode};
 use proptest::prelude::*;
@@ -50,5 +51,35 @@ proptest! {
             }
         }
         prop_assert!(found, "packet after {} garbage bytes not found", tail);
+    }
+
+    #[test]
+    fn the_borrowing_parse_reads_what_the_owning_parse_does(
+        chunks in prop::collection::vec(prop::collection::vec(prop_oneof![Just(0xFFu8), Just(0xFD), Just(0x00), Just(0x03), any::<u8>()], 0..64), 0..16),
+        packets in prop::collection::vec((0u8..=252, any::<u8>(), prop::collection::vec(any::<u8>(), 0..12)), 0..6),
+    ) {
+        // Good packets between the garbage chunks, pushed a chunk at a time.
+        let mut parts = Vec::new();
+        for (k, c) in chunks.iter().enumerate() {
+            let mut part = c.clone();
+            if let Some((id, instruction, params)) = packets.get(k) {
+                encode(&mut part, *id, *instruction, params);
+            }
+            parts.push(part);
+        }
+        let (mut owning, mut borrowing) = (Parser::default(), Parser::default());
+        for part in &parts {
+            owning.push(part);
+            borrowing.push(part);
+            loop {
+                let want = owning.next_packet();
+                let got = borrowing.next_packet_ref().map(|r| r.map(|p| p.to_packet()));
+                prop_assert_eq!(&got, &want);
+                prop_assert_eq!(borrowing.pending(), owning.pending());
+                if want.is_none() {
+                    break;
+                }
+            }
+        }
     }
 }
