@@ -19,8 +19,10 @@
 //!   experiments of its own (the papers' reproduction) reads the same parts;
 //! - [`stack`]: the real devices a scene names, their buses opened through a
 //!   [`Platform`](stack::platform::Platform) (Linux by default, or a substitute);
-//! - [`runs`]: the grasp hold and the fingertip readout, joined into the scene's [`Outcome`];
+//! - [`runs`]: the grasp hold, the fingertip readout, weights on the fingertip and the
+//!   underactuated hand's softness classification, joined into the scene's [`Outcome`];
 //! - [`progress`]: where a run reports its stages;
+//! - [`prompt`]: what a run asks its user (place a weight, then press Enter), answered on stdin;
 //! - [`record`]: a run recorded as a rosbag2 bag (MCAP) in the nodes' messages and topics;
 //! - [`cli`]: the command line, for the `handstack` binary and any program with a platform of its
 //!   own;
@@ -39,6 +41,7 @@ pub mod cli;
 pub mod error;
 pub mod outcome;
 pub mod progress;
+pub mod prompt;
 pub mod record;
 pub mod runs;
 pub mod scene;

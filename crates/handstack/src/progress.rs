@@ -6,6 +6,11 @@ pub trait Progress {
     fn stage(&self, _name: &str, _len: u64) {}
     /// `n` more units of the current stage are done.
     fn advance(&self, _n: u64) {}
+    /// Tells the user something they must read or act on (a question, what a step measured):
+    /// on stderr by default, always shown.
+    fn say(&self, text: &str) {
+        eprintln!("{text}");
+    }
 }
 
 /// Shows nothing (tests, `--json`).
@@ -59,5 +64,8 @@ impl Progress for Bars {
     }
     fn advance(&self, n: u64) {
         self.0.inc(n);
+    }
+    fn say(&self, text: &str) {
+        self.0.suspend(|| eprintln!("{text}"));
     }
 }

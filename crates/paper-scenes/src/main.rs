@@ -41,6 +41,12 @@ enum Command {
     /// Table 5 object presses the fingertip. Prints both ports as a scene names them, serves
     /// until SIGINT / SIGTERM, then prints what the hand was left doing.
     GraspRig(GraspRigArgs),
+    /// Seed 000's weighing rig: the fingertip's three MS5611 behind a TCA9548A (channels 0–2)
+    /// on a simulated Arduino Mega running ConfigurableFirmata on a pty. Prints the port as a
+    /// scene names it, then takes lines on stdin: `place G` rests G gf on the whole pad
+    /// (answered `placed G gf`), `clear` lifts it. Serves until stdin closes or SIGINT /
+    /// SIGTERM.
+    FingertipBoard(FingertipBoardArgs),
     /// Run a scene's stack (or one part: pad, arm, fingertip or hand) on its simulated devices
     /// as ROS 2 nodes on Zenoh, until stdin closes.
     #[cfg(feature = "cell")]
@@ -93,6 +99,20 @@ struct GraspRigArgs {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// The fingertip board's baud rate.
+    #[arg(long, default_value_t = 115_200)]
+    baud: u32,
+    /// From the board's port opening to its version report, ms.
+    #[arg(long = "boot-ms", default_value_t = 1600)]
+    boot_ms: u64,
+}
+
+/// `paper-scenes fingertip-board`'s options.
+#[derive(clap::Args)]
+struct FingertipBoardArgs {
+    /// The seed of the sensors' baselines and noise.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The board's baud rate.
     #[arg(long, default_value_t = 115_200)]
     baud: u32,
     /// From the board's port opening to its version report, ms.
@@ -168,6 +188,46 @@ fn hand_board(args: &HandBoardArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
+fn fingertip_board(args: &FingertipBoardArgs) -> ExitCode {
+    use paper_scenes::devices::fingertip_board::{FingertipBoard, FingertipBoardConfig};
+    let stop = handstack::stop::signal_stop();
+    let config = FingertipBoardConfig {
+        seed: args.seed,
+        baud: args.baud,
+        boot_delay: std::time::Duration::from_millis(args.boot_ms),
+    };
+    let rig = match FingertipBoard::spawn(&config) {
+        Ok(rig) => rig,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(handstack::summary::ExitStatus::exit_code(&e).max(1));
+        }
+    };
+    println!(
+        "firmata_port = \"{}\"   # [sensors.fingertip]: three MS5611 behind a TCA9548A, {} baud",
+        rig.path().display(),
+        args.baud
+    );
+    let _ = std::io::Write::flush(&mut std::io::stdout());
+    let commands = handstack::prompt::Prompter::stdin();
+    while let Ok(line) = commands.answer(&stop) {
+        let gf = match line.split_whitespace().collect::<Vec<_>>()[..] {
+            ["place", g] => g.parse::<f64>().ok().filter(|g| g.is_finite() && *g >= 0.0),
+            ["clear"] => Some(0.0),
+            [] => continue,
+            _ => None,
+        };
+        match gf.map(|g| (g, rig.place_gf(g))) {
+            Some((g, Ok(()))) => println!("placed {g} gf"),
+            Some((_, Err(e))) => eprintln!("error: {e}"),
+            None => eprintln!("error: \"{line}\": `place G` (gf, 0 or more) or `clear`"),
+        }
+        let _ = std::io::Write::flush(&mut std::io::stdout());
+    }
+    println!("left: {} gf on the pad", rig.placed_gf());
+    ExitCode::SUCCESS
+}
+
 fn grasp_rig(args: &GraspRigArgs) -> ExitCode {
     use paper_scenes::devices::grasp_board::{GraspBoard, GraspBoardConfig};
     let stop = handstack::stop::signal_stop();
@@ -232,6 +292,7 @@ fn main() -> ExitCode {
     match Cli::parse().command {
         Command::HandBoard(args) => hand_board(&args),
         Command::GraspRig(args) => grasp_rig(&args),
+        Command::FingertipBoard(args) => fingertip_board(&args),
         Command::Run {
             scenes,
             json,

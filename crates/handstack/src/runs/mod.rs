@@ -1,6 +1,7 @@
 //! The experiments of a `handstack` scene, each on the real devices the scene names: a grasp
-//! hold ([`grasp`]), a fingertip readout ([`readout`]) and the underactuated hand's softness
-//! classification ([`softness`]); [`run`] joins their figures into
+//! hold ([`grasp`]), a fingertip readout ([`readout`]), weights on the fingertip ([`weight`])
+//! and the underactuated hand's softness classification ([`softness`]); [`run`] joins their
+//! figures into
 //! the scene's [`Outcome`]. The functions under them take opened devices, so a program with
 //! its own devices (the papers' simulated ones) runs the same code.
 
@@ -8,9 +9,11 @@ pub mod figure;
 pub mod grasp;
 pub mod readout;
 pub mod softness;
+pub mod weight;
 
 use crate::error::RunError;
 use crate::progress::Progress;
+use crate::prompt::Prompter;
 use crate::record::Recorder;
 use crate::scene::{Scene, SceneOf};
 use crate::stack::platform::{LinuxPlatform, Platform};
@@ -28,6 +31,8 @@ pub struct RunContext<'a> {
     pub stop: Stop,
     /// Where the run is recorded, as it happens (`--record DIR`), if it is.
     pub record: Option<&'a Recorder>,
+    /// Where the answers to the run's questions come from (stdin by default).
+    pub prompter: Prompter,
 }
 
 impl<'a> RunContext<'a> {
@@ -38,7 +43,13 @@ impl<'a> RunContext<'a> {
             platform: Box::new(LinuxPlatform::new()),
             stop: Stop::new(),
             record: None,
+            prompter: Prompter::stdin(),
         }
+    }
+
+    /// This context, its questions answered by `prompter` instead of stdin.
+    pub fn with_prompter(self, prompter: Prompter) -> Self {
+        Self { prompter, ..self }
     }
 
     /// This context, recording into `recorder`.
@@ -133,6 +144,9 @@ fn run_parts(scene: &Scene, cx: &RunContext<'_>) -> Result<Vec<Part>, RunError> 
             &cx.stop,
             cx.record,
         )?));
+    }
+    if let Some(w) = &x.weight {
+        parts.push(record(weight::run(scene, w.get_ref(), cx)?));
     }
     if let Some(s) = &x.softness {
         parts.push(record(softness::run(scene, s.get_ref(), cx)?));

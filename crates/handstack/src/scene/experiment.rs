@@ -17,6 +17,64 @@ pub struct Experiments {
     pub readout: Option<Spanned<Readout>>,
     /// `[experiment.softness]`: close the underactuated hand on an object and classify it.
     pub softness: Option<Spanned<Softness>>,
+    /// `[experiment.weight]`: weights placed on the fingertip, each estimated by the force DNN.
+    pub weight: Option<Spanned<Weight>>,
+}
+
+/// The weights of Table 1 of Kim et al. 2020 (seed 000, §2.2), gf: the default series.
+pub const TABLE1_WEIGHTS_GF: [f64; 13] = [
+    0.0, 50.0, 100.0, 110.0, 120.0, 130.0, 140.0, 150.0, 160.0, 170.0, 180.0, 190.0, 200.0,
+];
+
+/// Seed 000's Table 1 protocol on the user's fingertip: the pad is tared unloaded, then each
+/// weight is placed when the run asks for it (answered on stdin: Enter, or the weight actually
+/// placed in gf), the pressures left to settle and averaged, and the force DNN's estimate of
+/// the average compared with the weight. The built-in networks were trained on 0–200 gf.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Weight {
+    /// The weights to place, in order, gf (default Table 1's 13: 0, 50, 100, 110 … 200); 1…50
+    /// of them, each 0…1000.
+    pub weights_gf: Option<Spanned<Vec<f64>>>,
+    /// How far an estimate may be from its weight, gf (default 2; 0.01…100): a weight read
+    /// further off fails the run (exit status 4) after every weight is placed. The paper's DNN
+    /// came within 1.17 gf of every Table 1 row.
+    pub tolerance_gf: Option<Spanned<f64>>,
+    /// How long the pad settles after each answer before its pressures count, s (default 1;
+    /// 0…30).
+    pub settle_s: Option<Spanned<f64>>,
+    /// How long the settled pressures are averaged, s (default 1; 0.1…30): the paper's
+    /// "average measured values".
+    pub average_s: Option<Spanned<f64>>,
+}
+
+/// What a [`Weight`] experiment does, its defaults filled in.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WeighPlan {
+    /// The weights, gf, in order.
+    pub weights_gf: Vec<f64>,
+    /// The tolerance, gf.
+    pub tolerance_gf: f64,
+    /// Settling time, s.
+    pub settle_s: f64,
+    /// Averaging time, s.
+    pub average_s: f64,
+}
+
+impl Weight {
+    /// The series it asks for.
+    pub fn plan(&self) -> WeighPlan {
+        let or = |v: &Option<Spanned<f64>>, x: f64| v.as_ref().map_or(x, |v| *v.get_ref());
+        WeighPlan {
+            weights_gf: self
+                .weights_gf
+                .as_ref()
+                .map_or_else(|| TABLE1_WEIGHTS_GF.to_vec(), |w| w.get_ref().clone()),
+            tolerance_gf: or(&self.tolerance_gf, 2.0),
+            settle_s: or(&self.settle_s, 1.0),
+            average_s: or(&self.average_s, 1.0),
+        }
+    }
 }
 
 /// Closes the underactuated hand on what it holds at constant velocity, open loop, records its
@@ -176,13 +234,15 @@ pub fn check_grasp_parts<X>(
 }
 
 impl ExperimentTable for Experiments {
-    const ALLOWED: &'static str = "[experiment.grasp], [experiment.readout], [experiment.softness]";
+    const ALLOWED: &'static str =
+        "[experiment.grasp], [experiment.readout], [experiment.softness], [experiment.weight]";
 
     fn names(&self) -> Vec<&'static str> {
         [
             ("grasp", self.grasp.is_some()),
             ("readout", self.readout.is_some()),
             ("softness", self.softness.is_some()),
+            ("weight", self.weight.is_some()),
         ]
         .into_iter()
         .filter_map(|(n, on)| on.then_some(n))
@@ -300,7 +360,58 @@ fn check_experiments<X>(
     if let Some(s) = &x.softness {
         check_softness(scene, s, cx)?;
     }
+    if let Some(w) = &x.weight {
+        check_weight(scene, w, cx)?;
+    }
     Ok(())
+}
+
+/// A weight experiment's fingertip, force DNN and values.
+fn check_weight<X>(
+    scene: &SceneFile<X>,
+    w: &Spanned<Weight>,
+    cx: &Checker<'_>,
+) -> Result<(), SceneError> {
+    if scene.sensors.fingertip.is_none() || scene.estimators.force.is_none() {
+        return Err(cx.err(
+            w.span(),
+            "experiment.weight",
+            "needs the fingertip and a force DNN",
+            "[sensors.fingertip] and [estimators.force] with it",
+        ));
+    }
+    let x = w.get_ref();
+    if let Some(ws) = &x.weights_gf {
+        let v = ws.get_ref();
+        let bad = v
+            .iter()
+            .find(|g| !(g.is_finite() && (0.0..=1000.0).contains(*g)));
+        if v.is_empty() || v.len() > 50 || bad.is_some() {
+            let what = match bad {
+                Some(g) => format!("holds {g}"),
+                None => format!("has {} weights", v.len()),
+            };
+            return Err(cx.err(
+                ws.span(),
+                "experiment.weight.weights_gf",
+                what,
+                "1…50 weights, each 0…1000 gf",
+            ));
+        }
+    }
+    check_ranges(
+        [
+            (
+                &x.tolerance_gf,
+                "experiment.weight.tolerance_gf",
+                0.01,
+                100.0,
+            ),
+            (&x.settle_s, "experiment.weight.settle_s", 0.0, 30.0),
+            (&x.average_s, "experiment.weight.average_s", 0.1, 30.0),
+        ],
+        cx,
+    )
 }
 
 /// A softness experiment's hand and its values.
@@ -336,21 +447,32 @@ fn check_softness<X>(
             ));
         }
     }
-    for (v, key, lo, hi) in [
-        (
-            &x.closing_speed_mm_s,
-            "experiment.softness.closing_speed_mm_s",
-            0.1,
-            20.0,
-        ),
-        (&x.window_s, "experiment.softness.window_s", 1.0, 60.0),
-        (
-            &x.approach_timeout_s,
-            "experiment.softness.approach_timeout_s",
-            1.0,
-            600.0,
-        ),
-    ] {
+    check_ranges(
+        [
+            (
+                &x.closing_speed_mm_s,
+                "experiment.softness.closing_speed_mm_s",
+                0.1,
+                20.0,
+            ),
+            (&x.window_s, "experiment.softness.window_s", 1.0, 60.0),
+            (
+                &x.approach_timeout_s,
+                "experiment.softness.approach_timeout_s",
+                1.0,
+                600.0,
+            ),
+        ],
+        cx,
+    )
+}
+
+/// Optional numbers, each `(value, key, least, greatest)`: finite and in its range if given.
+fn check_ranges<const N: usize>(
+    items: [(&Option<Spanned<f64>>, &str, f64, f64); N],
+    cx: &Checker<'_>,
+) -> Result<(), SceneError> {
+    for (v, key, lo, hi) in items {
         if let Some(v) = v {
             let n = *v.get_ref();
             if !(n.is_finite() && (lo..=hi).contains(&n)) {

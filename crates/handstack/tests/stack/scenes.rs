@@ -103,12 +103,12 @@ fn a_torque_band_the_servos_cannot_take_is_refused() {
             "[experiment.grasp], [experiment.readout]",
         ],
     );
-    // The papers' experiments are not this binary's.
+    // The papers' simulated experiments are not this binary's.
     let e = err(&HAND.replace(
         "[experiment.grasp]",
-        "[experiment.weight]\n[experiment.grasp]",
+        "[experiment.contact]\n[experiment.grasp]",
     ));
-    assert!(e.to_string().contains("unknown field `weight`"), "{e}");
+    assert!(e.to_string().contains("unknown field `contact`"), "{e}");
 }
 
 const SOFTNESS: &str = r#"title = "softness"
@@ -282,5 +282,78 @@ fn a_pad_names_one_bus_or_one_board() {
         15,
         "sensors.imu_pad.firmata_baud",
         &["is 57000", "57600, 74880, 115200"],
+    );
+}
+
+const WEIGHT: &str = r#"title = "weights on my fingertip"
+[sensors.fingertip]
+osr = 4096
+firmata_port = "/dev/ttyACM0"
+[estimators.force]
+model = "sim"
+[experiment.weight]
+weights_gf = [0, 50, 100]
+tolerance_gf = 1.5
+"#;
+
+#[test]
+fn a_weight_series_needs_the_fingertip_and_a_force_dnn_and_checks_its_keys() {
+    let s = Scene::parse("weights.toml", WEIGHT).expect("valid");
+    let w = s.file.experiment.get_ref().weight.as_ref().expect("weight");
+    let plan = w.get_ref().plan();
+    assert_eq!(plan.weights_gf, [0.0, 50.0, 100.0]);
+    assert_eq!(
+        (plan.tolerance_gf, plan.settle_s, plan.average_s),
+        (1.5, 1.0, 1.0)
+    );
+    // Without weights: Table 1's thirteen.
+    let table1 =
+        Scene::parse("t.toml", &WEIGHT.replace("weights_gf = [0, 50, 100]\n", "")).expect("valid");
+    let w = table1
+        .file
+        .experiment
+        .get_ref()
+        .weight
+        .as_ref()
+        .expect("weight");
+    assert_eq!(
+        w.get_ref().plan().weights_gf,
+        handstack::scene::experiment::TABLE1_WEIGHTS_GF
+    );
+    says(
+        &err(&WEIGHT.replace("[estimators.force]\nmodel = \"sim\"\n", "")),
+        5,
+        "experiment.weight",
+        &["needs the fingertip and a force DNN", "[estimators.force]"],
+    );
+    says(
+        &err(&WEIGHT.replace("[0, 50, 100]", "[0, -5, 100]")),
+        8,
+        "experiment.weight.weights_gf",
+        &["holds -5", "1…50 weights, each 0…1000 gf"],
+    );
+    says(
+        &err(&WEIGHT.replace("[0, 50, 100]", "[]")),
+        8,
+        "experiment.weight.weights_gf",
+        &["has 0 weights"],
+    );
+    says(
+        &err(&WEIGHT.replace("tolerance_gf = 1.5", "tolerance_gf = 0")),
+        9,
+        "experiment.weight.tolerance_gf",
+        &["is 0", "0.01…100"],
+    );
+    says(
+        &err(&format!("{WEIGHT}average_s = 0\n")),
+        10,
+        "experiment.weight.average_s",
+        &["0.1…30"],
+    );
+    says(
+        &err(&format!("{WEIGHT}grams = 5\n")),
+        10,
+        "grams",
+        &["unknown field `grams`", "`weights_gf`"],
     );
 }

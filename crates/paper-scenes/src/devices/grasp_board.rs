@@ -17,14 +17,14 @@ use std::time::{Duration, Instant};
 
 use baro_drivers::sim::Conditions;
 use dxl_sim::{Pace, SimBus, SimConfig};
-use firmata_sim::{BaroEnv, BoardKind, ChipBus, FirmwareKind, SimBoard, SimConfig as BoardConfig};
+use firmata_sim::{BaroEnv, SimBoard};
 use hand_control::control_table::MX_28;
 use hand_sim::fingertip::{FingertipConfig, FingertipPhysics, LawParams};
 use hand_sim::grasp::rig::SERVO_ID;
 use hand_sim::grasp::{GraspBody, GraspPlant, GraspState, ObjectKind, ObjectParams, RigParams};
 use paper_experiments::grasp_rig::{CONTACT_DEAD_BAND_N, DT_S, LIFT_AT_S};
-use rand::Rng;
 
+use super::fingertip_board::{sensor_baselines, spawn_mega};
 use crate::Error;
 use crate::error::device;
 
@@ -67,7 +67,7 @@ struct Pad {
     error: Option<String>,
 }
 
-fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+pub(crate) fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
@@ -113,9 +113,7 @@ impl GraspBoard {
             .map_err(|e| device("servo bus", e.to_string()))?;
         }
         let defaults = FingertipConfig::default();
-        let mut rng = hand_sim::seed::stream(config.seed, "grasp-board fingertip");
-        let baseline: [f64; 3] =
-            core::array::from_fn(|_| defaults.baseline_hpa + rng.random::<f64>());
+        let baseline = sensor_baselines(config.seed, "grasp-board fingertip");
         let physics = FingertipPhysics::new(LawParams::CALIBRATED, baseline, 0.0)?;
         let pad = Arc::new(Mutex::new(Pad {
             physics,
@@ -155,15 +153,7 @@ impl GraspBoard {
                 }
             }) as BaroEnv
         });
-        let board = SimBoard::spawn(
-            BoardConfig::default()
-                .board(BoardKind::Mega2560)
-                .firmware(FirmwareKind::Configurable)
-                .baud(config.baud)
-                .boot_delay(config.boot_delay)
-                .bus(ChipBus::empty().with_fingertips(envs, config.seed)),
-        )
-        .map_err(|e| device("fingertip board", e.to_string()))?;
+        let board = spawn_mega(envs, config.seed, config.baud, config.boot_delay)?;
         Ok(GraspBoard {
             bus,
             board,

@@ -7,10 +7,13 @@
 //!
 //! [`hand_board`] is a device for a user's own code rather than a scene's: seed 001's
 //! underactuated hand behind a simulated Arduino running Firmata on a pty (`paper-scenes
-//! hand-board` runs it as a process).
+//! hand-board` runs it as a process); so are [`grasp_board`] (seed 000's servo and fingertip,
+//! `paper-scenes grasp-rig`) and [`fingertip_board`] (the fingertip on a scale,
+//! `paper-scenes fingertip-board`).
 
 pub mod arm;
 pub mod fingertip;
+pub mod fingertip_board;
 pub mod grasp;
 pub mod grasp_board;
 pub mod hand_board;

@@ -4,7 +4,9 @@
 use handstack::Outcome;
 use handstack::progress::Quiet;
 use paper_scenes::runs::RunContext;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output};
+use std::time::Duration;
 use tactile_nets::metrics::MetricsFile;
 
 /// The workspace root.
@@ -54,4 +56,61 @@ pub fn value(o: &Outcome, name: &str) -> f64 {
     o.figure(name)
         .unwrap_or_else(|| panic!("{}: no figure {name}", o.scene))
         .value
+}
+
+/// The `handstack` binary the workspace's tests built beside this one.
+pub fn handstack() -> PathBuf {
+    let exe = std::env::current_exe().expect("the test binary's path");
+    let path = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("target/<profile>")
+        .join("handstack");
+    assert!(
+        path.exists(),
+        "{} is not built: run the workspace's tests (`cargo xtask test`)",
+        path.display()
+    );
+    path
+}
+
+/// Waits (bounded) for `child` to end, with what it printed.
+pub fn finish(child: Child, within: Duration) -> Output {
+    let pid = child.id();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(child.wait_with_output());
+    });
+    match rx.recv_timeout(within) {
+        Ok(out) => out.expect("output"),
+        Err(_) => {
+            signal(pid, "KILL");
+            panic!("handstack did not end within {within:?}");
+        }
+    }
+}
+
+pub fn signal(pid: u32, name: &str) {
+    let ok = Command::new("kill")
+        .arg(format!("-{name}"))
+        .arg(pid.to_string())
+        .status()
+        .expect("kill runs");
+    assert!(ok.success(), "kill -{name} {pid}");
+}
+
+pub fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// The message count of `topic` in a bag's `metadata.yaml` text.
+pub fn bag_count(yaml: &str, topic: &str) -> u64 {
+    let at = yaml
+        .find(&format!("name: {topic}\n"))
+        .unwrap_or_else(|| panic!("no {topic}: {yaml}"));
+    yaml[at..]
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("message_count: "))
+        .and_then(|n| n.parse().ok())
+        .expect("a count")
 }

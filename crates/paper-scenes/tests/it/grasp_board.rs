@@ -110,13 +110,7 @@ fn the_try_it_scene_grasps_the_object_through_the_handstack_binary() {
     std::fs::create_dir_all(&dir).expect("dir");
     let scene = dir.join("try-it.toml");
     std::fs::write(&scene, text).expect("scene");
-    let exe = std::env::current_exe().expect("the test binary");
-    let handstack = exe
-        .parent()
-        .and_then(std::path::Path::parent)
-        .expect("target/<profile>")
-        .join("handstack");
-    let run = std::process::Command::new(handstack)
+    let run = std::process::Command::new(crate::common::handstack())
         .arg("run")
         .arg(&scene)
         .stdout(std::process::Stdio::piped())

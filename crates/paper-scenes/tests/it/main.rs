@@ -23,3 +23,4 @@ mod softness_run;
 mod stack_hold;
 mod tap_to_ur3;
 mod weight_estimation;
+mod weight_run;

@@ -5,8 +5,9 @@
 //! killed mid-close (the close is leased: the stepper stops by itself) and a board that
 //! vanishes mid-run.
 
+use crate::common::{bag_count, finish, handstack, signal, text};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use hand_sim::underactuated::Material;
@@ -17,22 +18,6 @@ use paper_scenes::devices::hand_board::{HandBoard, HandBoardConfig, STEPPER_DEVI
 const RUN_TIMEOUT: Duration = Duration::from_secs(120);
 /// How long a state the test waits for may take to come.
 const WAIT: Duration = Duration::from_secs(20);
-
-/// The `handstack` binary the workspace's tests built beside this one.
-fn handstack() -> PathBuf {
-    let exe = std::env::current_exe().expect("the test binary's path");
-    let path = exe
-        .parent()
-        .and_then(Path::parent)
-        .expect("target/<profile>")
-        .join("handstack");
-    assert!(
-        path.exists(),
-        "{} is not built: run the workspace's tests (`cargo xtask test`)",
-        path.display()
-    );
-    path
-}
 
 /// The hand's board with `material` (a 90 mm cylinder), a short boot.
 fn board(material: Material) -> HandBoard {
@@ -76,35 +61,6 @@ fn start_with(scene: &Path, args: &[&std::ffi::OsStr]) -> Child {
         .stderr(Stdio::piped())
         .spawn()
         .expect("handstack starts")
-}
-
-/// Waits (bounded) for `child` to end, with what it printed.
-fn finish(child: Child, within: Duration) -> Output {
-    let pid = child.id();
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = tx.send(child.wait_with_output());
-    });
-    match rx.recv_timeout(within) {
-        Ok(out) => out.expect("output"),
-        Err(_) => {
-            signal(pid, "KILL");
-            panic!("handstack did not end within {within:?}");
-        }
-    }
-}
-
-fn signal(pid: u32, name: &str) {
-    let ok = Command::new("kill")
-        .arg(format!("-{name}"))
-        .arg(pid.to_string())
-        .status()
-        .expect("kill runs");
-    assert!(ok.success(), "kill -{name} {pid}");
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
 }
 
 /// Waits until `done` holds for the board's stepper, polling its state (bounded).
@@ -177,16 +133,7 @@ fn handstack_run_classifies_soft_moderate_and_hard_objects_and_releases_the_hand
     // The recording: every reading of the hand (the approach and the 141 samples of the window),
     // the class once, the figures; as metadata.yaml counts them.
     let yaml = std::fs::read_to_string(bag.join("metadata.yaml")).expect("metadata.yaml");
-    let count = |topic: &str| -> u64 {
-        let at = yaml
-            .find(&format!("name: {topic}\n"))
-            .unwrap_or_else(|| panic!("no {topic}: {yaml}"));
-        yaml[at..]
-            .lines()
-            .find_map(|l| l.trim().strip_prefix("message_count: "))
-            .and_then(|n| n.parse().ok())
-            .expect("a count")
-    };
+    let count = |topic: &str| bag_count(&yaml, topic);
     assert!(count("/hand0/fingers/raw") > 141, "{yaml}");
     assert_eq!(count("/hand0/softness"), 1, "{yaml}");
     // first contact, samples, class, three mean outputs, readings outside the range.
