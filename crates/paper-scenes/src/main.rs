@@ -95,24 +95,17 @@ struct GraspRigArgs {
     /// The Table 5 object: cube, cylinder, cone, ellipsoid, paper-cup or scroll-tissue.
     #[arg(long, default_value = "cylinder")]
     object: String,
+    #[command(flatten)]
+    board: FingertipBoardArgs,
+}
+
+/// The fingertip board's options (`paper-scenes fingertip-board`, `grasp-rig`).
+#[derive(clap::Args)]
+struct FingertipBoardArgs {
     /// The seed of the fingertip sensors' baselines and noise.
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// The fingertip board's baud rate.
-    #[arg(long, default_value_t = 115_200)]
-    baud: u32,
-    /// From the board's port opening to its version report, ms.
-    #[arg(long = "boot-ms", default_value_t = 1600)]
-    boot_ms: u64,
-}
-
-/// `paper-scenes fingertip-board`'s options.
-#[derive(clap::Args)]
-struct FingertipBoardArgs {
-    /// The seed of the sensors' baselines and noise.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
-    /// The board's baud rate.
     #[arg(long, default_value_t = 115_200)]
     baud: u32,
     /// From the board's port opening to its version report, ms.
@@ -240,9 +233,9 @@ fn grasp_rig(args: &GraspRigArgs) -> ExitCode {
         return ExitCode::from(2);
     };
     let config = GraspBoardConfig {
-        seed: args.seed,
-        baud: args.baud,
-        boot_delay: std::time::Duration::from_millis(args.boot_ms),
+        seed: args.board.seed,
+        baud: args.board.baud,
+        boot_delay: std::time::Duration::from_millis(args.board.boot_ms),
         ..GraspBoardConfig::new(object)
     };
     let rig = match GraspBoard::spawn(&config) {
@@ -259,7 +252,7 @@ fn grasp_rig(args: &GraspRigArgs) -> ExitCode {
     println!(
         "firmata_port = \"{}\"   # [sensors.fingertip]: three MS5611 behind a TCA9548A, {} baud",
         rig.board_path().display(),
-        args.baud
+        args.board.baud
     );
     let _ = std::io::Write::flush(&mut std::io::stdout());
     while !stop.is_set() {

@@ -261,3 +261,46 @@ fn ctrl_c_at_a_question_ends_the_run_at_once() {
     // The wait looks at the stop every 50 ms; the rest is the process ending.
     assert!(took < Duration::from_secs(5), "{took:?}");
 }
+
+/// `paper-scenes fingertip-board` as a user without a fingertip runs it: the port first, then
+/// `place G` / `clear` on stdin, each answered; what it was left with when stdin closes.
+#[test]
+fn the_fingertip_board_process_takes_weights_on_stdin() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_paper-scenes"))
+        .args(["fingertip-board", "--boot-ms", "100"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("paper-scenes starts");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
+    let mut line = String::new();
+    stdout.read_line(&mut line).expect("the port line");
+    assert!(line.starts_with("firmata_port = \"/dev/pts/"), "{line}");
+    writeln!(stdin, "place 50\nplace heavy\nclear\nplace 20").expect("commands");
+    drop(stdin);
+    // The rest of stdout, to its end when the process ends (bounded by `finish` below).
+    let reader = std::thread::spawn(move || {
+        let mut rest = String::new();
+        std::io::Read::read_to_string(&mut stdout, &mut rest).map(|_| rest)
+    });
+    let out = finish(child, WAIT);
+    let rest = reader.join().expect("reader").expect("stdout read");
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{rest}\n{stderr}");
+    assert_eq!(
+        rest.lines().collect::<Vec<_>>(),
+        [
+            "placed 50 gf",
+            "placed 0 gf",
+            "placed 20 gf",
+            "left: 20 gf on the pad"
+        ],
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("\"place heavy\": `place G` (gf, 0 or more) or `clear`"),
+        "{stderr}"
+    );
+}
