@@ -57,8 +57,8 @@ pub fn run_node(
     match args.part {
         Part::Pad => {
             let (per_region, window) = tap_plan(scene);
-            let mut source = devices::pad::open(scene, tap_run::schedule(scene.seed(), per_region))
-                .map_err(|e| failed("pad", e))?;
+            let taps = devices::pad::schedule(scene, per_region);
+            let mut source = devices::pad::open(scene, taps).map_err(|e| failed("pad", e))?;
             let model = tap_run::locator_path(&cx.root);
             let mut cnn = ContactCnn::load(&model).map_err(|e| failed("contact CNN", e))?;
             let rate = scene.sim.imu_pad.clone().unwrap_or_default().sample_rate_hz;

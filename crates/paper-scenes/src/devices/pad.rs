@@ -9,8 +9,28 @@ use crate::error::device;
 use crate::scene::PaperScene;
 use hand_sim::imu_pad::{ImuPad, TapSpec};
 
-/// The scene's pad, tapped at `taps`.
+/// The seed of the scene's pad (its noise, the rows of its taps): its tap experiment's
+/// `seed`, else the scene's.
+pub fn seed(scene: &PaperScene) -> u64 {
+    scene
+        .file
+        .experiment
+        .get_ref()
+        .tap
+        .as_ref()
+        .and_then(|t| t.get_ref().seed)
+        .unwrap_or_else(|| scene.seed())
+}
+
+/// The scene's taps: `per_region` on each region, on rows drawn from its [`seed`]
+/// (`tap_run::schedule`).
+pub fn schedule(scene: &PaperScene, per_region: usize) -> Vec<TapSpec> {
+    paper_experiments::tap_run::schedule(seed(scene), per_region)
+}
+
+/// The scene's pad, with the randomness of its [`seed`], tapped at `taps`.
 pub fn open(scene: &PaperScene, taps: Vec<TapSpec>) -> Result<ImuPad, Error> {
+    let seed = seed(scene);
     let real = scene
         .file
         .sensors
@@ -25,5 +45,5 @@ pub fn open(scene: &PaperScene, taps: Vec<TapSpec>) -> Result<ImuPad, Error> {
     }
     let mut config = scene.sim.imu_pad.clone().unwrap_or_default();
     config.taps = taps;
-    Ok(ImuPad::new(&config, scene.seed())?)
+    Ok(ImuPad::new(&config, seed)?)
 }

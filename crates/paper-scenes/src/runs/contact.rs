@@ -1,7 +1,7 @@
 //! Seed 000 §3–4: where the fingertip was touched. Arrival-of-Time (eq. 3 as written, and
 //! aot-locate's ranging scorer) on the 3 × 3 grid, the contact MLP on the 4 × 6 grid, over the
 //! held-out simulated tap sets of `fixtures/datasets/fingertip/` (read through the MS5611
-//! driver) at the scene's OSR: the lattice's repeat 1, where a border tap may go to either area,
+//! driver) at the experiment's OSR (by default the fingertip's): the lattice's repeat 1, where a border tap may go to either area,
 //! the jittered set, under the strict label, and (the MLP only) the larger single-cell set. The
 //! evaluation is `paper_experiments::contact_location`, the one `docs/contact-location.md` is
 //! written from.
@@ -20,7 +20,8 @@ use paper_experiments::contact_location::{
 
 /// Runs the contact experiment of `scene`.
 pub fn run(scene: &PaperScene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, crate::Error> {
-    let osr = scene.sim.fingertip.as_ref().map_or(4096, |f| f.osr);
+    let fingertip_osr = scene.sim.fingertip.as_ref().map_or(4096, |f| f.osr);
+    let osr = exp.osr.as_ref().map_or(fingertip_osr, |o| *o.get_ref());
     let locators = scene.locators();
     let mut part = Part::default();
     let rules: Vec<Rule> = locators

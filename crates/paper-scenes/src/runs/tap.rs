@@ -21,7 +21,7 @@ pub fn run(scene: &PaperScene, exp: &Tap, cx: &RunContext<'_>) -> Result<Part, c
     let mut cnn = ContactCnn::load(&path)?;
     let mut arm = crate::devices::arm::open(scene)?;
     let per_region = *exp.taps_per_region.get_ref();
-    let pad = crate::devices::pad::open(scene, tap_run::schedule(scene.seed(), per_region))?;
+    let pad = crate::devices::pad::open(scene, crate::devices::pad::schedule(scene, per_region))?;
     let config = match exp.window {
         WindowPlacement::Aligned => tap_run::training_aligned(),
         WindowPlacement::Trigger => TapToMoveConfig::default(),

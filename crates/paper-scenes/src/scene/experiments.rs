@@ -80,6 +80,16 @@ impl ExperimentTable for Experiments {
             if s.fingertip.is_none() || !fingertip_locators {
                 return Err(cx.err(c.span(), "experiment.contact", "needs the fingertip and a fingertip locator", "[sensors.fingertip] and [estimators.contact] locators with \"aot\", \"ranging\" or \"mlp\""));
             }
+            if let Some(o) = &c.get_ref().osr {
+                if !tactile_nets::pretrained::CONTACT_MLP_OSRS.contains(o.get_ref()) {
+                    return Err(cx.err(
+                        o.span(),
+                        "experiment.contact.osr",
+                        format!("is {}", o.get_ref()),
+                        "256, 512, 1024, 2048 or 4096",
+                    ));
+                }
+            }
         }
         if let Some(sx) = &x.softness {
             if s.underactuated.is_none() || e.softness.is_none() {
@@ -229,6 +239,10 @@ pub struct Contact {
     /// Which committed MLP runs when the scene names `mlp` (default `chosen`).
     #[serde(default)]
     pub mlp: MlpChoice,
+    /// The OSR the taps are read at, when not the fingertip's (one of 256, 512, 1024, 2048,
+    /// 4096): an MS5611 takes its OSR with each conversion command, so one stack may read taps
+    /// at one OSR and run its grasp loop at another.
+    pub osr: Option<Spanned<u16>>,
 }
 
 /// The optimiser whose selected committed softness model runs.
@@ -303,6 +317,9 @@ pub struct Tap {
     /// The window placement (default `aligned`).
     #[serde(default)]
     pub window: WindowPlacement,
+    /// The pad's seed — its noise and the rows its taps fall on — when not the scene's (a
+    /// scene with other parts keeps the tap scene's draw).
+    pub seed: Option<u64>,
 }
 
 /// Most taps per region a tap scene may schedule (every tap is a move of the arm).

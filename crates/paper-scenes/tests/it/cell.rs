@@ -61,7 +61,7 @@ fn cell_file(name: &str) -> PathBuf {
 fn in_process_located(n: usize) -> Vec<u16> {
     paper_scenes::devices::arm::sim_addresses_from(230);
     let scene = PaperScene::load(&root().join("fixtures/scenes/tap-to-ur3.toml")).unwrap();
-    let schedule = tap_run::schedule(scene.seed(), tap_run::TAPS_PER_REGION);
+    let schedule = paper_scenes::devices::pad::schedule(&scene, tap_run::TAPS_PER_REGION);
     let pad = paper_scenes::devices::pad::open(&scene, schedule[..n].to_vec()).unwrap();
     let mut arm = paper_scenes::devices::arm::open(&scene).unwrap();
     let model = tap_run::locator_path(&root());

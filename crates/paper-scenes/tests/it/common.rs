@@ -6,6 +6,7 @@ use handstack::progress::Quiet;
 use paper_scenes::runs::RunContext;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output};
+use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 use tactile_nets::metrics::MetricsFile;
 
@@ -113,4 +114,16 @@ pub fn bag_count(yaml: &str, topic: &str) -> u64 {
         .find_map(|l| l.trim().strip_prefix("message_count: "))
         .and_then(|n| n.parse().ok())
         .expect("a count")
+}
+
+/// Scenes whose arm is ur-sim at 10 × real time measure its moves on the controller's clock,
+/// where a wall-clock delay counts tenfold: one such scene at a time, so that two do not slow
+/// each other's moves (the tap scene's 0.69–0.89 s bound).
+static TIME_SCALED_ARM: Mutex<()> = Mutex::new(());
+
+/// Holds the time-scaled arm for one scene run.
+pub fn time_scaled_arm() -> MutexGuard<'static, ()> {
+    TIME_SCALED_ARM
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
 }

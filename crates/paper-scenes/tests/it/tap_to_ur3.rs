@@ -57,7 +57,10 @@ const ALIGNED: &str = "where hand-sim's training windows are centred";
 
 #[test]
 fn tap_scene_moves_the_arm_as_the_committed_run_did() {
-    let o = run_scene("tap-to-ur3");
+    let o = {
+        let _arm = crate::common::time_scaled_arm();
+        run_scene("tap-to-ur3")
+    };
     let (correct, n) = doc_located(ALIGNED);
     assert!(n >= 90.0, "at least 10 taps per region");
     let per_region = doc_per_region(ALIGNED);

@@ -170,13 +170,15 @@ where
     };
     let estimators = Estimators::new(force, mlp, config.tare_cycles);
     // The pad, its trigger and the CNN, as the tap scene builds them.
-    let taps = tap_run::schedule(scene.seed(), *tap.taps_per_region.get_ref());
     let trigger = match tap.window {
         WindowPlacement::Aligned => tap_run::training_aligned(),
         WindowPlacement::Trigger => TapToMoveConfig::default(),
     };
     let pad = PadPart {
-        pad: wrap(crate::devices::pad::open(scene, taps)?),
+        pad: wrap(crate::devices::pad::open(
+            scene,
+            crate::devices::pad::schedule(scene, *tap.taps_per_region.get_ref()),
+        )?),
         rate_hz: PAD_HZ,
         trigger: TapTrigger::new(trigger),
         cnn: ContactCnn::load(&cx.root.join(CNN_DIR).join(model_file(Variant::Paper)))?,
