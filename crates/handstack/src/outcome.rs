@@ -48,6 +48,10 @@ pub struct Figure {
     pub target: Option<String>,
     /// Whether `value` meets `target` (`None` without a target).
     pub met: Option<bool>,
+    /// Why a missed target is a finding about the method rather than a fault of this
+    /// software (a paper's formula as written, say), in plain words; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub finding: Option<String>,
 }
 
 /// Data for one plot of the report.

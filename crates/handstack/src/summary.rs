@@ -22,7 +22,7 @@ fn num(v: f64) -> String {
 /// let o = Outcome { scene: "s".into(), title: "t".into(), plots: vec![], notes: vec![], wall_s: 0.5,
 ///     figures: vec![Figure { name: "err".into(), label: "max error".into(), value: 0.25,
 ///         unit: "gf".into(), paper: Some(1.17), source: None, target: Some("≤ 0.5 gf".into()),
-///         met: Some(true) }] };
+///         met: Some(true), finding: None }] };
 /// let table = handstack::summary::table(&o);
 /// assert!(table.contains("max error") && table.contains("0.2500") && table.contains("yes"));
 /// ```
@@ -46,10 +46,11 @@ pub fn table(outcome: &Outcome) -> String {
             f.paper
                 .map_or_else(|| "—".to_owned(), |p| format!("{}{unit}", num(p))),
             f.target.clone().unwrap_or_else(|| "—".to_owned()),
-            match f.met {
-                Some(true) => "yes".to_owned(),
-                Some(false) => "NO".to_owned(),
-                None => "—".to_owned(),
+            match (f.met, &f.finding) {
+                (Some(true), _) => "yes".to_owned(),
+                (Some(false), Some(_)) => "no: finding".to_owned(),
+                (Some(false), None) => "NO".to_owned(),
+                (None, _) => "—".to_owned(),
             },
         ]);
     }
@@ -73,6 +74,11 @@ pub fn table(outcome: &Outcome) -> String {
         if n == 0 {
             let total: usize = widths.iter().sum::<usize>() + 2 * widths.len();
             let _ = writeln!(out, "  {}", "-".repeat(total - 2));
+        }
+    }
+    for f in &outcome.figures {
+        if let (Some(false), Some(why)) = (f.met, &f.finding) {
+            let _ = writeln!(out, "  finding, {}: {why}", f.label);
         }
     }
     out
@@ -178,7 +184,46 @@ pub fn run_each<E: core::fmt::Display + ExitStatus>(
 
 #[cfg(test)]
 mod tests {
-    use super::error_line;
+    use super::{error_line, table};
+    use crate::runs::figure::{Target, finding, measured, target};
+    use crate::{Figure, Outcome};
+
+    /// A missed target with a known reason reads as a finding, with its reason under the
+    /// table; a plain miss stays `NO`.
+    #[test]
+    fn a_finding_is_told_apart_from_a_miss() {
+        let f = |name: &str| target(measured(name, name, 20.0, "%"), Target::AtLeast(90.0));
+        let figures: Vec<Figure> = vec![f("ours"), finding(f("eq3"), "the formula as written")];
+        let o = Outcome {
+            scene: "s".into(),
+            title: "t".into(),
+            figures,
+            plots: vec![],
+            notes: vec![],
+            wall_s: 1.0,
+        };
+        let text = table(&o);
+        assert!(
+            text.lines()
+                .any(|l| l.contains("ours") && l.ends_with("NO")),
+            "{text}"
+        );
+        assert!(
+            text.lines()
+                .any(|l| l.contains("eq3") && l.ends_with("no: finding")),
+            "{text}"
+        );
+        assert!(
+            text.contains("  finding, eq3: the formula as written\n"),
+            "{text}"
+        );
+        // A met target is never a finding.
+        let met = finding(
+            target(measured("m", "m", 95.0, "%"), Target::AtLeast(90.0)),
+            "x",
+        );
+        assert_eq!(met.finding, None);
+    }
 
     /// A scene error names its file once, not `error: a.toml: a.toml:18:1: …`.
     #[test]

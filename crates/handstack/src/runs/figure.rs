@@ -51,6 +51,7 @@ pub fn measured(name: &str, label: &str, value: f64, unit: &str) -> Figure {
         source: None,
         target: None,
         met: None,
+        finding: None,
     }
 }
 
@@ -65,5 +66,14 @@ pub fn paper(mut f: Figure, value: f64, source: &str) -> Figure {
 pub fn target(mut f: Figure, t: Target) -> Figure {
     f.target = Some(t.text(&f.unit));
     f.met = Some(t.met(f.value));
+    f
+}
+
+/// Marks a figure whose target is missed for a known reason of the method it measures (see
+/// [`Figure::finding`]); a met target stays met.
+pub fn finding(mut f: Figure, why: &str) -> Figure {
+    if f.met == Some(false) {
+        f.finding = Some(why.to_owned());
+    }
     f
 }

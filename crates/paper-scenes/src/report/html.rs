@@ -30,6 +30,8 @@ td.target { white-space: nowrap; }
 td.met.yes { color: #11602a; background: #e3f5e8; }
 td.met.no { color: #9c1c1c; background: #fbe4e4; }
 td.met.none { color: #8a8f99; }
+td.met.finding { color: #7a4b00; background: #fff6e0; white-space: normal; max-width: 360px; }
+.why { font-weight: 400; font-size: 12px; }
 .src { color: #5b6475; font-size: 12px; }
 .plots { display: flex; flex-wrap: wrap; gap: 14px; }
 figure.plot { margin: 0; border: 1px solid #e4e7ec; border-radius: 4px; padding: 6px;
@@ -64,6 +66,7 @@ pub fn render(
         header.cores,
         escape(&header.machine),
     );
+    lead(w, outcomes, failed);
     summary(w, outcomes, failed);
     for outcome in outcomes {
         scene(w, outcome)?;
@@ -86,14 +89,129 @@ fn scene_id(outcome: &Outcome) -> String {
     format!("scene-{}", escape(&outcome.scene))
 }
 
-/// `(met, with a target)` over the outcome's figures.
-fn tally(outcome: &Outcome) -> (usize, usize) {
-    let targeted = outcome.figures.iter().filter(|f| f.target.is_some());
-    let with_target = targeted.clone().count();
-    (
-        targeted.filter(|f| f.met == Some(true)).count(),
-        with_target,
-    )
+/// How an outcome's targets went.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+struct Tally {
+    /// Figures with a target.
+    targets: usize,
+    /// Of those, met.
+    met: usize,
+    /// Missed, for a reason of the method measured (a paper's formula as written).
+    findings: usize,
+}
+
+impl Tally {
+    fn of(outcome: &Outcome) -> Tally {
+        let mut t = Tally::default();
+        for f in outcome.figures.iter().filter(|f| f.target.is_some()) {
+            t.targets += 1;
+            match (f.met, &f.finding) {
+                (Some(true), _) => t.met += 1,
+                (Some(false), Some(_)) => t.findings += 1,
+                _ => {}
+            }
+        }
+        t
+    }
+
+    fn add(self, o: Tally) -> Tally {
+        Tally {
+            targets: self.targets + o.targets,
+            met: self.met + o.met,
+            findings: self.findings + o.findings,
+        }
+    }
+
+    /// Missed, and not findings.
+    fn misses(self) -> usize {
+        self.targets - self.met - self.findings
+    }
+
+    /// `met / targets`, with the findings named.
+    fn text(self) -> String {
+        match self.findings {
+            0 => format!("{} / {}", self.met, self.targets),
+            1 => format!("{} / {} · 1 finding", self.met, self.targets),
+            n => format!("{} / {} · {n} findings", self.met, self.targets),
+        }
+    }
+
+    /// The summary cell's class: all met, the rest findings, or a miss of ours.
+    fn class(self) -> &'static str {
+        match (self.targets, self.misses()) {
+            (0, _) => "none",
+            (_, 0) if self.findings == 0 => "yes",
+            (_, 0) => "finding",
+            _ => "no",
+        }
+    }
+}
+
+/// What the simulated stack achieves over every scene, first: targets met, findings, and our
+/// own misses by name.
+fn lead(w: &mut String, outcomes: &[Outcome], failed: &[Failed]) {
+    let total = outcomes
+        .iter()
+        .map(Tally::of)
+        .fold(Tally::default(), Tally::add);
+    let _ = write!(
+        w,
+        "<section class=\"lead\" id=\"lead\"><h2>What the stack achieves</h2>\n<p>Over {} \
+         scene{}, the simulated stack meets <strong>{} of {} targets</strong>.",
+        outcomes.len(),
+        if outcomes.len() == 1 { "" } else { "s" },
+        total.met,
+        total.targets,
+    );
+    if total.findings > 0 {
+        let _ = write!(
+            w,
+            " {} {} the papers' own methods as written, which miss their targets for the \
+             reason given beside each (amber).",
+            total.findings,
+            if total.findings == 1 {
+                "is a finding about"
+            } else {
+                "are findings about"
+            },
+        );
+    }
+    let ours: Vec<String> = outcomes
+        .iter()
+        .flat_map(|o| {
+            o.figures
+                .iter()
+                .filter(|f| f.met == Some(false) && f.finding.is_none())
+                .map(move |f| {
+                    format!(
+                        "{} ({}: {}{}, target {})",
+                        escape(&f.label),
+                        escape(&o.scene),
+                        fmt_num(f.value),
+                        if f.unit.is_empty() {
+                            String::new()
+                        } else {
+                            format!(" {}", escape(&f.unit))
+                        },
+                        f.target.as_deref().map_or("—".into(), escape)
+                    )
+                })
+        })
+        .collect();
+    match ours.len() {
+        0 => w.push_str(" Every other target is met."),
+        _ => {
+            let _ = write!(w, " Missed by this software: {}.", ours.join("; "));
+        }
+    }
+    if !failed.is_empty() {
+        let _ = write!(
+            w,
+            " {} scene(s) failed to run (listed below).",
+            failed.len()
+        );
+    }
+    w.push_str("</p></section>\n");
 }
 
 fn summary(w: &mut String, outcomes: &[Outcome], failed: &[Failed]) {
@@ -103,11 +221,10 @@ fn summary(w: &mut String, outcomes: &[Outcome], failed: &[Failed]) {
          <th>figures</th><th>plots</th><th>wall time</th></tr></thead><tbody>\n",
     );
     for o in outcomes {
-        let (met, with_target) = tally(o);
-        let verdict = match (met, with_target) {
-            (_, 0) => "<td class=\"met none\">no targets</td>".to_owned(),
-            (m, t) if m == t => format!("<td class=\"met yes\">{m} / {t}</td>"),
-            (m, t) => format!("<td class=\"met no\">{m} / {t}</td>"),
+        let t = Tally::of(o);
+        let verdict = match t.targets {
+            0 => "<td class=\"met none\">no targets</td>".to_owned(),
+            _ => format!("<td class=\"met {}\">{}</td>", t.class(), t.text()),
         };
         let _ = writeln!(
             w,
@@ -137,17 +254,22 @@ fn summary(w: &mut String, outcomes: &[Outcome], failed: &[Failed]) {
 }
 
 fn scene(w: &mut String, o: &Outcome) -> Result<(), ReportError> {
-    let (met, with_target) = tally(o);
+    let t = Tally::of(o);
+    let findings = match t.findings {
+        0 => String::new(),
+        1 => " (1 finding)".to_owned(),
+        n => format!(" ({n} findings)"),
+    };
     let _ = write!(
         w,
         "<section class=\"scene\" id=\"{}\" data-scene=\"{}\">\n<h2>{}</h2>\n\
-         <p class=\"sub\">scene <code>{}</code> · {} of {} targets met · {} s</p>\n",
+         <p class=\"sub\">scene <code>{}</code> · {} of {} targets met{findings} · {} s</p>\n",
         scene_id(o),
         escape(&o.scene),
         escape(&o.title),
         escape(&o.scene),
-        met,
-        with_target,
+        t.met,
+        t.targets,
         fmt_num(o.wall_s),
     );
     figures_table(w, &o.figures);
@@ -181,11 +303,15 @@ fn figures_table(w: &mut String, figures: &[Figure]) {
             (None, _) => "—".into(),
         };
         // Honest marking: only `Some(true)` is met; a target without a verdict says so.
-        let met = match (&f.target, f.met) {
-            (_, Some(true)) => "<td class=\"met yes\">✔ met</td>",
-            (_, Some(false)) => "<td class=\"met no\">✘ not met</td>",
-            (Some(_), None) => "<td class=\"met none\">not assessed</td>",
-            (None, None) => "<td class=\"met none\">no target</td>",
+        let met = match (&f.target, f.met, &f.finding) {
+            (_, Some(true), _) => "<td class=\"met yes\">✔ met</td>".to_owned(),
+            (_, Some(false), Some(why)) => format!(
+                "<td class=\"met finding\">✘ not met: a finding<br><span class=\"why\">{}</span></td>",
+                escape(why)
+            ),
+            (_, Some(false), None) => "<td class=\"met no\">✘ not met</td>".to_owned(),
+            (Some(_), None, _) => "<td class=\"met none\">not assessed</td>".to_owned(),
+            (None, None, _) => "<td class=\"met none\">no target</td>".to_owned(),
         };
         let _ = writeln!(
             w,
@@ -329,6 +455,7 @@ mod tests {
             source: Some("seed 000 Table 1".into()),
             target: target.map(Into::into),
             met,
+            finding: None,
         }
     }
 
@@ -374,6 +501,38 @@ mod tests {
     }
 
     #[test]
+    fn findings_are_told_apart_from_our_misses_and_the_page_opens_with_the_totals() {
+        let mut o = outcome();
+        let mut eq3 = figure("eq3", Some("≥ 90 %"), Some(false));
+        eq3.finding = Some("the formula as written <names> three areas".into());
+        o.figures.push(eq3);
+        let html = render(
+            &[o],
+            &[],
+            &TradeSection::NotRequested,
+            &Provenance::fixed("x"),
+        )
+        .unwrap();
+        // The finding: amber, its reason beside it (escaped); our miss stays red.
+        assert!(html.contains(
+            "<td class=\"met finding\">✘ not met: a finding<br><span class=\"why\">the \
+             formula as written &lt;names&gt; three areas</span></td>"
+        ));
+        assert_eq!(html.matches("class=\"met no\">✘ not met").count(), 1);
+        // The totals first, then the scenes: 1 of 3 met, one finding, our miss by name.
+        let lead = html.find("What the stack achieves").expect("the lead");
+        assert!(lead < html.find("<h2>Scenes</h2>").expect("the scene table"));
+        assert!(html.contains("meets <strong>1 of 3 targets</strong>. 1 is a finding about"));
+        assert!(
+            html.contains(
+                "Missed by this software: b &lt;label&gt; (s&amp;t: 1.25 %, target ≥ 9)."
+            )
+        );
+        assert!(html.contains("<td class=\"met no\">1 / 3 · 1 finding</td>"));
+        assert!(html.contains("1 of 3 targets met (1 finding)"));
+    }
+
+    #[test]
     fn met_and_unmet_targets_are_marked_as_they_are() {
         let html = render(
             &[outcome()],
@@ -387,6 +546,7 @@ mod tests {
         assert_eq!(html.matches("no target").count(), 1);
         // The summary shows 1 of 2 targets met, in the "no" colour.
         assert!(html.contains("<td class=\"met no\">1 / 2</td>"));
+        assert!(html.contains("Missed by this software: b"));
         assert_eq!(html.matches("<svg").count(), 1);
     }
 

@@ -6,7 +6,7 @@
 //! evaluation is `paper_experiments::contact_location`, the one `docs/contact-location.md` is
 //! written from.
 
-use super::figure::{Target, measured, target};
+use super::figure::{Target, finding, measured, target};
 use super::{Part, RunContext};
 use crate::scene::PaperScene;
 use crate::scene::experiments::Contact;
@@ -48,6 +48,11 @@ pub fn run(scene: &PaperScene, exp: &Contact, cx: &RunContext<'_>) -> Result<Par
     Ok(part)
 }
 
+/// Why eq. 3 as the paper writes it misses its target (docs/contact-location.md).
+const EQ3_AS_WRITTEN: &str = "eq. 3 as the paper writes it: its argmax is always the area \
+    nearest the sensor that rises most, so of the nine areas it names only those beside the \
+    three sensors; the ranging scorer (ours) is the locator that meets the target";
+
 fn key(rule: Rule) -> &'static str {
     match rule {
         Rule::Eq3Rise => "aot_eq3",
@@ -69,18 +74,22 @@ fn aot_part(cl: &ContactLocation, rule: Rule, osr: u16, part: &mut Part) {
     let (k, name) = (key(rule), rule.name());
     let rep = &cl.lattice;
     let strict = rep.by_osr.get(&(rule, osr)).copied().unwrap_or_default();
-    part.figures.push(tally(
+    let as_written = |f| match rule {
+        Rule::Ranging => f,
+        Rule::Eq3Rise | Rule::Eq3Absolute => finding(f, EQ3_AS_WRITTEN),
+    };
+    part.figures.push(as_written(tally(
         &format!("{k}_accuracy_pct"),
         &format!("{name}: 3 × 3, lattice taps, a border tap in either area"),
         cl.aot(Set::Lattice, rule, osr),
         Some(AOT_TARGET_PCT),
-    ));
-    part.figures.push(tally(
+    )));
+    part.figures.push(as_written(tally(
         &format!("{k}_jittered_accuracy_pct"),
         &format!("{name}: 3 × 3, jittered taps, strict label"),
         cl.aot(Set::Jittered, rule, osr),
         Some(AOT_TARGET_PCT),
-    ));
+    )));
     part.figures.push(tally(
         &format!("{k}_strict_accuracy_pct"),
         &format!("{name}: 3 × 3, lattice taps, strict `floor` label"),
