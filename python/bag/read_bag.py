@@ -37,6 +37,9 @@ def plain(msg, typename):
     if short == 'FingerFrame':
         return {'force_n': [float(f) for f in msg.force_n],
                 'distal_angle_rad': [float(a) for a in msg.distal_angle_rad]}
+    if short == 'TactileState':
+        return {'sensors': [{'name': c.name, 'values': [float(v) for v in c.values]}
+                            for c in msg.sensors]}
     if short == 'Softness':
         return {'level': msg.level, 'label': msg.label, 'scores': [float(s) for s in msg.scores]}
     return {}

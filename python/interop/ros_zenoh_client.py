@@ -35,7 +35,8 @@ if TYPE_CHECKING:
     from rosbags.typesys.store import Typestore
 
 DEFAULT_MSGS = Path(__file__).resolve().parents[2] / "crates/hand-zenoh/ros/handstack_msgs/msg"
-STD_MSGS = ("sensor_msgs/msg/Imu", "sensor_msgs/msg/JointState", "geometry_msgs/msg/WrenchStamped",
+STD_MSGS = ("sensor_msgs/msg/Imu", "sensor_msgs/msg/JointState", "sensor_msgs/msg/ChannelFloat32",
+            "geometry_msgs/msg/WrenchStamped",
             "geometry_msgs/msg/PoseStamped", "std_msgs/msg/Header", "builtin_interfaces/msg/Time")
 # Services as (request fields, response fields); rosbags' stores carry no services at all.
 SERVICES = {"std_srvs/srv/Trigger": ("", "bool success\nstring message"),

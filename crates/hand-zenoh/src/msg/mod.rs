@@ -1,7 +1,7 @@
 //! The messages and services the stack speaks: standard ROS 2 types where they fit
 //! ([`sensor_msgs`], [`geometry_msgs`], [`std_msgs`], [`builtin_interfaces`], [`std_srvs`])
 //! and ours ([`handstack_msgs`], whose `.msg` files ship in `ros/handstack_msgs/` for ROS users
-//! to build). Each is declared once, in a `ros_message!` list of its fields: the struct, its
+//! to build), and the ROS tactile toolbox's [`tactile_msgs`]. Each is declared once, in a `ros_message!` list of its fields: the struct, its
 //! CDR encoding and its type description come from that one list, so they cannot disagree.
 //!
 //! ```
@@ -18,11 +18,13 @@ use crate::types::{FieldDescription, FieldType, TypeDescription, type_id};
 
 mod handstack;
 mod standard;
+mod tactile;
 
 pub use handstack::handstack_msgs;
 pub use standard::{
     builtin_interfaces, geometry_msgs, sensor_msgs, service_msgs, std_msgs, std_srvs,
 };
+pub use tactile::tactile_msgs;
 
 /// A ROS 2 message: its name, its description (for the type hash) and its CDR encoding.
 pub trait Message: Sized {

@@ -140,6 +140,14 @@ pub mod sensor_msgs {
             pub linear_acceleration_covariance: [f64; 9],
         }
 
+        /// A named array of values (a sensor's channels): `string name`, `float32[] values`.
+        pub struct ChannelFloat32 = "sensor_msgs/msg/ChannelFloat32" {
+            /// The channel's (sensor's) name.
+            pub name: String,
+            /// Its values.
+            pub values: Vec<f32>,
+        }
+
         /// The state of named joints.
         pub struct JointState = "sensor_msgs/msg/JointState" {
             /// Stamp and frame.

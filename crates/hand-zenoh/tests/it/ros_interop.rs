@@ -18,7 +18,7 @@ use hand_zenoh::msg::handstack_msgs::{
     Contact, ContactArray, Fault, Figure, FingerFrame, GraspState, GripperCommand, PressureFrame,
     SensorInfo, Softness,
 };
-use hand_zenoh::msg::sensor_msgs::{Imu, JointState};
+use hand_zenoh::msg::sensor_msgs::{ChannelFloat32, Imu, JointState};
 use hand_zenoh::msg::std_msgs::Header;
 use hand_zenoh::msg::std_srvs::{Trigger, TriggerRequest, TriggerResponse};
 use hand_zenoh::msg::{Message, service_description};
@@ -47,6 +47,7 @@ fn descriptions() -> Vec<TypeDescription> {
         Fault::description(),
         Imu::description(),
         JointState::description(),
+        ChannelFloat32::description(),
         WrenchStamped::description(),
         PoseStamped::description(),
         Header::description(),

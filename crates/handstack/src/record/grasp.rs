@@ -2,7 +2,7 @@
 //! [`Sample`] becomes `GraspState` (the hand node publishes the same), and the reused messages
 //! a recording writes each cycle without allocating.
 
-use super::{HAND_FRAME, HAND_NS, Recorder, TopicId, now_ns};
+use super::{HAND_FRAME, HAND_NS, Recorder, TactileStateTopic, TopicId, now_ns};
 use hand_control::grasp_loop::{Mode, Sample};
 use hand_traits::Effort;
 use hand_zenoh::convert::header;
@@ -38,11 +38,13 @@ pub fn grasp_state(s: &Sample<3>, header: Header) -> GraspState {
     }
 }
 
-/// A fingertip's frames as `/hand0/tactile/raw`, one reused message.
+/// A fingertip's frames as `/hand0/tactile/raw`, one reused message, and as the tactile sensor
+/// `fingertip` (three pressures, Pa) on `/hand0/tactile_states`.
 pub struct RawTopic<'r> {
     recorder: &'r Recorder,
     topic: Option<TopicId>,
     msg: PressureFrame,
+    tactile: TactileStateTopic<'r>,
 }
 
 impl<'r> RawTopic<'r> {
@@ -55,6 +57,7 @@ impl<'r> RawTopic<'r> {
                 header: header(0, HAND_FRAME),
                 pressure_pa: vec![0.0; 3],
             },
+            tactile: TactileStateTopic::new(recorder, "fingertip", 3),
         }
     }
 
@@ -63,6 +66,7 @@ impl<'r> RawTopic<'r> {
         self.msg.header.stamp = Time::from_nanos(t_ns);
         self.msg.pressure_pa.copy_from_slice(pressure_pa);
         self.recorder.write(self.topic, t_ns, &self.msg);
+        self.tactile.record(t_ns, pressure_pa);
     }
 }
 

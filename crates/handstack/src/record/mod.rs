@@ -27,6 +27,8 @@ use bag::Bag;
 use hand_zenoh::convert::header;
 use hand_zenoh::msg::Message;
 use hand_zenoh::msg::handstack_msgs::{self as hs, Fault, FingerFrame};
+use hand_zenoh::msg::sensor_msgs::ChannelFloat32;
+use hand_zenoh::msg::tactile_msgs::TactileState;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, PoisonError};
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -208,11 +210,50 @@ impl Recorder {
     }
 }
 
-/// The underactuated hand's readings as `/hand0/fingers/raw`, one reused message.
+/// A tactile sensor's values as the ROS tactile toolbox reads them: `tactile_msgs/TactileState`
+/// on `/hand0/tactile_states` (the toolbox's topic, in the hand's namespace), one named array,
+/// beside our own message of the same reading.
+pub struct TactileStateTopic<'r> {
+    recorder: &'r Recorder,
+    topic: Option<TopicId>,
+    msg: TactileState,
+}
+
+impl<'r> TactileStateTopic<'r> {
+    /// Declares the topic on `recorder` for sensor `name` of `n` values.
+    pub fn new(recorder: &'r Recorder, name: &str, n: usize) -> Self {
+        TactileStateTopic {
+            recorder,
+            topic: recorder.topic::<TactileState>(&format!("{HAND_NS}/tactile_states")),
+            msg: TactileState {
+                header: header(0, HAND_FRAME),
+                sensors: vec![ChannelFloat32 {
+                    name: name.to_owned(),
+                    values: vec![0.0; n],
+                }],
+            },
+        }
+    }
+
+    /// Records `values` (as many as declared) at `t_ns`.
+    pub fn record(&mut self, t_ns: u64, values: &[f32]) {
+        self.msg.header.stamp = hand_zenoh::msg::builtin_interfaces::Time::from_nanos(t_ns);
+        if let Some(s) = self.msg.sensors.first_mut() {
+            for (v, x) in s.values.iter_mut().zip(values) {
+                *v = *x;
+            }
+        }
+        self.recorder.write(self.topic, t_ns, &self.msg);
+    }
+}
+
+/// The underactuated hand's readings as `/hand0/fingers/raw`, one reused message, and its four
+/// FSR forces (N) as the tactile sensor `fsr` on `/hand0/tactile_states`.
 pub struct FingerTopic<'r> {
     recorder: &'r Recorder,
     topic: Option<TopicId>,
     msg: FingerFrame,
+    tactile: TactileStateTopic<'r>,
 }
 
 impl<'r> FingerTopic<'r> {
@@ -226,6 +267,7 @@ impl<'r> FingerTopic<'r> {
                 force_n: vec![0.0; 4],
                 distal_angle_rad: vec![0.0; 4],
             },
+            tactile: TactileStateTopic::new(recorder, "fsr", 4),
         }
     }
 
@@ -238,5 +280,6 @@ impl<'r> FingerTopic<'r> {
             *a = deg.to_radians();
         }
         self.recorder.write(self.topic, t, &self.msg);
+        self.tactile.record(t, &sample[..4]);
     }
 }

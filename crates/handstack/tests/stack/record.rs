@@ -9,7 +9,8 @@
 use crate::ending::{dir, is_torque_limit, scene, servos};
 use crate::process::{finish, signal, text};
 use hand_zenoh::msg::Message;
-use hand_zenoh::msg::handstack_msgs::{Fault, GraspState};
+use hand_zenoh::msg::handstack_msgs::{Fault, GraspState, PressureFrame};
+use hand_zenoh::msg::tactile_msgs::TactileState;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -17,8 +18,9 @@ use std::process::Command;
 use std::time::{SystemTime, UNIX_EPOCH};
 
 /// The topics a grasp run records when no fault occurs.
-const GRASP_TOPICS: [&str; 5] = [
+const GRASP_TOPICS: [&str; 6] = [
     "/hand0/tactile/raw",
+    "/hand0/tactile_states",
     "/hand0/grasp/state",
     "/hand0/gripper/joint_states",
     "/hand0/gripper/command",
@@ -158,6 +160,28 @@ fn a_recorded_grasp_reads_back_in_rosbags_mcap_and_rust_as_the_run_printed_it() 
     assert_eq!(seen, printed);
     assert_eq!(rust["/hand0/gripper/command"].len(), torques.len());
     assert_eq!(rust["/handstack/figures"].len(), figures.len());
+    // Each fingertip frame twice: ours, and the tactile toolbox's TactileState (one sensor,
+    // `fingertip`, the same three pressures, the same stamp).
+    let raw: Vec<(u64, Vec<f32>)> = rust["/hand0/tactile/raw"]
+        .iter()
+        .map(|(t, cdr)| {
+            (
+                *t,
+                PressureFrame::from_cdr(cdr).expect("a frame").pressure_pa,
+            )
+        })
+        .collect();
+    let tactile: Vec<(u64, Vec<f32>)> = rust["/hand0/tactile_states"]
+        .iter()
+        .map(|(t, cdr)| {
+            let s = TactileState::from_cdr(cdr).expect("a TactileState");
+            assert_eq!(s.sensors.len(), 1);
+            assert_eq!(s.sensors[0].name, "fingertip");
+            (*t, s.sensors[0].values.clone())
+        })
+        .collect();
+    assert!(!raw.is_empty());
+    assert_eq!(tactile, raw);
 
     let Some(py) = read_in_python(&bag) else {
         let _ = std::fs::remove_dir_all(&dir);
@@ -220,6 +244,23 @@ fn a_recorded_grasp_reads_back_in_rosbags_mcap_and_rust_as_the_run_printed_it() 
         })
         .collect();
     assert_eq!(py_figures, figures);
+    let py_tactile: Vec<&Value> = topics["/hand0/tactile_states"]["messages"]
+        .as_array()
+        .expect("msgs")
+        .iter()
+        .map(|m| &m["sensors"][0]["values"])
+        .collect();
+    let py_raw: Vec<&Value> = topics["/hand0/tactile/raw"]["messages"]
+        .as_array()
+        .expect("msgs")
+        .iter()
+        .map(|m| &m["pressure_pa"])
+        .collect();
+    assert_eq!(py_tactile, py_raw);
+    assert_eq!(
+        topics["/hand0/tactile_states"]["messages"][0]["sensors"][0]["name"],
+        "fingertip"
+    );
 
     // Foxglove's reader on the .mcap alone: the ros2 profile, ros2msg schemas, CDR, rosbag2's
     // channel metadata, the same counts and values.

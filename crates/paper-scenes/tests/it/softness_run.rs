@@ -135,6 +135,12 @@ fn handstack_run_classifies_soft_moderate_and_hard_objects_and_releases_the_hand
     let yaml = std::fs::read_to_string(bag.join("metadata.yaml")).expect("metadata.yaml");
     let count = |topic: &str| bag_count(&yaml, topic);
     assert!(count("/hand0/fingers/raw") > 141, "{yaml}");
+    // Each reading's four FSR forces also as the tactile toolbox's TactileState.
+    assert_eq!(
+        count("/hand0/tactile_states"),
+        count("/hand0/fingers/raw"),
+        "{yaml}"
+    );
     assert_eq!(count("/hand0/softness"), 1, "{yaml}");
     // first contact, samples, class, three mean outputs, readings outside the range.
     assert_eq!(count("/handstack/figures"), 7, "{yaml}");

@@ -225,6 +225,11 @@ fn an_answer_is_enter_a_typed_weight_or_asked_again() {
         "{yaml}"
     );
     assert_eq!(bag_count(&yaml, "/handstack/figures"), 6, "{yaml}");
+    assert_eq!(
+        bag_count(&yaml, "/hand0/tactile_states"),
+        bag_count(&yaml, "/hand0/tactile/raw"),
+        "{yaml}"
+    );
     let _ = std::fs::remove_dir_all(&bag);
 }
 
