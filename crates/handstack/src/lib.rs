@@ -21,6 +21,7 @@
 //!   [`Platform`](stack::platform::Platform) (Linux by default, or a substitute);
 //! - [`runs`]: the grasp hold, the fingertip readout, weights on the fingertip and the
 //!   underactuated hand's softness classification, joined into the scene's [`Outcome`];
+//! - [`pace`]: a loop's period;
 //! - [`progress`]: where a run reports its stages;
 //! - [`prompt`]: what a run asks its user (place a weight, then press Enter), answered on stdin;
 //! - [`record`]: a run recorded as a rosbag2 bag (MCAP) in the nodes' messages and topics;
@@ -40,6 +41,7 @@ pub mod cell;
 pub mod cli;
 pub mod error;
 pub mod outcome;
+pub mod pace;
 pub mod progress;
 pub mod prompt;
 pub mod record;

@@ -47,6 +47,11 @@ enum Command {
     /// (answered `placed G gf`), `clear` lifts it. Serves until stdin closes or SIGINT /
     /// SIGTERM.
     FingertipBoard(FingertipBoardArgs),
+    /// Seed 002's tactile pad: the ICM-20789 under Ecoflex on a simulated Arduino Mega running
+    /// ConfigurableFirmata on a pty. Prints the port as a scene names it, then takes lines on
+    /// stdin: `tap R` taps region R (0–8) now, as the paper's UR3 tapped it (answered `tapping
+    /// region R …`). Serves until stdin closes or SIGINT / SIGTERM.
+    PadBoard(PadBoardArgs),
     /// Run a scene's stack (or one part: pad, arm, fingertip or hand) on its simulated devices
     /// as ROS 2 nodes on Zenoh, until stdin closes.
     #[cfg(feature = "cell")]
@@ -97,6 +102,20 @@ struct GraspRigArgs {
     object: String,
     #[command(flatten)]
     board: FingertipBoardArgs,
+}
+
+/// `paper-scenes pad-board`'s options.
+#[derive(clap::Args)]
+struct PadBoardArgs {
+    /// The seed of the chip's noise and the taps' rows and errors.
+    #[arg(long, default_value_t = 10)]
+    seed: u64,
+    /// The board's baud rate.
+    #[arg(long, default_value_t = 115_200)]
+    baud: u32,
+    /// From the board's port opening to its version report, ms.
+    #[arg(long = "boot-ms", default_value_t = 1600)]
+    boot_ms: u64,
 }
 
 /// The fingertip board's options (`paper-scenes fingertip-board`, `grasp-rig`).
@@ -221,6 +240,50 @@ fn fingertip_board(args: &FingertipBoardArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
+fn pad_board(args: &PadBoardArgs) -> ExitCode {
+    use paper_scenes::devices::pad_board::{PadBoard, PadBoardConfig};
+    let stop = handstack::stop::signal_stop();
+    let config = PadBoardConfig {
+        seed: args.seed,
+        baud: args.baud,
+        boot_delay: std::time::Duration::from_millis(args.boot_ms),
+    };
+    let pad = match PadBoard::spawn(&config) {
+        Ok(pad) => pad,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(handstack::summary::ExitStatus::exit_code(&e).max(1));
+        }
+    };
+    println!(
+        "firmata_port = \"{}\"   # [sensors.imu_pad]: the ICM-20789, {} baud",
+        pad.path().display(),
+        args.baud
+    );
+    let _ = std::io::Write::flush(&mut std::io::stdout());
+    let commands = handstack::prompt::Prompter::stdin();
+    while let Ok(line) = commands.answer(&stop) {
+        let region = match line.split_whitespace().collect::<Vec<_>>()[..] {
+            ["tap", r] => r.parse::<u8>().ok(),
+            [] => continue,
+            _ => None,
+        };
+        match region.map(|r| (r, pad.tap(r))) {
+            Some((r, Ok(t))) => println!(
+                "tapping region {r} (column {}, row {}, {:.2} N)",
+                t.position.column(),
+                t.position.row(),
+                t.force_n
+            ),
+            Some((_, Err(e))) => eprintln!("error: {e}"),
+            None => eprintln!("error: \"{line}\": `tap R` (a region, 0…8)"),
+        }
+        let _ = std::io::Write::flush(&mut std::io::stdout());
+    }
+    println!("left: {} taps made", pad.taps().len());
+    ExitCode::SUCCESS
+}
+
 fn grasp_rig(args: &GraspRigArgs) -> ExitCode {
     use paper_scenes::devices::grasp_board::{GraspBoard, GraspBoardConfig};
     let stop = handstack::stop::signal_stop();
@@ -286,6 +349,7 @@ fn main() -> ExitCode {
         Command::HandBoard(args) => hand_board(&args),
         Command::GraspRig(args) => grasp_rig(&args),
         Command::FingertipBoard(args) => fingertip_board(&args),
+        Command::PadBoard(args) => pad_board(&args),
         Command::Run {
             scenes,
             json,

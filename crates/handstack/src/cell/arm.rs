@@ -13,7 +13,7 @@
 use super::commanders::Commanders;
 use super::error::CellError;
 use super::frames;
-use super::pace::Pacer;
+use crate::pace::Pacer;
 use crate::stop::Stop;
 use hand_traits::LinearMotion;
 use hand_zenoh::convert::{header, pose_from_msg, pose_to_msg};

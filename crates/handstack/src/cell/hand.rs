@@ -15,8 +15,8 @@
 
 use super::commanders::Commanders;
 use super::error::CellError;
-use super::pace::Pacer;
 use crate::error::{Ending, RunError};
+use crate::pace::Pacer;
 use crate::record::grasp::grasp_state;
 use crate::runs::grasp::{FaultWatch, left_text};
 use crate::scene::experiment::Recover;

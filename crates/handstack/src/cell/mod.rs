@@ -29,16 +29,15 @@ pub mod frames;
 pub mod hand;
 pub mod launch;
 pub mod outcome;
-mod pace;
 pub mod pad;
 pub mod real;
 pub mod tactile;
 mod unreadable;
 
+pub use crate::pace::Pacer;
 pub use crate::stop::Stop;
 pub use error::CellError;
 pub use file::{CellFile, NodeEntry, Part};
-pub use pace::Pacer;
 
 use crate::scene::SceneOf;
 use hand_zenoh::HashMode;

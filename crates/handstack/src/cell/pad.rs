@@ -4,7 +4,7 @@
 //! contact locator, when the node has one).
 
 use super::error::CellError;
-use super::pace::Pacer;
+use crate::pace::Pacer;
 use crate::stop::Stop;
 use crate::tap_to_move::{TapToMoveConfig, TapTrigger};
 use hand_traits::{Contact, ContactLocator, ImuFrame, TactileSource};

@@ -3,7 +3,7 @@
 //! stopped.
 
 use super::error::CellError;
-use super::pace::Pacer;
+use crate::pace::Pacer;
 use crate::scene::parts::ForceModel;
 use crate::stop::Stop;
 use hand_control::grasp_loop::LoopConfig;

@@ -1,6 +1,7 @@
 //! The experiments of a `handstack` scene, each on the real devices the scene names: a grasp
-//! hold ([`grasp`]), a fingertip readout ([`readout`]), weights on the fingertip ([`weight`])
-//! and the underactuated hand's softness classification ([`softness`]); [`run`] joins their
+//! hold ([`grasp`]), a fingertip readout ([`readout`]), weights on the fingertip ([`weight`]),
+//! the underactuated hand's softness classification ([`softness`]) and taps on the pad that
+//! move the arm ([`tap_to_move`]); [`run`] joins their
 //! figures into
 //! the scene's [`Outcome`]. The functions under them take opened devices, so a program with
 //! its own devices (the papers' simulated ones) runs the same code.
@@ -9,6 +10,7 @@ pub mod figure;
 pub mod grasp;
 pub mod readout;
 pub mod softness;
+pub mod tap_to_move;
 pub mod weight;
 
 use crate::error::RunError;
@@ -150,6 +152,9 @@ fn run_parts(scene: &Scene, cx: &RunContext<'_>) -> Result<Vec<Part>, RunError> 
     }
     if let Some(s) = &x.softness {
         parts.push(record(softness::run(scene, s.get_ref(), cx)?));
+    }
+    if let Some(t) = &x.tap_to_move {
+        parts.push(record(tap_to_move::run(scene, t.get_ref(), cx)?));
     }
     Ok(parts)
 }

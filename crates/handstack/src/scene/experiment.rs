@@ -19,6 +19,37 @@ pub struct Experiments {
     pub softness: Option<Spanned<Softness>>,
     /// `[experiment.weight]`: weights placed on the fingertip, each estimated by the force DNN.
     pub weight: Option<Spanned<Weight>>,
+    /// `[experiment.tap_to_move]`: taps on the pad, located by the contact CNN, move the arm.
+    pub tap_to_move: Option<Spanned<TapToMove>>,
+}
+
+/// Seed 002's tap-to-move (Al & Martinez-Hernandez, §IV-B) on the user's pad and arm: for
+/// each region of `regions` the run asks for a tap there, waits for it (the pressure rising over
+/// its rest), locates it with the built-in contact CNN from the accelerometer / gyroscope window
+/// around it, and moves the arm from home to the region's grid pose; the arm goes home before
+/// each tap. Figures: the regions located against those asked, the accuracy, the moves' times.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TapToMove {
+    /// The regions to tap, in order, each 0…8 (row-major from the pad's first row; default
+    /// each once, 0 to 8); 1…90 of them.
+    pub regions: Option<Spanned<Vec<u8>>>,
+    /// The longest wait for each tap, s (default 30; 1…600): no tap by then fails the run.
+    pub wait_s: Option<Spanned<f64>>,
+}
+
+impl TapToMove {
+    /// The regions it asks for.
+    pub fn regions(&self) -> Vec<u8> {
+        self.regions
+            .as_ref()
+            .map_or_else(|| (0..9).collect(), |r| r.get_ref().clone())
+    }
+
+    /// The longest wait for a tap, s.
+    pub fn wait_s(&self) -> f64 {
+        self.wait_s.as_ref().map_or(30.0, |w| *w.get_ref())
+    }
 }
 
 /// The weights of Table 1 of Kim et al. 2020 (seed 000, §2.2), gf: the default series.
@@ -234,8 +265,8 @@ pub fn check_grasp_parts<X>(
 }
 
 impl ExperimentTable for Experiments {
-    const ALLOWED: &'static str =
-        "[experiment.grasp], [experiment.readout], [experiment.softness], [experiment.weight]";
+    const ALLOWED: &'static str = "[experiment.grasp], [experiment.readout], \
+        [experiment.softness], [experiment.weight], [experiment.tap_to_move]";
 
     fn names(&self) -> Vec<&'static str> {
         [
@@ -243,6 +274,7 @@ impl ExperimentTable for Experiments {
             ("readout", self.readout.is_some()),
             ("softness", self.softness.is_some()),
             ("weight", self.weight.is_some()),
+            ("tap_to_move", self.tap_to_move.is_some()),
         ]
         .into_iter()
         .filter_map(|(n, on)| on.then_some(n))
@@ -250,16 +282,16 @@ impl ExperimentTable for Experiments {
     }
 
     fn check(scene: &SceneFile<Self>, cx: &Checker<'_>) -> Result<(), SceneError> {
-        if let Some(arm) = &scene.arm {
+        let x = scene.experiment.get_ref();
+        if let (Some(arm), None) = (&scene.arm, &x.tap_to_move) {
             return Err(cx.err(
                 arm.span(),
                 "arm",
-                "is named, but no experiment of `handstack run` moves an arm",
-                "no [arm] in a scene to run; `handstack node SCENE --part arm` runs an arm as a \
-                 ROS 2 node (feature `cell`)",
+                "is named, but no experiment of this scene moves it",
+                "[experiment.tap_to_move] with it, or no [arm]; `handstack node SCENE --part \
+                 arm` runs an arm as a ROS 2 node (feature `cell`)",
             ));
         }
-        let x = scene.experiment.get_ref();
         if let (Some(hand), None, None) = (&scene.hand, &x.grasp, &x.softness) {
             return Err(cx.err(
                 hand.span(),
@@ -363,7 +395,57 @@ fn check_experiments<X>(
     if let Some(w) = &x.weight {
         check_weight(scene, w, cx)?;
     }
+    if let Some(t) = &x.tap_to_move {
+        check_tap_to_move(scene, t, cx)?;
+    }
     Ok(())
+}
+
+/// A tap-to-move's pad, locator and arm, and its values.
+fn check_tap_to_move<X>(
+    scene: &SceneFile<X>,
+    t: &Spanned<TapToMove>,
+    cx: &Checker<'_>,
+) -> Result<(), SceneError> {
+    let cnn = scene.estimators.contact.as_ref().is_some_and(|l| {
+        l.get_ref()
+            .locators
+            .get_ref()
+            .contains(&super::parts::Locator::Cnn)
+    });
+    if scene.sensors.imu_pad.is_none() || scene.arm.is_none() || !cnn {
+        return Err(cx.err(
+            t.span(),
+            "experiment.tap_to_move",
+            "needs the ICM-20789 pad, the contact CNN and the arm",
+            "[sensors.imu_pad], [estimators.contact] locators with \"cnn\", and [arm]",
+        ));
+    }
+    if let Some(r) = &t.get_ref().regions {
+        let v = r.get_ref();
+        let bad = v.iter().find(|&&g| g > 8);
+        if v.is_empty() || v.len() > 90 || bad.is_some() {
+            let what = match bad {
+                Some(g) => format!("holds {g}"),
+                None => format!("has {} regions", v.len()),
+            };
+            return Err(cx.err(
+                r.span(),
+                "experiment.tap_to_move.regions",
+                what,
+                "1…90 regions, each 0…8",
+            ));
+        }
+    }
+    check_ranges(
+        [(
+            &t.get_ref().wait_s,
+            "experiment.tap_to_move.wait_s",
+            1.0,
+            600.0,
+        )],
+        cx,
+    )
 }
 
 /// A weight experiment's fingertip, force DNN and values.

@@ -15,8 +15,10 @@ use std::time::Instant;
 use hand_traits::{Arm, ContactLocator, ImuFrame, LinearMotion, TactileSource};
 
 mod grid;
+mod resample;
 
 pub use grid::{GridError, REGIONS, RegionToGrid};
+pub use resample::at_rate;
 
 /// When a contact counts, and which frames the locator sees.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -324,7 +324,8 @@ fn a_scene_naming_a_started_ur_simulator_connects_to_it() {
          i2c_buses = [\"sub-0\", \"sub-1\", \"sub-2\"]\n[arm]\nmodel = \"ur3\"\n\
          host = \"{address}\"\n[experiment.readout]\nframes = 5\n"
     );
-    // `handstack run` moves no arm: an [arm] there is a scene error, not a silent connection.
+    // `handstack run` moves an arm only in a tap-to-move: an [arm] without one is a scene error,
+    // not a silent connection.
     let e = Scene::parse("hw.toml", &text).expect_err("an arm no experiment moves");
     assert_eq!(e.key(), Some("arm"), "{e}");
     assert!(

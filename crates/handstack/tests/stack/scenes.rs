@@ -60,7 +60,7 @@ fn a_device_without_its_hardware_is_refused() {
     );
     let e = err(&HAND.replace("serial_port = \"/dev/ttyUSB0\"\n", ""));
     says(&e, 7, "hand", &["names no hardware (`serial_port`)"]);
-    // An arm needs its host in a node's scene; a scene to run has no arm to move at all.
+    // An arm needs its host in a node's scene; a scene to run moves it only in a tap-to-move.
     let arm = format!("{HAND}[arm]\nmodel = \"ur3\"\n");
     let e = handstack::scene::NodeScene::parse("bad.toml", &arm).expect_err("no host");
     says(&e, 13, "arm", &["names no hardware (`host`)"]);
@@ -69,7 +69,10 @@ fn a_device_without_its_hardware_is_refused() {
         &e,
         13,
         "arm",
-        &["no experiment of `handstack run` moves an arm"],
+        &[
+            "no experiment of this scene moves it",
+            "[experiment.tap_to_move]",
+        ],
     );
     // A hand no experiment moves is refused too: a run would power it and leave it so.
     let readout = HAND.replace(
@@ -355,5 +358,69 @@ fn a_weight_series_needs_the_fingertip_and_a_force_dnn_and_checks_its_keys() {
         10,
         "grams",
         &["unknown field `grams`", "`weights_gf`"],
+    );
+}
+
+const TAPS: &str = r#"title = "taps that move my arm"
+[sensors.imu_pad]
+firmata_port = "/dev/ttyACM0"
+[estimators.contact]
+locators = ["cnn"]
+[arm]
+model = "ur3"
+host = "192.168.1.10"
+[experiment.tap_to_move]
+regions = [0, 4, 8]
+"#;
+
+#[test]
+fn tap_to_move_needs_the_pad_the_cnn_and_the_arm_and_checks_its_regions() {
+    let s = Scene::parse("taps.toml", TAPS).expect("valid");
+    let t = s
+        .file
+        .experiment
+        .get_ref()
+        .tap_to_move
+        .as_ref()
+        .expect("taps");
+    assert_eq!(t.get_ref().regions(), [0, 4, 8]);
+    assert_eq!(t.get_ref().wait_s(), 30.0);
+    let all = Scene::parse("t.toml", &TAPS.replace("regions = [0, 4, 8]\n", "")).expect("valid");
+    let t = all
+        .file
+        .experiment
+        .get_ref()
+        .tap_to_move
+        .as_ref()
+        .expect("taps");
+    assert_eq!(t.get_ref().regions(), (0..9).collect::<Vec<u8>>());
+    says(
+        &err(&TAPS.replace("[arm]\nmodel = \"ur3\"\nhost = \"192.168.1.10\"\n", "")),
+        6,
+        "experiment.tap_to_move",
+        &["needs the ICM-20789 pad, the contact CNN and the arm"],
+    );
+    says(
+        &err(&TAPS.replace("[0, 4, 8]", "[0, 9]")),
+        10,
+        "experiment.tap_to_move.regions",
+        &["holds 9", "1…90 regions, each 0…8"],
+    );
+    says(
+        &err(&format!("{TAPS}wait_s = 0.5\n")),
+        11,
+        "experiment.tap_to_move.wait_s",
+        &["1…600"],
+    );
+    // Without the experiment, the arm moves for nothing: refused.
+    let idle = TAPS.replace(
+        "[experiment.tap_to_move]\nregions = [0, 4, 8]\n",
+        "[experiment.readout]\nframes = 10\n",
+    );
+    says(
+        &err(&idle),
+        6,
+        "arm",
+        &["no experiment of this scene moves it"],
     );
 }

@@ -8,8 +8,9 @@
 //! [`hand_board`] is a device for a user's own code rather than a scene's: seed 001's
 //! underactuated hand behind a simulated Arduino running Firmata on a pty (`paper-scenes
 //! hand-board` runs it as a process); so are [`grasp_board`] (seed 000's servo and fingertip,
-//! `paper-scenes grasp-rig`) and [`fingertip_board`] (the fingertip on a scale,
-//! `paper-scenes fingertip-board`).
+//! `paper-scenes grasp-rig`), [`fingertip_board`] (the fingertip on a scale,
+//! `paper-scenes fingertip-board`) and [`pad_board`] (seed 002's pad, tapped on command,
+//! `paper-scenes pad-board`).
 
 pub mod arm;
 pub mod fingertip;
@@ -18,3 +19,4 @@ pub mod grasp;
 pub mod grasp_board;
 pub mod hand_board;
 pub mod pad;
+pub mod pad_board;

@@ -4,10 +4,12 @@
 use handstack::Outcome;
 use handstack::progress::Quiet;
 use paper_scenes::runs::RunContext;
+use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output};
+use std::process::{Child, ChildStdin, Command, Output, Stdio};
+use std::sync::mpsc::{Receiver, channel};
 use std::sync::{Mutex, MutexGuard};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 use tactile_nets::metrics::MetricsFile;
 
 /// The workspace root.
@@ -126,4 +128,106 @@ pub fn time_scaled_arm() -> MutexGuard<'static, ()> {
     TIME_SCALED_ARM
         .lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// How long a line a [`Session`] waits for may take to come.
+const SESSION_WAIT: Duration = Duration::from_secs(30);
+/// How long a [`Session`]'s whole run may take.
+const SESSION_RUN: Duration = Duration::from_secs(150);
+
+/// A `handstack run SCENE --json` whose stderr the test reads line by line and whose stdin it
+/// answers on.
+pub struct Session {
+    /// The `handstack` process.
+    pub child: Child,
+    stdin: Option<ChildStdin>,
+    stderr: Receiver<String>,
+    said: Vec<String>,
+}
+
+impl Session {
+    pub fn start(scene: &PathBuf) -> Session {
+        Session::start_with(scene, &[])
+    }
+
+    /// `handstack run SCENE --json ARGS…`.
+    pub fn start_with(scene: &PathBuf, args: &[&std::ffi::OsStr]) -> Session {
+        let mut child = Command::new(handstack())
+            .arg("run")
+            .arg(scene)
+            .arg("--json")
+            .args(args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("handstack starts");
+        let stdin = child.stdin.take();
+        let stderr = child.stderr.take().expect("stderr");
+        let (tx, rx) = channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+                if tx.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        Session {
+            child,
+            stdin,
+            stderr: rx,
+            said: Vec::new(),
+        }
+    }
+
+    /// The next line on stderr that starts with `start` (bounded wait).
+    pub fn wait_for(&mut self, start: &str) -> String {
+        let deadline = Instant::now() + SESSION_WAIT;
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            match self.stderr.recv_timeout(left) {
+                Ok(line) => {
+                    self.said.push(line.clone());
+                    if line.trim_start().starts_with(start) {
+                        return line;
+                    }
+                }
+                Err(_) => panic!(
+                    "no \"{start}…\" within {SESSION_WAIT:?}; said:\n{}",
+                    self.said.join("\n")
+                ),
+            }
+        }
+    }
+
+    pub fn answer(&mut self, line: &str) {
+        let stdin = self.stdin.as_mut().expect("stdin open");
+        writeln!(stdin, "{line}").expect("answer written");
+        stdin.flush().expect("answer sent");
+    }
+
+    /// Closes its stdin, as a script that runs out of answers does.
+    pub fn close_stdin(&mut self) {
+        drop(self.stdin.take());
+    }
+
+    /// Waits (bounded) for the run to end; its exit status, stdout and everything on stderr.
+    pub fn finish(mut self) -> (Option<i32>, String, String) {
+        let out = finish(self.child, SESSION_RUN);
+        self.said.extend(self.stderr.try_iter());
+        (out.status.code(), text(&out.stdout), self.said.join("\n"))
+    }
+}
+
+/// The figures of the run's outcome printed by `--json`, by name.
+pub fn figures(stdout: &str) -> impl Fn(&str) -> serde_json::Value {
+    let outcomes: serde_json::Value = serde_json::from_str(stdout).expect("the outcomes as JSON");
+    let stdout = stdout.to_owned();
+    move |name: &str| {
+        outcomes[0]["figures"]
+            .as_array()
+            .and_then(|fs| fs.iter().find(|f| f["name"] == name))
+            .cloned()
+            .unwrap_or_else(|| panic!("no figure {name}: {stdout}"))
+    }
 }

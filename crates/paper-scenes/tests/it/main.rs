@@ -21,6 +21,7 @@ mod scene_props;
 mod softness;
 mod softness_run;
 mod stack_hold;
+mod tap_run;
 mod tap_to_ur3;
 mod weight_estimation;
 mod weight_run;

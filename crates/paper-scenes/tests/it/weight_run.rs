@@ -4,18 +4,15 @@
 //! stderr for each weight; the test, as the user, rests it on the pad and presses Enter (or
 //! types something else), and reads the figures back.
 
-use crate::common::{bag_count, finish, handstack, signal, text};
+use crate::common::{Session, bag_count, figures, finish, signal, text};
 use paper_scenes::devices::fingertip_board::{FingertipBoard, FingertipBoardConfig};
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
-use std::process::{Child, ChildStdin, Command, Stdio};
-use std::sync::mpsc::{Receiver, channel};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-/// How long a question may take to come: the board's boot, then a settle and an average (2 s).
+/// How long the fingertip-board process may take to end once its stdin closes.
 const WAIT: Duration = Duration::from_secs(30);
-/// A whole run of twenty weights (2 s each), generous for a loaded machine.
-const RUN_TIMEOUT: Duration = Duration::from_secs(150);
 
 fn board() -> FingertipBoard {
     FingertipBoard::spawn(&FingertipBoardConfig {
@@ -43,102 +40,6 @@ fn scene(name: &str, board: &FingertipBoard, weights: &[f64]) -> PathBuf {
     )
     .expect("scene written");
     path
-}
-
-/// A `handstack run SCENE --json` whose stderr the test reads line by line and whose stdin it
-/// answers on.
-struct Session {
-    child: Child,
-    stdin: Option<ChildStdin>,
-    stderr: Receiver<String>,
-    said: Vec<String>,
-}
-
-impl Session {
-    fn start(scene: &PathBuf) -> Session {
-        Session::start_with(scene, &[])
-    }
-
-    /// `handstack run SCENE --json ARGS…`.
-    fn start_with(scene: &PathBuf, args: &[&std::ffi::OsStr]) -> Session {
-        let mut child = Command::new(handstack())
-            .arg("run")
-            .arg(scene)
-            .arg("--json")
-            .args(args)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("handstack starts");
-        let stdin = child.stdin.take();
-        let stderr = child.stderr.take().expect("stderr");
-        let (tx, rx) = channel();
-        std::thread::spawn(move || {
-            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-                if tx.send(line).is_err() {
-                    break;
-                }
-            }
-        });
-        Session {
-            child,
-            stdin,
-            stderr: rx,
-            said: Vec::new(),
-        }
-    }
-
-    /// The next line on stderr that starts with `start` (bounded wait).
-    fn wait_for(&mut self, start: &str) -> String {
-        let deadline = Instant::now() + WAIT;
-        loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            match self.stderr.recv_timeout(left) {
-                Ok(line) => {
-                    self.said.push(line.clone());
-                    if line.trim_start().starts_with(start) {
-                        return line;
-                    }
-                }
-                Err(_) => panic!(
-                    "no \"{start}…\" within {WAIT:?}; said:\n{}",
-                    self.said.join("\n")
-                ),
-            }
-        }
-    }
-
-    fn answer(&mut self, line: &str) {
-        let stdin = self.stdin.as_mut().expect("stdin open");
-        writeln!(stdin, "{line}").expect("answer written");
-        stdin.flush().expect("answer sent");
-    }
-
-    /// Closes its stdin, as a script that runs out of answers does.
-    fn close_stdin(&mut self) {
-        drop(self.stdin.take());
-    }
-
-    /// Waits (bounded) for the run to end; its exit status, stdout and everything on stderr.
-    fn finish(mut self) -> (Option<i32>, String, String) {
-        let out = finish(self.child, RUN_TIMEOUT);
-        self.said.extend(self.stderr.try_iter());
-        (out.status.code(), text(&out.stdout), self.said.join("\n"))
-    }
-}
-
-/// The figures of the run's outcome printed by `--json`, by name.
-fn figures(stdout: &str) -> impl Fn(&str) -> serde_json::Value {
-    let outcomes: serde_json::Value = serde_json::from_str(stdout).expect("the outcomes as JSON");
-    let stdout = stdout.to_owned();
-    move |name: &str| {
-        outcomes[0]["figures"]
-            .as_array()
-            .and_then(|fs| fs.iter().find(|f| f["name"] == name))
-            .cloned()
-            .unwrap_or_else(|| panic!("no figure {name}: {stdout}"))
-    }
 }
 
 /// Seed 000's Table 1 at the pace the built-in `sim` DNN's series was recorded (hand-sim's

@@ -1,4 +1,4 @@
-//! A node loop's period.
+//! A loop's period (a node's, a pad read at its frame rate).
 
 use std::time::{Duration, Instant};
 
