@@ -93,21 +93,7 @@ pub fn run_node(
             Ok(report.to_string())
         }
         Part::Pad => {
-            let pad = scene
-                .file
-                .sensors
-                .imu_pad
-                .as_ref()
-                .map(|p| p.get_ref())
-                .ok_or_else(|| CellError::Device {
-                    device: "sensors.imu_pad",
-                    reason: "the scene has no [sensors.imu_pad]".into(),
-                })?;
-            let wiring = pad.wiring().ok_or_else(|| CellError::Device {
-                device: "sensors.imu_pad",
-                reason: "the scene's [sensors.imu_pad] names no i2c_bus or firmata_port".into(),
-            })?;
-            let mut source = crate::stack::pad::open_wired(platform, wiring, pad.pressure_mode)?;
+            let mut source = crate::stack::pad::open_scene(scene, platform)?;
             let node = Node::open(args.options())?;
             // With `cnn` among the scene's locators, each tap's window goes through the built-in
             // contact CNN (Al & Martinez-Hernandez, §IV-A: the paper's variant), cut where its

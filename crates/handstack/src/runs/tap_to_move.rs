@@ -60,16 +60,6 @@ impl<S: TactileSource<Frame = ImuFrame, Error = RunError>> TactileSource for Pac
 
 /// Runs `[experiment.tap_to_move]` of `scene` on its real pad and arm.
 pub fn run(scene: &Scene, exp: &TapScene, cx: &RunContext<'_>) -> Result<Part, RunError> {
-    let pad = scene
-        .file
-        .sensors
-        .imu_pad
-        .as_ref()
-        .map(|p| p.get_ref())
-        .ok_or_else(|| device("sensors.imu_pad", "the scene names no pad"))?;
-    let wiring = pad
-        .wiring()
-        .ok_or_else(|| device("sensors.imu_pad", "names no i2c_bus or firmata_port"))?;
     let host = scene
         .file
         .arm
@@ -77,7 +67,7 @@ pub fn run(scene: &Scene, exp: &TapScene, cx: &RunContext<'_>) -> Result<Part, R
         .and_then(|a| a.get_ref().host.as_ref())
         .map(|h| h.get_ref().clone())
         .ok_or_else(|| device("arm", "names no host"))?;
-    let mut source = crate::stack::pad::open_wired(&*cx.platform, wiring, pad.pressure_mode)?;
+    let mut source = crate::stack::pad::open_scene(scene, &*cx.platform)?;
     let mut arm = crate::stack::arm::open(&host)?;
     let mut cnn = tactile_nets::pretrained::contact_cnn(Variant::Paper)
         .map_err(|e| device("estimators.contact", format!("the contact CNN: {e}")))?;

@@ -11,6 +11,7 @@
 
 use super::platform::{I2cBus, Platform};
 use crate::error::RunError;
+use crate::scene::SceneOf;
 use crate::scene::parts::PadWiring;
 use embedded_hal::delay::DelayNs;
 use hand_control::grasp_loop::LoopClock;
@@ -45,6 +46,26 @@ pub struct RealPad {
 /// barometer on it; its frames' pressures are converted in `mode`.
 pub fn open(platform: &dyn Platform, bus: &str, mode: BaroMode) -> Result<RealPad, RunError> {
     open_wired(platform, PadWiring::I2c { bus }, mode)
+}
+
+/// The pad `scene` names, opened through `platform`: an error names what the scene lacks (the
+/// pad, its `i2c_bus` or `firmata_port`) or what failed opening it.
+pub fn open_scene<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Result<RealPad, RunError> {
+    let missing = |reason: &str| RunError::Device {
+        device: "sensors.imu_pad",
+        reason: reason.to_owned(),
+    };
+    let pad = scene
+        .file
+        .sensors
+        .imu_pad
+        .as_ref()
+        .map(|p| p.get_ref())
+        .ok_or_else(|| missing("the scene has no [sensors.imu_pad]"))?;
+    let wiring = pad
+        .wiring()
+        .ok_or_else(|| missing("the scene's [sensors.imu_pad] names no i2c_bus or firmata_port"))?;
+    open_wired(platform, wiring, pad.pressure_mode)
 }
 
 /// Opens the pad where `wiring` says (a scene's

@@ -231,3 +231,47 @@ pub fn figures(stdout: &str) -> impl Fn(&str) -> serde_json::Value {
             .unwrap_or_else(|| panic!("no figure {name}: {stdout}"))
     }
 }
+
+/// What a `paper-scenes` device process printed, run as a user runs it: its first line (the
+/// port, as a scene names it), the rest of stdout once its stdin (`commands`) closed, stderr and
+/// its exit status.
+pub struct DeviceRun {
+    /// The first line.
+    pub port_line: String,
+    /// The rest of stdout.
+    pub rest: String,
+    /// Everything on stderr.
+    pub stderr: String,
+    /// The exit status.
+    pub code: Option<i32>,
+}
+
+/// Runs `paper-scenes ARGS…`, waits for its first line, writes `commands` to its stdin, closes
+/// it and waits (bounded) for the process to end.
+pub fn device_process(args: &[&str], commands: &str) -> DeviceRun {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_paper-scenes"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("paper-scenes starts");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
+    let mut port_line = String::new();
+    stdout.read_line(&mut port_line).expect("the port line");
+    stdin.write_all(commands.as_bytes()).expect("commands");
+    drop(stdin);
+    // The rest of stdout, to its end when the process ends (bounded by `finish` below).
+    let reader = std::thread::spawn(move || {
+        let mut rest = String::new();
+        std::io::Read::read_to_string(&mut stdout, &mut rest).map(|_| rest)
+    });
+    let out = finish(child, SESSION_WAIT);
+    DeviceRun {
+        port_line,
+        rest: reader.join().expect("reader").expect("stdout read"),
+        stderr: text(&out.stderr),
+        code: out.status.code(),
+    }
+}

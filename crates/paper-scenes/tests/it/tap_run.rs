@@ -134,30 +134,15 @@ fn ctrl_c_while_waiting_for_a_tap_stops_the_arm_and_ends_the_run() {
 /// stdin, each answered; a region the pad does not have is refused in words.
 #[test]
 fn the_pad_board_process_taps_on_stdin() {
-    use std::io::{BufRead, BufReader, Read, Write};
-    use std::process::{Command, Stdio};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_paper-scenes"))
-        .args(["pad-board", "--boot-ms", "100"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("paper-scenes starts");
-    let mut stdin = child.stdin.take().expect("stdin");
-    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
-    let mut line = String::new();
-    stdout.read_line(&mut line).expect("the port line");
-    assert!(line.starts_with("firmata_port = \"/dev/pts/"), "{line}");
-    writeln!(stdin, "tap 4\ntap 12\ntap").expect("commands");
-    drop(stdin);
-    let reader = std::thread::spawn(move || {
-        let mut rest = String::new();
-        stdout.read_to_string(&mut rest).map(|_| rest)
-    });
-    let out = crate::common::finish(child, Duration::from_secs(30));
-    let rest = reader.join().expect("reader").expect("stdout read");
-    let stderr = crate::common::text(&out.stderr);
-    assert_eq!(out.status.code(), Some(0), "{rest}\n{stderr}");
+    let run =
+        crate::common::device_process(&["pad-board", "--boot-ms", "100"], "tap 4\ntap 12\ntap\n");
+    let (rest, stderr) = (&run.rest, &run.stderr);
+    assert!(
+        run.port_line.starts_with("firmata_port = \"/dev/pts/"),
+        "{}",
+        run.port_line
+    );
+    assert_eq!(run.code, Some(0), "{rest}\n{stderr}");
     let lines: Vec<&str> = rest.lines().collect();
     assert_eq!(lines.len(), 2, "{rest}");
     assert!(

@@ -4,15 +4,10 @@
 //! stderr for each weight; the test, as the user, rests it on the pad and presses Enter (or
 //! types something else), and reads the figures back.
 
-use crate::common::{Session, bag_count, figures, finish, signal, text};
+use crate::common::{Session, bag_count, figures, signal};
 use paper_scenes::devices::fingertip_board::{FingertipBoard, FingertipBoardConfig};
-use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
-use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-/// How long the fingertip-board process may take to end once its stdin closes.
-const WAIT: Duration = Duration::from_secs(30);
 
 fn board() -> FingertipBoard {
     FingertipBoard::spawn(&FingertipBoardConfig {
@@ -172,29 +167,17 @@ fn ctrl_c_at_a_question_ends_the_run_at_once() {
 /// `place G` / `clear` on stdin, each answered; what it was left with when stdin closes.
 #[test]
 fn the_fingertip_board_process_takes_weights_on_stdin() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_paper-scenes"))
-        .args(["fingertip-board", "--boot-ms", "100"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("paper-scenes starts");
-    let mut stdin = child.stdin.take().expect("stdin");
-    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
-    let mut line = String::new();
-    stdout.read_line(&mut line).expect("the port line");
-    assert!(line.starts_with("firmata_port = \"/dev/pts/"), "{line}");
-    writeln!(stdin, "place 50\nplace heavy\nclear\nplace 20").expect("commands");
-    drop(stdin);
-    // The rest of stdout, to its end when the process ends (bounded by `finish` below).
-    let reader = std::thread::spawn(move || {
-        let mut rest = String::new();
-        std::io::Read::read_to_string(&mut stdout, &mut rest).map(|_| rest)
-    });
-    let out = finish(child, WAIT);
-    let rest = reader.join().expect("reader").expect("stdout read");
-    let stderr = text(&out.stderr);
-    assert_eq!(out.status.code(), Some(0), "{rest}\n{stderr}");
+    let run = crate::common::device_process(
+        &["fingertip-board", "--boot-ms", "100"],
+        "place 50\nplace heavy\nclear\nplace 20\n",
+    );
+    let (rest, stderr) = (&run.rest, &run.stderr);
+    assert!(
+        run.port_line.starts_with("firmata_port = \"/dev/pts/"),
+        "{}",
+        run.port_line
+    );
+    assert_eq!(run.code, Some(0), "{rest}\n{stderr}");
     assert_eq!(
         rest.lines().collect::<Vec<_>>(),
         [
