@@ -19,8 +19,9 @@
 //!   experiments of its own (the papers' reproduction) reads the same parts;
 //! - [`stack`]: the real devices a scene names, their buses opened through a
 //!   [`Platform`](stack::platform::Platform) (Linux by default, or a substitute);
-//! - [`runs`]: the grasp hold, the fingertip readout, weights on the fingertip and the
-//!   underactuated hand's softness classification, joined into the scene's [`Outcome`];
+//! - [`runs`]: the grasp hold, the fingertip readout, weights on the fingertip, the
+//!   underactuated hand's softness classification and taps on the pad that move the arm,
+//!   joined into the scene's [`Outcome`];
 //! - [`pace`]: a loop's period;
 //! - [`progress`]: where a run reports its stages;
 //! - [`prompt`]: what a run asks its user (place a weight, then press Enter), answered on stdin;

@@ -1,4 +1,4 @@
-//! Seed 002's tap-to-move (Al & Martinez-Hernandez, §IV-B) on the user's own pad and arm: for
+//! Tap-to-move (Al & Martinez-Hernandez, §IV-B) on the user's own pad and arm: for
 //! each region the scene lists, the run asks for a tap there, waits for it, locates it with the
 //! built-in contact CNN (the paper's variant) from the accelerometer / gyroscope window around
 //! the trigger, and moves the arm from home to the region's grid pose ([`crate::tap_to_move`],
@@ -19,7 +19,7 @@ use crate::{Line, Plot};
 use hand_traits::{Arm, ImuFrame, TactileSource};
 use tactile_nets::contact_cnn::{self, Variant};
 
-/// The accuracy of seed 002's real-time test, %: the target of a run (§IV-B).
+/// The accuracy of the paper's real-time test, %: the target of a run (§IV-B).
 const PAPER_ACCURACY_PCT: f64 = 93.0;
 
 /// Why the pad gave no frame: the run's stop, or the pad's own error.
@@ -181,7 +181,11 @@ fn part(rows: &[(u8, crate::tap_to_move::CycleReport)], host: &str) -> Part {
         100.0 * hits as f64 / n,
         "%",
     );
-    let f = super::figure::paper(f, PAPER_ACCURACY_PCT, "seed 002 §IV-B (real-time test)");
+    let f = super::figure::paper(
+        f,
+        PAPER_ACCURACY_PCT,
+        "Al & Martinez-Hernandez, §IV-B (real-time test)",
+    );
     part.figures
         .push(target(f, Target::AtLeast(PAPER_ACCURACY_PCT)));
     part.figures.push(measured(

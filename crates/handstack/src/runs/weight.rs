@@ -1,4 +1,4 @@
-//! Seed 000's Table 1 protocol (Kim et al. 2020, §2.2) on the user's own fingertip: the pad is
+//! The Table 1 protocol of Kim et al. 2020 (§2.2) on the user's own fingertip: the pad is
 //! tared unloaded, then each weight is placed when the run asks for it, its pressures settle
 //! and are averaged (the paper's "average measured values"), and the force DNN's estimate of
 //! the average rise is compared with the weight.
@@ -21,7 +21,7 @@ const MAX_ANSWER_GF: f64 = 1000.0;
 const MAX_TRIES: usize = 10;
 /// The paper's largest Table 1 deviation, gf: Expect. Weight 118.83 on the 120 gf row.
 const PAPER_MAX_ERROR_GF: f64 = 1.17;
-const PAPER_SOURCE: &str = "seed 000 Table 1 (Expect. Weight − weight, 120 gf row)";
+const PAPER_SOURCE: &str = "Kim et al. 2020, Table 1 (Expect. Weight − weight, 120 gf row)";
 
 /// Runs `[experiment.weight]` of `scene` on its real fingertip with its force DNN.
 pub fn run(scene: &Scene, exp: &Weight, cx: &RunContext<'_>) -> Result<Part, RunError> {

@@ -23,7 +23,7 @@ pub struct Experiments {
     pub tap_to_move: Option<Spanned<TapToMove>>,
 }
 
-/// Seed 002's tap-to-move (Al & Martinez-Hernandez, §IV-B) on the user's pad and arm: for
+/// Tap-to-move (Al & Martinez-Hernandez, §IV-B) on the user's pad and arm: for
 /// each region of `regions` the run asks for a tap there, waits for it (the pressure rising over
 /// its rest), locates it with the built-in contact CNN from the accelerometer / gyroscope window
 /// around it, and moves the arm from home to the region's grid pose; the arm goes home before
@@ -52,12 +52,12 @@ impl TapToMove {
     }
 }
 
-/// The weights of Table 1 of Kim et al. 2020 (seed 000, §2.2), gf: the default series.
+/// The weights of Table 1 of Kim et al. 2020 (§2.2), gf: the default series.
 pub const TABLE1_WEIGHTS_GF: [f64; 13] = [
     0.0, 50.0, 100.0, 110.0, 120.0, 130.0, 140.0, 150.0, 160.0, 170.0, 180.0, 190.0, 200.0,
 ];
 
-/// Seed 000's Table 1 protocol on the user's fingertip: the pad is tared unloaded, then each
+/// The Table 1 protocol of Kim et al. 2020 on the user's fingertip: the pad is tared unloaded, then each
 /// weight is placed when the run asks for it (answered on stdin: Enter, or the weight actually
 /// placed in gf), the pressures left to settle and averaged, and the force DNN's estimate of
 /// the average compared with the weight. The built-in networks were trained on 0–200 gf.
