@@ -1,8 +1,10 @@
 //! The demo report: one self-contained HTML file (inline CSS and SVG, no network, no script)
 //! of a list of [`Outcome`]s and the speed/accuracy trade points.
 //!
-//! Per scene: its title, a figures table (value, paper, target, met — an unmet target shows as
-//! unmet) and one inline SVG per [`Plot`](handstack::Plot). Then the trade curves read from
+//! First what the stack achieves over every scene (targets met, findings, this software's own
+//! misses by name). Per scene: its title, a figures table (value, paper, target, met — an unmet
+//! target shows as unmet, a finding with its reason) and one inline SVG per
+//! [`Plot`](handstack::Plot). Then the trade curves read from
 //! `docs/trade/points.csv` (see [`trade_points`]), or a note saying why they are missing.
 //! The header names the git commit, the date and the machine the runs were made on.
 //!
@@ -22,6 +24,7 @@
 //!         source: Some("seed 000 Table 1".into()),
 //!         target: Some("≤ 5".into()),
 //!         met: Some(true),
+//!         finding: None,
 //!     }],
 //!     plots: vec![],
 //!     notes: vec![],
