@@ -7,7 +7,7 @@
 //! the parser's error paths.
 //!
 //! The expected reports come from a second reading of the stream, written from the parser
-//! module's docs rather than from its state machine ([`expected`]): the stream split at its
+//! module's docs rather than from its state machine (`expected`, below): the stream split at its
 //! status bytes (bit 7 set), each run of data bytes after one read by that status byte's rule.
 
 use std::ops::Range;
@@ -595,12 +595,12 @@ const CLONES: usize = 16;
 ///
 /// Oracles:
 /// - every report the parser makes, at the byte that completes it, is the one the stream's
-///   framing gives by the parser's docs ([`expected`]), and it makes no other: a message's
+///   framing gives by the parser's docs (`expected`), and it makes no other: a message's
 ///   fields are its data bytes (an analog value ≤ 16383 on channel ≤ 15), a sysex reads as its
 ///   ID's layout says or is `Malformed`, cut, stray, unknown and overlong input are the errors
 ///   the docs name, in order;
 /// - [`parse_stream`] on the whole stream at once reports the same as a [`Parser`] given it
-///   byte by byte and carried over each of the first [`CLONES`] chunk boundaries as a clone of
+///   byte by byte and carried over each of the first `CLONES` chunk boundaries as a clone of
 ///   itself;
 /// - a borrowed payload fits the parser's buffer with the ID (< [`SYSEX_CAPACITY`] bytes) and
 ///   holds 7-bit bytes only; every error displays;

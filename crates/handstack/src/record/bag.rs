@@ -112,7 +112,7 @@ struct Topic {
     count: u64,
 }
 
-/// A topic's handle, from [`Bag::topic`].
+/// A topic's handle, from `Bag::topic` ([`Recorder::topic`](super::Recorder::topic)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TopicId(usize);
 

@@ -1,5 +1,5 @@
 //! Recording a run (`handstack run SCENE --record DIR`): every frame, estimate, command, fault
-//! and figure, as they happen, in a rosbag2 bag with MCAP storage ([`bag`](mod@bag)) that
+//! and figure, as they happen, in a rosbag2 bag with MCAP storage (`record::bag`) that
 //! Foxglove opens and `ros2 bag play` replays, in the messages and topics the `handstack node`
 //! parts publish (hand-zenoh's `msg`):
 //!
