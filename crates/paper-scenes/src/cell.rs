@@ -34,13 +34,9 @@ fn failed(device: &'static str, e: impl ToString) -> CellError {
 /// The taps a pad scene schedules, and where its window sits.
 fn tap_plan(scene: &PaperScene) -> (usize, WindowPlacement) {
     scene
-        .file
-        .experiment
-        .get_ref()
-        .tap
-        .as_ref()
+        .tap()
         .map_or((TAPS_PER_REGION, WindowPlacement::Aligned), |t| {
-            (*t.get_ref().taps_per_region.get_ref(), t.get_ref().window)
+            (*t.taps_per_region.get_ref(), t.window)
         })
 }
 

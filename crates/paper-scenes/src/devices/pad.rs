@@ -13,12 +13,8 @@ use hand_sim::imu_pad::{ImuPad, TapSpec};
 /// `seed`, else the scene's.
 pub fn seed(scene: &PaperScene) -> u64 {
     scene
-        .file
-        .experiment
-        .get_ref()
-        .tap
-        .as_ref()
-        .and_then(|t| t.get_ref().seed)
+        .tap()
+        .and_then(|t| t.seed)
         .unwrap_or_else(|| scene.seed())
 }
 

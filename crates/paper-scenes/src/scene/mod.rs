@@ -78,4 +78,14 @@ impl PaperScene {
     pub fn seed(&self) -> u64 {
         self.sim.seed
     }
+
+    /// Its `[experiment.tap]`, if it names one.
+    pub fn tap(&self) -> Option<&experiments::Tap> {
+        self.file
+            .experiment
+            .get_ref()
+            .tap
+            .as_ref()
+            .map(|t| t.get_ref())
+    }
 }
