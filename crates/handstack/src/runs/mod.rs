@@ -18,10 +18,13 @@ use crate::progress::Progress;
 use crate::prompt::Prompter;
 use crate::record::Recorder;
 use crate::scene::{Scene, SceneOf};
+use crate::stack::Checked;
 use crate::stack::platform::{LinuxPlatform, Platform};
 use crate::stop::Stop;
 use crate::{Figure, Outcome, Plot};
+use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
+use ur_bridge::UrArm;
 
 /// What every runner needs besides its scene.
 pub struct RunContext<'a> {
@@ -35,6 +38,8 @@ pub struct RunContext<'a> {
     pub record: Option<&'a Recorder>,
     /// Where the answers to the run's questions come from (stdin by default).
     pub prompter: Prompter,
+    /// The devices the run's check left open, until an experiment takes them.
+    pub checked: Mutex<Checked>,
 }
 
 impl<'a> RunContext<'a> {
@@ -46,7 +51,31 @@ impl<'a> RunContext<'a> {
             stop: Stop::new(),
             record: None,
             prompter: Prompter::stdin(),
+            checked: Mutex::new(Checked::default()),
         }
+    }
+
+    /// The arm at `host`: the connection the run's check made, or a new one.
+    pub fn arm(&self, host: &str) -> Result<UrArm, RunError> {
+        self.checked
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .arm(host)
+    }
+
+    /// Checks every real device `scene` names ([`check_real_devices`](crate::stack::check_real_devices)),
+    /// keeping what it leaves open for the experiments.
+    pub fn check_devices<X>(&self, scene: &SceneOf<X>) -> Result<(), RunError> {
+        let checked = crate::stack::check_real_devices(scene, &*self.platform)?;
+        *self.checked.lock().unwrap_or_else(PoisonError::into_inner) = checked;
+        Ok(())
+    }
+
+    /// Closes what the check left open and no experiment took.
+    pub fn close_devices(&self) {
+        drop(std::mem::take(
+            &mut *self.checked.lock().unwrap_or_else(PoisonError::into_inner),
+        ));
     }
 
     /// This context, its questions answered by `prompter` instead of stdin.
@@ -117,6 +146,7 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
         r.note("scene", &scene.name);
     }
     let ran = run_parts(scene, cx);
+    cx.close_devices();
     if let (Some(r), Err(e)) = (cx.record, &ran) {
         r.fault(&scene.name, "run", &e.to_string(), true);
     }
@@ -126,7 +156,7 @@ pub fn run(scene: &Scene, cx: &RunContext<'_>) -> Result<Outcome, RunError> {
 fn run_parts(scene: &Scene, cx: &RunContext<'_>) -> Result<Vec<Part>, RunError> {
     let x = scene.file.experiment.get_ref();
     cx.progress.stage("opening real devices", 0);
-    crate::stack::check_real_devices(scene, &*cx.platform)?;
+    cx.check_devices(scene)?;
     let mut parts = Vec::new();
     let record = |part: Part| {
         if let Some(r) = cx.record {

@@ -68,7 +68,7 @@ pub fn run(scene: &Scene, exp: &TapScene, cx: &RunContext<'_>) -> Result<Part, R
         .map(|h| h.get_ref().clone())
         .ok_or_else(|| device("arm", "names no host"))?;
     let mut source = crate::stack::pad::open_scene(scene, &*cx.platform)?;
-    let mut arm = crate::stack::arm::open(&host)?;
+    let mut arm = cx.arm(&host)?;
     let mut cnn = tactile_nets::pretrained::contact_cnn(Variant::Paper)
         .map_err(|e| device("estimators.contact", format!("the contact CNN: {e}")))?;
     let mut config = cnn.trigger_offset().map_or_else(

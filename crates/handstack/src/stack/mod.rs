@@ -11,12 +11,35 @@ pub mod underactuated;
 use crate::error::RunError;
 use crate::scene::SceneOf;
 use platform::Platform;
+use ur_bridge::UrArm;
+
+/// What [`check_real_devices`] leaves open for the run: the arm. Its connection takes seconds
+/// and uploads the controller's script, and a controller still closing the check's
+/// connection can refuse the next one its input registers; so a run connects it once.
+#[derive(Default)]
+pub struct Checked {
+    arm: Option<(String, UrArm)>,
+}
+
+impl Checked {
+    /// The arm at `host`: the connection the check made, or a new one.
+    pub fn arm(&mut self, host: &str) -> Result<UrArm, RunError> {
+        match self.arm.take() {
+            Some((checked, arm)) if checked == host => Ok(arm),
+            _ => arm::open(host),
+        }
+    }
+}
 
 /// Opens every real device `scene` names (fingertip buses or board, pad bus or board, hand
-/// port, arm host) and closes them again (the hand with its torque off): a wrong path or an
-/// absent device is a typed [`RunError::Open`] before any experiment starts. The sensors are
-/// opened first, so a hand is never commanded when its fingertip cannot be read.
-pub fn check_real_devices<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Result<(), RunError> {
+/// port, arm host) and closes them again (the hand with its torque off), except the arm, which
+/// stays connected in the returned [`Checked`]: a wrong path or an absent device is a typed
+/// [`RunError::Open`] before any experiment starts. The sensors are opened first, so a hand is
+/// never commanded when its fingertip cannot be read.
+pub fn check_real_devices<X>(
+    scene: &SceneOf<X>,
+    platform: &dyn Platform,
+) -> Result<Checked, RunError> {
     let s = &scene.file.sensors;
     if s.real_fingertip() {
         drop(fingertip::open(scene, platform)?);
@@ -50,7 +73,10 @@ pub fn check_real_devices<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Res
         .as_ref()
         .and_then(|a| a.get_ref().host.as_ref())
     {
-        drop(arm::open(host.get_ref())?);
+        let host = host.get_ref();
+        return Ok(Checked {
+            arm: Some((host.clone(), arm::open(host)?)),
+        });
     }
-    Ok(())
+    Ok(Checked::default())
 }

@@ -33,6 +33,21 @@ pub struct ArmStack {
 /// Connects to the controller at the host `scene`'s `[arm]` names, or starts a simulator
 /// (run as `[sim.arm]` says) on a fresh loopback address and connects to it.
 pub fn open(scene: &PaperScene) -> Result<ArmStack, RunError> {
+    open_by(scene, handstack::stack::arm::open)
+}
+
+/// [`open`] in a run: a named host's arm is the connection the run's device check made.
+pub fn open_in(
+    scene: &PaperScene,
+    cx: &handstack::runs::RunContext<'_>,
+) -> Result<ArmStack, RunError> {
+    open_by(scene, |host| cx.arm(host))
+}
+
+fn open_by(
+    scene: &PaperScene,
+    connect: impl FnOnce(&str) -> Result<UrArm, RunError>,
+) -> Result<ArmStack, RunError> {
     let host = scene
         .file
         .arm
@@ -56,6 +71,6 @@ pub fn open(scene: &PaperScene) -> Result<ArmStack, RunError> {
             (address.to_string(), Some(sim))
         }
     };
-    let arm = handstack::stack::arm::open(&host)?;
+    let arm = connect(&host)?;
     Ok(ArmStack { arm, host, sim })
 }

@@ -63,9 +63,15 @@ impl<'a> core::ops::Deref for RunContext<'a> {
 /// Runs every experiment `scene` names, in order, and joins their figures and plots.
 pub fn run(scene: &PaperScene, cx: &RunContext<'_>) -> Result<Outcome, Error> {
     let start = Instant::now();
+    let parts = run_parts(scene, cx);
+    cx.close_devices();
+    Ok(Part::join(&scene.scene, parts?, start))
+}
+
+fn run_parts(scene: &PaperScene, cx: &RunContext<'_>) -> Result<Vec<Part>, Error> {
     let x = scene.file.experiment.get_ref();
     cx.progress.stage("opening real devices", 0);
-    handstack::stack::check_real_devices(&scene.scene, &*cx.platform)?;
+    cx.check_devices(&scene.scene)?;
     let mut parts = Vec::new();
     if let Some(w) = &x.weight {
         parts.push(weight::run(scene, w.get_ref(), cx)?);
@@ -96,5 +102,5 @@ pub fn run(scene: &PaperScene, cx: &RunContext<'_>) -> Result<Outcome, Error> {
     if hand_loop::scene::applies(scene) {
         parts.push(hand_loop::scene::run(scene, cx)?);
     }
-    Ok(Part::join(&scene.scene, parts, start))
+    Ok(parts)
 }

@@ -19,7 +19,7 @@ use tactile_nets::contact_cnn::ContactCnn;
 pub fn run(scene: &PaperScene, exp: &Tap, cx: &RunContext<'_>) -> Result<Part, crate::Error> {
     let path = tap_run::locator_path(&cx.root);
     let mut cnn = ContactCnn::load(&path)?;
-    let mut arm = crate::devices::arm::open(scene)?;
+    let mut arm = crate::devices::arm::open_in(scene, cx)?;
     let per_region = *exp.taps_per_region.get_ref();
     let pad = crate::devices::pad::open(scene, crate::devices::pad::schedule(scene, per_region))?;
     let config = match exp.window {

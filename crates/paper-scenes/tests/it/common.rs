@@ -275,3 +275,15 @@ pub fn device_process(args: &[&str], commands: &str) -> DeviceRun {
         code: out.status.code(),
     }
 }
+
+/// The run connected to the arm once: the device check's connection moved it, so ur_rtde's
+/// control script was uploaded once (a second connection would race the controller's release
+/// of the first one's input registers).
+pub fn script_uploaded_once(sim: &ur_sim::UrSim) {
+    let log = sim.log();
+    let uploads = log
+        .iter()
+        .filter(|l| *l == "RTDE Control Script Loaded")
+        .count();
+    assert_eq!(uploads, 1, "{log:?}");
+}

@@ -35,6 +35,7 @@ fn a_scene_naming_a_started_ur_simulator_moves_it() {
     let acc = o.figure("tap_accuracy_pct").expect("figure");
     assert!(acc.label.contains("127.0.0.90"), "{acc:?}");
     assert!(o.figure("tcp_error_max_m").and_then(|f| f.met) == Some(true));
+    common::script_uploaded_once(&sim);
     // A host nobody listens on is an open error naming it.
     let dead = text.replace("127.0.0.90", "127.0.0.91");
     assert!(

@@ -4,7 +4,7 @@
 //! a tap on each region; the test, as the user, taps it on the board; the regions the CNN named,
 //! the arm's moves and where the arm was left are read back.
 
-use crate::common::{Session, figures, signal};
+use crate::common::{self, Session, figures, signal};
 use handstack::tap_to_move::RegionToGrid;
 use paper_scenes::devices::pad_board::{PadBoard, PadBoardConfig};
 use std::net::Ipv4Addr;
@@ -107,6 +107,7 @@ fn each_region_tapped_moves_the_arm_to_the_located_grid_pose_then_home() {
         ur.joints()
     );
     assert!(stdout.contains("home after 9 taps"), "{stdout}");
+    common::script_uploaded_once(&ur);
 }
 
 #[test]

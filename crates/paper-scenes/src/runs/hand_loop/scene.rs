@@ -185,7 +185,7 @@ where
         to_input: tap_run::cnn_window,
     };
     // The arm.
-    let arm = crate::devices::arm::open(scene)?;
+    let arm = crate::devices::arm::open_in(scene, cx)?;
     let grid = RegionToGrid::ur3_default().map_err(|e| dev("arm")(e.to_string()))?;
     let arm_part = ArmPart::new(arm.arm, grid, trigger.motion);
     let policy = fuzzy_mamdani::grasp_controller()
