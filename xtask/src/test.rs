@@ -76,8 +76,9 @@ fn all<const N: usize>(results: [Result<()>; N]) -> Result<()> {
     }
 }
 
-/// The variables the tests read (the venv's Python, Chromium) and the test build's executables.
-type Built = ([(&'static str, PathBuf); 2], Vec<Executable>);
+/// The variables the tests read (the venv's Python, Chromium, the fingertip on a pty) and the
+/// test build's executables.
+type Built = ([(&'static str, PathBuf); 3], Vec<Executable>);
 
 /// The main steps after fmt, up to the test build.
 fn build_steps(root: &Path) -> Result<Built> {
@@ -89,6 +90,8 @@ fn build_steps(root: &Path) -> Result<Built> {
     let env = [
         ("HANDSTACK_PYTHON", python),
         ("HANDSTACK_CHROMIUM", chromium),
+        // Built by the builds lane's firmware check, which ends before the tests start.
+        ("HANDSTACK_FINGERTIP_MCU", root.join(firmware::HOST_UART)),
     ];
     let borrowed: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
     let executables = test_binaries::build(root, &borrowed)?;

@@ -13,12 +13,15 @@ use std::cell::{Cell, RefCell};
 use std::process::ExitCode;
 use std::rc::Rc;
 
-use baro_drivers::sim::{BusTiming, Conditions, Ms5611Sim, SimClock, Tca9548aSim};
+use baro_drivers::sim::SimClock;
 use baro_drivers::{Address, Ms5611, SampleError};
 use embedded_hal::i2c::{ErrorKind, ErrorType, I2c, Operation};
 use fingertip::{Config, Error, Fingertip, OSR, frame};
 use hand_sim::fingertip::geometry::{AOT_SENSORS_MM, PAD, aot_geometry};
 use hand_sim::fingertip::{CellSet, ContactPatch, FingertipPhysics, LawParams};
+
+#[path = "common/board.rs"]
+mod board;
 
 #[global_allocator]
 static ALLOC: dhat::Alloc = dhat::Alloc;
@@ -88,18 +91,7 @@ fn run(check: bool) -> Result<(), String> {
 
     // The board: one TCA9548A, an MS5611 (CSB low) on each of its channels 0–2.
     let clock = SimClock::new();
-    let mut mux = Tca9548aSim::new(0x70, clock.clone(), BusTiming::default());
-    for k in 0..3u8 {
-        let physics = Rc::clone(&physics);
-        let env = move |now_ns: u64| Conditions {
-            pressure_mbar: physics.borrow_mut().pressure_hpa(usize::from(k), now_ns),
-            temperature_celsius: 24.0,
-        };
-        let chip = Ms5611Sim::new(env, clock.clone())
-            .with_seed(u64::from(k) + 1)
-            .with_command_log(false);
-        mux = mux.attach(k, chip);
-    }
+    let mux = board::mux(&physics, &clock, 1);
     let switch = xca9548a::Xca9548a::new(mux, xca9548a::SlaveAddr::default());
     let parts = switch.split();
     let fail = Rc::new(Cell::new(false));
@@ -166,7 +158,7 @@ fn run(check: bool) -> Result<(), String> {
                 frame::fault(t_us, seq)
             }
         };
-        if !frame::is_valid(&bytes) {
+        if frame::Frame::decode(&bytes).is_err() {
             return Err(format!("an invalid frame at {t_us} µs"));
         }
         seq = seq.wrapping_add(1);

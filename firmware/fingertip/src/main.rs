@@ -56,7 +56,7 @@ mod board {
     /// I2C clock to the TCA9548A and the MS5611s (both allow 400 kHz), kHz.
     const I2C_KHZ: u32 = 400;
     /// UART to the host: a 28-byte frame takes 0.6 ms, inside the 6 ms cycle.
-    const BAUD: u32 = 460_800;
+    const BAUD: u32 = fingertip_link::BAUD;
 
     /// A monotonic µs clock from the DWT cycle counter (wraps every ~60 s at 72 MHz; the sum
     /// of wrapping differences does not, if it is read at least that often — every cycle).

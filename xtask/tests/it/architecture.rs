@@ -113,6 +113,7 @@ fn lawful() -> Vec<Package> {
         package("ur-sim", false, &[("ur-bridge", "normal", false)]),
         package("hand-zenoh", false, &[("hand-traits", "normal", false)]),
         package("firmata-host", false, &[]),
+        package("fingertip-link", false, &[]),
         package(
             "underactuated-hand",
             false,
@@ -441,6 +442,7 @@ fn the_packaged_crates_are_the_tables_published_crates() {
             "aot-locate",
             "baro-drivers",
             "dxl-sim",
+            "fingertip-link",
             "firmata-host",
             "firmata-sim",
             "fuzzy-mamdani",

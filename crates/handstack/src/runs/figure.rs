@@ -77,3 +77,12 @@ pub fn finding(mut f: Figure, why: &str) -> Figure {
     }
     f
 }
+
+/// `hits` of `n` as a percentage; NaN when `n` is 0 (a grid plot's cell with no samples).
+pub fn percent(hits: u32, n: u32) -> f64 {
+    if n == 0 {
+        f64::NAN
+    } else {
+        100.0 * f64::from(hits) / f64::from(n)
+    }
+}

@@ -1,11 +1,13 @@
 //! The experiments of a `handstack` scene, each on the real devices the scene names: a grasp
 //! hold ([`grasp`]), a fingertip readout ([`readout`]), weights on the fingertip ([`weight`]),
-//! the underactuated hand's softness classification ([`softness`]) and taps on the pad that
-//! move the arm ([`tap_to_move`]); [`run`] joins their
+//! taps on the fingertip located by its microcontroller ([`contact`]), the underactuated
+//! hand's softness classification ([`softness`]) and taps on the pad that move the arm
+//! ([`tap_to_move`]); [`run`] joins their
 //! figures into
 //! the scene's [`Outcome`]. The functions under them take opened devices, so a program with
 //! its own devices (the papers' simulated ones) runs the same code.
 
+pub mod contact;
 pub mod figure;
 pub mod grasp;
 pub mod readout;
@@ -179,6 +181,9 @@ fn run_parts(scene: &Scene, cx: &RunContext<'_>) -> Result<Vec<Part>, RunError> 
     }
     if let Some(w) = &x.weight {
         parts.push(record(weight::run(scene, w.get_ref(), cx)?));
+    }
+    if let Some(c) = &x.contact {
+        parts.push(record(contact::run(scene, c.get_ref(), cx)?));
     }
     if let Some(s) = &x.softness {
         parts.push(record(softness::run(scene, s.get_ref(), cx)?));

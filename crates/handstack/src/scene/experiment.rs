@@ -21,7 +21,46 @@ pub struct Experiments {
     pub weight: Option<Spanned<Weight>>,
     /// `[experiment.tap_to_move]`: taps on the pad, located by the contact CNN, move the arm.
     pub tap_to_move: Option<Spanned<TapToMove>>,
+    /// `[experiment.contact]`: taps on the fingertip's cells, located by its microcontroller.
+    pub contact: Option<Spanned<Contact>>,
 }
+
+/// Contact location (Kim et al. 2020, §3–4) on the user's fingertip: for each cell of `cells`
+/// the run asks for a tap there and reads where the fingertip's microcontroller located it
+/// while the pad was pressed: the contact MLP's cell on the 4 × 6 pad and Arrival-of-Time's
+/// area on the 3 × 3 grid (the cells each reported most often). Both need the sensors'
+/// arrival times to the millisecond, which the board measures: the fingertip is its
+/// `serial_port`. Figures: each located against the cell asked, and the accuracies.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Contact {
+    /// The cells to tap, in order, each `[row, column]` counted from 1 (rows 1…4, columns
+    /// 1…6; default each cell once, row by row); 1…240 of them.
+    pub cells: Option<Spanned<Vec<[u8; 2]>>>,
+    /// The longest wait for each tap, s (default 30; 1…600): no tap by then fails the run.
+    pub wait_s: Option<Spanned<f64>>,
+}
+
+impl Contact {
+    /// The cells it asks for, `(row, column)` from 1.
+    pub fn cells(&self) -> Vec<(u8, u8)> {
+        self.cells.as_ref().map_or_else(
+            || {
+                (1..=PAD_ROWS)
+                    .flat_map(|r| (1..=PAD_COLS).map(move |c| (r, c)))
+                    .collect()
+            },
+            |c| c.get_ref().iter().map(|&[r, c]| (r, c)).collect(),
+        )
+    }
+
+    /// The longest wait for a tap, s.
+    pub fn wait_s(&self) -> f64 {
+        self.wait_s.as_ref().map_or(30.0, |w| *w.get_ref())
+    }
+}
+
+use aot_locate::{COLS as PAD_COLS, ROWS as PAD_ROWS};
 
 /// Tap-to-move (Al & Martinez-Hernandez, §IV-B) on the user's pad and arm: for
 /// each region of `regions` the run asks for a tap there, waits for it (the pressure rising over
@@ -266,7 +305,8 @@ pub fn check_grasp_parts<X>(
 
 impl ExperimentTable for Experiments {
     const ALLOWED: &'static str = "[experiment.grasp], [experiment.readout], \
-        [experiment.softness], [experiment.weight], [experiment.tap_to_move]";
+        [experiment.softness], [experiment.weight], [experiment.tap_to_move], \
+        [experiment.contact]";
 
     fn names(&self) -> Vec<&'static str> {
         [
@@ -275,6 +315,7 @@ impl ExperimentTable for Experiments {
             ("softness", self.softness.is_some()),
             ("weight", self.weight.is_some()),
             ("tap_to_move", self.tap_to_move.is_some()),
+            ("contact", self.contact.is_some()),
         ]
         .into_iter()
         .filter_map(|(n, on)| on.then_some(n))
@@ -398,7 +439,55 @@ fn check_experiments<X>(
     if let Some(t) = &x.tap_to_move {
         check_tap_to_move(scene, t, cx)?;
     }
+    if let Some(c) = &x.contact {
+        check_contact(scene, c, cx)?;
+    }
     Ok(())
+}
+
+/// A contact experiment's fingertip (its microcontroller) and values.
+fn check_contact<X>(
+    scene: &SceneFile<X>,
+    c: &Spanned<Contact>,
+    cx: &Checker<'_>,
+) -> Result<(), SceneError> {
+    let mcu = scene
+        .sensors
+        .fingertip
+        .as_ref()
+        .is_some_and(|t| t.get_ref().serial_port.is_some());
+    if !mcu {
+        return Err(cx.err(
+            c.span(),
+            "experiment.contact",
+            "needs the fingertip's microcontroller",
+            "[sensors.fingertip] with `serial_port`: Arrival-of-Time and the contact MLP need \
+             the sensors' arrival times to the millisecond, which the fingertip's board \
+             measures",
+        ));
+    }
+    if let Some(cells) = &c.get_ref().cells {
+        let v = cells.get_ref();
+        let bad = v
+            .iter()
+            .find(|[r, c]| !(1..=PAD_ROWS).contains(r) || !(1..=PAD_COLS).contains(c));
+        if v.is_empty() || v.len() > 240 || bad.is_some() {
+            let what = match bad {
+                Some([r, c]) => format!("holds [{r}, {c}]"),
+                None => format!("has {} cells", v.len()),
+            };
+            return Err(cx.err(
+                cells.span(),
+                "experiment.contact.cells",
+                what,
+                "1…240 cells, each [row, column] with row 1…4 and column 1…6",
+            ));
+        }
+    }
+    check_ranges(
+        [(&c.get_ref().wait_s, "experiment.contact.wait_s", 1.0, 600.0)],
+        cx,
+    )
 }
 
 /// A tap-to-move's pad, locator and arm, and its values.
@@ -577,7 +666,13 @@ fn hardware_only<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(), SceneE
         s.fingertip
             .as_ref()
             .filter(|t| !t.get_ref().is_real())
-            .map(|t| (t.span(), "sensors.fingertip", "i2c_buses` or `firmata_port")),
+            .map(|t| {
+                (
+                    t.span(),
+                    "sensors.fingertip",
+                    "i2c_buses`, `firmata_port` or `serial_port",
+                )
+            }),
         s.imu_pad
             .as_ref()
             .filter(|p| !p.get_ref().is_real())

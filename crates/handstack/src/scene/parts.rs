@@ -26,8 +26,8 @@ pub struct Sensors {
 }
 
 impl Sensors {
-    /// Whether the fingertip is read from real chips (it names `i2c_buses` or
-    /// `firmata_port`).
+    /// Whether the fingertip is read from real chips (it names `i2c_buses`, `firmata_port` or
+    /// `serial_port`).
     pub fn real_fingertip(&self) -> bool {
         self.fingertip
             .as_ref()
@@ -62,6 +62,14 @@ pub struct Fingertip {
     /// The switch channel of sensors 1, 2 and 3, each 0…7 (default [`MUX_CHANNELS`]); only
     /// with `firmata_port`.
     pub mux_channels: Option<Spanned<Vec<u8>>>,
+    /// The fingertip's own microcontroller, on this serial port (e.g. `/dev/ttyUSB0`): the
+    /// fingertip firmware reads the three MS5611 and estimates force and contact on the board,
+    /// sending one `fingertip-link` frame per cycle. `osr` is then the firmware's, which the
+    /// host cannot change.
+    pub serial_port: Option<Spanned<String>>,
+    /// The serial port's baud rate (default [`fingertip_link::BAUD`], the firmware's); only
+    /// with `serial_port`.
+    pub baud: Option<Spanned<u32>>,
 }
 
 /// The TCA9548A's address with A2…A0 low, the default of `mux_address`.
@@ -89,12 +97,20 @@ pub enum FingertipWiring<'a> {
         /// The switch channel of each sensor, sensor 1 first.
         mux_channels: &'a [u8],
     },
+    /// The fingertip's own microcontroller on a serial port (`serial_port`, `baud`).
+    Mcu {
+        /// The serial port.
+        port: &'a str,
+        /// Its baud rate.
+        baud: u32,
+    },
 }
 
 impl Fingertip {
     /// Where the chips are wired: its `i2c_buses`, else its `firmata_port` (with the
-    /// switch's defaults for keys it leaves out); `None` when the scene names neither (a
-    /// simulated fingertip, in a program that simulates one).
+    /// switch's defaults for keys it leaves out), else its microcontroller's `serial_port`;
+    /// `None` when the scene names none (a simulated fingertip, in a program that simulates
+    /// one).
     ///
     /// ```
     /// use handstack::scene::NodeScene;
@@ -122,6 +138,15 @@ impl Fingertip {
                 buses: buses.get_ref(),
             });
         }
+        if let Some(port) = &self.serial_port {
+            return Some(FingertipWiring::Mcu {
+                port: port.get_ref(),
+                baud: self
+                    .baud
+                    .as_ref()
+                    .map_or(fingertip_link::BAUD, |b| *b.get_ref()),
+            });
+        }
         self.firmata_port
             .as_ref()
             .map(|port| FingertipWiring::Firmata {
@@ -138,8 +163,8 @@ impl Fingertip {
             })
     }
 
-    /// Whether the fingertip is read from real chips (it names `i2c_buses` or
-    /// `firmata_port`).
+    /// Whether the fingertip is read from real chips (it names `i2c_buses`, `firmata_port` or
+    /// `serial_port`).
     pub fn is_real(&self) -> bool {
         self.wiring().is_some()
     }

@@ -137,6 +137,7 @@ fn check_fingertip_wiring(tip: &Fingertip, cx: &Checker<'_>) -> Result<(), Scene
             ));
         }
     }
+    check_fingertip_mcu(tip, cx)?;
     let has_port = tip.firmata_port.is_some();
     check_firmata_baud("sensors.fingertip", has_port, tip.firmata_baud.as_ref(), cx)?;
     if let Some(a) = &tip.mux_address {
@@ -187,6 +188,41 @@ fn check_fingertip_wiring(tip: &Fingertip, cx: &Checker<'_>) -> Result<(), Scene
         }
         if c[0] == c[1] || c[0] == c[2] || c[1] == c[2] {
             return Err(cx.err(channels.span(), key, "names a channel twice", allowed));
+        }
+    }
+    Ok(())
+}
+
+/// The fingertip's own microcontroller: `serial_port` alone (the chips are the board's), and
+/// `baud` only with it, a rate a UART runs at.
+fn check_fingertip_mcu(tip: &Fingertip, cx: &Checker<'_>) -> Result<(), SceneError> {
+    if let Some(port) = &tip.serial_port {
+        if tip.i2c_buses.is_some() || tip.firmata_port.is_some() {
+            return Err(cx.err(
+                port.span(),
+                "sensors.fingertip.serial_port",
+                "is named beside the chips' own wiring",
+                "one of `i2c_buses`, `firmata_port` (the chips, read by this computer) or \
+                 `serial_port` (the fingertip's microcontroller, which reads them)",
+            ));
+        }
+    }
+    if let Some(baud) = &tip.baud {
+        if tip.serial_port.is_none() {
+            return Err(cx.err(
+                baud.span(),
+                "sensors.fingertip.baud",
+                "is named without `serial_port`",
+                "`baud` only with the microcontroller's `serial_port`",
+            ));
+        }
+        if !(1_200..=4_000_000).contains(baud.get_ref()) {
+            return Err(cx.err(
+                baud.span(),
+                "sensors.fingertip.baud",
+                format!("is {}", baud.get_ref()),
+                "a UART's rate, 1200…4000000 baud (the fingertip firmware's is 460800)",
+            ));
         }
     }
     Ok(())

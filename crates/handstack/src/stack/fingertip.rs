@@ -1,7 +1,8 @@
 //! The fingertip a scene names: three MS5611 on the I2C buses the scene names, one per sensor,
 //! or behind a TCA9548A I2C switch on the I2C of an Arduino running Firmata (an MS5611 has two
 //! addresses, so three on one bus need the switch), opened through the run's [`Platform`]
-//! (Linux device files and firmata-host by default).
+//! (Linux device files and firmata-host by default); or the fingertip's own microcontroller,
+//! which reads them, on a serial port ([`super::fingertip_mcu`]).
 //!
 //! Through a board every I2C transfer crosses the serial line, and a frame is 29 of them (per
 //! sensor three channel selections, two conversion commands and two ADC reads, each a command
@@ -9,24 +10,33 @@
 //! by the baud rate more than by the OSR: 12–15 frames/s at 57 600 baud and 18–26 at 115 200,
 //! under the grasp loop's 100 Hz at every OSR (the handstack README gives the measured rates).
 
+use super::fingertip_mcu::McuLink;
 use super::platform::{I2cBus, I2cSwitch, Platform, SwitchError};
 use crate::error::RunError;
 use crate::scene::SceneOf;
 use crate::scene::parts::FingertipWiring;
 use baro_drivers::{Address, I2cInterface, Measurement, Ms5611, Osr, Ready, Scheduler};
 use embedded_hal::delay::DelayNs;
+use fingertip_link::Frame;
 use hand_control::grasp_loop::LoopClock;
 use hand_traits::{PressureFrame, TactileSource};
 
 type Chip = Ms5611<I2cInterface<I2cBus>, Ready>;
 
-/// Three MS5611 on the platform's buses, read by the driver's scheduler; frames stamped by the
-/// platform's clock (the loop's time).
+/// Three MS5611 on the platform's buses, read by the driver's scheduler, or the fingertip's
+/// microcontroller's frames; frames stamped by the platform's clock (the loop's time).
 pub struct RealFingertip {
-    sensors: Vec<Chip>,
-    scheduler: Scheduler,
-    delay: Box<dyn DelayNs + Send>,
+    source: Source,
     clock: Box<dyn LoopClock + Send>,
+}
+
+enum Source {
+    Chips {
+        sensors: Vec<Chip>,
+        scheduler: Scheduler,
+        delay: Box<dyn DelayNs + Send>,
+    },
+    Mcu(Box<McuLink>),
 }
 
 /// The error of the fingertip's bus, board or switch at `path` that cannot be opened.
@@ -128,9 +138,28 @@ impl RealFingertip {
         Ok(Self::from_chips(platform, sensors, delay, osr))
     }
 
+    /// Opens the fingertip's microcontroller on the serial port `port` at `baud`
+    /// ([`McuLink::open`]); the frames' pressures are stamped by `platform`'s clock.
+    pub fn open_mcu(platform: &dyn Platform, port: &str, baud: u32) -> Result<Self, RunError> {
+        Ok(Self {
+            source: Source::Mcu(Box::new(McuLink::open(port, baud)?)),
+            clock: platform.clock(),
+        })
+    }
+
+    /// The last frame of the fingertip's microcontroller (its force and contact cells);
+    /// `None` for chips read by this computer.
+    pub fn mcu_frame(&self) -> Option<&Frame> {
+        match &self.source {
+            Source::Mcu(link) => link.last(),
+            Source::Chips { .. } => None,
+        }
+    }
+
     /// Opens the fingertip where `wiring` says (a scene's
     /// [`Fingertip::wiring`](crate::scene::parts::Fingertip::wiring)): one I2C bus of
-    /// `platform` per sensor, or a switch on a Firmata board's I2C.
+    /// `platform` per sensor, a switch on a Firmata board's I2C, or the fingertip's
+    /// microcontroller.
     pub fn open_wired(
         platform: &dyn Platform,
         wiring: FingertipWiring<'_>,
@@ -153,6 +182,7 @@ impl RealFingertip {
                 address,
                 osr,
             ),
+            FingertipWiring::Mcu { port, baud } => Self::open_mcu(platform, port, baud),
         }
     }
 
@@ -163,9 +193,11 @@ impl RealFingertip {
         osr: Osr,
     ) -> Self {
         Self {
-            sensors,
-            scheduler: Scheduler::new(osr),
-            delay,
+            source: Source::Chips {
+                sensors,
+                scheduler: Scheduler::new(osr),
+                delay,
+            },
             clock: platform.clock(),
         }
     }
@@ -230,19 +262,40 @@ impl TactileSource for RealFingertip {
     type Error = RunError;
 
     fn read_frame(&mut self) -> Result<PressureFrame<3>, RunError> {
-        let mut out = [Measurement {
-            temperature_centi_celsius: 0,
-            pressure_pa: 0,
-        }; 3];
-        self.scheduler
-            .sample_all(&mut self.sensors, &mut &mut *self.delay, &mut out)
-            .map_err(|e| RunError::Device {
-                device: "sensors.fingertip",
-                reason: format!("sensor {}: {}", e.sensor + 1, e.error),
-            })?;
+        let pressure_pa = match &mut self.source {
+            Source::Chips {
+                sensors,
+                scheduler,
+                delay,
+            } => {
+                let mut out = [Measurement {
+                    temperature_centi_celsius: 0,
+                    pressure_pa: 0,
+                }; 3];
+                scheduler
+                    .sample_all(sensors, &mut &mut **delay, &mut out)
+                    .map_err(|e| RunError::Device {
+                        device: "sensors.fingertip",
+                        reason: format!("sensor {}: {}", e.sensor + 1, e.error),
+                    })?;
+                out.map(|m| m.pressure_pa)
+            }
+            Source::Mcu(link) => {
+                let frame = link.next_frame()?;
+                if frame.fault {
+                    return Err(RunError::Device {
+                        device: "sensors.fingertip",
+                        reason: "the fingertip's microcontroller reports a failed cycle (a \
+                                 sensor that did not answer on its bus)"
+                            .into(),
+                    });
+                }
+                frame.pressure_pa
+            }
+        };
         Ok(PressureFrame {
             t_us: self.clock.now_us(),
-            pressure_pa: out.map(|m| m.pressure_pa as f32),
+            pressure_pa: pressure_pa.map(|p| p as f32),
         })
     }
 }
@@ -255,8 +308,8 @@ pub fn open<X>(scene: &SceneOf<X>, platform: &dyn Platform) -> Result<RealFinger
     let Some(wiring) = tip.wiring() else {
         return Err(RunError::Device {
             device: "sensors.fingertip",
-            reason: "a hardware hand needs the fingertip's `i2c_buses` or `firmata_port`: the \
-                     simulated fingertip is never pressed by a real grasp"
+            reason: "a hardware hand needs the fingertip's `i2c_buses`, `firmata_port` or \
+                     `serial_port`: the simulated fingertip is never pressed by a real grasp"
                 .into(),
         });
     };

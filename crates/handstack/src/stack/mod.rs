@@ -3,6 +3,7 @@
 
 pub mod arm;
 pub mod fingertip;
+pub mod fingertip_mcu;
 pub mod hand;
 pub mod pad;
 pub mod platform;

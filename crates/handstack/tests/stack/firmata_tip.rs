@@ -338,8 +338,8 @@ fn scene_keys_name_the_board_and_its_switch() {
     let none = err("");
     assert!(
         none.starts_with(
-            "tip.toml:2:1: `sensors.fingertip` names no hardware (`i2c_buses` or \
-                          `firmata_port`)"
+            "tip.toml:2:1: `sensors.fingertip` names no hardware (`i2c_buses`, \
+                          `firmata_port` or `serial_port`)"
         ),
         "{none}"
     );

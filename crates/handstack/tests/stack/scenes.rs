@@ -54,7 +54,7 @@ fn a_device_without_its_hardware_is_refused() {
         2,
         "sensors.fingertip",
         &[
-            "names no hardware (`i2c_buses` or `firmata_port`)",
+            "names no hardware (`i2c_buses`, `firmata_port` or `serial_port`)",
             "real devices only",
         ],
     );
@@ -107,11 +107,8 @@ fn a_torque_band_the_servos_cannot_take_is_refused() {
         ],
     );
     // The papers' simulated experiments are not this binary's.
-    let e = err(&HAND.replace(
-        "[experiment.grasp]",
-        "[experiment.contact]\n[experiment.grasp]",
-    ));
-    assert!(e.to_string().contains("unknown field `contact`"), "{e}");
+    let e = err(&HAND.replace("[experiment.grasp]", "[experiment.tap]\n[experiment.grasp]"));
+    assert!(e.to_string().contains("unknown field `tap`"), "{e}");
 }
 
 const SOFTNESS: &str = r#"title = "softness"
@@ -422,5 +419,104 @@ fn tap_to_move_needs_the_pad_the_cnn_and_the_arm_and_checks_its_regions() {
         6,
         "arm",
         &["no experiment of this scene moves it"],
+    );
+}
+
+const TOUCHES: &str = r#"title = "where my fingertip is touched"
+[sensors.fingertip]
+osr = 1024
+serial_port = "/dev/ttyUSB0"
+[experiment.contact]
+cells = [[1, 1], [4, 6]]
+"#;
+
+#[test]
+fn contact_needs_the_fingertips_microcontroller_and_checks_its_cells() {
+    use handstack::scene::parts::FingertipWiring;
+    let s = Scene::parse("touches.toml", TOUCHES).expect("valid");
+    let c = s
+        .file
+        .experiment
+        .get_ref()
+        .contact
+        .as_ref()
+        .expect("contact");
+    assert_eq!(c.get_ref().cells(), [(1, 1), (4, 6)]);
+    assert_eq!(c.get_ref().wait_s(), 30.0);
+    let tip = s.file.sensors.fingertip.as_ref().expect("tip").get_ref();
+    assert_eq!(
+        tip.wiring(),
+        Some(FingertipWiring::Mcu {
+            port: "/dev/ttyUSB0",
+            baud: fingertip_link::BAUD
+        })
+    );
+    let all =
+        Scene::parse("t.toml", &TOUCHES.replace("cells = [[1, 1], [4, 6]]\n", "")).expect("valid");
+    let c = all
+        .file
+        .experiment
+        .get_ref()
+        .contact
+        .as_ref()
+        .expect("contact");
+    assert_eq!(c.get_ref().cells().len(), 24);
+    assert_eq!(c.get_ref().cells()[7], (2, 2));
+    // The chips read by this computer: too slow for arrival times.
+    says(
+        &err(&TOUCHES.replace(
+            "serial_port = \"/dev/ttyUSB0\"",
+            "firmata_port = \"/dev/ttyACM0\"",
+        )),
+        5,
+        "experiment.contact",
+        &["needs the fingertip's microcontroller", "`serial_port`"],
+    );
+    says(
+        &err(&TOUCHES.replace("[4, 6]", "[5, 1]")),
+        6,
+        "experiment.contact.cells",
+        &["holds [5, 1]", "row 1…4 and column 1…6"],
+    );
+    says(
+        &err(&TOUCHES.replace("[[1, 1], [4, 6]]", "[]")),
+        6,
+        "experiment.contact.cells",
+        &["has 0 cells"],
+    );
+    says(
+        &err(&format!("{TOUCHES}wait_s = 0\n")),
+        7,
+        "experiment.contact.wait_s",
+        &["1…600"],
+    );
+    // One wiring: the board reads the chips, or this computer does.
+    says(
+        &err(&TOUCHES.replace(
+            "osr = 1024\n",
+            "osr = 1024\nfirmata_port = \"/dev/ttyACM0\"\n",
+        )),
+        5,
+        "sensors.fingertip.serial_port",
+        &["beside the chips' own wiring"],
+    );
+    says(
+        &err(&TOUCHES.replace("osr = 1024\n", "osr = 1024\nbaud = 0\n")),
+        4,
+        "sensors.fingertip.baud",
+        &["is 0", "460800"],
+    );
+    let without = TOUCHES.replace(
+        "serial_port = \"/dev/ttyUSB0\"\n",
+        "firmata_port = \"/dev/ttyACM0\"\nbaud = 115200\n",
+    );
+    says(
+        &err(&without.replace(
+            "[experiment.contact]\ncells = [[1, 1], [4, 6]]\n",
+            "[experiment.readout]\nframes = 5\n",
+        )),
+        5,
+        "sensors.fingertip.baud",
+        &["without `serial_port`"],
     );
 }

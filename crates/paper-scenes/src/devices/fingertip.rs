@@ -27,8 +27,8 @@ impl TactileSource for Fingertip {
     }
 }
 
-/// The scene's fingertip: real when it names `i2c_buses` or `firmata_port` (opened through
-/// `platform`), else hand-sim's, seeded by the scene.
+/// The scene's fingertip: real when it names `i2c_buses`, `firmata_port` or `serial_port`
+/// (opened through `platform`), else hand-sim's, seeded by the scene.
 pub fn open(scene: &PaperScene, platform: &dyn Platform) -> Result<Fingertip, crate::Error> {
     if scene.file.sensors.real_fingertip() {
         return Ok(Fingertip::new(handstack::stack::fingertip::open(

@@ -213,13 +213,7 @@ fn mlp_part(
         values: e
             .per_cell
             .iter()
-            .map(|&(n, hits)| {
-                if n == 0 {
-                    f64::NAN
-                } else {
-                    100.0 * f64::from(hits) / f64::from(n)
-                }
-            })
+            .map(|&(n, hits)| handstack::runs::figure::percent(hits, n))
             .collect(),
         unit: "%".into(),
     });

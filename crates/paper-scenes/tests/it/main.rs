@@ -8,6 +8,7 @@ mod cell;
 mod cli;
 mod common;
 mod contact_location;
+mod contact_run;
 mod devices;
 mod full_hand;
 mod grasp_board;
