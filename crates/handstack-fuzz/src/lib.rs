@@ -29,6 +29,7 @@ pub mod corpus;
 pub mod dxl;
 pub mod files;
 pub mod firmata;
+pub mod link;
 pub mod network;
 pub mod seeds;
 pub mod ur;
@@ -46,7 +47,7 @@ pub struct Target {
 }
 
 /// Every target, in the order `docs/reliability.md` lists them.
-pub const TARGETS: [Target; 12] = [
+pub const TARGETS: [Target; 13] = [
     Target {
         name: "dxl_status",
         about: "Protocol 2.0 framing and the driver's status-packet checks (hand-control)",
@@ -61,6 +62,11 @@ pub const TARGETS: [Target; 12] = [
         name: "firmata",
         about: "the host's Firmata parser on a board's byte stream (firmata-host)",
         run: firmata::parser,
+    },
+    Target {
+        name: "fingertip_link",
+        about: "the host's reader of the fingertip microcontroller's UART frames (fingertip-link)",
+        run: link::frames,
     },
     Target {
         name: "ur_rtde",

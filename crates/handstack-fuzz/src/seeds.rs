@@ -31,6 +31,7 @@ pub fn seeds(root: &Path, name: &str) -> std::io::Result<Vec<Seed>> {
             .map(|(n, wire)| (n, [&[16u8][..], &wire].concat()))
             .collect(),
         "firmata" => firmata(),
+        "fingertip_link" => fingertip_link(),
         "ur_rtde" => ur_rtde(),
         "ur_dashboard" => ur_dashboard(),
         "ur_script" => ur_script(),
@@ -366,6 +367,49 @@ fn ur_script() -> Vec<Seed> {
 /// protocol.md, i2c.md and AccelStepperFirmata's reports, and streams cut, interleaved and
 /// garbled), the reports its encoders make, and sessions of the simulated Arduino
 /// (firmata-sim) answering a host, one seed each, read in chunks of 5 bytes: `[5, bytes…]`.
+/// A fingertip's line: frames at rest and in contact, a fault frame, noise with sync bytes
+/// before a frame, a flipped bit, a lost byte.
+fn fingertip_link() -> Vec<Seed> {
+    use fingertip_link::Frame;
+    let rest = |seq: u8| Frame {
+        seq,
+        t_us: u32::from(seq) * 6180,
+        pressure_pa: [101_320, 101_290, 101_340],
+        tared: true,
+        force_gf: Some(0.4),
+        torque_raw: 0,
+        ..Frame::default()
+    };
+    let pressed = Frame {
+        in_contact: true,
+        pressure_pa: [102_110, 101_560, 101_400],
+        force_gf: Some(48.7),
+        grid_cell: Some(3),
+        pad_cell: Some(6),
+        torque_raw: 655,
+        ..rest(3)
+    };
+    let line: Vec<u8> = [rest(1), rest(2), pressed, Frame::fault(24_720, 4)]
+        .iter()
+        .flat_map(Frame::encode)
+        .collect();
+    let mut noisy = vec![0xA5, 0x00, 0xA5, 0xA5, 0x13];
+    noisy.extend_from_slice(&line);
+    let mut flipped = line.clone();
+    flipped[fingertip_link::LEN + 12] ^= 0x10;
+    let mut lost = line.clone();
+    lost.remove(fingertip_link::LEN + 5);
+    [
+        ("frames", line),
+        ("noise-then-frames", noisy),
+        ("flipped-bit", flipped),
+        ("lost-byte", lost),
+    ]
+    .into_iter()
+    .map(|(n, b)| (n.to_owned(), b))
+    .collect()
+}
+
 fn firmata() -> Vec<Seed> {
     use firmata_host::parser::SYSEX_CAPACITY;
     use firmata_host::protocol as p;

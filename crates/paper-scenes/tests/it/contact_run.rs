@@ -5,7 +5,7 @@
 //! on each cell; the test, as the user, taps it (`tap ROW COL` on the device's stdin) and reads
 //! the figures back. The device process is killed mid-run too.
 
-use crate::common::{Session, figures, signal};
+use crate::common::{Session, bag_count, figures, signal};
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
 use std::process::{Child, ChildStdin, Command, Stdio};
@@ -97,7 +97,12 @@ fn every_cell_tapped_is_located_by_the_fingertips_microcontroller() {
     let cells: Vec<[u8; 2]> = (1..=4u8)
         .flat_map(|r| (1..=6u8).map(move |c| [r, c]))
         .collect();
-    let mut run = Session::start(&scene("all", &mcu, &cells));
+    let bag = std::env::temp_dir().join(format!("handstack-contact-bag-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&bag);
+    let mut run = Session::start_with(
+        &scene("all", &mcu, &cells),
+        &["--record".as_ref(), bag.as_os_str()],
+    );
     let (mut mlp_hits, mut aot_hits) = (0, 0);
     for &[r, c] in &cells {
         let question = run.wait_for("Tap the fingertip at row");
@@ -131,6 +136,17 @@ fn every_cell_tapped_is_located_by_the_fingertips_microcontroller() {
     // Far from chance (1 in 24): the frames, the taps and the MLP reach each other.
     assert!(mlp_hits >= 12, "{mlp_hits} of 24: {stderr}");
     eprintln!("MLP {mlp_hits} / 24, Arrival-of-Time {aot_hits} / 24");
+    // Every frame read is recorded (each tap is pressed 0.4 s at 162 frames/s), with the
+    // three figures.
+    let yaml = std::fs::read_to_string(bag.join("metadata.yaml")).expect("metadata.yaml");
+    assert!(bag_count(&yaml, "/hand0/tactile/raw") >= 24 * 40, "{yaml}");
+    assert_eq!(bag_count(&yaml, "/handstack/figures"), 3, "{yaml}");
+    assert_eq!(
+        bag_count(&yaml, "/hand0/tactile_states"),
+        bag_count(&yaml, "/hand0/tactile/raw"),
+        "{yaml}"
+    );
+    let _ = std::fs::remove_dir_all(&bag);
 }
 
 /// The fingertip's board lost mid-run (its process killed at a question): the run ends at once
