@@ -3,16 +3,32 @@
 use crate::Outcome;
 use std::fmt::Write as _;
 
-/// A number as the table shows it: 4 significant digits, no trailing noise.
-fn num(v: f64) -> String {
+/// A figure's number as every output of a run shows it (this table, the HTML report): 4
+/// significant digits without trailing zeros, and powers of ten beyond 10⁻⁴…10⁸.
+///
+/// ```
+/// use handstack::summary::number;
+/// assert_eq!(number(94.91666), "94.92");
+/// assert_eq!(number(0.25), "0.25");
+/// assert_eq!(number(0.0029751), "0.002975");
+/// assert_eq!(number(20.0), "20");
+/// assert_eq!(number(2.5e-7), "2.500e-7");
+/// ```
+pub fn number(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
         return format!("{v}");
     }
-    if v.fract() == 0.0 && v.abs() < 1e9 {
-        return format!("{v:.0}");
+    let magnitude = v.abs().log10().floor() as i32;
+    if !(-4..=7).contains(&magnitude) {
+        return format!("{v:.3e}");
     }
-    let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
-    format!("{v:.digits$}")
+    let digits = (3 - magnitude).clamp(0, 6) as usize;
+    let s = format!("{v:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
+    }
 }
 
 /// The summary of `outcome` as an aligned text table.
@@ -24,7 +40,7 @@ fn num(v: f64) -> String {
 ///         unit: "gf".into(), paper: Some(1.17), source: None, target: Some("≤ 0.5 gf".into()),
 ///         met: Some(true), finding: None }] };
 /// let table = handstack::summary::table(&o);
-/// assert!(table.contains("max error") && table.contains("0.2500") && table.contains("yes"));
+/// assert!(table.contains("max error") && table.contains("0.25 gf") && table.contains("yes"));
 /// ```
 pub fn table(outcome: &Outcome) -> String {
     let mut rows = vec![[
@@ -42,9 +58,9 @@ pub fn table(outcome: &Outcome) -> String {
         };
         rows.push([
             f.label.clone(),
-            format!("{}{unit}", num(f.value)),
+            format!("{}{unit}", number(f.value)),
             f.paper
-                .map_or_else(|| "—".to_owned(), |p| format!("{}{unit}", num(p))),
+                .map_or_else(|| "—".to_owned(), |p| format!("{}{unit}", number(p))),
             f.target.clone().unwrap_or_else(|| "—".to_owned()),
             match (f.met, &f.finding) {
                 (Some(true), _) => "yes".to_owned(),

@@ -1,8 +1,9 @@
 //! Contact location (Kim et al. 2020, §3–4) on the user's fingertip: for each cell asked, the
 //! user taps it and the fingertip's microcontroller locates the tap, Arrival-of-Time on the
 //! 3 × 3 grid and the contact MLP on the 4 × 6 pad. The run takes, for each, the cell the
-//! board reported most often while the pad was pressed (a located cell can change as the
-//! press settles and as it lifts), and compares it with the cell asked.
+//! board reported most often while the press was held (its summed rise within 10 % of its
+//! peak: a located cell can change on the way up and down), and compares it with the cell
+//! asked.
 
 use super::figure::{Target, finding, measured, percent, target};
 use super::{Part, RunContext};
@@ -26,6 +27,8 @@ pub const MLP_TARGET_PCT: f64 = 95.0;
 pub const EQ3_AS_WRITTEN: &str = "eq. 3 as the paper writes it: its argmax is always the area \
     nearest the sensor that rises most, so of the nine areas it names only those beside the \
     three sensors";
+/// How close to the tap's peak rise a frame must be to count as held (a share of the peak).
+const HELD_WITHIN: f64 = 0.1;
 /// How long the pad must stay lifted before a tap counts as over.
 const LIFTED: Duration = Duration::from_millis(100);
 /// The longest a tap may be held: a pad still pressed by then fails the run.
@@ -129,7 +132,9 @@ pub fn run(scene: &Scene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, Ru
         let asked_at = Instant::now();
         // Wait for the press (a pad still pressed from the last tap must lift first).
         let mut frame = next(&at)?;
+        let mut last_rest = frame;
         while !frame.in_contact {
+            last_rest = frame;
             if asked_at.elapsed() > wait {
                 return Err(RunError::Ended {
                     ending: Ending::Failed,
@@ -138,19 +143,16 @@ pub fn run(scene: &Scene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, Ru
             }
             frame = next(&at)?;
         }
-        let (mut mlp, mut aot) = ([0u32; CELLS], [0u32; 9]);
+        // Each pressed frame's cells and its summed pressure; the frame before it, at rest.
+        let rest: f64 = last_rest.pressure_pa.iter().map(|&p| f64::from(p)).sum();
+        let mut pressed: Vec<(Option<u8>, Option<u8>, f64)> = Vec::new();
         let pressed_at = Instant::now();
         let mut lifted_at: Option<Instant> = None;
         loop {
             if frame.in_contact {
                 lifted_at = None;
-                // The frame's decoder keeps both cells in range.
-                if let Some(n) = frame.pad_cell.and_then(|c| mlp.get_mut(usize::from(c))) {
-                    *n += 1;
-                }
-                if let Some(n) = frame.grid_cell.and_then(|a| aot.get_mut(usize::from(a))) {
-                    *n += 1;
-                }
+                let sum = frame.pressure_pa.iter().map(|&p| f64::from(p)).sum::<f64>();
+                pressed.push((frame.pad_cell, frame.grid_cell, sum - rest));
             } else if lifted_at.get_or_insert_with(Instant::now).elapsed() >= LIFTED {
                 break;
             }
@@ -165,10 +167,11 @@ pub fn run(scene: &Scene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, Ru
             }
             frame = next(&at)?;
         }
+        let (mlp, aot) = held_cells(&pressed);
         let tap = Located {
             asked: (row, col),
-            mlp: most(&mlp),
-            aot: most(&aot),
+            mlp,
+            aot,
         };
         let name = |c: Option<u8>, cols: u8| {
             c.map_or("nothing".to_owned(), |c| {
@@ -186,6 +189,31 @@ pub fn run(scene: &Scene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, Ru
         taps.push(tap);
     }
     Ok(part(&taps))
+}
+
+/// The cells the board reported while the press was held: over the frames whose summed rise
+/// is within [`HELD_WITHIN`] of the tap's peak (as the networks' training read a press, on its
+/// plateau, not on its way up or down), the MLP's and Arrival-of-Time's cell reported most
+/// often.
+fn held_cells(pressed: &[(Option<u8>, Option<u8>, f64)]) -> (Option<u8>, Option<u8>) {
+    let peak = pressed
+        .iter()
+        .map(|p| p.2)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (mut mlp, mut aot) = ([0u32; CELLS], [0u32; 9]);
+    for &(pad, grid, rise) in pressed {
+        if rise < (1.0 - HELD_WITHIN) * peak {
+            continue;
+        }
+        // The frame's decoder keeps both cells in range.
+        if let Some(n) = pad.and_then(|c| mlp.get_mut(usize::from(c))) {
+            *n += 1;
+        }
+        if let Some(n) = grid.and_then(|a| aot.get_mut(usize::from(a))) {
+            *n += 1;
+        }
+    }
+    (most(&mlp), most(&aot))
 }
 
 /// The index counted most often; the lower on a tie; `None` when nothing was counted.

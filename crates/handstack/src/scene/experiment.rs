@@ -27,8 +27,8 @@ pub struct Experiments {
 
 /// Contact location (Kim et al. 2020, §3–4) on the user's fingertip: for each cell of `cells`
 /// the run asks for a tap there and reads where the fingertip's microcontroller located it
-/// while the pad was pressed: the contact MLP's cell on the 4 × 6 pad and Arrival-of-Time's
-/// area on the 3 × 3 grid (the cells each reported most often). Both need the sensors'
+/// while the press was held: the contact MLP's cell on the 4 × 6 pad and Arrival-of-Time's
+/// area on the 3 × 3 grid (the cells each reported most often on the press's plateau). Both need the sensors'
 /// arrival times to the millisecond, which the board measures: the fingertip is its
 /// `serial_port`. Figures: each located against the cell asked, and the accuracies.
 #[derive(Debug, Clone, Deserialize)]

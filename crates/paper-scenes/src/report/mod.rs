@@ -48,7 +48,8 @@ pub use provenance::Provenance;
 pub use trade_points::{TradePoint, TradeSection};
 
 use handstack::Outcome;
-use paper_experiments::axis::fmt_num;
+// Figures as handstack's summary shows them: one number format in every output of a run.
+use handstack::summary::number as fmt_num;
 use std::path::{Path, PathBuf};
 
 /// Where `papers trade` writes the trade points, relative to the workspace root.
