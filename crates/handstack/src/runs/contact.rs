@@ -130,7 +130,7 @@ pub fn run(scene: &Scene, exp: &Contact, cx: &RunContext<'_>) -> Result<Part, Ru
             i + 1
         ));
         let asked_at = Instant::now();
-        // Wait for the press (a pad still pressed from the last tap must lift first).
+        // Wait for the press (the last tap ended with the pad lifted).
         let mut frame = next(&at)?;
         let mut last_rest = frame;
         while !frame.in_contact {
