@@ -35,6 +35,11 @@ fn says(e: &SceneError, line: usize, key: &str, parts: &[&str]) {
     }
 }
 
+/// A parsed scene's experiments.
+fn experiments(s: &Scene) -> &handstack::scene::experiment::Experiments {
+    s.file.experiment.get_ref()
+}
+
 #[test]
 fn a_users_hand_scene_parses() {
     let s = Scene::parse("dir/bench-hand.toml", HAND).expect("valid");
@@ -124,13 +129,7 @@ expect = "hard"
 #[test]
 fn the_underactuated_hand_runs_the_softness_experiment_and_nothing_else() {
     let s = Scene::parse("sponge.toml", SOFTNESS).expect("valid");
-    let x = s
-        .file
-        .experiment
-        .get_ref()
-        .softness
-        .as_ref()
-        .expect("softness");
+    let x = experiments(&s).softness.as_ref().expect("softness");
     assert_eq!(x.get_ref().plan().window_s, 14.0);
     assert_eq!(x.get_ref().expected(), Some(hand_traits::Softness::Hard));
     // A servo hand cannot run it, the underactuated hand cannot run the servo grasp loop.
@@ -309,13 +308,7 @@ fn a_weight_series_needs_the_fingertip_and_a_force_dnn_and_checks_its_keys() {
     // Without weights: Table 1's thirteen.
     let table1 =
         Scene::parse("t.toml", &WEIGHT.replace("weights_gf = [0, 50, 100]\n", "")).expect("valid");
-    let w = table1
-        .file
-        .experiment
-        .get_ref()
-        .weight
-        .as_ref()
-        .expect("weight");
+    let w = experiments(&table1).weight.as_ref().expect("weight");
     assert_eq!(
         w.get_ref().plan().weights_gf,
         handstack::scene::experiment::TABLE1_WEIGHTS_GF
@@ -373,23 +366,11 @@ regions = [0, 4, 8]
 #[test]
 fn tap_to_move_needs_the_pad_the_cnn_and_the_arm_and_checks_its_regions() {
     let s = Scene::parse("taps.toml", TAPS).expect("valid");
-    let t = s
-        .file
-        .experiment
-        .get_ref()
-        .tap_to_move
-        .as_ref()
-        .expect("taps");
+    let t = experiments(&s).tap_to_move.as_ref().expect("taps");
     assert_eq!(t.get_ref().regions(), [0, 4, 8]);
     assert_eq!(t.get_ref().wait_s(), 30.0);
     let all = Scene::parse("t.toml", &TAPS.replace("regions = [0, 4, 8]\n", "")).expect("valid");
-    let t = all
-        .file
-        .experiment
-        .get_ref()
-        .tap_to_move
-        .as_ref()
-        .expect("taps");
+    let t = experiments(&all).tap_to_move.as_ref().expect("taps");
     assert_eq!(t.get_ref().regions(), (0..9).collect::<Vec<u8>>());
     says(
         &err(&TAPS.replace("[arm]\nmodel = \"ur3\"\nhost = \"192.168.1.10\"\n", "")),
@@ -434,13 +415,7 @@ cells = [[1, 1], [4, 6]]
 fn contact_needs_the_fingertips_microcontroller_and_checks_its_cells() {
     use handstack::scene::parts::FingertipWiring;
     let s = Scene::parse("touches.toml", TOUCHES).expect("valid");
-    let c = s
-        .file
-        .experiment
-        .get_ref()
-        .contact
-        .as_ref()
-        .expect("contact");
+    let c = experiments(&s).contact.as_ref().expect("contact");
     assert_eq!(c.get_ref().cells(), [(1, 1), (4, 6)]);
     assert_eq!(c.get_ref().wait_s(), 30.0);
     let tip = s.file.sensors.fingertip.as_ref().expect("tip").get_ref();
@@ -453,13 +428,7 @@ fn contact_needs_the_fingertips_microcontroller_and_checks_its_cells() {
     );
     let all =
         Scene::parse("t.toml", &TOUCHES.replace("cells = [[1, 1], [4, 6]]\n", "")).expect("valid");
-    let c = all
-        .file
-        .experiment
-        .get_ref()
-        .contact
-        .as_ref()
-        .expect("contact");
+    let c = experiments(&all).contact.as_ref().expect("contact");
     assert_eq!(c.get_ref().cells().len(), 24);
     assert_eq!(c.get_ref().cells()[7], (2, 2));
     // The chips read by this computer: too slow for arrival times.

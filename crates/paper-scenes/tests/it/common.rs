@@ -287,3 +287,13 @@ pub fn script_uploaded_once(sim: &ur_sim::UrSim) {
         .count();
     assert_eq!(uploads, 1, "{log:?}");
 }
+
+/// A fingertip run's bag in `dir`: at least `frames_at_least` raw pressure frames, each with its
+/// `tactile_msgs/TactileState`, and `figures` figures.
+pub fn check_fingertip_bag(dir: &Path, frames_at_least: u64, figures: u64) {
+    let yaml = std::fs::read_to_string(dir.join("metadata.yaml")).expect("metadata.yaml");
+    let raw = bag_count(&yaml, "/hand0/tactile/raw");
+    assert!(raw >= frames_at_least, "{raw} frames: {yaml}");
+    assert_eq!(bag_count(&yaml, "/handstack/figures"), figures, "{yaml}");
+    assert_eq!(bag_count(&yaml, "/hand0/tactile_states"), raw, "{yaml}");
+}

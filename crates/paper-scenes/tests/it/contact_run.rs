@@ -5,7 +5,7 @@
 //! on each cell; the test, as the user, taps it (`tap ROW COL` on the device's stdin) and reads
 //! the figures back. The device process is killed mid-run too.
 
-use crate::common::{Session, bag_count, figures, signal};
+use crate::common::{Session, figures, signal};
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
 use std::process::{Child, ChildStdin, Command, Stdio};
@@ -138,14 +138,7 @@ fn every_cell_tapped_is_located_by_the_fingertips_microcontroller() {
     eprintln!("MLP {mlp_hits} / 24, Arrival-of-Time {aot_hits} / 24");
     // Every frame read is recorded (each tap is pressed 0.4 s at 162 frames/s), with the
     // three figures.
-    let yaml = std::fs::read_to_string(bag.join("metadata.yaml")).expect("metadata.yaml");
-    assert!(bag_count(&yaml, "/hand0/tactile/raw") >= 24 * 40, "{yaml}");
-    assert_eq!(bag_count(&yaml, "/handstack/figures"), 3, "{yaml}");
-    assert_eq!(
-        bag_count(&yaml, "/hand0/tactile_states"),
-        bag_count(&yaml, "/hand0/tactile/raw"),
-        "{yaml}"
-    );
+    crate::common::check_fingertip_bag(&bag, 24 * 40, 3);
     let _ = std::fs::remove_dir_all(&bag);
 }
 

@@ -4,7 +4,7 @@
 //! stderr for each weight; the test, as the user, rests it on the pad and presses Enter (or
 //! types something else), and reads the figures back.
 
-use crate::common::{Session, bag_count, figures, signal};
+use crate::common::{Session, figures, signal};
 use paper_scenes::devices::fingertip_board::{FingertipBoard, FingertipBoardConfig};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -115,17 +115,7 @@ fn an_answer_is_enter_a_typed_weight_or_asked_again() {
     // The tare and three weights, each a settle and an average of 1 s (~18 frames/s at 115 200
     // baud; at least 5 on a loaded machine); the weights count, three estimates, max and mean
     // |error|.
-    let yaml = std::fs::read_to_string(bag.join("metadata.yaml")).expect("metadata.yaml");
-    assert!(
-        bag_count(&yaml, "/hand0/tactile/raw") >= 4 * 2 * 5,
-        "{yaml}"
-    );
-    assert_eq!(bag_count(&yaml, "/handstack/figures"), 6, "{yaml}");
-    assert_eq!(
-        bag_count(&yaml, "/hand0/tactile_states"),
-        bag_count(&yaml, "/hand0/tactile/raw"),
-        "{yaml}"
-    );
+    crate::common::check_fingertip_bag(&bag, 4 * 2 * 5, 6);
     let _ = std::fs::remove_dir_all(&bag);
 }
 
