@@ -221,7 +221,10 @@ fn check_fingertip_mcu(tip: &Fingertip, cx: &Checker<'_>) -> Result<(), SceneErr
                 baud.span(),
                 "sensors.fingertip.baud",
                 format!("is {}", baud.get_ref()),
-                "a UART's rate, 1200…4000000 baud (the fingertip firmware's is 460800)",
+                format!(
+                    "a UART's rate, 1200…4000000 baud (the fingertip firmware's is {})",
+                    fingertip_link::BAUD
+                ),
             ));
         }
     }
