@@ -47,6 +47,23 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         record: Option<PathBuf>,
     },
+    /// Collect the data to train your own models: the scene's experiment asks what to do
+    /// next, as a run does, and records the frames and what you did into a new session bag
+    /// in DIR. Run it again with the same DIR to go on where the last session stopped.
+    Collect {
+        /// The scene file (its `[experiment.weight]` lists the weights to collect).
+        scene: PathBuf,
+        /// The collect directory: one bag per session (`session-001`, …).
+        #[arg(long, value_name = "DIR")]
+        into: PathBuf,
+        /// Print the outcome as JSON on stdout (no progress, no table).
+        #[arg(long)]
+        json: bool,
+    },
+    /// Train a model of your own from collect sessions and write its weights file, which a
+    /// scene then names.
+    #[cfg(feature = "train")]
+    Train(crate::train::TrainCommand),
     /// Parse and validate scene files without opening anything.
     Check {
         /// Scene files.
@@ -70,7 +87,17 @@ pub fn main(platforms: Platforms<'_>) -> ExitCode {
             scenes,
             json,
             record,
-        } => run(&scenes, json, record.as_deref(), platforms),
+        } => {
+            // The bag is made before any scene is opened: a directory it cannot use stops the
+            // run before anything moves.
+            match record.as_deref().map(Recorder::create).transpose() {
+                Ok(recorder) => run(&scenes, json, recorder, None, platforms),
+                Err(e) => not_started(&e),
+            }
+        }
+        Command::Collect { scene, into, json } => collect(scene, &into, json, platforms),
+        #[cfg(feature = "train")]
+        Command::Train(cmd) => cmd.main(),
         Command::Check { scenes } => check(&scenes),
         #[cfg(feature = "cell")]
         Command::Node(cmd) => cmd.main(
@@ -106,25 +133,72 @@ fn check(scenes: &[PathBuf]) -> ExitCode {
     exit(failed)
 }
 
+/// Prints `e` and gives the status of a run that did not start.
+fn not_started(e: &dyn std::fmt::Display) -> ExitCode {
+    eprintln!("error: {e}");
+    ExitCode::from(crate::error::EXIT_NOT_STARTED)
+}
+
+/// `handstack collect SCENE --into DIR`: a new session bag in DIR for what the sessions before
+/// it have not recorded.
+fn collect(
+    scene: PathBuf,
+    into: &std::path::Path,
+    json: bool,
+    platforms: Platforms<'_>,
+) -> ExitCode {
+    let loaded = match Scene::load(&scene) {
+        Ok(s) => s,
+        Err(e) => return not_started(&e),
+    };
+    let x = loaded.file.experiment.get_ref();
+    let others: Vec<&str> = x.names().into_iter().filter(|n| *n != "weight").collect();
+    if x.weight.is_none() || !others.is_empty() {
+        return not_started(&format!(
+            "{}: `handstack collect` records [experiment.weight] sessions, the force DNN's \
+             training data; the scene runs {}",
+            scene.display(),
+            x.names().join(", ")
+        ));
+    }
+    let sessions = match crate::collect::Sessions::open(into) {
+        Ok(s) => s,
+        Err(e) => return not_started(&e),
+    };
+    if let Some(w) = &x.weight {
+        let plan = crate::runs::weight::to_collect(&w.get_ref().plan(), &sessions);
+        if plan.weights_gf.is_empty() {
+            eprintln!(
+                "every weight of {} is recorded in {} ({} sessions): train with `handstack \
+                 train force {} --out FILE`",
+                scene.display(),
+                into.display(),
+                sessions.count(),
+                into.display()
+            );
+            return ExitCode::SUCCESS;
+        }
+    }
+    match Recorder::create(&sessions.next_session()) {
+        Ok(recorder) => run(&[scene], json, Some(recorder), Some(sessions), platforms),
+        Err(e) => not_started(&e),
+    }
+}
+
+/// Runs `scenes`, recording into `recorder` if given; collecting after `sessions` if given.
 fn run(
     scenes: &[PathBuf],
     json: bool,
-    record: Option<&std::path::Path>,
+    recorder: Option<Recorder>,
+    sessions: Option<crate::collect::Sessions>,
     platforms: Platforms<'_>,
 ) -> ExitCode {
-    // The bag is made before any scene is opened: a directory it cannot use stops the run
-    // before anything moves.
-    let recorder = match record.map(Recorder::create).transpose() {
-        Ok(r) => r,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(crate::error::EXIT_NOT_STARTED);
-        }
-    };
     let bars = Bars::new(!json);
     let mut cx = RunContext::new(&bars).with_stop(crate::stop::signal_stop());
-    if let Some(r) = &recorder {
-        cx = cx.with_record(r);
+    match (&recorder, sessions) {
+        (Some(r), Some(s)) => cx = cx.with_collect(r, s),
+        (Some(r), None) => cx = cx.with_record(r),
+        _ => {}
     }
     cx.platform = platforms();
     let runs = crate::summary::run_each(scenes, json, &bars, &cx.stop, |path| {

@@ -25,7 +25,10 @@
 //! - [`pace`]: a loop's period;
 //! - [`progress`]: where a run reports its stages;
 //! - [`prompt`]: what a run asks its user (place a weight, then press Enter), answered on stdin;
-//! - [`record`]: a run recorded as a rosbag2 bag (MCAP) in the nodes' messages and topics;
+//! - [`record`]: a run recorded as a rosbag2 bag (MCAP) in the nodes' messages and topics, and
+//!   read back;
+//! - [`collect`]: guided collect sessions, the labelled recordings a user's own models are
+//!   trained on;
 //! - [`cli`]: the command line, for the `handstack` binary and any program with a platform of its
 //!   own;
 //! - [`stop`]: what ends a run early (SIGINT, SIGTERM, SIGHUP), through its one shutdown path;
@@ -40,6 +43,7 @@
 #[cfg(feature = "cell")]
 pub mod cell;
 pub mod cli;
+pub mod collect;
 pub mod error;
 pub mod outcome;
 pub mod pace;
@@ -52,6 +56,8 @@ pub mod stack;
 pub mod stop;
 pub mod summary;
 pub mod tap_to_move;
+#[cfg(feature = "train")]
+pub mod train;
 
 pub use error::{Ending, RunError};
 pub use outcome::{Figure, Line, Outcome, Plot};

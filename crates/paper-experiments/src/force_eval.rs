@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use tactile_nets::error::NetError;
-use tactile_nets::force_dnn::{ForceDnn, HIDDEN};
+use tactile_nets::force_dnn::{ForceDnn, HIDDEN, series_recipe};
 use tactile_nets::metrics::{MetricsFile, MetricsRow};
 use tactile_nets::train::{TrainConfig, TrainLog};
 
@@ -36,33 +36,10 @@ pub const SIM_TRAIN_RUNS: [u32; 2] = [0, 1];
 /// The held-out simulated run.
 pub const SIM_TEST_RUN: u32 = 2;
 
-/// Training stages `(learning rate, epochs)` in minibatches of `batch_size`, seeded
-/// `seed`, `seed + 1`, … .
-fn stages(
-    seed: u64,
-    progress: bool,
-    label: &str,
-    batch_size: usize,
-    plan: &[(f64, usize)],
-) -> Vec<TrainConfig> {
-    plan.iter()
-        .zip(seed..)
-        .map(|(&(learning_rate, epochs), seed)| TrainConfig {
-            epochs,
-            batch_size,
-            learning_rate,
-            l2: 0.0,
-            seed,
-            progress,
-            label: format!("{label} lr {learning_rate:e}"),
-        })
-        .collect()
-}
-
 /// The Table 1 recipe: full batch (13 rows), Adam 4 000 epochs at 1e-2, 4 000 at 1e-3, 2 000
 /// at 1e-4.
 pub fn table_recipe(seed: u64, progress: bool, label: &str) -> Vec<TrainConfig> {
-    stages(
+    TrainConfig::stages(
         seed,
         progress,
         label,
@@ -71,9 +48,10 @@ pub fn table_recipe(seed: u64, progress: bool, label: &str) -> Vec<TrainConfig> 
     )
 }
 
-/// The simulated-series recipe: minibatches of 64 frames, Adam 150 epochs at 3e-3, 50 at 3e-4.
+/// The simulated-series recipe: tactile-nets' [`series_recipe`] (minibatches of 64 frames, Adam
+/// 150 epochs at 3e-3, 50 at 3e-4), labelled `sim`.
 pub fn sim_recipe(seed: u64, progress: bool) -> Vec<TrainConfig> {
-    stages(seed, progress, "sim", 64, &[(3e-3, 150), (3e-4, 50)])
+    series_recipe(seed, progress, "sim")
 }
 
 /// File name of the leave-one-out model that held out `weight_gf`.

@@ -91,7 +91,7 @@ pub fn run_node(
                 rate_hz: FINGERTIP_RATE_HZ * sim_speed as f32,
                 frame_id,
             };
-            let force = scene.force_model();
+            let force = scene.force.clone();
             Ok(format!(
                 "{} frames",
                 tactile::run(&node, tip, info, force, stop)?
@@ -129,7 +129,7 @@ pub fn run_node(
             let config = HandNodeConfig {
                 rate_hz: 1e6 / stack.config.period_us as f64 * sim_speed,
                 frame_id,
-                force: scene.force_model(),
+                force: scene.force.clone(),
                 hand: "simulated servo bus".to_owned(),
                 recover: None,
             };

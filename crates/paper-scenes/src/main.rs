@@ -46,7 +46,7 @@ enum Command {
     /// scene names it, then takes lines on stdin: `place G` rests G gf on the whole pad
     /// (answered `placed G gf`), `clear` lifts it. Serves until stdin closes or SIGINT /
     /// SIGTERM.
-    FingertipBoard(FingertipBoardArgs),
+    FingertipBoard(FingertipBoardCommand),
     /// Seed 002's tactile pad: the ICM-20789 under Ecoflex on a simulated Arduino Mega running
     /// ConfigurableFirmata on a pty. Prints the port as a scene names it, then takes lines on
     /// stdin: `tap R` taps region R (0–8) now, as the paper's UR3 tapped it (answered `tapping
@@ -132,6 +132,17 @@ struct FingertipBoardArgs {
     boot_ms: u64,
 }
 
+/// `paper-scenes fingertip-board`'s options.
+#[derive(clap::Args)]
+struct FingertipBoardCommand {
+    #[command(flatten)]
+    board: FingertipBoardArgs,
+    /// Another fingertip: the seed of its skin (its response and sensor gains differ from the
+    /// fingertip the built-in models were trained on). Absent: that fingertip.
+    #[arg(long)]
+    skin: Option<u64>,
+}
+
 #[derive(Clone, Copy, clap::ValueEnum)]
 enum Softness {
     Soft,
@@ -200,13 +211,15 @@ fn hand_board(args: &HandBoardArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-fn fingertip_board(args: &FingertipBoardArgs) -> ExitCode {
+fn fingertip_board(cmd: &FingertipBoardCommand) -> ExitCode {
     use paper_scenes::devices::fingertip_board::{FingertipBoard, FingertipBoardConfig};
     let stop = handstack::stop::signal_stop();
+    let args = &cmd.board;
     let config = FingertipBoardConfig {
         seed: args.seed,
         baud: args.baud,
         boot_delay: std::time::Duration::from_millis(args.boot_ms),
+        skin: cmd.skin,
     };
     let rig = match FingertipBoard::spawn(&config) {
         Ok(rig) => rig,

@@ -32,6 +32,38 @@ pub struct TrainConfig {
     pub label: String,
 }
 
+impl TrainConfig {
+    /// Training stages run one after the other, each `(learning rate, epochs)` of `plan` in
+    /// minibatches of `batch_size`, seeded `seed`, `seed + 1`, …, labelled `label lr …`.
+    ///
+    /// ```
+    /// use tactile_nets::train::TrainConfig;
+    /// let s = TrainConfig::stages(8, false, "sim", 64, &[(3e-3, 150), (3e-4, 50)]);
+    /// assert_eq!((s[1].seed, s[1].epochs, s[1].batch_size), (9, 50, 64));
+    /// assert_eq!(s[0].label, "sim lr 3e-3");
+    /// ```
+    pub fn stages(
+        seed: u64,
+        progress: bool,
+        label: &str,
+        batch_size: usize,
+        plan: &[(f64, usize)],
+    ) -> Vec<TrainConfig> {
+        plan.iter()
+            .zip(seed..)
+            .map(|(&(learning_rate, epochs), seed)| TrainConfig {
+                epochs,
+                batch_size,
+                learning_rate,
+                l2: 0.0,
+                seed,
+                progress,
+                label: format!("{label} lr {learning_rate:e}"),
+            })
+            .collect()
+    }
+}
+
 /// The loss between the model's last-layer outputs and the targets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Loss {

@@ -15,6 +15,7 @@ pub mod law;
 mod law_calibrated;
 pub mod model;
 pub mod physics;
+pub mod skin;
 
 pub use contact::{ContactEvent, ContactPatch, KGF_N};
 pub use geometry::{Cell, CellSet};

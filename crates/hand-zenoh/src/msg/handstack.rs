@@ -4,6 +4,7 @@
 
 /// `handstack_msgs`.
 pub mod handstack_msgs {
+    use super::super::standard::builtin_interfaces::Time;
     use super::super::standard::std_msgs::Header;
 
     super::super::ros_message! {
@@ -134,6 +135,23 @@ pub mod handstack_msgs {
             pub what: String,
             /// Whether it ended the run.
             pub ends_run: bool,
+        }
+
+        /// What a guided collect session asked for and the user did: the truth a recording is
+        /// trained on (a weight placed, a cell tapped), over the window of frames it covers.
+        pub struct Label = "handstack_msgs/msg/Label" {
+            /// When it was recorded; frame_id names the device the frames came from.
+            pub header: Header,
+            /// The experiment that asked (`weight`).
+            pub experiment: String,
+            /// What is labelled (`tare`, `weight_gf`).
+            pub name: String,
+            /// Its value (gf for a weight).
+            pub value: f64,
+            /// The first frame's stamp it covers.
+            pub start: Time,
+            /// The last frame's stamp it covers.
+            pub end: Time,
         }
     }
 }

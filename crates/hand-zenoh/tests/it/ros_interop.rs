@@ -15,8 +15,8 @@ use hand_zenoh::msg::geometry_msgs::{
     Point, Pose, PoseStamped, Quaternion, Vector3, Wrench, WrenchStamped,
 };
 use hand_zenoh::msg::handstack_msgs::{
-    Contact, ContactArray, Fault, Figure, FingerFrame, GraspState, GripperCommand, PressureFrame,
-    SensorInfo, Softness,
+    Contact, ContactArray, Fault, Figure, FingerFrame, GraspState, GripperCommand, Label,
+    PressureFrame, SensorInfo, Softness,
 };
 use hand_zenoh::msg::sensor_msgs::{ChannelFloat32, Imu, JointState};
 use hand_zenoh::msg::std_msgs::Header;
@@ -45,6 +45,7 @@ fn descriptions() -> Vec<TypeDescription> {
         Softness::description(),
         Figure::description(),
         Fault::description(),
+        Label::description(),
         Imu::description(),
         JointState::description(),
         ChannelFloat32::description(),
@@ -174,6 +175,24 @@ fn samples() -> Vec<(&'static str, Vec<u8>)> {
                 angular_velocity_covariance: [0.0; 9],
                 linear_acceleration: v(0.0, 0.0, 9.8125),
                 linear_acceleration_covariance: [0.0; 9],
+            }
+            .to_cdr(),
+        ),
+        (
+            Label::NAME,
+            Label {
+                header: header("sensors.fingertip"),
+                experiment: "weight".into(),
+                name: "weight_gf".into(),
+                value: 120.5,
+                start: Time {
+                    sec: 1_700_000_001,
+                    nanosec: 250_000_000,
+                },
+                end: Time {
+                    sec: 1_700_000_002,
+                    nanosec: 500,
+                },
             }
             .to_cdr(),
         ),

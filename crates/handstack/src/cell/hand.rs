@@ -20,7 +20,7 @@ use crate::pace::Pacer;
 use crate::record::grasp::grasp_state;
 use crate::runs::grasp::{FaultWatch, left_text};
 use crate::scene::experiment::Recover;
-use crate::scene::parts::ForceModel;
+use crate::scene::force::ForceNet;
 use crate::stop::Stop;
 use hand_control::grasp_loop::{GraspLoop, LoopClock, LoopConfig, RebootableActuator};
 use hand_traits::{PressureFrame, TactileSource};
@@ -40,8 +40,8 @@ pub struct HandNodeConfig {
     pub rate_hz: f64,
     /// The frame id of its messages (`hand0`).
     pub frame_id: String,
-    /// The built-in force DNN `force` is published from (`None`: no `force` topic).
-    pub force: Option<ForceModel>,
+    /// The force DNN `force` is published from (`None`: no `force` topic).
+    pub force: Option<ForceNet>,
     /// What the hand is called in messages (`servo bus /dev/ttyUSB0`).
     pub hand: String,
     /// The scene's recovery (`None`: the first fault ends the node).
@@ -131,8 +131,8 @@ where
     let mut raw = node.publisher::<hs::PressureFrame>("tactile/raw")?;
     let mut state = node.publisher::<GraspState>("grasp/state")?;
     let mut joints = node.publisher::<JointState>("gripper/joint_states")?;
-    let mut force = match node_config.force {
-        Some(model) => Some(ForceTopic::new(node, model.dnn())?),
+    let mut force = match node_config.force.clone() {
+        Some(model) => Some(ForceTopic::new(node, model)?),
         None => None,
     };
     let mut commands = node.subscription::<GripperCommand>("gripper/command", 16)?;

@@ -57,7 +57,7 @@ pub fn run_node(
                 rate_hz: FINGERTIP_RATE_HZ,
                 frame_id,
             };
-            let frames = tactile::run(&node, tip, info, scene.force_model(), stop)?;
+            let frames = tactile::run(&node, tip, info, scene.force.clone(), stop)?;
             Ok(format!("{frames} frames"))
         }
         Part::Hand => {
@@ -77,7 +77,7 @@ pub fn run_node(
             let hand_config = HandNodeConfig {
                 rate_hz: 1e6 / config.period_us as f64,
                 frame_id,
-                force: scene.force_model(),
+                force: scene.force.clone(),
                 hand: crate::stack::hand::bus_label(port),
                 recover: grasp.and_then(|g| g.recover.as_ref().map(|r| *r.get_ref())),
             };

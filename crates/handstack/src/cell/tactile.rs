@@ -4,7 +4,7 @@
 
 use super::error::CellError;
 use crate::pace::Pacer;
-use crate::scene::parts::ForceModel;
+use crate::scene::force::ForceNet;
 use crate::stop::Stop;
 use hand_control::grasp_loop::LoopConfig;
 use hand_traits::{PressureFrame, TactileSource};
@@ -17,13 +17,13 @@ pub fn startup_tare_frames() -> u32 {
     LoopConfig::new().tare_cycles
 }
 
-/// Runs a fingertip node, publishing `force` from `force`'s built-in network when given;
+/// Runs a fingertip node, publishing `force` from `force`'s network when given;
 /// returns the frames published.
 pub fn run<S, const N: usize>(
     node: &Node,
     source: S,
     info: TactileInfo,
-    force: Option<ForceModel>,
+    force: Option<ForceNet>,
     stop: &Stop,
 ) -> Result<u64, CellError>
 where
@@ -32,7 +32,7 @@ where
     let mut pacer = Pacer::new(f64::from(info.rate_hz));
     let mut tactile = TactileNode::new(node, source, info)?;
     if let Some(model) = force {
-        tactile = tactile.with_force(node, model.dnn(), startup_tare_frames())?;
+        tactile = tactile.with_force(node, model, startup_tare_frames())?;
     }
     let mut frames = 0;
     while !stop.is_set() {

@@ -13,12 +13,14 @@
 //! | `/hand0/softness` | `handstack_msgs/msg/Softness` | the softness classification |
 //! | `/handstack/fault` | `handstack_msgs/msg/Fault` | each fault a cycle saw; what ended a run |
 //! | `/handstack/figures` | `handstack_msgs/msg/Figure` | each figure, at the end of its experiment |
+//! | `/handstack/labels` | `handstack_msgs/msg/Label` | each step of a guided collect session (`handstack collect`) |
 //!
 //! Stamps (header and bag time) are the wall clock when the run had the value, ns since the
 //! Unix epoch, as the nodes stamp theirs; a cycle's messages share its stamp.
 
 mod bag;
 pub mod grasp;
+pub mod read;
 
 pub use bag::{FLUSH_EVERY, METADATA_VERSION, ROS_DISTRO, TopicId};
 
@@ -26,6 +28,7 @@ use crate::Figure;
 use bag::Bag;
 use hand_zenoh::convert::header;
 use hand_zenoh::msg::Message;
+use hand_zenoh::msg::builtin_interfaces::Time;
 use hand_zenoh::msg::handstack_msgs::{self as hs, Fault, FingerFrame};
 use hand_zenoh::msg::sensor_msgs::ChannelFloat32;
 use hand_zenoh::msg::tactile_msgs::TactileState;
@@ -41,6 +44,8 @@ pub const HAND_FRAME: &str = "hand0";
 pub const FIGURES: &str = "/handstack/figures";
 /// The topic of faults and of what ended a run.
 pub const FAULTS: &str = "/handstack/fault";
+/// The topic of a collect session's labels: what the user was asked to do, over which frames.
+pub const LABELS: &str = "/handstack/labels";
 
 /// Why a recording could not be made or went on no longer.
 #[derive(Debug, thiserror::Error)]
@@ -78,6 +83,21 @@ pub enum RecordError {
         /// The system's answer.
         reason: String,
     },
+}
+
+/// One label of a collect session (see [`Recorder::label`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Labelled<'a> {
+    /// The experiment that asked (`weight`).
+    pub experiment: &'a str,
+    /// What is labelled (`tare`, `weight_gf`).
+    pub name: &'a str,
+    /// Its value.
+    pub value: f64,
+    /// The first frame it covers, ns since the Unix epoch (the frames' bag time).
+    pub start_ns: u64,
+    /// The last frame it covers.
+    pub end_ns: u64,
 }
 
 /// Nanoseconds since the Unix epoch, now.
@@ -184,6 +204,22 @@ impl Recorder {
             source: source.to_owned(),
             what: what.to_owned(),
             ends_run,
+        };
+        self.write(topic, t, &msg);
+    }
+
+    /// Records that the frames of `device` stamped `start_ns..=end_ns` are `name` = `value`
+    /// of `experiment` (a collect session's truth: `weight`, `weight_gf`, 50).
+    pub fn label(&self, device: &str, label: &Labelled<'_>) {
+        let topic = self.topic::<hs::Label>(LABELS);
+        let t = now_ns();
+        let msg = hs::Label {
+            header: header(t as i64, device),
+            experiment: label.experiment.to_owned(),
+            name: label.name.to_owned(),
+            value: label.value,
+            start: Time::from_nanos(label.start_ns),
+            end: Time::from_nanos(label.end_ns),
         };
         self.write(topic, t, &msg);
     }

@@ -15,6 +15,7 @@ pub mod softness;
 pub mod tap_to_move;
 pub mod weight;
 
+use crate::collect::Sessions;
 use crate::error::RunError;
 use crate::progress::Progress;
 use crate::prompt::Prompter;
@@ -42,6 +43,10 @@ pub struct RunContext<'a> {
     pub prompter: Prompter,
     /// The devices the run's check left open, until an experiment takes them.
     pub checked: Mutex<Checked>,
+    /// A guided collect session (`handstack collect`): the experiments ask for what the
+    /// sessions before it have not recorded, and label what the user did, instead of
+    /// estimating.
+    pub collect: Option<Sessions>,
 }
 
 impl<'a> RunContext<'a> {
@@ -54,6 +59,7 @@ impl<'a> RunContext<'a> {
             record: None,
             prompter: Prompter::stdin(),
             checked: Mutex::new(Checked::default()),
+            collect: None,
         }
     }
 
@@ -89,6 +95,16 @@ impl<'a> RunContext<'a> {
     pub fn with_record(self, recorder: &'a Recorder) -> Self {
         Self {
             record: Some(recorder),
+            ..self
+        }
+    }
+
+    /// This context collecting (labels recorded into `recorder`), after the sessions of
+    /// `sessions`.
+    pub fn with_collect(self, recorder: &'a Recorder, sessions: Sessions) -> Self {
+        Self {
+            record: Some(recorder),
+            collect: Some(sessions),
             ..self
         }
     }

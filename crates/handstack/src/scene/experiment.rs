@@ -116,6 +116,11 @@ pub struct Weight {
     /// How long the settled pressures are averaged, s (default 1; 0.1…30): the paper's
     /// "average measured values".
     pub average_s: Option<Spanned<f64>>,
+    /// Clear the pad and tare again before each weight (default false: one tare, the paper's
+    /// protocol). Barometers drift (the simulated ones 0.1 hPa/min, ~17 gf/min on a whole-pad
+    /// load): a tare before each weight keeps the drift of a long series out of its estimates.
+    /// A collect session always tares before each weight.
+    pub tare_each_weight: Option<Spanned<bool>>,
 }
 
 /// What a [`Weight`] experiment does, its defaults filled in.
@@ -129,6 +134,8 @@ pub struct WeighPlan {
     pub settle_s: f64,
     /// Averaging time, s.
     pub average_s: f64,
+    /// Whether the pad is cleared and tared again before each weight.
+    pub tare_each_weight: bool,
 }
 
 impl Weight {
@@ -143,6 +150,7 @@ impl Weight {
             tolerance_gf: or(&self.tolerance_gf, 2.0),
             settle_s: or(&self.settle_s, 1.0),
             average_s: or(&self.average_s, 1.0),
+            tare_each_weight: self.tare_each_weight.as_ref().is_some_and(|t| *t.get_ref()),
         }
     }
 }

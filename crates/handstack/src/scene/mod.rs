@@ -35,6 +35,7 @@
 
 mod error;
 pub mod experiment;
+pub mod force;
 pub mod parts;
 mod validate;
 
@@ -116,6 +117,9 @@ pub struct SceneOf<X> {
     pub name: String,
     /// The file's contents as written.
     pub file: SceneFile<X>,
+    /// The force DNN `[estimators.force]` names, read (a weights file relative to the scene
+    /// file's directory).
+    pub force: Option<force::ForceNet>,
 }
 
 impl<X: ExperimentTable> SceneOf<X> {
@@ -140,10 +144,15 @@ impl<X: ExperimentTable> SceneOf<X> {
             ));
         }
         X::check(&parsed, &cx)?;
+        let force = force_net(file, &parsed, &cx)?;
         let name = Path::new(file)
             .file_stem()
             .map_or_else(|| file.to_owned(), |s| s.to_string_lossy().into_owned());
-        Ok(SceneOf { name, file: parsed })
+        Ok(SceneOf {
+            name,
+            file: parsed,
+            force,
+        })
     }
 
     /// The contact locators `[estimators.contact]` names (none without that table).
@@ -156,14 +165,45 @@ impl<X: ExperimentTable> SceneOf<X> {
             .unwrap_or_default()
     }
 
-    /// The force DNN `[estimators.force]` names (none without that table).
+    /// The built-in force DNN `[estimators.force]` names (none without that table, or when it
+    /// names a weights file).
     pub fn force_model(&self) -> Option<parts::ForceModel> {
         self.file
             .estimators
             .force
             .as_ref()
-            .map(|f| f.get_ref().model)
+            .and_then(|f| f.get_ref().model)
     }
+}
+
+/// The force DNN of the scene `file`, its weights file read relative to the scene's directory.
+fn force_net<X>(
+    file: &str,
+    scene: &SceneFile<X>,
+    cx: &Checker<'_>,
+) -> Result<Option<force::ForceNet>, SceneError> {
+    let Some(f) = &scene.estimators.force else {
+        return Ok(None);
+    };
+    let f = f.get_ref();
+    if let Some(m) = f.model {
+        return Ok(Some(force::ForceNet::BuiltIn(m)));
+    }
+    let Some(w) = &f.weights else {
+        return Ok(None);
+    };
+    let dir = Path::new(file).parent().unwrap_or(Path::new(""));
+    force::ForceNet::load(&dir.join(w.get_ref()))
+        .map(Some)
+        .map_err(|e| {
+            cx.err(
+                w.span(),
+                "estimators.force.weights",
+                format!("cannot be used: {e}"),
+                "a force DNN weights file (`handstack train force` writes one), relative to \
+                 the scene file",
+            )
+        })
 }
 
 /// The text of the scene file at `path`.

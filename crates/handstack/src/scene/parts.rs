@@ -336,13 +336,22 @@ fn force_model<'de, D: serde::Deserializer<'de>>(d: D) -> Result<ForceModel, D::
     })
 }
 
-/// The force / weight DNN.
+/// The force / weight DNN: a built-in model, or the user's own weights file.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Force {
-    /// The committed model the stack's live readings go through (`sim` or `table1`).
-    #[serde(deserialize_with = "force_model")]
-    pub model: ForceModel,
+    /// A model built into tactile-nets (`sim` or `table1`).
+    #[serde(default, deserialize_with = "some_force_model")]
+    pub model: Option<ForceModel>,
+    /// A weights file, relative to the scene file's directory: the user's own fingertip's model
+    /// as `handstack train force` writes it.
+    pub weights: Option<Spanned<std::path::PathBuf>>,
+}
+
+fn some_force_model<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> Result<Option<ForceModel>, D::Error> {
+    force_model(d).map(Some)
 }
 
 /// A contact locator.

@@ -274,6 +274,20 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
                 "[sensors.fingertip] with it",
             ));
         }
+        let force = f.get_ref();
+        if force.model.is_some() == force.weights.is_some() {
+            return Err(cx.err(
+                f.span(),
+                "estimators.force",
+                if force.model.is_some() {
+                    "names both a built-in `model` and a `weights` file"
+                } else {
+                    "names no force DNN"
+                },
+                "`model = \"sim\"` or `\"table1\"` (built in), or `weights = \"FILE\"` (a \
+                 weights file `handstack train force` wrote)",
+            ));
+        }
     }
     if let Some(c) = &e.contact {
         let locators = &c.get_ref().locators;

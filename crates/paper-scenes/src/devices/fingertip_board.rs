@@ -28,15 +28,19 @@ pub struct FingertipBoardConfig {
     pub baud: u32,
     /// From the board's port opening to its version report.
     pub boot_delay: Duration,
+    /// Another fingertip's skin (hand-sim's [`LawParams::other_skin`] of this seed); `None`:
+    /// the calibrated fingertip the built-in models were trained on.
+    pub skin: Option<u64>,
 }
 
 impl Default for FingertipBoardConfig {
-    /// Seed 1, 115 200 baud, the real board's 1.6 s boot.
+    /// Seed 1, 115 200 baud, the real board's 1.6 s boot, the calibrated skin.
     fn default() -> Self {
         FingertipBoardConfig {
             seed: 1,
             baud: 115_200,
             boot_delay: Duration::from_millis(1600),
+            skin: None,
         }
     }
 }
@@ -68,8 +72,11 @@ impl FingertipBoard {
     /// Builds the pad (nothing on it) and starts its board.
     pub fn spawn(config: &FingertipBoardConfig) -> Result<FingertipBoard, Error> {
         let defaults = FingertipConfig::default();
+        let law = config.skin.map_or(LawParams::CALIBRATED, |s| {
+            LawParams::CALIBRATED.other_skin(s)
+        });
         let physics = FingertipPhysics::new(
-            LawParams::CALIBRATED,
+            law,
             sensor_baselines(config.seed, "fingertip-board"),
             defaults.drift_hpa_per_min,
         )?;

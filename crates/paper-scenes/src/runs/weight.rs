@@ -12,10 +12,13 @@ use super::{Part, RunContext};
 use crate::scene::PaperScene;
 use crate::scene::experiments::Weight;
 use hand_sim::fingertip::dataset::{weight_run, weight_run_seed};
+use handstack::scene::SceneOf;
+use handstack::scene::force::ForceNet;
 use handstack::scene::parts::ForceModel;
 use handstack::{Line, Plot};
 use paper_experiments::data::weights::{self, WeightSeries};
 use paper_experiments::force_eval::{self, MODEL_DIR, SIM_FILE, TABLE_FILE};
+use std::path::Path;
 use tactile_nets::force_dnn::ForceDnn;
 
 /// Seed 000 Table 1, cited beside every paper value.
@@ -30,24 +33,19 @@ pub fn run(scene: &PaperScene, exp: &Weight, cx: &RunContext<'_>) -> Result<Part
     if exp.table1 {
         table1(&ForceDnn::load(&dir.join(TABLE_FILE))?, &mut part)?;
     }
-    let model = match scene
-        .file
-        .estimators
-        .force
-        .as_ref()
-        .map(|f| f.get_ref().model)
-    {
-        Some(ForceModel::Table1) => TABLE_FILE,
+    series(scene, exp, &force_dnn(scene, &cx.root)?, cx, &mut part)?;
+    Ok(part)
+}
+
+/// The force DNN `scene` names: its weights file, or the committed model of its built-in name
+/// below the workspace root `root` (`sim` when it names none).
+pub fn force_dnn<X>(scene: &SceneOf<X>, root: &Path) -> Result<ForceDnn, crate::Error> {
+    let file = match &scene.force {
+        Some(ForceNet::File { dnn, .. }) => return Ok(dnn.clone()),
+        Some(ForceNet::BuiltIn(ForceModel::Table1)) => TABLE_FILE,
         _ => SIM_FILE,
     };
-    series(
-        scene,
-        exp,
-        &ForceDnn::load(&dir.join(model))?,
-        cx,
-        &mut part,
-    )?;
-    Ok(part)
+    Ok(ForceDnn::load(&root.join(MODEL_DIR).join(file))?)
 }
 
 /// The 13 rows of Table 1, tared on the 0 gf row, through `dnn`.

@@ -146,16 +146,20 @@ pub struct Session {
 }
 
 impl Session {
-    pub fn start(scene: &PathBuf) -> Session {
+    pub fn start(scene: &Path) -> Session {
         Session::start_with(scene, &[])
     }
 
     /// `handstack run SCENE --json ARGS…`.
-    pub fn start_with(scene: &PathBuf, args: &[&std::ffi::OsStr]) -> Session {
+    pub fn start_with(scene: &Path, args: &[&std::ffi::OsStr]) -> Session {
+        let mut all = vec!["run".as_ref(), scene.as_os_str(), "--json".as_ref()];
+        all.extend_from_slice(args);
+        Session::command(&all)
+    }
+
+    /// `handstack ARGS…`.
+    pub fn command(args: &[&std::ffi::OsStr]) -> Session {
         let mut child = Command::new(handstack())
-            .arg("run")
-            .arg(scene)
-            .arg("--json")
             .args(args)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())

@@ -13,14 +13,13 @@ use hand_control::grasp_loop::{LoopClock, TorqueBand};
 use hand_sim::imu_pad::ImuPad;
 use hand_traits::{ImuFrame, TactileSource};
 use handstack::RunError;
-use handstack::scene::parts::{ForceModel, Locator};
+use handstack::scene::parts::Locator;
 use handstack::tap_to_move::{RegionToGrid, TapToMoveConfig};
 use paper_experiments::cnn_eval::{MODEL_DIR as CNN_DIR, model_file};
 use paper_experiments::grasp_rig::{self, LIFT_AT_S};
 use paper_experiments::tap_run;
 use tactile_nets::contact_cnn::{ContactCnn, Variant};
 use tactile_nets::contact_mlp::ContactMlp;
-use tactile_nets::force_dnn::ForceDnn;
 
 /// The pad's rate, Hz (seed 002 §III-C).
 pub const PAD_HZ: u32 = 30;
@@ -143,18 +142,7 @@ where
     let grasp = crate::devices::grasp::open(scene, cx, &name, band, g.seed)?;
     let config = grasp.config;
     // The estimators.
-    let models = cx.root.join(paper_experiments::force_eval::MODEL_DIR);
-    let force_file = match scene
-        .file
-        .estimators
-        .force
-        .as_ref()
-        .map(|f| f.get_ref().model)
-    {
-        Some(ForceModel::Table1) => paper_experiments::force_eval::TABLE_FILE,
-        _ => paper_experiments::force_eval::SIM_FILE,
-    };
-    let force = ForceDnn::load(&models.join(force_file))?;
+    let force = crate::runs::weight::force_dnn(scene, &cx.root)?;
     let locators = scene.locators();
     let mlp = if locators.contains(&Locator::Mlp) {
         let (file, _) = x
