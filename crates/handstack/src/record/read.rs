@@ -22,10 +22,12 @@ pub enum ReadError {
         /// The system's answer.
         reason: String,
     },
-    /// The file ends before its footer: the run that wrote it was killed before it closed it.
+    /// The file ends inside a record. A recorder ends every flush with a footer, so even a
+    /// killed run's bag reads to its last flush: this is a copy cut short, or a disk that
+    /// filled.
     #[error(
-        "{} is truncated after {messages} messages (the run recording it was killed before it \
-         closed the bag): record it again",
+        "{} is truncated after {messages} messages (a copy cut short, or a disk that filled): \
+         copy it again, or record it again",
         path.display()
     )]
     Truncated {

@@ -2,8 +2,8 @@
 //! `[experiment.weight]` collect sessions.
 //!
 //! Each weight's frames are tared on the `tare` label before it; every frame averaged for a weight
-//! is a training row (tactile-nets' [`session_recipe`]: Adam in minibatches of 16, 800
-//! epochs). Of the weights sorted lightest first, every fourth from the third is held out and
+//! is a training row, with three times as many rows mixed between neighbouring weights
+//! (tactile-nets' [`mixup`] and [`session_recipe`]: Adam in minibatches of 16). Of the weights sorted lightest first, every fourth from the third is held out and
 //! never trained on — never the lightest or the heaviest, which bound the range the model is
 //! rated for: the model is scored on those as Table 1 scores it, the settled mean of each
 //! weight against the weight, and so is the built-in `sim` model beside it. The weights file
@@ -18,8 +18,11 @@ use crate::runs::weight::{EXPERIMENT, PAPER_MAX_ERROR_GF, PAPER_SOURCE, TARE, WE
 use crate::{Line, Outcome, Plot};
 use hand_zenoh::msg::handstack_msgs::{Label, PressureFrame};
 use std::path::{Path, PathBuf};
-use tactile_nets::force_dnn::{ForceDnn, WeightSample, session_recipe};
+use tactile_nets::force_dnn::{ForceDnn, WeightSample, mixup, session_recipe};
 use tactile_nets::pretrained::ForceModel;
+
+/// Rows mixed between neighbouring weights per frame trained on (tactile-nets' [`mixup`]).
+pub const MIXED_PER_FRAME: usize = 3;
 
 /// Every how many weights (lightest first) one is held out.
 pub const HOLD_OUT_EVERY: usize = 4;
@@ -276,7 +279,7 @@ pub fn train(
         .into_iter()
         .enumerate()
         .partition(|&(i, _)| held_out(i, n));
-    let samples: Vec<WeightSample> = fit
+    let mut samples: Vec<WeightSample> = fit
         .iter()
         .flat_map(|(_, s)| {
             s.rises_hpa.iter().map(|&rise_hpa| WeightSample {
@@ -285,6 +288,12 @@ pub fn train(
             })
         })
         .collect();
+    let fit_frames = samples.len();
+    let neighbours: Vec<(f32, &[[f32; 3]])> = fit
+        .iter()
+        .map(|(_, s)| (s.weight_gf as f32, s.rises_hpa.as_slice()))
+        .collect();
+    samples.extend(mixup(&neighbours, MIXED_PER_FRAME, seed));
     let lightest = steps
         .iter()
         .map(|s| s.weight_gf)
@@ -323,12 +332,7 @@ pub fn train(
 
     let mut figures = vec![
         measured("weights", "weights recorded", steps.len() as f64, ""),
-        measured(
-            "train_frames",
-            "frames trained on",
-            samples.len() as f64,
-            "",
-        ),
+        measured("train_frames", "frames trained on", fit_frames as f64, ""),
         measured("heldout_weights", "weights held out", held.len() as f64, ""),
     ];
     let f = measured(

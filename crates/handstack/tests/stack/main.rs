@@ -11,3 +11,5 @@ mod hardware;
 mod process;
 mod record;
 mod scenes;
+#[cfg(feature = "train")]
+mod train_bags;

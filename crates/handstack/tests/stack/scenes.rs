@@ -351,6 +351,78 @@ fn a_weight_series_needs_the_fingertip_and_a_force_dnn_and_checks_its_keys() {
     );
 }
 
+/// `[estimators.force]` names a built-in model or a weights file beside the scene, not both
+/// and not neither; a file it cannot use is refused where it is named, with why.
+#[test]
+fn a_force_dnn_is_built_in_or_a_weights_file_beside_the_scene() {
+    let s = Scene::parse("weights.toml", WEIGHT).expect("valid");
+    assert!(matches!(
+        s.force,
+        Some(handstack::scene::force::ForceNet::BuiltIn(
+            handstack::scene::parts::ForceModel::Sim
+        ))
+    ));
+    assert!(
+        !s.file
+            .experiment
+            .get_ref()
+            .weight
+            .as_ref()
+            .expect("weight")
+            .get_ref()
+            .plan()
+            .tare_each_weight
+    );
+    let dir = std::env::temp_dir().join(format!("handstack-scene-weights-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    tactile_nets::pretrained::force_dnn(handstack::scene::parts::ForceModel::Table1)
+        .expect("built-in")
+        .save(&dir.join("mine.safetensors"))
+        .expect("saved");
+    let own = WEIGHT.replace("model = \"sim\"", "weights = \"mine.safetensors\"");
+    let s = Scene::parse(&dir.join("own.toml").display().to_string(), &own).expect("valid");
+    match &s.force {
+        Some(handstack::scene::force::ForceNet::File { path, dnn }) => {
+            assert_eq!(path, &dir.join("mine.safetensors"));
+            assert_eq!(dnn.range_gf(), [0.0, 200.0]);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(s.force_model(), None);
+    // Not beside this scene: the file is read relative to the scene, and the error says why.
+    says(
+        &err(&own),
+        6,
+        "estimators.force.weights",
+        &[
+            "cannot be used",
+            "mine.safetensors",
+            "relative to the scene file",
+        ],
+    );
+    std::fs::write(dir.join("junk.safetensors"), b"not weights").expect("junk");
+    let junk = own.replace("mine.safetensors", "junk.safetensors");
+    let e = Scene::parse(&dir.join("junk.toml").display().to_string(), &junk).expect_err("junk");
+    assert_eq!(e.key(), Some("estimators.force.weights"), "{e}");
+    says(
+        &err(&WEIGHT.replace("model = \"sim\"", "model = \"sim\"\nweights = \"x\"")),
+        5,
+        "estimators.force",
+        &["names both a built-in `model` and a `weights` file"],
+    );
+    says(
+        &err(&WEIGHT.replace("model = \"sim\"\n", "")),
+        5,
+        "estimators.force",
+        &["names no force DNN", "`weights = \"FILE\"`"],
+    );
+    let each =
+        Scene::parse("t.toml", &format!("{WEIGHT}tare_each_weight = true\n")).expect("valid");
+    let w = experiments(&each).weight.as_ref().expect("weight");
+    assert!(w.get_ref().plan().tare_each_weight);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 const TAPS: &str = r#"title = "taps that move my arm"
 [sensors.imu_pad]
 firmata_port = "/dev/ttyACM0"

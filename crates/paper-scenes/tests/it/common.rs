@@ -301,3 +301,20 @@ pub fn check_fingertip_bag(dir: &Path, frames_at_least: u64, figures: u64) {
     assert_eq!(bag_count(&yaml, "/handstack/figures"), figures, "{yaml}");
     assert_eq!(bag_count(&yaml, "/hand0/tactile_states"), raw, "{yaml}");
 }
+
+/// Writes to `path` a weight scene on the fingertip board at `port` (OSR 4096, 115 200 baud)
+/// whose `[estimators.force]` holds `force` (`model = "sim"`), weighing `weights`, with `extra`
+/// lines under `[experiment.weight]`.
+pub fn weight_scene(path: &Path, port: &Path, force: &str, weights: &[f64], extra: &str) {
+    std::fs::write(
+        path,
+        format!(
+            "title = \"Weights on my fingertip\"\n\
+             [sensors.fingertip]\nosr = 4096\nfirmata_port = \"{}\"\nfirmata_baud = 115200\n\
+             [estimators.force]\n{force}\n\
+             [experiment.weight]\nweights_gf = {weights:?}\n{extra}",
+            port.display()
+        ),
+    )
+    .expect("scene written");
+}

@@ -14,8 +14,7 @@ use std::time::Duration;
 /// The other fingertip: hand-sim's skin of this seed reads ~13 % more rise than the calibrated
 /// one at 100 gf, and saturates the built-in model's output near 200 gf.
 const SKIN: u64 = 1;
-/// The weights collected: 10…200 gf in 10 gf steps (hand-sim's weight series, the built-in
-/// `sim` model's training pace).
+/// The weights collected: 10…200 gf in 10 gf steps (hand-sim's weight series).
 fn collected() -> Vec<f64> {
     (1..=20).map(|k| f64::from(k) * 10.0).collect()
 }
@@ -31,21 +30,19 @@ fn dir(name: &str) -> PathBuf {
 }
 
 /// A weight scene on `board`'s fingertip with `force` as its `[estimators.force]` line,
-/// weighing `weights` (settle 0.5 s, average 1 s, a tare before each weight).
+/// weighing `weights` (a tare before each; settle 0.3 s, ~15 time constants of the pad; average
+/// 2 s, ~37 frames at OSR 4096). The MS5611 reads whole pascals with ~1.8 Pa of noise per frame,
+/// and 1 gf on the whole pad raises each sensor ~0.6 Pa: a weight and its tare averaged over
+/// 1 s each are known to ~0.7 gf, over 2 s to ~0.5 gf.
 fn scene(dir: &Path, name: &str, board: &FingertipBoard, force: &str, weights: &[f64]) -> PathBuf {
     let path = dir.join(format!("{name}.toml"));
-    std::fs::write(
+    crate::common::weight_scene(
         &path,
-        format!(
-            "title = \"Weights on my fingertip\"\n\
-             [sensors.fingertip]\nosr = 4096\nfirmata_port = \"{}\"\nfirmata_baud = 115200\n\
-             [estimators.force]\n{force}\n\
-             [experiment.weight]\nweights_gf = {weights:?}\nsettle_s = 0.5\naverage_s = 1.0\n\
-             tare_each_weight = true\n",
-            board.path().display()
-        ),
-    )
-    .expect("scene written");
+        board.path(),
+        force,
+        weights,
+        "settle_s = 0.3\naverage_s = 2.0\ntare_each_weight = true\n",
+    );
     path
 }
 
@@ -90,13 +87,19 @@ fn train(args: &[&std::ffi::OsStr]) -> (Option<i32>, String, String) {
     (out.status.code(), text(&out.stdout), text(&out.stderr))
 }
 
-/// The weight run's estimates of `HELD_OUT` with `force`, and its max |error|.
-fn weigh(dir: &Path, name: &str, board: &FingertipBoard, force: &str) -> (Vec<f64>, f64) {
-    let mut run = Session::start(&scene(dir, name, board, force, &HELD_OUT));
+/// The weight run's estimates of `weights` with `force`, and its max |error|.
+fn weigh(
+    dir: &Path,
+    name: &str,
+    board: &FingertipBoard,
+    force: &str,
+    weights: &[f64],
+) -> (Vec<f64>, f64) {
+    let mut run = Session::start(&scene(dir, name, board, force, weights));
     board.place_gf(0.0).expect("pad cleared");
     run.wait_for("Clear the fingertip");
     run.answer("");
-    for (i, &w) in HELD_OUT.iter().enumerate() {
+    for (i, &w) in weights.iter().enumerate() {
         if i > 0 {
             run.wait_for("Lift the weight off");
             board.place_gf(0.0).expect("weight lifted");
@@ -109,7 +112,7 @@ fn weigh(dir: &Path, name: &str, board: &FingertipBoard, force: &str) -> (Vec<f6
     let (code, stdout, stderr) = run.finish();
     assert_eq!(code, Some(0), "{stdout}\n{stderr}");
     let figure = figures(&stdout);
-    let estimates = (1..=HELD_OUT.len())
+    let estimates = (1..=weights.len())
         .map(|i| {
             figure(&format!("weight{i}_estimate_gf"))["value"]
                 .as_f64()
@@ -131,7 +134,7 @@ fn a_fingertip_of_another_skin_meets_table1_with_its_own_force_model() {
     let dir = dir("skin");
 
     // The built-in model on this fingertip: outside Table 1's 2 gf.
-    let (builtin, builtin_worst) = weigh(&dir, "builtin", &board, "model = \"sim\"");
+    let (builtin, builtin_worst) = weigh(&dir, "builtin", &board, "model = \"sim\"", &HELD_OUT);
     eprintln!("built-in sim model on skin {SKIN}: {builtin:?}, max |error| {builtin_worst} gf");
     assert!(builtin_worst > 2.0, "{builtin:?}");
 
@@ -218,6 +221,7 @@ fn a_fingertip_of_another_skin_meets_table1_with_its_own_force_model() {
         "own",
         &board,
         "weights = \"my-tip-force.safetensors\"",
+        &HELD_OUT,
     );
     eprintln!("own model on skin {SKIN}: {own:?}, max |error| {own_worst} gf");
     assert!(own_worst <= 2.0, "{own:?}");

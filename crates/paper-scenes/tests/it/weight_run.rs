@@ -23,17 +23,7 @@ fn scene(name: &str, board: &FingertipBoard, weights: &[f64]) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("handstack-weight-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("scene dir");
     let path = dir.join(format!("{name}.toml"));
-    std::fs::write(
-        &path,
-        format!(
-            "title = \"Weights on my fingertip\"\n\
-             [sensors.fingertip]\nosr = 4096\nfirmata_port = \"{}\"\nfirmata_baud = 115200\n\
-             [estimators.force]\nmodel = \"sim\"\n\
-             [experiment.weight]\nweights_gf = {weights:?}\n",
-            board.path().display()
-        ),
-    )
-    .expect("scene written");
+    crate::common::weight_scene(&path, board.path(), "model = \"sim\"", weights, "");
     path
 }
 

@@ -53,7 +53,7 @@ pub use model::ForceDnn;
 #[cfg(feature = "std")]
 pub use table::tared_table;
 #[cfg(feature = "train")]
-pub use training::{series_recipe, session_recipe};
+pub use training::{mixup, series_recipe, session_recipe};
 
 /// One training or test sample: tared pressure rises and the true weight.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -8,6 +8,8 @@ use crate::frozen::Freeze;
 use crate::norm::{mean_and_scale, standardise};
 use crate::train::{Loss, Samples, TrainConfig, TrainLog, fit};
 use dfdx::prelude::*;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 
 type Arch<const H: usize> = (
     (Linear<N_INPUTS, H>, Sigmoid),
@@ -150,15 +152,53 @@ pub fn series_recipe(seed: u64, progress: bool, label: &str) -> Vec<TrainConfig>
     TrainConfig::stages(seed, progress, label, 64, &[(3e-3, 150), (3e-4, 50)])
 }
 
-/// The recipe for one user's weight session (a few hundred frames: ~20 weights of ~20 frames):
-/// minibatches of 16 frames, Adam 600 epochs at 3e-3, then 200 at 3e-4, seeded `seed` and
-/// `seed + 1`. [`series_recipe`]'s 200 epochs of 64 frames are ~850 Adam steps on such a
-/// session, too few: on one simulated fingertip of another skin its held-out weights (every
-/// fourth, interior) came within 2.41 gf, this recipe's within 1.48 gf; Table 1's recipe
-/// (10 000 full-batch epochs) fits the trained weights to 0.35 gf and misses a held-out one by
-/// 6.43 gf.
+/// The recipe for one user's weight session (a few hundred frames: ~20 weights of ~20 frames)
+/// with [`mixup`]'s rows added (four times the rows): minibatches of 16 rows, Adam 150 epochs
+/// at 3e-3, then 50 at 3e-4, seeded `seed` and `seed + 1` — as many Adam steps as 600 + 200
+/// epochs of the frames alone. [`series_recipe`]'s minibatches of 64 are ~850 Adam steps on such
+/// a session, too few: on one simulated fingertip of another skin (10 → 200 gf in 10 gf steps,
+/// 1 s averages) its held-out weights came within 2.41 gf, this recipe's without mixup within
+/// 1.51 … 2.83 gf over four seeds, with it within 1.26 … 1.70 gf; Table 1's recipe (10 000
+/// full-batch epochs) fits the trained weights to 0.35 gf and misses a held-out one by 6.43 gf.
 pub fn session_recipe(seed: u64, progress: bool, label: &str) -> Vec<TrainConfig> {
-    TrainConfig::stages(seed, progress, label, 16, &[(3e-3, 600), (3e-4, 200)])
+    TrainConfig::stages(seed, progress, label, 16, &[(3e-3, 150), (3e-4, 50)])
+}
+
+/// Rows mixed between neighbouring weights (mixup, Zhang et al. 2018, restricted to
+/// neighbours): for each two consecutive entries of `steps` (sorted by weight, each a weight in
+/// gf and its frames' rises), `per_frame` × the first's frame count rows `λ·a + (1−λ)·b` of a
+/// frame `a` of the one and `b` of the other, weight `λ·wa + (1−λ)·wb`, λ uniform in [0, 1),
+/// drawn from `seed`.
+///
+/// Why: a few tight clusters of frames (one per weight placed) let the network learn a
+/// staircase — flat around each weight, steep between — which misreads every weight between
+/// those it was trained on. The pad's response is smooth between neighbouring weights, and the
+/// mixed rows say so (measured: [`session_recipe`]).
+pub fn mixup(
+    steps: &[(f32, &[[f32; N_INPUTS]])],
+    per_frame: usize,
+    seed: u64,
+) -> Vec<WeightSample> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut out = Vec::new();
+    for pair in steps.windows(2) {
+        let [(wa, a), (wb, b)] = [pair[0], pair[1]];
+        if a.is_empty() || b.is_empty() {
+            continue;
+        }
+        for _ in 0..per_frame * a.len() {
+            let l: f32 = rng.random();
+            let (ra, rb) = (
+                a[rng.random_range(0..a.len())],
+                b[rng.random_range(0..b.len())],
+            );
+            out.push(WeightSample {
+                rise_hpa: core::array::from_fn(|k| l * ra[k] + (1.0 - l) * rb[k]),
+                weight_gf: l * wa + (1.0 - l) * wb,
+            });
+        }
+    }
+    out
 }
 
 /// `weight_gf` on the sigmoid's [`OUTPUT_SPAN`].

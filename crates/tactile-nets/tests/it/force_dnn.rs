@@ -194,3 +194,31 @@ proptest! {
         }
     }
 }
+
+/// Mixup rows lie between neighbouring weights only (never across a gap to a further one):
+/// each weight between its pair's, each rise between the pair's frames' extremes; the count is
+/// per frame of the lighter weight; the same seed gives the same rows, pairs without frames
+/// give none.
+#[test]
+fn mixup_rows_lie_between_neighbouring_weights_and_follow_their_seed() {
+    use tactile_nets::force_dnn::mixup;
+    let a = [[1.0f32, 2.0, 3.0], [1.2, 2.2, 3.2]];
+    let b = [[2.0f32, 4.0, 6.0]];
+    let c = [[3.0f32, 6.0, 9.0], [3.1, 6.1, 9.1], [2.9, 5.9, 8.9]];
+    let steps: [(f32, &[[f32; 3]]); 3] = [(10.0, &a), (20.0, &b), (30.0, &c)];
+    let rows = mixup(&steps, 3, 5);
+    assert_eq!(rows.len(), 3 * 2 + 3);
+    for r in &rows[..6] {
+        assert!((10.0..=20.0).contains(&r.weight_gf), "{r:?}");
+        assert!((1.0..=2.0).contains(&r.rise_hpa[0]), "{r:?}");
+        assert!((3.0..=6.0).contains(&r.rise_hpa[2]), "{r:?}");
+    }
+    for r in &rows[6..] {
+        assert!((20.0..=30.0).contains(&r.weight_gf), "{r:?}");
+        assert!((2.0..=3.1).contains(&r.rise_hpa[0]), "{r:?}");
+    }
+    assert_eq!(rows, mixup(&steps, 3, 5));
+    assert_ne!(rows, mixup(&steps, 3, 6));
+    let empty: [(f32, &[[f32; 3]]); 2] = [(10.0, &a), (20.0, &[])];
+    assert!(mixup(&empty, 3, 5).is_empty());
+}
