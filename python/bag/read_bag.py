@@ -40,6 +40,11 @@ def plain(msg, typename):
     if short == 'TactileState':
         return {'sensors': [{'name': c.name, 'values': [float(v) for v in c.values]}
                             for c in msg.sensors]}
+    if short == 'Label':
+        return {'experiment': msg.experiment, 'name': msg.name, 'value': msg.value,
+                'start_ns': msg.start.sec * 10**9 + msg.start.nanosec,
+                'end_ns': msg.end.sec * 10**9 + msg.end.nanosec,
+                'frame_id': msg.header.frame_id}
     if short == 'Softness':
         return {'level': msg.level, 'label': msg.label, 'scores': [float(s) for s in msg.scores]}
     return {}

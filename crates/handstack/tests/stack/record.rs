@@ -28,7 +28,7 @@ const GRASP_TOPICS: [&str; 6] = [
 ];
 
 /// `read_bag.py` on `bag`, or `None` (said on stderr) without `$HANDSTACK_PYTHON`.
-fn read_in_python(bag: &Path) -> Option<Value> {
+pub(crate) fn read_in_python(bag: &Path) -> Option<Value> {
     let Some(python) = std::env::var_os("HANDSTACK_PYTHON") else {
         eprintln!(
             "HANDSTACK_PYTHON unset: `cargo xtask test` sets it to the workspace venv; skipped"

@@ -101,6 +101,65 @@ fn a_session_reads_back_as_steps_each_tared_on_the_tare_before_it() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// A collect session's labels as readers no one here wrote decode them: `rosbags` (the type
+/// from the definition the bag carries, its hash matching the declared one) and Foxglove's
+/// `mcap` + `mcap-ros2-support`. Needs `$HANDSTACK_PYTHON`; skipped without it.
+#[test]
+fn a_sessions_labels_read_back_in_rosbags_and_mcap() {
+    let d = dir("python");
+    let bag = d.join("session-001");
+    session(&bag, "weight", &[(10.0, 100.0), (20.5, 200.0)]);
+    let Some(py) = crate::record::read_in_python(&bag) else {
+        let _ = std::fs::remove_dir_all(&d);
+        return;
+    };
+    let topic = &py["rosbags"]["topics"][LABELS];
+    assert_eq!(topic["type"], "handstack_msgs/msg/Label", "{py}");
+    assert_eq!(
+        topic["declared_hash"], topic["hash_from_definition"],
+        "{py}"
+    );
+    let labels: Vec<(String, f64, u64, u64)> = topic["messages"]
+        .as_array()
+        .expect("messages")
+        .iter()
+        .map(|m| {
+            assert_eq!(m["experiment"], "weight");
+            assert_eq!(m["frame_id"], HAND_FRAME);
+            (
+                m["name"].as_str().expect("name").to_owned(),
+                m["value"].as_f64().expect("value"),
+                m["start_ns"].as_u64().expect("start"),
+                m["end_ns"].as_u64().expect("end"),
+            )
+        })
+        .collect();
+    // Each window is three frames 10 ms apart; a tare, then its weight, twice.
+    let at = |i: u64| T0 + i * 60 * MS;
+    assert_eq!(
+        labels,
+        [
+            ("tare".to_owned(), 0.0, at(0), at(0) + 20 * MS),
+            (
+                "weight_gf".to_owned(),
+                10.0,
+                at(0) + 30 * MS,
+                at(0) + 50 * MS
+            ),
+            ("tare".to_owned(), 0.0, at(1), at(1) + 20 * MS),
+            (
+                "weight_gf".to_owned(),
+                20.5,
+                at(1) + 30 * MS,
+                at(1) + 50 * MS
+            ),
+        ]
+    );
+    let theirs = &py["mcap"]["topics"][LABELS]["messages"];
+    assert_eq!(theirs, &topic["messages"], "{py}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 #[test]
 fn the_held_out_weights_are_every_fourth_from_the_third_and_never_the_heaviest() {
     let held = |n: usize| (0..n).filter(|&i| held_out(i, n)).collect::<Vec<_>>();

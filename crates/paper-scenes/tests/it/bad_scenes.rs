@@ -74,9 +74,19 @@ fn unknown_key_is_named() {
 fn missing_field_is_named() {
     let e = err(&GOOD.replace("title = \"ok\"\n", ""));
     names(&e, 1, &["missing field `title`"]);
+    let e = err(&format!("{GOOD}[estimators.contact]\n"));
+    names(&e, 7, &["missing field `locators`"]);
+    assert_eq!(e.key(), Some("locators"));
+    // A force DNN is a built-in `model` or a `weights` file: neither is said so.
     let e = err(&GOOD.replace("model = \"sim\"", ""));
-    names(&e, 4, &["missing field `model`"]);
-    assert_eq!(e.key(), Some("model"));
+    names(
+        &e,
+        4,
+        &[
+            "`estimators.force` names no force DNN",
+            "weights = \"FILE\"",
+        ],
+    );
 }
 
 #[test]
