@@ -1,6 +1,8 @@
 //! The `handstack` command line: run a tactile hand stack from a scene file on its real devices
-//! (`handstack run SCENE... [--json]`), or only check scene files (`handstack check SCENE...`).
-//! With feature `cell`: a scene's stack as ROS 2 nodes on Zenoh (`handstack node SCENE`, or one
+//! (`handstack run SCENE... [--json]`), or only check scene files (`handstack check SCENE...`);
+//! record guided sessions to train on (`handstack collect SCENE --into DIR`). With feature
+//! `train`: a model of the user's own from those sessions (`handstack train force DIR --out
+//! FILE`). With feature `cell`: a scene's stack as ROS 2 nodes on Zenoh (`handstack node SCENE`, or one
 //! part: `--part P [--namespace NS]`), and a cell of such nodes with a coordinator (`handstack
 //! cell CELL.toml`).
 //!

@@ -28,7 +28,7 @@
 //! - [`record`]: a run recorded as a rosbag2 bag (MCAP) in the nodes' messages and topics, and
 //!   read back;
 //! - [`collect`]: guided collect sessions, the labelled recordings a user's own models are
-//!   trained on;
+//!   trained on; `train` (feature `train`): the user's own force DNN from them;
 //! - [`cli`]: the command line, for the `handstack` binary and any program with a platform of its
 //!   own;
 //! - [`stop`]: what ends a run early (SIGINT, SIGTERM, SIGHUP), through its one shutdown path;

@@ -298,14 +298,19 @@ fn the_installable_stack_stays_free_of_the_reproduction_and_under_no_product_cra
     );
 }
 
-/// The installable binary runs every learned model without an ML framework: tactile-nets'
-/// `train` feature (dfdx; nalgebra's Levenberg–Marquardt) stays out of its dependency tree,
-/// whatever features the binary is built with.
-#[test]
-fn the_installable_stack_links_no_ml_framework() {
+/// The crates `handstack` links with `features` (normal edges).
+fn handstack_tree(features: &str) -> Vec<String> {
     let out = std::process::Command::new(env!("CARGO"))
         .current_dir(xtask::workspace_root())
-        .args(["tree", "-p", "handstack", "--all-features", "-e", "normal"])
+        .args([
+            "tree",
+            "-p",
+            "handstack",
+            "--features",
+            features,
+            "-e",
+            "normal",
+        ])
         .args(["--prefix", "none", "--offline", "--locked"])
         .output()
         .expect("cargo tree");
@@ -314,11 +319,29 @@ fn the_installable_stack_links_no_ml_framework() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let tree = String::from_utf8_lossy(&out.stdout);
-    let crates: Vec<&str> = tree.lines().filter_map(|l| l.split(' ').next()).collect();
-    assert!(crates.contains(&"tactile-nets"), "{tree}");
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|l| l.split(' ').next().map(str::to_owned))
+        .collect()
+}
+
+/// The installable binary runs every learned model without an ML framework: tactile-nets'
+/// `train` feature (dfdx; nalgebra's Levenberg–Marquardt) stays out of its dependency tree
+/// with every feature but its own `train` (`handstack train`, the one build that trains).
+#[test]
+fn the_installable_stack_links_no_ml_framework_but_to_train() {
+    let run = handstack_tree("cell");
+    assert!(run.iter().any(|c| c == "tactile-nets"), "{run:?}");
+    let train = handstack_tree("cell,train");
     for framework in ["dfdx", "levenberg-marquardt"] {
-        assert!(!crates.contains(&framework), "handstack links {framework}");
+        assert!(
+            !run.iter().any(|c| c == framework),
+            "handstack links {framework}"
+        );
+        assert!(
+            train.iter().any(|c| c == framework),
+            "train lacks {framework}"
+        );
     }
 }
 
@@ -554,7 +577,9 @@ fn the_drawn_graph_is_the_one_cargo_metadata_declares() {
     ] {
         assert!(experiments.contains(edge), "{edge} not in {experiments}");
     }
-    assert!(row("handstack").contains("`tactile-nets[std]` (no default features)"));
+    assert!(
+        row("handstack").contains("`tactile-nets[std]` (no default features; `train` → `[train]`)")
+    );
     assert!(row("handstack").contains("`hand-zenoh` (no default features; `cell` → `[node]`)"));
     for group in [
         "**Product crates (published)**",

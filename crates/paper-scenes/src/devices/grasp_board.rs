@@ -174,8 +174,10 @@ impl GraspBoard {
 
     /// The servo and the object now (ground truth no client sees).
     pub fn state(&self) -> Option<GraspState> {
-        let body = self.plant.body();
-        self.bus.with_servo(SERVO_ID, |s| GraspState::of(s, &body))
+        // The bus's world first, then the body, as the bus's own thread takes them (it steps
+        // the plant holding its world): the other order deadlocks against it.
+        self.bus
+            .with_servo(SERVO_ID, |s| GraspState::of(s, &self.plant.body()))
     }
 
     /// Whether the servo's torque is on.
