@@ -314,7 +314,7 @@ fn grasp_rig(args: &GraspRigArgs) -> ExitCode {
         boot_delay: std::time::Duration::from_millis(args.board.boot_ms),
         ..GraspBoardConfig::new(object)
     };
-    let rig = match GraspBoard::spawn(&config) {
+    let mut rig = match GraspBoard::spawn(&config) {
         Ok(rig) => rig,
         Err(e) => {
             eprintln!("error: {e}");
@@ -334,7 +334,11 @@ fn grasp_rig(args: &GraspRigArgs) -> ExitCode {
     while !stop.is_set() {
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    // What the hand was left doing, for whoever ran it (a test reads this line back).
+    // What the hand was left doing, for whoever ran it (a test reads this line back), once the
+    // bus has read the client's last bytes.
+    if let Err(e) = rig.sync() {
+        eprintln!("error: {e}");
+    }
     match rig.state() {
         Some(s) => println!(
             "left: torque {}, position {:.3} rad, grip force {:.2} N, object {}",

@@ -180,6 +180,18 @@ impl GraspBoard {
             .with_servo(SERVO_ID, |s| GraspState::of(s, &self.plant.body()))
     }
 
+    /// Waits until the servo bus has handled every byte a client sent so far: call it after a
+    /// client ends, before reading what it left the servo doing (its torque off is a
+    /// broadcast, which nothing answers, so the client may exit before the bus reads it).
+    ///
+    /// # Errors
+    /// [`Error::Device`] when the bus does not acknowledge within 10 s.
+    pub fn sync(&mut self) -> Result<(), Error> {
+        self.bus
+            .sync()
+            .map_err(|e| device("servo bus", e.to_string()))
+    }
+
     /// Whether the servo's torque is on.
     pub fn torque_enabled(&self) -> Option<bool> {
         self.bus.with_servo(SERVO_ID, |s| s.torque_enabled())

@@ -99,7 +99,7 @@ fn the_try_it_scene_grasps_the_object_through_the_handstack_binary() {
         boot_delay: Duration::from_millis(150),
         ..GraspBoardConfig::new(ObjectKind::Cylinder)
     };
-    let rig = GraspBoard::spawn(&config).expect("the rig starts");
+    let mut rig = GraspBoard::spawn(&config).expect("the rig starts");
     let root = crate::common::root();
     let text = std::fs::read_to_string(root.join("crates/handstack/examples/try-it.toml"))
         .expect("the try-it scene")
@@ -135,6 +135,7 @@ fn the_try_it_scene_grasps_the_object_through_the_handstack_binary() {
         .unwrap_or_else(|| panic!("{stdout}"));
     assert!(settled.trim_end().ends_with("yes"), "{settled}");
     assert!(stdout.contains("hand released"), "{stdout}");
+    rig.sync().expect("the bus has read what the binary sent");
     let s = rig.state().expect("the servo");
     assert!(!s.torque_enabled && s.position_rad < 0.1, "{s:?}");
     assert!(rig.error().is_none(), "{:?}", rig.error());
