@@ -53,7 +53,8 @@ enum Command {
     /// next, as a run does, and records the frames and what you did into a new session bag
     /// in DIR. Run it again with the same DIR to go on where the last session stopped.
     Collect {
-        /// The scene file (its `[experiment.weight]` lists the weights to collect).
+        /// The scene file: its `[experiment.weight]` lists the weights to collect, or its
+        /// `[experiment.tap_to_move]` the regions to tap.
         scene: PathBuf,
         /// The collect directory: one bag per session (`session-001`, …).
         #[arg(long, value_name = "DIR")]
@@ -154,32 +155,44 @@ fn collect(
         Err(e) => return not_started(&e),
     };
     let x = loaded.file.experiment.get_ref();
-    let others: Vec<&str> = x.names().into_iter().filter(|n| *n != "weight").collect();
-    if x.weight.is_none() || !others.is_empty() {
-        return not_started(&format!(
-            "{}: `handstack collect` records [experiment.weight] sessions, the force DNN's \
-             training data; the scene runs {}",
-            scene.display(),
-            x.names().join(", ")
-        ));
-    }
+    let names = x.names();
+    // What the session collects, and the command that trains on it.
+    let train = match (&x.weight, &x.tap_to_move) {
+        (Some(_), None) if names.len() == 1 => "force",
+        (None, Some(_)) if names.len() == 1 => "contact-cnn",
+        _ => {
+            return not_started(&format!(
+                "{}: `handstack collect` records one experiment's training data, \
+                 [experiment.weight] (the force DNN's) or [experiment.tap_to_move] (the contact \
+                 CNN's); the scene runs {}",
+                scene.display(),
+                names.join(", ")
+            ));
+        }
+    };
     let sessions = match crate::collect::Sessions::open(into) {
         Ok(s) => s,
         Err(e) => return not_started(&e),
     };
-    if let Some(w) = &x.weight {
-        let plan = crate::runs::weight::to_collect(&w.get_ref().plan(), &sessions);
-        if plan.weights_gf.is_empty() {
-            eprintln!(
-                "every weight of {} is recorded in {} ({} sessions): train with `handstack \
-                 train force {} --out FILE`",
-                scene.display(),
-                into.display(),
-                sessions.count(),
-                into.display()
-            );
-            return ExitCode::SUCCESS;
+    let left = match (&x.weight, &x.tap_to_move) {
+        (Some(w), _) => crate::runs::weight::to_collect(&w.get_ref().plan(), &sessions)
+            .weights_gf
+            .len(),
+        (_, Some(t)) => {
+            crate::runs::tap_to_move::to_collect(&t.get_ref().regions(), &sessions).len()
         }
+        _ => 0,
+    };
+    if left == 0 {
+        eprintln!(
+            "everything {} asks for is recorded in {} ({} sessions): train with `handstack \
+             train {train} {} --out FILE`",
+            scene.display(),
+            into.display(),
+            sessions.count(),
+            into.display()
+        );
+        return ExitCode::SUCCESS;
     }
     match Recorder::create(&sessions.next_session()) {
         Ok(recorder) => run(&[scene], json, Some(recorder), Some(sessions), platforms),

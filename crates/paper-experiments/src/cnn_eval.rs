@@ -20,14 +20,12 @@
 //! Accuracy is the fraction of held-out windows whose arg-max region is right; a row of the
 //! metrics file holds the mean and (n − 1) standard deviation over the trials or folds, in %.
 
-use crate::data::imu_pad::{CHANNELS, Dataset, REGIONS, WINDOW, WINDOW_VALUES};
-use ndarray::Axis;
+use crate::data::imu_pad::{Dataset, REGIONS, WINDOW_VALUES};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rand_distr::StandardNormal;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use tactile_nets::contact_cnn::{ContactCnn, Variant};
+use tactile_nets::contact_cnn::{ContactCnn, Variant, noisy_copies};
 use tactile_nets::error::NetError;
 use tactile_nets::metrics::{MetricsFile, MetricsRow};
 use tactile_nets::train::TrainConfig;
@@ -84,7 +82,6 @@ impl Augmented {
 /// seeded by `seed`; [`Augmented::taps`] indexes `idx`.
 pub fn augment(data: &Dataset, idx: &[usize], copies: usize, snr_db: f32, seed: u64) -> Augmented {
     let mut out = Augmented::default();
-    let ratio = 10f32.powf(snr_db / 10.0);
     for (t, (tap, window)) in idx
         .iter()
         .filter_map(|&i| Some((data.taps.get(i)?, data.window(i)?)))
@@ -96,22 +93,13 @@ pub fn augment(data: &Dataset, idx: &[usize], copies: usize, snr_db: f32, seed: 
             (u64::from(tap.depth_um) << 32) | (u64::from(tap.repeat) << 16) | tap.position() as u64;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         rng.set_stream(key);
-        let sigma: [f32; CHANNELS] = core::array::from_fn(|c| {
-            let s = window.index_axis(Axis(0), c);
-            (s.iter().map(|v| v * v).sum::<f32>() / WINDOW as f32 / ratio).sqrt()
-        });
         let mut values = [0.0f32; WINDOW_VALUES];
         for (v, w) in values.iter_mut().zip(window.iter()) {
             *v = *w;
         }
         out.windows.push(values);
-        for _ in 0..copies {
-            let w: [f32; WINDOW_VALUES] = core::array::from_fn(|i| {
-                let n: f32 = rng.sample(StandardNormal);
-                values[i] + sigma[i / WINDOW] * n
-            });
-            out.windows.push(w);
-        }
+        out.windows
+            .extend(noisy_copies(&values, copies, snr_db, &mut rng));
         out.regions
             .extend(std::iter::repeat_n(tap.region, copies + 1));
         out.taps.extend(std::iter::repeat_n(t, copies + 1));

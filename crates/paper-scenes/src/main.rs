@@ -116,6 +116,10 @@ struct PadBoardArgs {
     /// From the board's port opening to its version report, ms.
     #[arg(long = "boot-ms", default_value_t = 1600)]
     boot_ms: u64,
+    /// Another pad: the seed of its build (its chip up to a row off, its tilt per newton
+    /// scaled), on which the built-in contact CNN misplaces taps. Absent: the paper's pad.
+    #[arg(long)]
+    skin: Option<u64>,
 }
 
 /// The fingertip board's options (`paper-scenes fingertip-board`, `grasp-rig`).
@@ -260,6 +264,7 @@ fn pad_board(args: &PadBoardArgs) -> ExitCode {
         seed: args.seed,
         baud: args.baud,
         boot_delay: std::time::Duration::from_millis(args.boot_ms),
+        skin: args.skin,
     };
     let pad = match PadBoard::spawn(&config) {
         Ok(pad) => pad,

@@ -236,6 +236,9 @@ pub struct Motion {
     pub accel_mps2_per_n: f64,
     /// Peak gyroscope x / y rate during press and release, rad/s per N at the extreme.
     pub gyro_rps_per_n: f64,
+    /// Quarter turns of the chip on its board from the paper's mounting (0…3, clockwise seen
+    /// from above): a board laid out again reads the same tilt on other axes.
+    pub chip_quarter_turns: u8,
 }
 
 impl Default for Motion {
@@ -244,7 +247,23 @@ impl Default for Motion {
             // 0.4 m/s² and 0.064 rad/s at 11.52 N (1.6 mm on the chip).
             accel_mps2_per_n: 0.0347,
             gyro_rps_per_n: 0.00555,
+            chip_quarter_turns: 0,
         }
+    }
+}
+
+impl Motion {
+    /// A board-frame x / y reading as the turned chip's axes read it: each quarter turn
+    /// clockwise, the chip's x axis lies along the board's former y, its y along −x.
+    ///
+    /// ```
+    /// use hand_sim::imu_pad::config::Motion;
+    /// let m = Motion { chip_quarter_turns: 1, ..Motion::default() };
+    /// assert_eq!(m.on_chip([1.0, 2.0]), [2.0, -1.0]);
+    /// assert_eq!(Motion::default().on_chip([1.0, 2.0]), [1.0, 2.0]);
+    /// ```
+    pub fn on_chip(&self, v: [f64; 2]) -> [f64; 2] {
+        (0..self.chip_quarter_turns % 4).fold(v, |[x, y], _| [y, -x])
     }
 }
 

@@ -151,8 +151,12 @@ impl RealisedTap {
             start_s: config.timing.start_s + index as f64 * config.timing.tap_s + jitter,
             force_n,
             counts,
-            accel_mps2: pattern::accel_pattern(tilt).map(|a| a * acc),
-            gyro_rps: pattern::gyro_pattern(tilt).map(|g| g * gyro),
+            accel_mps2: config
+                .motion
+                .on_chip(pattern::accel_pattern(tilt).map(|a| a * acc)),
+            gyro_rps: config
+                .motion
+                .on_chip(pattern::gyro_pattern(tilt).map(|g| g * gyro)),
         })
     }
 }

@@ -14,8 +14,6 @@ use crate::stop::Stop;
 use crate::tap_to_move::TapToMoveConfig;
 use hand_zenoh::node::Node;
 use hand_zenoh::tactile::TactileInfo;
-use tactile_nets::contact_cnn::Variant;
-use tactile_nets::pretrained::contact_cnn;
 
 /// The fingertip's frame rate as a node: the grasp loop's default rate (100 Hz), the rate it
 /// reads its fingertips at.
@@ -95,20 +93,20 @@ pub fn run_node(
         Part::Pad => {
             let mut source = crate::stack::pad::open_scene(scene, platform)?;
             let node = Node::open(args.options())?;
-            // With `cnn` among the scene's locators, each tap's window goes through the built-in
-            // contact CNN (Al & Martinez-Hernandez, §IV-A: the paper's variant), cut where its
-            // training windows sat after the trigger.
+            // With `cnn` among the scene's locators, each tap's window goes through the scene's
+            // contact CNN (its `cnn_weights`, or the built-in paper variant of Al &
+            // Martinez-Hernandez, §IV-A), cut where its training windows sat after the trigger.
             let mut cnn = if scene.locators().contains(&Locator::Cnn) {
-                Some(contact_cnn(Variant::Paper).map_err(|e| CellError::Device {
+                Some(scene.contact_cnn().map_err(|e| CellError::Device {
                     device: "estimators.contact",
                     reason: format!("the contact CNN: {e}"),
                 })?)
             } else {
                 None
             };
-            let trigger = cnn.as_ref().and_then(|c| c.trigger_offset()).map_or_else(
+            let trigger = cnn.as_ref().map_or_else(
                 TapToMoveConfig::default,
-                TapToMoveConfig::centred_after_trigger,
+                crate::runs::tap_to_move::window_config,
             );
             let config = PadNodeConfig {
                 rate_hz: crate::stack::pad::FRAME_RATE_HZ,

@@ -1,6 +1,6 @@
 //! Guided collect sessions (`handstack collect SCENE --into DIR`): the scene's experiment asks
 //! the user what to do next, as a run does, and records the frames and a label of what was done
-//! (the weight placed) into a bag of its own, `DIR/session-NNN`. A later session in the same
+//! (the weight placed, the region tapped) into a bag of its own, `DIR/session-NNN`. A later session in the same
 //! directory asks only for what no earlier one recorded, so a session stopped half-way is
 //! resumed by starting it again. `handstack train` reads the directory.
 
@@ -68,10 +68,60 @@ impl Sessions {
 
     /// Whether a session recorded `name` = `value` (to 1e-9) for `experiment`.
     pub fn has(&self, experiment: &str, name: &str, value: f64) -> bool {
+        self.recorded(experiment, name, value) > 0
+    }
+
+    /// How many times the sessions recorded `name` = `value` (to 1e-9) for `experiment`.
+    pub fn recorded(&self, experiment: &str, name: &str, value: f64) -> usize {
         self.labels
             .iter()
-            .any(|l| l.experiment == experiment && l.name == name && (l.value - value).abs() < 1e-9)
+            .filter(|l| {
+                l.experiment == experiment && l.name == name && (l.value - value).abs() < 1e-9
+            })
+            .count()
     }
+}
+
+/// The labels of `experiment` among `labels` (the bag `rec`'s), what the user `did` (placed,
+/// tapped) in the error of a bag without labels.
+///
+/// Errors: [`ReadError::MissingTopic`] when the bag has no labels (it was not recorded by
+/// `handstack collect`), [`ReadError::Content`] when it has only another experiment's.
+pub fn labels_of<'l>(
+    rec: &Recording,
+    labels: &'l [(u64, Label)],
+    experiment: &str,
+    did: &str,
+) -> Result<Vec<&'l Label>, ReadError> {
+    let path = rec.path().to_owned();
+    if labels.is_empty() {
+        return Err(ReadError::MissingTopic {
+            path,
+            topic: LABELS.into(),
+            why: format!(
+                ": it was not recorded by `handstack collect`, which labels what was {did} \
+                 (`handstack collect SCENE --into DIR`)"
+            ),
+        });
+    }
+    let ours: Vec<&Label> = labels
+        .iter()
+        .map(|(_, l)| l)
+        .filter(|l| l.experiment == experiment)
+        .collect();
+    if ours.is_empty() {
+        let mut theirs: Vec<&str> = labels.iter().map(|(_, l)| l.experiment.as_str()).collect();
+        theirs.dedup();
+        return Err(ReadError::Content {
+            path,
+            topic: LABELS.into(),
+            problem: format!(
+                "labels of `{}`, none of `{experiment}`: it is the training data of another model",
+                theirs.join("`, `")
+            ),
+        });
+    }
+    Ok(ours)
 }
 
 /// Whether `bag` is a collect session's bag (a directory named `session-NNN`).

@@ -11,6 +11,7 @@
 //! | `/hand0/gripper/command` | `handstack_msgs/msg/GripperCommand` | each command the loop sent |
 //! | `/hand0/fingers/raw` | `handstack_msgs/msg/FingerFrame` | each reading of the underactuated hand |
 //! | `/hand0/softness` | `handstack_msgs/msg/Softness` | the softness classification |
+//! | `/pad0/imu` | `sensor_msgs/msg/Imu` | each ICM-20789 pad frame (tap-to-move) |
 //! | `/handstack/fault` | `handstack_msgs/msg/Fault` | each fault a cycle saw; what ended a run |
 //! | `/handstack/figures` | `handstack_msgs/msg/Figure` | each figure, at the end of its experiment |
 //! | `/handstack/labels` | `handstack_msgs/msg/Label` | each step of a guided collect session (`handstack collect`) |
@@ -20,6 +21,7 @@
 
 mod bag;
 pub mod grasp;
+pub mod pad;
 pub mod read;
 
 pub use bag::{FLUSH_EVERY, METADATA_VERSION, ROS_DISTRO, TopicId};

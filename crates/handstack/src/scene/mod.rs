@@ -45,6 +45,7 @@ pub use validate::Checker;
 use serde::Deserialize;
 use serde::de::DeserializeOwned;
 use std::path::Path;
+use tactile_nets::contact_cnn::ContactCnn;
 use toml::Spanned;
 
 /// What a scene's `[experiment]` table holds: the experiments one program can run.
@@ -120,6 +121,9 @@ pub struct SceneOf<X> {
     /// The force DNN `[estimators.force]` names, read (a weights file relative to the scene
     /// file's directory).
     pub force: Option<force::ForceNet>,
+    /// The contact CNN `[estimators.contact] cnn_weights` names, read (relative to the scene
+    /// file's directory); `None`: the built-in one ([`SceneOf::contact_cnn`]).
+    pub cnn: Option<ContactCnn>,
 }
 
 impl<X: ExperimentTable> SceneOf<X> {
@@ -145,6 +149,7 @@ impl<X: ExperimentTable> SceneOf<X> {
         }
         X::check(&parsed, &cx)?;
         let force = force_net(file, &parsed, &cx)?;
+        let cnn = cnn_file(file, &parsed, &cx)?;
         let name = Path::new(file)
             .file_stem()
             .map_or_else(|| file.to_owned(), |s| s.to_string_lossy().into_owned());
@@ -152,6 +157,7 @@ impl<X: ExperimentTable> SceneOf<X> {
             name,
             file: parsed,
             force,
+            cnn,
         })
     }
 
@@ -163,6 +169,19 @@ impl<X: ExperimentTable> SceneOf<X> {
             .as_ref()
             .map(|c| c.get_ref().locators.get_ref().clone())
             .unwrap_or_default()
+    }
+
+    /// The contact CNN the scene runs: its `cnn_weights` file, or the built-in paper variant
+    /// (Al & Martinez-Hernandez, §IV-A).
+    ///
+    /// Errors: the built-in weights' (they are compiled in and tested: none in practice).
+    pub fn contact_cnn(&self) -> Result<ContactCnn, tactile_nets::NetError> {
+        match &self.cnn {
+            Some(cnn) => Ok(cnn.clone()),
+            None => {
+                tactile_nets::pretrained::contact_cnn(tactile_nets::contact_cnn::Variant::Paper)
+            }
+        }
     }
 
     /// The built-in force DNN `[estimators.force]` names (none without that table, or when it
@@ -202,6 +221,34 @@ fn force_net<X>(
                 format!("cannot be used: {e}"),
                 "a force DNN weights file (`handstack train force` writes one), relative to \
                  the scene file",
+            )
+        })
+}
+
+/// The contact CNN weights file of the scene `file`, read relative to the scene's directory.
+fn cnn_file<X>(
+    file: &str,
+    scene: &SceneFile<X>,
+    cx: &Checker<'_>,
+) -> Result<Option<ContactCnn>, SceneError> {
+    let Some(w) = scene
+        .estimators
+        .contact
+        .as_ref()
+        .and_then(|c| c.get_ref().cnn_weights.as_ref())
+    else {
+        return Ok(None);
+    };
+    let dir = Path::new(file).parent().unwrap_or(Path::new(""));
+    ContactCnn::load(&dir.join(w.get_ref()))
+        .map(Some)
+        .map_err(|e| {
+            cx.err(
+                w.span(),
+                "estimators.contact.cnn_weights",
+                format!("cannot be used: {e}"),
+                "a contact CNN weights file (`handstack train contact-cnn` writes one), \
+                 relative to the scene file",
             )
         })
 }

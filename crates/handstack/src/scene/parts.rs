@@ -386,6 +386,10 @@ impl Locator {
 pub struct Contact {
     /// One or more of `aot`, `ranging`, `mlp`, `cnn`.
     pub locators: Spanned<Vec<Locator>>,
+    /// The contact CNN's weights file, relative to the scene file's directory: the user's own
+    /// pad's model as `handstack train contact-cnn` writes it (without it: the built-in paper
+    /// variant).
+    pub cnn_weights: Option<Spanned<std::path::PathBuf>>,
 }
 
 /// The softness classifier.

@@ -290,6 +290,16 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
         }
     }
     if let Some(c) = &e.contact {
+        if let Some(w) = &c.get_ref().cnn_weights {
+            if !c.get_ref().locators.get_ref().contains(&Locator::Cnn) {
+                return Err(cx.err(
+                    w.span(),
+                    "estimators.contact.cnn_weights",
+                    "names a contact CNN the scene does not run",
+                    "\"cnn\" among `locators`, or no `cnn_weights`",
+                ));
+            }
+        }
         let locators = &c.get_ref().locators;
         if locators.get_ref().is_empty() {
             return Err(cx.err(

@@ -9,7 +9,7 @@
 //! weight against the weight, and so is the built-in `sim` model beside it. The weights file
 //! written is the model so scored.
 
-use super::{TrainError, cost_ns, metrics_path, refuse_existing, write_metrics};
+use super::{HOLD_OUT_EVERY, TrainError, Trained, Written, cost_ns, held_out_at, write_model};
 use crate::collect;
 use crate::record::read::{ReadError, Recording};
 use crate::record::{HAND_NS, LABELS};
@@ -24,75 +24,40 @@ use tactile_nets::pretrained::ForceModel;
 /// Rows mixed between neighbouring weights per frame trained on (tactile-nets' [`mixup`]).
 pub const MIXED_PER_FRAME: usize = 3;
 
-/// Every how many weights (lightest first) one is held out.
-pub const HOLD_OUT_EVERY: usize = 4;
-
-/// Whether weight `i` of `n` (sorted lightest first) is held out: every
-/// [`HOLD_OUT_EVERY`]th from the third, never the heaviest.
-pub fn held_out(i: usize, n: usize) -> bool {
-    i % HOLD_OUT_EVERY == 2 && i + 1 < n
-}
-
 /// `handstack train force`'s arguments.
 #[derive(clap::Args)]
 pub struct ForceArgs {
-    /// Collect directories (every session in them) or session bags.
-    #[arg(required = true)]
-    sessions: Vec<PathBuf>,
-    /// The weights file to write (a scene names it: `[estimators.force] weights = "FILE"`);
-    /// the figures go beside it as FILE's stem + `.metrics.json`.
-    #[arg(long, value_name = "FILE")]
-    out: PathBuf,
-    /// The training seed: the same sessions and seed give the same weights.
-    #[arg(long, default_value_t = 8)]
-    seed: u64,
+    #[command(flatten)]
+    common: super::SessionArgs,
     /// The largest held-out error the model should meet, gf (the weight experiment's default).
     #[arg(long, default_value_t = 2.0)]
     tolerance_gf: f64,
-    /// Print the figures as JSON on stdout (no progress, no table).
-    #[arg(long)]
-    json: bool,
 }
 
 impl ForceArgs {
     /// Reads the sessions, trains, writes the weights and metrics.
     pub(super) fn run(&self) -> Result<(Outcome, bool), TrainError> {
         let start = std::time::Instant::now();
-        let metrics = metrics_path(&self.out);
-        refuse_existing(&self.out)?;
-        refuse_existing(&metrics)?;
-        let bags = collect::bags(&self.sessions)?;
+        let bags = self.common.bags()?;
         let steps = steps(&bags)?;
-        let trained = train(&steps, self.seed, self.tolerance_gf, !self.json)?;
-        let write = |e: tactile_nets::NetError| TrainError::Write {
-            path: self.out.clone(),
-            reason: e.to_string(),
-        };
-        trained.dnn.save(&self.out).map_err(write)?;
-        let name = self
-            .out
-            .file_stem()
-            .map_or_else(|| "force".into(), |s| s.to_string_lossy().into_owned());
-        let mut outcome = Outcome {
-            scene: name,
+        let trained = train(
+            &steps,
+            self.common.seed,
+            self.tolerance_gf,
+            !self.common.json,
+        )?;
+        let written = Written {
+            out: &self.common.out,
+            default_name: "force",
             title: format!(
                 "Force DNN of your fingertip, from {} session(s)",
                 bags.len()
             ),
-            figures: trained.figures,
-            plots: trained.plots,
-            notes: trained.notes,
-            wall_s: start.elapsed().as_secs_f64(),
+            start,
+            scene_key: "[estimators.force] weights",
         };
-        outcome.notes.push(format!(
-            "weights written to {}, figures to {}: name it in a scene as \
-             `[estimators.force] weights = \"{}\"`",
-            self.out.display(),
-            metrics.display(),
-            self.out.display()
-        ));
-        write_metrics(&metrics, &outcome)?;
-        Ok((outcome, self.json))
+        let outcome = write_model(written, trained, |m, p| m.save(p))?;
+        Ok((outcome, self.common.json))
     }
 }
 
@@ -143,36 +108,12 @@ pub fn steps(bags: &[PathBuf]) -> Result<Vec<Step>, ReadError> {
 
 fn bag_steps(bag: &Path, rec: &Recording, labels: &[(u64, Label)]) -> Result<Vec<Step>, ReadError> {
     let path = rec.path().to_owned();
-    if labels.is_empty() {
-        return Err(ReadError::MissingTopic {
-            path,
-            topic: LABELS.into(),
-            why: ": it was not recorded by `handstack collect`, which labels what was placed \
-                  (`handstack collect SCENE --into DIR`)"
-                .into(),
-        });
-    }
+    let ours = collect::labels_of(rec, labels, EXPERIMENT, "placed")?;
     let content = |topic: &str, problem: String| ReadError::Content {
         path: path.clone(),
         topic: topic.to_owned(),
         problem,
     };
-    let ours: Vec<&Label> = labels
-        .iter()
-        .map(|(_, l)| l)
-        .filter(|l| l.experiment == EXPERIMENT)
-        .collect();
-    if ours.is_empty() {
-        let mut theirs: Vec<&str> = labels.iter().map(|(_, l)| l.experiment.as_str()).collect();
-        theirs.dedup();
-        return Err(content(
-            LABELS,
-            format!(
-                "labels of `{}`, none of `{EXPERIMENT}`: it is the training data of another model",
-                theirs.join("`, `")
-            ),
-        ));
-    }
     let raw = raw_topic();
     let frames = rec.messages::<PressureFrame>(&raw)?;
     if frames.is_empty() {
@@ -243,18 +184,6 @@ fn bag_steps(bag: &Path, rec: &Recording, labels: &[(u64, Label)]) -> Result<Vec
     Ok(out)
 }
 
-/// A trained model and what it was scored.
-pub struct Trained {
-    /// The model (trained without the held-out weights).
-    pub dnn: ForceDnn,
-    /// Its figures.
-    pub figures: Vec<crate::Figure>,
-    /// The held-out estimates and the training curve.
-    pub plots: Vec<Plot>,
-    /// What was held out, in words.
-    pub notes: Vec<String>,
-}
-
 /// Trains on `steps` (every [`HOLD_OUT_EVERY`]th weight, lightest first, held out) with
 /// `seed`, scores the held-out weights against `tolerance_gf`.
 ///
@@ -264,12 +193,14 @@ pub fn train(
     seed: u64,
     tolerance_gf: f64,
     progress: bool,
-) -> Result<Trained, TrainError> {
+) -> Result<Trained<ForceDnn>, TrainError> {
     if steps.len() < HOLD_OUT_EVERY {
         return Err(TrainError::TooFew {
-            what: "weights",
+            what: "weights".into(),
             found: steps.len(),
             needed: HOLD_OUT_EVERY,
+            rule: "training holds every fourth out (never the lightest or the heaviest) to test \
+                   the model on",
         });
     }
     let mut sorted: Vec<&Step> = steps.iter().collect();
@@ -278,7 +209,7 @@ pub fn train(
     let (held, fit): (Vec<_>, Vec<_>) = sorted
         .into_iter()
         .enumerate()
-        .partition(|&(i, _)| held_out(i, n));
+        .partition(|&(i, _)| held_out_at(i, n));
     let mut samples: Vec<WeightSample> = fit
         .iter()
         .flat_map(|(_, s)| {
@@ -412,7 +343,7 @@ pub fn train(
         crate::summary::number(heaviest)
     )];
     Ok(Trained {
-        dnn,
+        model: dnn,
         figures,
         plots,
         notes,

@@ -1,6 +1,7 @@
 //! `handstack train` (feature `train`): a user's own models from their collect sessions,
 //! written as weights files a scene names, with their held-out figures and cost.
 
+pub mod contact_cnn;
 pub mod force;
 
 use crate::Outcome;
@@ -17,17 +18,18 @@ pub enum TrainError {
     Read(#[from] ReadError),
     /// Too few distinct steps to hold some out.
     #[error(
-        "{found} {what} recorded: training holds every fourth out (never the lightest or the \
-         heaviest) to test the model on, so it needs at least {needed}; collect more \
+        "{found} {what} recorded: {rule}, so it needs at least {needed}; collect more \
          (`handstack collect SCENE --into DIR`)"
     )]
     TooFew {
-        /// What was counted (`weights`).
-        what: &'static str,
+        /// What was counted (`weights`, `taps of region 4`).
+        what: String,
         /// How many the sessions have.
         found: usize,
         /// How many are needed.
         needed: usize,
+        /// Why that many.
+        rule: &'static str,
     },
     /// Training itself failed (a non-finite sample, a diverging fit).
     #[error("training failed: {0}")]
@@ -59,6 +61,9 @@ pub struct TrainCommand {
 enum Model {
     /// The force / weight DNN (Kim et al. 2020, §2.2) from `[experiment.weight]` sessions.
     Force(force::ForceArgs),
+    /// The contact CNN (Al & Martinez-Hernandez, §IV-A) from `[experiment.tap_to_move]`
+    /// sessions.
+    ContactCnn(contact_cnn::ContactCnnArgs),
 }
 
 impl TrainCommand {
@@ -66,6 +71,7 @@ impl TrainCommand {
     pub fn main(&self) -> ExitCode {
         let ran = match &self.model {
             Model::Force(args) => args.run(),
+            Model::ContactCnn(args) => args.run(),
         };
         match ran {
             Ok((outcome, json)) => {
@@ -96,6 +102,15 @@ pub fn metrics_path(weights: &Path) -> PathBuf {
     weights.with_extension("metrics.json")
 }
 
+/// Every how many steps (weights, taps) one is held out.
+pub const HOLD_OUT_EVERY: usize = 4;
+
+/// Whether step `i` of `n` is held out: every [`HOLD_OUT_EVERY`]th from the third, never the
+/// last.
+pub fn held_out_at(i: usize, n: usize) -> bool {
+    i % HOLD_OUT_EVERY == 2 && i + 1 < n
+}
+
 /// Fails when `path` exists (training never overwrites a file).
 fn refuse_existing(path: &Path) -> Result<(), TrainError> {
     if path.exists() {
@@ -104,6 +119,107 @@ fn refuse_existing(path: &Path) -> Result<(), TrainError> {
         });
     }
     Ok(())
+}
+
+/// Fails when the weights file `out` or its metrics file exists.
+fn refuse_outputs(out: &Path) -> Result<(), TrainError> {
+    refuse_existing(out)?;
+    refuse_existing(&metrics_path(out))
+}
+
+/// The outcome's name: `out`'s file stem, or `default`.
+fn stem(out: &Path, default: &str) -> String {
+    out.file_stem()
+        .map_or_else(|| default.into(), |s| s.to_string_lossy().into_owned())
+}
+
+/// The arguments every `handstack train` model takes.
+#[derive(clap::Args)]
+pub struct SessionArgs {
+    /// Collect directories (every session in them) or session bags.
+    #[arg(required = true)]
+    sessions: Vec<PathBuf>,
+    /// The weights file to write (a scene names it); the figures go beside it as FILE's stem +
+    /// `.metrics.json`.
+    #[arg(long, value_name = "FILE")]
+    out: PathBuf,
+    /// The training seed: the same sessions and seed give the same weights.
+    #[arg(long, default_value_t = 8)]
+    seed: u64,
+    /// Print the figures as JSON on stdout (no progress, no table).
+    #[arg(long)]
+    json: bool,
+}
+
+impl SessionArgs {
+    /// The bags to train on, once the output files are known not to exist.
+    fn bags(&self) -> Result<Vec<PathBuf>, TrainError> {
+        refuse_outputs(&self.out)?;
+        Ok(crate::collect::bags(&self.sessions)?)
+    }
+}
+
+/// A trained model and what it was scored.
+pub struct Trained<M> {
+    /// The model (trained without the held-out steps).
+    pub model: M,
+    /// Its figures.
+    pub figures: Vec<crate::Figure>,
+    /// The held-out estimates and the training curve.
+    pub plots: Vec<crate::Plot>,
+    /// What was held out, in words.
+    pub notes: Vec<String>,
+}
+
+/// What one `handstack train` command made, to write.
+struct Written<'a> {
+    /// The weights file.
+    out: &'a Path,
+    /// The outcome's name when `out` has no stem.
+    default_name: &'a str,
+    /// The outcome's title.
+    title: String,
+    /// When the command started.
+    start: std::time::Instant,
+    /// How a scene names the file (`[estimators.force] weights`).
+    scene_key: &'a str,
+}
+
+/// Writes `trained`'s model with `save` to `w.out`, then its outcome (with a note of how a
+/// scene names the file) to the metrics file beside it; returns the outcome written.
+fn write_model<M>(
+    w: Written<'_>,
+    trained: Trained<M>,
+    save: impl FnOnce(&M, &Path) -> Result<(), tactile_nets::NetError>,
+) -> Result<Outcome, TrainError> {
+    let Written {
+        out,
+        default_name,
+        title,
+        start,
+        scene_key,
+    } = w;
+    save(&trained.model, out).map_err(|e| TrainError::Write {
+        path: out.to_owned(),
+        reason: e.to_string(),
+    })?;
+    let mut outcome = Outcome {
+        scene: stem(out, default_name),
+        title,
+        figures: trained.figures,
+        plots: trained.plots,
+        notes: trained.notes,
+        wall_s: start.elapsed().as_secs_f64(),
+    };
+    let metrics = metrics_path(out);
+    outcome.notes.push(format!(
+        "weights written to {}, figures to {}: name it in a scene as `{scene_key} = \"{}\"`",
+        out.display(),
+        metrics.display(),
+        out.display()
+    ));
+    write_metrics(&metrics, &outcome)?;
+    Ok(outcome)
 }
 
 /// Writes `outcome` as JSON to `path`.

@@ -79,17 +79,21 @@ fn a_bad_scene_exits_non_zero_and_says_why() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `collect` records weight sessions: a scene that runs anything else is refused before a
-/// session directory is made; a scene that does not parse, as `run` refuses it.
+/// `collect` records weight or tap sessions: a scene that runs anything else is refused before
+/// a session directory is made; a scene that does not parse, as `run` refuses it.
 #[test]
-fn collect_refuses_a_scene_without_a_weight_series() {
+fn collect_refuses_a_scene_without_a_weight_series_or_taps() {
     let dir = empty_dir("collect");
     std::fs::write(dir.join("my-hand.toml"), SCENE).expect("write");
     let out = handstack(&dir, &["collect", "my-hand.toml", "--into", "sessions"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(
-        err.contains("my-hand.toml: `handstack collect` records [experiment.weight] sessions"),
+        err.contains(
+            "my-hand.toml: `handstack collect` records one experiment's training data, \
+             [experiment.weight] (the force DNN's) or [experiment.tap_to_move] (the contact \
+             CNN's)"
+        ),
         "{err}"
     );
     assert!(err.contains("the scene runs grasp"), "{err}");

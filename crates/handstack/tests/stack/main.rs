@@ -13,3 +13,5 @@ mod record;
 mod scenes;
 #[cfg(feature = "train")]
 mod train_bags;
+#[cfg(feature = "train")]
+mod train_taps;

@@ -436,6 +436,62 @@ regions = [0, 4, 8]
 "#;
 
 #[test]
+fn a_contact_cnn_is_built_in_or_a_weights_file_beside_the_scene() {
+    let s = Scene::parse("taps.toml", TAPS).expect("valid");
+    assert!(s.cnn.is_none());
+    let builtin = s.contact_cnn().expect("the built-in CNN");
+    assert_eq!(builtin.trigger_offset(), Some(16));
+    let dir = std::env::temp_dir().join(format!("handstack-scene-cnn-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mine = builtin.clone().with_trigger_offset(12).expect("an offset");
+    mine.save(&dir.join("my-pad.safetensors")).expect("saved");
+    let own = TAPS.replace(
+        "locators = [\"cnn\"]\n",
+        "locators = [\"cnn\"]\ncnn_weights = \"my-pad.safetensors\"\n",
+    );
+    let s = Scene::parse(&dir.join("own.toml").display().to_string(), &own).expect("valid");
+    assert_eq!(s.cnn.as_ref().and_then(|c| c.trigger_offset()), Some(12));
+    assert_eq!(
+        s.contact_cnn().expect("the file").trigger_offset(),
+        Some(12)
+    );
+    // Not beside this scene: read relative to the scene, and the error says why.
+    says(
+        &err(&own),
+        6,
+        "estimators.contact.cnn_weights",
+        &[
+            "cannot be used",
+            "my-pad.safetensors",
+            "handstack train contact-cnn",
+        ],
+    );
+    // A force DNN's file is not a contact CNN.
+    tactile_nets::pretrained::force_dnn(handstack::scene::parts::ForceModel::Sim)
+        .expect("built-in")
+        .save(&dir.join("force.safetensors"))
+        .expect("saved");
+    let wrong = own.replace("my-pad.safetensors", "force.safetensors");
+    let e = Scene::parse(&dir.join("wrong.toml").display().to_string(), &wrong)
+        .expect_err("a force DNN");
+    assert_eq!(e.key(), Some("estimators.contact.cnn_weights"), "{e}");
+    // Weights for a CNN the scene does not run.
+    let fingertip = TOUCHES.replace(
+        "[experiment.contact]",
+        "[estimators.contact]\nlocators = [\"aot\"]\ncnn_weights = \"my-pad.safetensors\"\n\
+         [experiment.contact]",
+    );
+    let e = err(&fingertip);
+    says(
+        &e,
+        7,
+        "estimators.contact.cnn_weights",
+        &["names a contact CNN the scene does not run"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn tap_to_move_needs_the_pad_the_cnn_and_the_arm_and_checks_its_regions() {
     let s = Scene::parse("taps.toml", TAPS).expect("valid");
     let t = experiments(&s).tap_to_move.as_ref().expect("taps");

@@ -6,8 +6,8 @@ use hand_zenoh::msg::handstack_msgs::PressureFrame;
 use handstack::record::grasp::RawTopic;
 use handstack::record::read::ReadError;
 use handstack::record::{HAND_FRAME, LABELS, Labelled, Recorder};
-use handstack::train::TrainError;
-use handstack::train::force::{held_out, steps, train};
+use handstack::train::force::{steps, train};
+use handstack::train::{TrainError, held_out_at};
 use std::path::{Path, PathBuf};
 
 fn dir(name: &str) -> PathBuf {
@@ -162,7 +162,7 @@ fn a_sessions_labels_read_back_in_rosbags_and_mcap() {
 
 #[test]
 fn the_held_out_weights_are_every_fourth_from_the_third_and_never_the_heaviest() {
-    let held = |n: usize| (0..n).filter(|&i| held_out(i, n)).collect::<Vec<_>>();
+    let held = |n: usize| (0..n).filter(|&i| held_out_at(i, n)).collect::<Vec<_>>();
     assert_eq!(held(20), [2, 6, 10, 14, 18]);
     assert_eq!(held(4), [2]);
     assert_eq!(held(3), Vec::<usize>::new());

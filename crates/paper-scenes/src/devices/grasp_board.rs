@@ -185,7 +185,7 @@ impl GraspBoard {
     /// broadcast, which nothing answers, so the client may exit before the bus reads it).
     ///
     /// # Errors
-    /// [`Error::Device`] when the bus does not acknowledge within 10 s.
+    /// A device error when the bus does not acknowledge within 10 s.
     pub fn sync(&mut self) -> Result<(), Error> {
         self.bus
             .sync()

@@ -33,6 +33,10 @@ pub struct PadBoardConfig {
     pub baud: u32,
     /// From the board's port opening to its version report.
     pub boot_delay: Duration,
+    /// Another pad than the paper's, drawn from this seed (hand-sim's
+    /// `ImuPadConfig::other_pad`: its chip up to a row off, its tilt per newton scaled), on
+    /// which the built-in contact CNN misplaces taps; `None`: the paper's pad.
+    pub skin: Option<u64>,
 }
 
 impl Default for PadBoardConfig {
@@ -42,6 +46,7 @@ impl Default for PadBoardConfig {
             seed: 10,
             baud: 115_200,
             boot_delay: Duration::from_millis(1600),
+            skin: None,
         }
     }
 }
@@ -64,9 +69,13 @@ pub struct PadBoard {
 impl PadBoard {
     /// Builds the pad at rest and starts its board.
     pub fn spawn(config: &PadBoardConfig) -> Result<PadBoard, Error> {
-        let pad_config = ImuPadConfig {
+        let paper = ImuPadConfig {
             taps: Vec::new(),
             ..ImuPadConfig::default()
+        };
+        let pad_config = match config.skin {
+            Some(seed) => paper.other_pad(seed),
+            None => paper,
         };
         let truth = PadTruth::new(Vec::new(), &pad_config);
         let pad = Arc::new(Mutex::new(Pad {

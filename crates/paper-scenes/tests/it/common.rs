@@ -130,6 +130,15 @@ pub fn time_scaled_arm() -> MutexGuard<'static, ()> {
         .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
+/// A new, empty directory for the test `name` of a user's own models (its sessions, weights
+/// and scenes), kept after the test for a look at what it wrote.
+pub fn own_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("handstack-own-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("test dir");
+    d
+}
+
 /// How long a line a [`Session`] waits for may take to come.
 const SESSION_WAIT: Duration = Duration::from_secs(30);
 /// How long a [`Session`]'s whole run may take.

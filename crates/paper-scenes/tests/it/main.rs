@@ -15,6 +15,7 @@ mod grasp_board;
 mod grasp_table5;
 mod hand_board;
 mod hand_loop_faults;
+mod own_contact_cnn;
 mod own_force_model;
 #[cfg(feature = "cell")]
 mod pad_node;

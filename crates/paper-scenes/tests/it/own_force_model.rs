@@ -5,7 +5,7 @@
 //! resumed), `handstack train force` trains on it, and the scene naming the new weights file
 //! meets the tolerance on the same fingertip.
 
-use crate::common::{Session, figures, handstack, signal, text};
+use crate::common::{Session, figures, handstack, own_dir as dir, signal, text};
 use paper_scenes::devices::fingertip_board::{FingertipBoard, FingertipBoardConfig};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -21,13 +21,6 @@ fn collected() -> Vec<f64> {
 /// The weights training holds out (every fourth from the third, lightest first): the runs place
 /// these, so the trained model is scored on weights it never saw.
 const HELD_OUT: [f64; 5] = [30.0, 70.0, 110.0, 150.0, 190.0];
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("handstack-own-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("test dir");
-    d
-}
 
 /// A weight scene on `board`'s fingertip with `force` as its `[estimators.force]` line,
 /// weighing `weights` (a tare before each; settle 0.3 s, ~15 time constants of the pad; average
@@ -167,7 +160,10 @@ fn a_fingertip_of_another_skin_meets_table1_with_its_own_force_model() {
     // A third has nothing left to ask.
     let (code, _, stderr) = Session::command(&args).finish();
     assert_eq!(code, Some(0), "{stderr}");
-    assert!(stderr.contains("every weight of"), "{stderr}");
+    assert!(
+        stderr.contains("everything ") && stderr.contains("train with `handstack train force "),
+        "{stderr}"
+    );
 
     // Train: the held-out weights within 2 gf; the same seed gives the same weights.
     let model = dir.join("my-tip-force.safetensors");

@@ -60,7 +60,7 @@ mod training;
 pub use model::ContactCnn;
 pub use static_cnn::{StaticCnn, StaticContactCnn, transposed};
 #[cfg(feature = "train")]
-pub use training::DfdxCnn;
+pub use training::{DfdxCnn, noisy_copies};
 
 /// Samples per signal in a window (§IV-A: 4 × 38).
 pub const WINDOW: usize = 38;

@@ -135,6 +135,43 @@ impl ContactCnn {
     }
 }
 
+/// `copies` copies of `window` (raw, channel-major) with white noise added at `snr_db`: each
+/// channel's noise has the power of that channel's signal over the window divided by
+/// `10^(snr_db / 10)` — the paper's augmentation (Al & Martinez-Hernandez, §IV-A: "noise with
+/// different signal-to-noise ratio"), drawn from `rng`.
+///
+/// ```
+/// use rand::SeedableRng;
+/// use tactile_nets::contact_cnn::{WINDOW_VALUES, noisy_copies};
+/// let w = [100.0f32; WINDOW_VALUES];
+/// let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+/// let copies = noisy_copies(&w, 3, 30.0, &mut rng);
+/// assert_eq!(copies.len(), 3);
+/// // At 30 dB the noise is ~1/31.6 of the signal's amplitude.
+/// let rms = (copies[0].iter().map(|v| (v - 100.0).powi(2)).sum::<f32>() / WINDOW_VALUES as f32).sqrt();
+/// assert!((1.5..5.0).contains(&rms), "{rms}");
+/// ```
+pub fn noisy_copies<R: rand::Rng>(
+    window: &[f32; WINDOW_VALUES],
+    copies: usize,
+    snr_db: f32,
+    rng: &mut R,
+) -> Vec<[f32; WINDOW_VALUES]> {
+    let ratio = 10f32.powf(snr_db / 10.0);
+    let sigma: [f32; CHANNELS] = core::array::from_fn(|c| {
+        let s = &window[c * WINDOW..(c + 1) * WINDOW];
+        (s.iter().map(|v| v * v).sum::<f32>() / WINDOW as f32 / ratio).sqrt()
+    });
+    (0..copies)
+        .map(|_| {
+            core::array::from_fn(|i| {
+                let n: f32 = rng.sample(rand_distr::StandardNormal);
+                window[i] + sigma[i / WINDOW] * n
+            })
+        })
+        .collect()
+}
+
 /// A contact CNN as a dfdx graph: the forward pass it was trained with, kept as the reference
 /// the plain-array path of [`ContactCnn`] is tested and benchmarked against.
 pub struct DfdxCnn {

@@ -1,0 +1,40 @@
+//! The ICM-20789 pad's frames as the pad node publishes them: `/pad0/imu`.
+
+use super::{Recorder, TopicId};
+use hand_traits::ImuFrame;
+use hand_zenoh::convert::{header, imu_to_msg};
+use hand_zenoh::msg::builtin_interfaces::Time;
+use hand_zenoh::msg::sensor_msgs::Imu;
+
+/// The namespace of the pad's topics, as `handstack node` names a pad part.
+pub const PAD_NS: &str = "/pad0";
+/// The frame id of the pad's messages.
+pub const PAD_FRAME: &str = "pad0";
+
+/// The pad's frames on `/pad0/imu` (`sensor_msgs/Imu`, accelerometer and gyroscope).
+pub struct ImuTopic<'r> {
+    recorder: &'r Recorder,
+    topic: Option<TopicId>,
+}
+
+/// The topic of the pad's frames.
+pub fn imu_topic() -> String {
+    format!("{PAD_NS}/imu")
+}
+
+impl<'r> ImuTopic<'r> {
+    /// Declares the topic on `recorder`.
+    pub fn new(recorder: &'r Recorder) -> Self {
+        ImuTopic {
+            recorder,
+            topic: recorder.topic::<Imu>(&imu_topic()),
+        }
+    }
+
+    /// Records frame `f` at `t_ns`.
+    pub fn record(&mut self, t_ns: u64, f: &ImuFrame) {
+        let mut msg = imu_to_msg(f, header(0, PAD_FRAME));
+        msg.header.stamp = Time::from_nanos(t_ns);
+        self.recorder.write(self.topic, t_ns, &msg);
+    }
+}
