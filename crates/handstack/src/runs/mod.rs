@@ -72,9 +72,10 @@ impl<'a> RunContext<'a> {
     }
 
     /// Checks every real device `scene` names ([`check_real_devices`](crate::stack::check_real_devices)),
-    /// keeping what it leaves open for the experiments.
+    /// keeping what it leaves open for the experiments; a collect session leaves the arm alone.
     pub fn check_devices<X>(&self, scene: &SceneOf<X>) -> Result<(), RunError> {
-        let checked = crate::stack::check_real_devices(scene, &*self.platform)?;
+        let with_arm = self.collect.is_none();
+        let checked = crate::stack::check_devices(scene, &*self.platform, with_arm)?;
         *self.checked.lock().unwrap_or_else(PoisonError::into_inner) = checked;
         Ok(())
     }

@@ -10,7 +10,7 @@
 //!
 //! Collecting (`handstack collect`), the same questions record the training data of the user's
 //! own contact CNN instead: every pad frame, and a label of the region asked over each tap's
-//! window (cut as the run cuts it); the arm does not move. A later session asks only for the
+//! window (cut as the run cuts it); the arm is neither connected nor moved. A later session asks only for the
 //! taps no earlier one recorded (each region as many times as the scene lists it).
 
 use super::figure::{Target, measured, target};
@@ -294,7 +294,7 @@ fn collect(
     part.figures
         .push(measured("taps_collected", "taps collected", n as f64, ""));
     part.notes.push(format!(
-        "{n} taps recorded into {} (the arm was not moved)",
+        "{n} taps recorded into {} (the arm was not used)",
         recorder.dir().display()
     ));
     Ok(part)

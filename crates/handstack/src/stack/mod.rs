@@ -41,6 +41,16 @@ pub fn check_real_devices<X>(
     scene: &SceneOf<X>,
     platform: &dyn Platform,
 ) -> Result<Checked, RunError> {
+    check_devices(scene, platform, true)
+}
+
+/// As [`check_real_devices`]; the arm only `with_arm` (a collect session records the sensors
+/// and leaves the arm alone, so it need not be on).
+pub fn check_devices<X>(
+    scene: &SceneOf<X>,
+    platform: &dyn Platform,
+    with_arm: bool,
+) -> Result<Checked, RunError> {
     let s = &scene.file.sensors;
     if s.real_fingertip() {
         drop(fingertip::open(scene, platform)?);
@@ -73,6 +83,7 @@ pub fn check_real_devices<X>(
         .arm
         .as_ref()
         .and_then(|a| a.get_ref().host.as_ref())
+        .filter(|_| with_arm)
     {
         let host = host.get_ref();
         return Ok(Checked {

@@ -455,6 +455,14 @@ fn a_contact_cnn_is_built_in_or_a_weights_file_beside_the_scene() {
         s.contact_cnn().expect("the file").trigger_offset(),
         Some(12)
     );
+    // The pad node reads it too.
+    let node =
+        handstack::scene::NodeScene::parse(&dir.join("own.toml").display().to_string(), &own)
+            .expect("a node scene");
+    assert_eq!(
+        node.contact_cnn().expect("the file").trigger_offset(),
+        Some(12)
+    );
     // Not beside this scene: read relative to the scene, and the error says why.
     says(
         &err(&own),

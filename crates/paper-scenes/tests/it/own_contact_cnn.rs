@@ -110,16 +110,11 @@ fn a_pad_built_again_locates_taps_with_its_own_contact_cnn() {
     })
     .expect("the pad board starts");
     let address = Ipv4Addr::new(127, 0, 0, 98);
-    let _ur = UrSim::start(SimConfig {
-        address,
-        time_scale: TimeScale::new(10.0).expect("a scale"),
-        ..SimConfig::default()
-    })
-    .expect("the UR controller simulator starts");
     let dir = dir("pad");
     let rounds: Vec<u8> = (0..ROUNDS).flat_map(|_| 0..9u8).collect();
 
-    // Collect: the first session is stopped by Ctrl-C at a question…
+    // Collect, with the arm off (a collect session leaves it alone): the first session is
+    // stopped by Ctrl-C at a question…
     let sessions = dir.join("sessions");
     let collect_scene = scene(&dir, "collect", &pad, address, &rounds, "");
     let args: Vec<&std::ffi::OsStr> = vec![
@@ -182,6 +177,13 @@ fn a_pad_built_again_locates_taps_with_its_own_contact_cnn() {
     );
     assert_eq!(figure("taps"), rounds.len() as f64);
 
+    // The arm, on for the runs.
+    let _ur = UrSim::start(SimConfig {
+        address,
+        time_scale: TimeScale::new(10.0).expect("a scale"),
+        ..SimConfig::default()
+    })
+    .expect("the UR controller simulator starts");
     // Tap-to-move on the same pad: the built-in CNN, one tap per region; the user's, two.
     let once: Vec<u8> = (0..9).collect();
     let (builtin, builtin_acc) = locate(&dir, "builtin", &pad, address, &once, "");
