@@ -81,25 +81,34 @@ pub fn pose_from_msg(p: &geo::Pose) -> Pose {
 /// An IMU frame as `sensor_msgs/Imu`: no orientation (its covariance's first element −1, as
 /// REP 145 says for "not measured"), covariances unknown (zeros).
 pub fn imu_to_msg(f: &ImuFrame, header: Header) -> Imu {
-    let v = |a: [f32; 3]| Vector3 {
-        x: f64::from(a[0]),
-        y: f64::from(a[1]),
-        z: f64::from(a[2]),
-    };
     let mut orientation_covariance = [0.0; 9];
     orientation_covariance[0] = -1.0;
-    Imu {
+    let mut msg = Imu {
         header,
         orientation: Quaternion {
             w: 1.0,
             ..Quaternion::default()
         },
         orientation_covariance,
-        angular_velocity: v(f.gyro_rps),
+        angular_velocity: Vector3::default(),
         angular_velocity_covariance: [0.0; 9],
-        linear_acceleration: v(f.accel_mps2),
+        linear_acceleration: Vector3::default(),
         linear_acceleration_covariance: [0.0; 9],
-    }
+    };
+    set_imu(&mut msg, f);
+    msg
+}
+
+/// Puts frame `f`'s rates and accelerations into `msg` (a message [`imu_to_msg`] made, reused
+/// from frame to frame without allocating).
+pub fn set_imu(msg: &mut Imu, f: &ImuFrame) {
+    let v = |a: [f32; 3]| Vector3 {
+        x: f64::from(a[0]),
+        y: f64::from(a[1]),
+        z: f64::from(a[2]),
+    };
+    msg.angular_velocity = v(f.gyro_rps);
+    msg.linear_acceleration = v(f.accel_mps2);
 }
 
 /// A located contact as `handstack_msgs/Contact`.

@@ -10,8 +10,8 @@
 //!
 //! Collecting (`handstack collect`), the same questions record the training data of the user's
 //! own contact CNN instead: every pad frame, and a label of the region asked over each tap's
-//! window (cut as the run cuts it); the arm is neither connected nor moved. A later session asks only for the
-//! taps no earlier one recorded (each region as many times as the scene lists it).
+//! window (cut as the run cuts it); the arm is neither connected nor moved. A later session asks
+//! only for the taps no earlier one recorded (each region as many times as the scene lists it).
 
 use super::figure::{Target, measured, target};
 use super::{Part, RunContext};

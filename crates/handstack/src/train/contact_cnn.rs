@@ -21,7 +21,7 @@ use crate::runs::tap_to_move::{
     EXPERIMENT, PAPER_ACCURACY_PCT, PAPER_SOURCE, REGION, window_config,
 };
 use crate::stack::pad::FRAME_RATE_HZ;
-use crate::tap_to_move::at_rate;
+use crate::tap_to_move::{TapToMoveConfig, at_rate};
 use crate::{Line, Outcome, Plot};
 use hand_traits::ImuFrame;
 use hand_zenoh::msg::handstack_msgs::Label;
@@ -95,6 +95,8 @@ pub struct Tap {
     pub frames: Vec<ImuFrame>,
     /// Where the window starts in `frames`.
     pub start: usize,
+    /// Where the trigger frame is in a window (the collect session's cut).
+    pub trigger_at: usize,
 }
 
 impl Tap {
@@ -103,8 +105,7 @@ impl Tap {
     pub fn window(&self, shift: isize) -> Option<[f32; WINDOW_VALUES]> {
         let from = self.start.checked_add_signed(shift)?;
         let frames = self.frames.get(from..from + WINDOW)?;
-        let trigger_at = window_config(&builtin().ok()?).frames_before;
-        contact_cnn::window(&at_rate(frames, trigger_at, FRAME_RATE_HZ)).ok()
+        contact_cnn::window(&at_rate(frames, self.trigger_at, FRAME_RATE_HZ)).ok()
     }
 }
 
@@ -119,6 +120,12 @@ fn builtin() -> Result<ContactCnn, tactile_nets::NetError> {
 /// Errors: a bag that cannot be read, has no labels or frames, labels of another experiment,
 /// or a label that does not cover one window of frames — each naming the file and the topic.
 pub fn taps(bags: &[PathBuf]) -> Result<Vec<Tap>, ReadError> {
+    // Where the collect session cut its windows: the built-in CNN's trigger offset (compiled
+    // in and tested), or the paper's window as the run would cut it without one.
+    let trigger_at = builtin()
+        .ok()
+        .map_or_else(TapToMoveConfig::default, |cnn| window_config(&cnn))
+        .frames_before;
     let mut out = Vec::new();
     for bag in bags {
         let rec = Recording::open(bag)?;
@@ -171,6 +178,7 @@ pub fn taps(bags: &[PathBuf]) -> Result<Vec<Tap>, ReadError> {
                 region,
                 frames: frames[from..to].iter().map(|(_, f)| *f).collect(),
                 start: first - from,
+                trigger_at,
             });
         }
     }
