@@ -1,8 +1,8 @@
 //! The `handstack` command line: run a tactile hand stack from a scene file on its real devices
 //! (`handstack run SCENE... [--json]`), or only check scene files (`handstack check SCENE...`);
 //! record guided sessions to train on (`handstack collect SCENE --into DIR`). With feature
-//! `train`: a model of the user's own from those sessions (`handstack train force DIR --out
-//! FILE`). With feature `cell`: a scene's stack as ROS 2 nodes on Zenoh (`handstack node SCENE`, or one
+//! `train`: a model of the user's own from those sessions (`handstack train
+//! force|contact-cnn|softness DIR --out FILE`). With feature `cell`: a scene's stack as ROS 2 nodes on Zenoh (`handstack node SCENE`, or one
 //! part: `--part P [--namespace NS]`), and a cell of such nodes with a coordinator (`handstack
 //! cell CELL.toml`).
 //!
@@ -53,8 +53,9 @@ enum Command {
     /// next, as a run does, and records the frames and what you did into a new session bag
     /// in DIR. Run it again with the same DIR to go on where the last session stopped.
     Collect {
-        /// The scene file: its `[experiment.weight]` lists the weights to collect, or its
-        /// `[experiment.tap_to_move]` the regions to tap.
+        /// The scene file: its `[experiment.weight]` lists the weights to collect, its
+        /// `[experiment.tap_to_move]` the regions to tap, or its `[experiment.softness]` the
+        /// `objects` to grasp.
         scene: PathBuf,
         /// The collect directory: one bag per session (`session-001`, …).
         #[arg(long, value_name = "DIR")]
@@ -157,29 +158,36 @@ fn collect(
     let x = loaded.file.experiment.get_ref();
     let names = x.names();
     // What the session collects, and the command that trains on it.
-    let train = match (&x.weight, &x.tap_to_move) {
-        (Some(_), None) if names.len() == 1 => "force",
-        (None, Some(_)) if names.len() == 1 => "contact-cnn",
-        _ => {
-            return not_started(&format!(
-                "{}: `handstack collect` records one experiment's training data, \
-                 [experiment.weight] (the force DNN's) or [experiment.tap_to_move] (the contact \
-                 CNN's); the scene runs {}",
-                scene.display(),
-                names.join(", ")
-            ));
-        }
+    let train = match (&x.weight, &x.tap_to_move, &x.softness) {
+        _ if names.len() != 1 => None,
+        (Some(_), _, _) => Some("force"),
+        (_, Some(_), _) => Some("contact-cnn"),
+        (_, _, Some(s)) if !s.get_ref().objects().is_empty() => Some("softness"),
+        _ => None,
+    };
+    let Some(train) = train else {
+        return not_started(&format!(
+            "{}: `handstack collect` records one experiment's training data, \
+             [experiment.weight] (the force DNN's), [experiment.tap_to_move] (the contact \
+             CNN's) or [experiment.softness] with `objects` (the softness net's); the scene \
+             runs {}",
+            scene.display(),
+            names.join(", ")
+        ));
     };
     let sessions = match crate::collect::Sessions::open(into) {
         Ok(s) => s,
         Err(e) => return not_started(&e),
     };
-    let left = match (&x.weight, &x.tap_to_move) {
-        (Some(w), _) => crate::runs::weight::to_collect(&w.get_ref().plan(), &sessions)
+    let left = match (&x.weight, &x.tap_to_move, &x.softness) {
+        (Some(w), _, _) => crate::runs::weight::to_collect(&w.get_ref().plan(), &sessions)
             .weights_gf
             .len(),
-        (_, Some(t)) => {
+        (_, Some(t), _) => {
             crate::runs::tap_to_move::to_collect(&t.get_ref().regions(), &sessions).len()
+        }
+        (_, _, Some(s)) => {
+            crate::runs::softness::to_collect(&s.get_ref().objects(), &sessions).len()
         }
         _ => 0,
     };

@@ -31,9 +31,10 @@ enum Command {
         report: Option<PathBuf>,
     },
     /// Seed 001's underactuated hand behind a simulated Arduino Mega running
-    /// ConfigurableFirmata on a pty: prints the pty's path, serves until SIGINT / SIGTERM.
-    /// Stepper 0 on D2 (STEP) / D3 (DIR) pulls the tendon, 0.01 mm a step; A0–A3 are the
-    /// fingers' FSR dividers, A4–A7 their distal potentiometers.
+    /// ConfigurableFirmata on a pty: prints the pty's path, then takes lines on stdin: `hold
+    /// soft|moderate|hard` puts another object in the open hand (answered `holding …`).
+    /// Serves until SIGINT / SIGTERM. Stepper 0 on D2 (STEP) / D3 (DIR) pulls the tendon,
+    /// 0.01 mm a step; A0–A3 are the fingers' FSR dividers, A4–A7 their distal potentiometers.
     HandBoard(HandBoardArgs),
     /// Seed 000's grasp rig as two devices on ptys, in real time: the hand's MX-28 (ID 1) on a
     /// Protocol 2.0 servo bus, and the fingertip's three MS5611 behind a TCA9548A (channels
@@ -86,6 +87,11 @@ struct HandBoardArgs {
     /// From the port opening to the version report, ms (bootloader and setup()).
     #[arg(long = "boot-ms", default_value_t = 1600)]
     boot_ms: u64,
+    /// Another hand: the seed of its build (its FSRs read forces higher and its potentiometers
+    /// sit a few degrees off; hand-sim's `other_hand`), on which the built-in softness net
+    /// misclassifies objects. Absent: the hand the net was trained on.
+    #[arg(long)]
+    build: Option<u64>,
     /// The physics' quasi-static step, ms.
     #[arg(long = "step-ms", default_value_t = 10.0)]
     step_ms: f64,
@@ -162,14 +168,10 @@ enum Shape {
 }
 
 fn hand_board(args: &HandBoardArgs) -> ExitCode {
-    use hand_sim::underactuated::{Material, Shape as S};
+    use hand_sim::underactuated::Shape as S;
     use paper_scenes::devices::hand_board::{HandBoard, HandBoardConfig};
     let stop = handstack::stop::signal_stop();
-    let mut config = HandBoardConfig::new(match args.object {
-        Softness::Soft => Material::Sponge,
-        Softness::Moderate => Material::SiliconeRubber,
-        Softness::Hard => Material::Wood,
-    });
+    let mut config = HandBoardConfig::new(material(args.object));
     config.hand.object.shape = match args.shape {
         Shape::Rectangular => S::Rectangular,
         Shape::Cylinder => S::Cylinder,
@@ -178,6 +180,9 @@ fn hand_board(args: &HandBoardArgs) -> ExitCode {
     config.hand.object.size_mm = args.size_mm;
     config.hand.step_ms = args.step_ms;
     config.hand.sensors.noise_lsb = args.noise_lsb;
+    if let Some(build) = args.build {
+        config.hand = config.hand.other_hand(build);
+    }
     config.seed = args.seed;
     config.boot_delay = std::time::Duration::from_millis(args.boot_ms);
     let board = match HandBoard::spawn(config) {
@@ -190,8 +195,33 @@ fn hand_board(args: &HandBoardArgs) -> ExitCode {
     println!("{}", board.path().display());
     // A test or script waits for this line through a pipe: it must not sit in a buffer.
     let _ = std::io::Write::flush(&mut std::io::stdout());
-    while !stop.is_set() {
-        std::thread::sleep(std::time::Duration::from_millis(20));
+    let commands = handstack::prompt::Prompter::stdin();
+    loop {
+        match commands.answer(&stop) {
+            Ok(line) => {
+                let object = match line.split_whitespace().collect::<Vec<_>>()[..] {
+                    ["hold", class] => <Softness as clap::ValueEnum>::from_str(class, false).ok(),
+                    [] => continue,
+                    _ => None,
+                };
+                match object.map(|o| (o, board.hold(material(o)))) {
+                    Some((_, Ok(()))) => println!("holding {}", line.trim_start()[4..].trim()),
+                    Some((_, Err(e))) => eprintln!("error: {e}"),
+                    None => {
+                        eprintln!("error: \"{line}\": `hold soft`, `hold moderate` or `hold hard`")
+                    }
+                }
+                let _ = std::io::Write::flush(&mut std::io::stdout());
+            }
+            // Without commands the board serves until a signal.
+            Err(handstack::prompt::Unanswered::Closed) => {
+                while !stop.is_set() {
+                    std::thread::sleep(std::time::Duration::from_millis(20));
+                }
+                break;
+            }
+            Err(handstack::prompt::Unanswered::Stopped(_)) => break,
+        }
     }
     // What the hand was left doing, for whoever ran it (a test reads this line back).
     let truth = board.truth();
@@ -419,4 +449,14 @@ fn run(scenes: &[PathBuf], json: bool, report: Option<&Path>) -> ExitCode {
         }
     }
     ExitCode::from(code)
+}
+
+/// The material of an object of class `s` (seed 001 Table 1).
+fn material(s: Softness) -> hand_sim::underactuated::Material {
+    use hand_sim::underactuated::Material;
+    match s {
+        Softness::Soft => Material::Sponge,
+        Softness::Moderate => Material::SiliconeRubber,
+        Softness::Hard => Material::Wood,
+    }
 }

@@ -15,6 +15,8 @@
 //!   irregular objects, and the seeded pose.
 //! - [`fsr`], [`pot`], [`adc`]: readings leave the model only as 10-bit codes, decoded by the
 //!   nominal sensor laws as the paper's Arduino + Matlab did.
+//! - [`UnderactuatedConfig::other_hand`]: the same hand built again, its sensors reading
+//!   differently.
 //! - [`grasp`] records a series from first contact to 14 s; [`dataset`] builds the paper's
 //!   training and test grasps; [`separability`] is a nearest-centroid sanity check, a floor;
 //!   [`ceiling`] the Bayes rule on the exact local moduli, the most a classifier can expect.
@@ -29,6 +31,7 @@ pub mod fsr;
 pub mod grasp;
 pub mod hand;
 pub mod object;
+pub mod other;
 pub mod pot;
 pub mod separability;
 mod solve;

@@ -80,6 +80,42 @@ impl Sessions {
             })
             .count()
     }
+
+    /// What of `asked` is still to collect: each step as many times as `asked` lists it (its
+    /// label `name` = `value(step)`), less the times the sessions recorded it; in `asked`'s
+    /// order.
+    ///
+    /// ```
+    /// use handstack::collect::Sessions;
+    /// let none = Sessions::default();
+    /// assert_eq!(none.left(&[4u8, 1, 4], "tap_to_move", "region", f64::from), [4, 1, 4]);
+    /// ```
+    pub fn left<T: Copy>(
+        &self,
+        asked: &[T],
+        experiment: &str,
+        name: &str,
+        value: impl Fn(T) -> f64,
+    ) -> Vec<T> {
+        // Each value asked so far and how many times.
+        let mut seen: Vec<(f64, usize)> = Vec::new();
+        asked
+            .iter()
+            .copied()
+            .filter(|&a| {
+                let v = value(a);
+                let k = seen
+                    .iter()
+                    .position(|(u, _)| (u - v).abs() < 1e-9)
+                    .unwrap_or_else(|| {
+                        seen.push((v, 0));
+                        seen.len() - 1
+                    });
+                seen[k].1 += 1;
+                seen[k].1 > self.recorded(experiment, name, v)
+            })
+            .collect()
+    }
 }
 
 /// The labels of `experiment` among `labels` (the bag `rec`'s), what the user `did` (placed,

@@ -52,7 +52,7 @@ impl<'r> RawTopic<'r> {
     pub fn new(recorder: &'r Recorder) -> Self {
         RawTopic {
             recorder,
-            topic: recorder.topic::<PressureFrame>(&format!("{HAND_NS}/tactile/raw")),
+            topic: recorder.topic::<PressureFrame>(&super::raw_topic()),
             msg: PressureFrame {
                 header: header(0, HAND_FRAME),
                 pressure_pa: vec![0.0; 3],

@@ -285,6 +285,16 @@ impl<'r> TactileStateTopic<'r> {
     }
 }
 
+/// The topic of the fingertip's frames, `/hand0/tactile/raw`.
+pub fn raw_topic() -> String {
+    format!("{HAND_NS}/tactile/raw")
+}
+
+/// The topic of the underactuated hand's readings, `/hand0/fingers/raw`.
+pub fn fingers_topic() -> String {
+    format!("{HAND_NS}/fingers/raw")
+}
+
 /// The underactuated hand's readings as `/hand0/fingers/raw`, one reused message, and its four
 /// FSR forces (N) as the tactile sensor `fsr` on `/hand0/tactile_states`.
 pub struct FingerTopic<'r> {
@@ -299,7 +309,7 @@ impl<'r> FingerTopic<'r> {
     pub fn new(recorder: &'r Recorder) -> Self {
         FingerTopic {
             recorder,
-            topic: recorder.topic::<FingerFrame>(&format!("{HAND_NS}/fingers/raw")),
+            topic: recorder.topic::<FingerFrame>(&fingers_topic()),
             msg: FingerFrame {
                 header: header(0, HAND_FRAME),
                 force_n: vec![0.0; 4],
@@ -309,8 +319,9 @@ impl<'r> FingerTopic<'r> {
         }
     }
 
-    /// Records one reading: forces (N) then distal angles (degrees), the softness net's order.
-    pub fn record(&mut self, sample: &[f32; 8]) {
+    /// Records one reading: forces (N) then distal angles (degrees), the softness net's order;
+    /// its bag time, ns since the Unix epoch.
+    pub fn record(&mut self, sample: &[f32; 8]) -> u64 {
         let t = now_ns();
         self.msg.header.stamp = hand_zenoh::msg::builtin_interfaces::Time::from_nanos(t);
         self.msg.force_n.copy_from_slice(&sample[..4]);
@@ -319,5 +330,6 @@ impl<'r> FingerTopic<'r> {
         }
         self.recorder.write(self.topic, t, &self.msg);
         self.tactile.record(t, &sample[..4]);
+        t
     }
 }

@@ -13,14 +13,17 @@
 
 use super::figure::{Target, measured, target};
 use super::{Part, RunContext};
+use crate::collect::Sessions;
 use crate::error::{Ending, RunError};
-use crate::record::FingerTopic;
+use crate::prompt::Unanswered;
+use crate::record::{FingerTopic, Labelled};
 use crate::scene::Scene;
-use crate::scene::experiment::{Softness, class_name};
+use crate::scene::experiment::{Softness as SoftnessScene, class_name};
 use crate::{Line, Plot};
 use hand_control::grasp_loop::EndAction;
+use hand_traits::Softness;
 use std::time::{Duration, Instant};
-use tactile_nets::pretrained::SOFTNESS;
+use tactile_nets::softness::SoftnessNet;
 use underactuated_hand::UnderactuatedHand;
 use underactuated_hand::grasp::{Phase, Recorder};
 
@@ -31,88 +34,323 @@ const OPEN_SPEEDUP: f64 = 4.0;
 /// What a release may take beyond the travel at its speed.
 const OPEN_MARGIN: Duration = Duration::from_secs(5);
 
-/// Runs `[experiment.softness]` of `scene` on its real underactuated hand.
-pub fn run(scene: &Scene, exp: &Softness, cx: &RunContext<'_>) -> Result<Part, RunError> {
-    let (hand_scene, _) = crate::stack::hand::scene_hand(scene)?;
-    let on_end = hand_scene.on_end;
-    let plan = exp.plan();
-    let mut hand = crate::stack::underactuated::open(scene)?;
-    let fault = |e: &underactuated_hand::HandError, at: f64| RunError::Ended {
-        ending: Ending::Fault,
-        what: format!(
-            "hand: {} at {at:.2} s; its close is leased, so the stepper stops within {} ms",
-            e,
-            underactuated_hand::LEASE.as_millis()
-        ),
-    };
-    cx.progress.stage("softness: closing", 0);
-    let start = Instant::now();
-    hand.close_at(plan.closing_speed_mm_s)
-        .map_err(|e| fault(&e, 0.0))?;
-    let mut rec = Recorder::new(plan, hand.now_us());
-    let mut fingers = cx.record.map(FingerTopic::new);
-    let mut counted = 0;
-    let ending = loop {
-        if let Some(reason) = cx.stop.reason() {
-            break Some((
-                Ending::Stopped(reason),
-                format!("softness: stopped by {reason}"),
-            ));
+/// The experiment's name in a collect session's labels.
+pub const EXPERIMENT: &str = "softness";
+/// The label of a grasp's window, its value the class asked for (0 soft, 1 moderate, 2 hard).
+pub const CLASS: &str = "class";
+
+/// How a grasp ended when it did not fill its window: the run's ending and what happened.
+type Cut = (Ending, String);
+
+/// One grasp's window.
+struct Grasped {
+    /// The series from first contact, flat: eight readings per sample.
+    series: Vec<f32>,
+    /// First contact t₁, s from the start of the close.
+    first_contact_s: f64,
+    /// The bag times of the first and last reading in the window, ns since the Unix epoch.
+    start_ns: u64,
+    end_ns: u64,
+}
+
+/// The hand, what ends a run on it, and where its readings are recorded.
+struct Run<'a> {
+    hand: UnderactuatedHand,
+    plan: underactuated_hand::grasp::GraspPlan,
+    cx: &'a RunContext<'a>,
+    fingers: Option<FingerTopic<'a>>,
+    start: Instant,
+}
+
+impl Run<'_> {
+    fn fault(&self, e: &underactuated_hand::HandError) -> RunError {
+        RunError::Ended {
+            ending: Ending::Fault,
+            what: format!(
+                "hand: {} at {:.2} s; its close is leased, so the stepper stops within {} ms",
+                e,
+                self.start.elapsed().as_secs_f64(),
+                underactuated_hand::LEASE.as_millis()
+            ),
         }
-        let reading = hand
-            .next_reading(READ_WAIT)
-            .map_err(|e| fault(&e, start.elapsed().as_secs_f64()))?;
-        let Some(r) = reading else { continue };
-        if let Some(f) = &mut fingers {
-            f.record(&r.sample);
-        }
-        match rec.push(r.t_us, r.sample) {
-            Phase::Approaching => {}
-            Phase::Recording(n) => {
-                if counted == 0 {
-                    cx.progress.stage(
-                        "softness: recording from first contact",
-                        plan.samples() as u64,
-                    );
-                }
-                cx.progress.advance((n - counted) as u64);
-                counted = n;
+    }
+
+    /// Closes at the plan's speed and records the window from first contact: `Err(cut)` when
+    /// a stop or an empty hand ended it first. The stepper keeps closing either way.
+    fn grasp(&mut self) -> Result<Result<Grasped, Cut>, RunError> {
+        let plan = self.plan;
+        let cx = self.cx;
+        cx.progress.stage("softness: closing", 0);
+        let close_us = self.hand.now_us();
+        self.hand
+            .close_at(plan.closing_speed_mm_s)
+            .map_err(|e| self.fault(&e))?;
+        let mut rec = Recorder::new(plan, self.hand.now_us());
+        let (mut counted, mut start_ns) = (0, 0);
+        loop {
+            if let Some(reason) = cx.stop.reason() {
+                return Ok(Err((
+                    Ending::Stopped(reason),
+                    format!("softness: stopped by {reason}"),
+                )));
             }
-            Phase::Done => break None,
-            Phase::Empty => {
-                break Some((
+            let reading = self
+                .hand
+                .next_reading(READ_WAIT)
+                .map_err(|e| self.fault(&e))?;
+            let Some(r) = reading else { continue };
+            let t_ns = match &mut self.fingers {
+                Some(f) => f.record(&r.sample),
+                None => crate::record::now_ns(),
+            };
+            match rec.push(r.t_us, r.sample) {
+                Phase::Approaching => {}
+                Phase::Recording(n) => {
+                    if counted == 0 {
+                        start_ns = t_ns;
+                        cx.progress.stage(
+                            "softness: recording from first contact",
+                            plan.samples() as u64,
+                        );
+                    }
+                    cx.progress.advance((n - counted) as u64);
+                    counted = n;
+                }
+                Phase::Done => {
+                    let t1 = rec.first_contact_us().unwrap_or(0);
+                    return Ok(Ok(Grasped {
+                        series: rec.series().to_vec(),
+                        first_contact_s: t1.saturating_sub(close_us) as f64 * 1e-6,
+                        start_ns: if counted == 0 { t_ns } else { start_ns },
+                        end_ns: t_ns,
+                    }));
+                }
+                Phase::Empty => {
+                    return Ok(Err((
+                        Ending::Failed,
+                        format!(
+                            "softness: no finger touched anything within {} s of closing (an \
+                             empty hand)",
+                            plan.approach_timeout_s
+                        ),
+                    )));
+                }
+            }
+        }
+    }
+
+    /// Ends the run with `cut` after the scene's end action.
+    fn cut(&mut self, on_end: EndAction, (ending, what): Cut) -> RunError {
+        match finish(&mut self.hand, on_end, self.plan.closing_speed_mm_s) {
+            Ok(left) => RunError::Ended {
+                ending,
+                what: format!(
+                    "{what} at {:.2} s; hand {left}",
+                    self.start.elapsed().as_secs_f64()
+                ),
+            },
+            Err(e) => self.fault(&e),
+        }
+    }
+
+    /// Asks for object `i` (from 0) of `n`, of `class`: Enter once it is in the open hand.
+    fn ask(
+        &mut self,
+        on_end: EndAction,
+        class: Softness,
+        i: usize,
+        n: usize,
+    ) -> Result<(), RunError> {
+        self.cx.progress.say(&format!(
+            "Put a {} object in the hand ({} of {n}), then press Enter.",
+            class_name(class),
+            i + 1
+        ));
+        match self.cx.prompter.answer(&self.cx.stop) {
+            Ok(_) => Ok(()),
+            Err(Unanswered::Stopped(reason)) => Err(self.cut(
+                on_end,
+                (
+                    Ending::Stopped(reason),
+                    format!("softness: stopped by {reason} at object {} of {n}", i + 1),
+                ),
+            )),
+            Err(Unanswered::Closed) => Err(self.cut(
+                on_end,
+                (
                     Ending::Failed,
                     format!(
-                        "softness: no finger touched anything within {} s of closing (an empty \
-                         hand)",
-                        plan.approach_timeout_s
+                        "softness: the input ended at object {} of {n}, before it was answered",
+                        i + 1
                     ),
-                ));
-            }
+                ),
+            )),
         }
-    };
-    // t₂ (or the ending): the actuator holds, then the scene's end action.
-    let left = finish(&mut hand, on_end, plan.closing_speed_mm_s)
-        .map_err(|e| fault(&e, start.elapsed().as_secs_f64()))?;
-    if let Some((ending, what)) = ending {
-        return Err(RunError::Ended {
-            ending,
-            what: format!(
-                "{what} at {:.2} s; hand {left}",
-                start.elapsed().as_secs_f64()
-            ),
-        });
     }
-    let a = SOFTNESS
-        .assess(rec.series())
-        .map_err(|e| RunError::Device {
-            device: "estimators.softness",
-            reason: e.to_string(),
-        })?;
+}
+
+/// Runs `[experiment.softness]` of `scene` on its real underactuated hand: one grasp of what
+/// it holds, or each of its `objects` asked for in turn; in a collect session
+/// ([`RunContext::collect`]), the objects still to collect, each grasp labelled with its class.
+pub fn run(scene: &Scene, exp: &SoftnessScene, cx: &RunContext<'_>) -> Result<Part, RunError> {
+    let (hand_scene, _) = crate::stack::hand::scene_hand(scene)?;
+    let on_end = hand_scene.on_end;
+    let objects = exp.objects();
+    let collecting = match (&cx.collect, cx.record) {
+        (Some(sessions), Some(recorder)) => Some((to_collect(&objects, sessions), recorder)),
+        _ => None,
+    };
+    let mut run = Run {
+        hand: crate::stack::underactuated::open(scene)?,
+        plan: exp.plan(),
+        cx,
+        fingers: cx.record.map(FingerTopic::new),
+        start: Instant::now(),
+    };
+    let net = scene.softness_net();
+    if let Some((asked, recorder)) = collecting {
+        return collect(&mut run, on_end, &asked, recorder);
+    }
+    if objects.is_empty() {
+        return one(&mut run, on_end, net, exp.expected());
+    }
+    let n = objects.len();
+    let mut rows = Vec::with_capacity(n);
+    for (i, &class) in objects.iter().enumerate() {
+        run.ask(on_end, class, i, n)?;
+        let g = match run.grasp()? {
+            Ok(g) => g,
+            Err(cut) => return Err(run.cut(on_end, cut)),
+        };
+        let got = classify(net, &g.series, cx)?;
+        cx.progress.say(&format!(
+            "  object {} of {n}: {} classified {}",
+            i + 1,
+            class_name(class),
+            class_name(got.class)
+        ));
+        rows.push((class, got.class));
+        if i + 1 < n {
+            release(&mut run.hand, run.plan.closing_speed_mm_s).map_err(|e| run.fault(&e))?;
+        }
+    }
+    let left =
+        finish(&mut run.hand, on_end, run.plan.closing_speed_mm_s).map_err(|e| run.fault(&e))?;
+    let hits = rows.iter().filter(|(a, b)| a == b).count();
+    let mut part = Part::default();
+    part.figures
+        .push(measured("objects", "objects grasped", n as f64, ""));
+    part.figures.push(measured(
+        "classified_pct",
+        "objects classified as asked",
+        100.0 * hits as f64 / n as f64,
+        "%",
+    ));
+    part.notes.push(format!(
+        "asked → classified: {}",
+        rows.iter()
+            .map(|(a, b)| format!("{} → {}", class_name(*a), class_name(*b)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    part.notes.push(format!("hand {left}"));
+    Ok(part)
+}
+
+/// The objects of `objects` without those `sessions` recorded already.
+pub fn to_collect(objects: &[Softness], sessions: &Sessions) -> Vec<Softness> {
+    sessions.left(objects, EXPERIMENT, CLASS, |c| class_index(c) as f64)
+}
+
+/// A class's index: 0 soft, 1 moderate, 2 hard (the net's output order).
+pub fn class_index(class: Softness) -> usize {
+    Softness::ALL.iter().position(|c| *c == class).unwrap_or(0)
+}
+
+/// The collect session: each object asked for and grasped, its window labelled with its class.
+fn collect(
+    run: &mut Run<'_>,
+    on_end: EndAction,
+    asked: &[Softness],
+    recorder: &crate::record::Recorder,
+) -> Result<Part, RunError> {
+    let n = asked.len();
+    for (i, &class) in asked.iter().enumerate() {
+        run.ask(on_end, class, i, n)?;
+        let g = match run.grasp()? {
+            Ok(g) => g,
+            Err(cut) => return Err(run.cut(on_end, cut)),
+        };
+        recorder.label(
+            crate::record::HAND_FRAME,
+            &Labelled {
+                experiment: EXPERIMENT,
+                name: CLASS,
+                value: class_index(class) as f64,
+                start_ns: g.start_ns,
+                end_ns: g.end_ns,
+            },
+        );
+        run.cx.progress.say(&format!(
+            "  grasp {} of {n}: {} recorded",
+            i + 1,
+            class_name(class)
+        ));
+        if i + 1 < n {
+            release(&mut run.hand, run.plan.closing_speed_mm_s).map_err(|e| run.fault(&e))?;
+        }
+    }
+    let left =
+        finish(&mut run.hand, on_end, run.plan.closing_speed_mm_s).map_err(|e| run.fault(&e))?;
+    let mut part = Part::default();
+    part.figures.push(measured(
+        "grasps_collected",
+        "grasps collected",
+        n as f64,
+        "",
+    ));
+    part.notes.push(format!(
+        "{n} grasps recorded into {}; hand {left}",
+        recorder.dir().display()
+    ));
+    Ok(part)
+}
+
+/// `net`'s class of `series`.
+fn classify(
+    net: &SoftnessNet,
+    series: &[f32],
+    cx: &RunContext<'_>,
+) -> Result<tactile_nets::softness::Assessment, RunError> {
+    let a = net.assess(series).map_err(|e| RunError::Device {
+        device: "estimators.softness",
+        reason: e.to_string(),
+    })?;
     if let Some(r) = cx.record {
         record_class(r, &a);
     }
-    if let Some(want) = exp.expected().filter(|w| *w != a.class) {
+    Ok(a)
+}
+
+/// One grasp of what the hand holds, classified, checked against `expected`.
+fn one(
+    run: &mut Run<'_>,
+    on_end: EndAction,
+    net: &SoftnessNet,
+    expected: Option<Softness>,
+) -> Result<Part, RunError> {
+    let cx = run.cx;
+    let g = run.grasp()?;
+    // t₂ (or the ending): the actuator holds, then the scene's end action.
+    let g = match g {
+        Ok(g) => g,
+        Err(cut) => return Err(run.cut(on_end, cut)),
+    };
+    let left =
+        finish(&mut run.hand, on_end, run.plan.closing_speed_mm_s).map_err(|e| run.fault(&e))?;
+    let plan = run.plan;
+    let a = classify(net, &g.series, cx)?;
+    if let Some(want) = expected.filter(|w| *w != a.class) {
         return Err(RunError::Ended {
             ending: Ending::Failed,
             what: format!(
@@ -127,11 +365,10 @@ pub fn run(scene: &Scene, exp: &Softness, cx: &RunContext<'_>) -> Result<Part, R
         });
     }
     let mut part = Part::default();
-    let t1 = rec.first_contact_us().unwrap_or(0) as f64 * 1e-6;
     part.figures.push(measured(
         "first_contact_s",
         "first contact t₁, from the start of the close",
-        t1,
+        g.first_contact_s,
         "s",
     ));
     part.figures.push(measured(
@@ -140,30 +377,20 @@ pub fn run(scene: &Scene, exp: &Softness, cx: &RunContext<'_>) -> Result<Part, R
         a.samples as f64,
         "",
     ));
-    let index = hand_traits::Softness::ALL
-        .iter()
-        .position(|c| *c == a.class)
-        .unwrap_or(0);
     let class = measured(
         "class",
         &format!(
             "class: {} (0 soft, 1 moderate, 2 hard)",
             class_name(a.class)
         ),
-        index as f64,
+        class_index(a.class) as f64,
         "",
     );
-    part.figures.push(match exp.expected() {
-        Some(want) => {
-            let w = hand_traits::Softness::ALL
-                .iter()
-                .position(|c| *c == want)
-                .unwrap_or(0);
-            target(class, Target::Within(w as f64, 0.0))
-        }
+    part.figures.push(match expected {
+        Some(want) => target(class, Target::Within(class_index(want) as f64, 0.0)),
         None => class,
     });
-    for (k, c) in hand_traits::Softness::ALL.iter().enumerate() {
+    for (k, c) in Softness::ALL.iter().enumerate() {
         part.figures.push(measured(
             &format!("score_{}", class_name(*c)),
             &format!("mean output, {}", class_name(*c)),
@@ -177,17 +404,14 @@ pub fn run(scene: &Scene, exp: &Softness, cx: &RunContext<'_>) -> Result<Part, R
         a.readings_outside as f64,
         "",
     ));
-    part.plots.push(series_plot(rec.series(), plan.sample_hz));
+    part.plots.push(series_plot(&g.series, plan.sample_hz));
     part.notes.push(format!("hand {left}"));
     Ok(part)
 }
 
 /// Records the classification as `/hand0/softness`.
 fn record_class(r: &crate::record::Recorder, a: &tactile_nets::softness::Assessment) {
-    let level = hand_traits::Softness::ALL
-        .iter()
-        .position(|c| *c == a.class)
-        .unwrap_or(0);
+    let level = class_index(a.class);
     let topic = r.topic::<hand_zenoh::msg::handstack_msgs::Softness>(&format!(
         "{}/softness",
         crate::record::HAND_NS
@@ -220,14 +444,25 @@ fn finish(
             format!("stopped at {at} steps ({mm:.2} mm of tendon), stepper outputs off")
         }
         EndAction::Release => {
-            let speed = closing_mm_s * OPEN_SPEEDUP;
-            hand.set_speed(speed)?;
-            let travel_s = mm.abs() / speed;
-            let open_at = hand.open_fully(Duration::from_secs_f64(travel_s) + OPEN_MARGIN)?;
+            let open_at = release(hand, closing_mm_s)?;
             hand.disable()?;
             format!("released: opened to {open_at} steps from {at}, stepper outputs off")
         }
     })
+}
+
+/// Stops the close and runs the tendon back to open at [`OPEN_SPEEDUP`] times the closing
+/// speed (the stepper stays powered); the position it reached.
+fn release(
+    hand: &mut UnderactuatedHand,
+    closing_mm_s: f64,
+) -> Result<i32, underactuated_hand::HandError> {
+    let at = hand.stop()?;
+    let mm = hand.config().drive.travel_mm(i64::from(at));
+    let speed = closing_mm_s * OPEN_SPEEDUP;
+    hand.set_speed(speed)?;
+    let travel_s = mm.abs() / speed;
+    hand.open_fully(Duration::from_secs_f64(travel_s) + OPEN_MARGIN)
 }
 
 /// The recorded series, forces and angles against time from first contact.

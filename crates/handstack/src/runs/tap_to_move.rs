@@ -202,19 +202,7 @@ pub fn run(scene: &Scene, exp: &TapScene, cx: &RunContext<'_>) -> Result<Part, R
 /// The taps of `regions` without those `sessions` recorded already: each region as many times
 /// as `regions` lists it, less the times it was recorded.
 pub fn to_collect(regions: &[u8], sessions: &Sessions) -> Vec<u8> {
-    let mut done: [usize; contact_cnn::REGIONS] =
-        core::array::from_fn(|r| sessions.recorded(EXPERIMENT, REGION, r as f64));
-    regions
-        .iter()
-        .copied()
-        .filter(|&r| match done.get_mut(usize::from(r)) {
-            Some(d) if *d > 0 => {
-                *d -= 1;
-                false
-            }
-            _ => true,
-        })
-        .collect()
+    sessions.left(regions, EXPERIMENT, REGION, f64::from)
 }
 
 /// The collect session: each tap still to collect asked for, its window found by the run's

@@ -159,13 +159,21 @@ impl Weight {
 /// four forces and four distal angles from first contact for `window_s` at 10 Hz, holds, and
 /// classifies the object soft, moderate or hard with tactile-nets' built-in softness net (the
 /// underactuated-hand softness paper, §3.1–3.3). The built-in net was trained on closes at
-/// 1.5 mm/s recorded for 14 s: other values run, outside the conditions it learned.
+/// 1.5 mm/s recorded for 14 s: other values run, outside the conditions it learned (a net of
+/// the user's own, `[estimators.softness] weights`, learns the scene's).
+///
+/// With `objects`, the run grasps several objects in turn, asking for each ("Put a soft object
+/// in the hand…") and opening the hand between them, and reports how many it classified as
+/// asked; `handstack collect` records each grasp with its class, to train a net on.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Softness {
     /// The class the object should get (`soft`, `moderate` or `hard`): the run fails (exit
     /// status 4) when the hand says otherwise. Absent: the class is reported only.
     pub expect: Option<Spanned<String>>,
+    /// The objects to grasp in turn, by class (`["soft", "moderate", "hard", …]`), each asked
+    /// for before its close; instead of `expect`.
+    pub objects: Option<Spanned<Vec<Spanned<String>>>>,
     /// The tendon's closing speed, mm/s (default 1.5; 0.1…20).
     pub closing_speed_mm_s: Option<Spanned<f64>>,
     /// The window from first contact, s (default 14, the paper's; 1…60).
@@ -179,6 +187,17 @@ impl Softness {
     /// The class it expects, if any (checked when the scene is read).
     pub fn expected(&self) -> Option<hand_traits::Softness> {
         self.expect.as_ref().and_then(|e| class_named(e.get_ref()))
+    }
+
+    /// The objects it asks for in turn (checked when the scene is read); empty without
+    /// `objects`.
+    pub fn objects(&self) -> Vec<hand_traits::Softness> {
+        self.objects.as_ref().map_or_else(Vec::new, |o| {
+            o.get_ref()
+                .iter()
+                .filter_map(|c| class_named(c.get_ref()))
+                .collect()
+        })
     }
 
     /// The close and recording it asks for.
@@ -616,13 +635,29 @@ fn check_softness<X>(
         ));
     }
     let x = s.get_ref();
-    if let Some(e) = &x.expect {
+    let classes = x.expect.iter().map(|e| (e, "experiment.softness.expect"));
+    let listed = x.objects.iter().flat_map(|o| o.get_ref().iter());
+    for (e, key) in classes.chain(listed.map(|e| (e, "experiment.softness.objects"))) {
         if class_named(e.get_ref()).is_none() {
             return Err(cx.err(
                 e.span(),
-                "experiment.softness.expect",
+                key,
                 format!("is \"{}\"", e.get_ref()),
                 "\"soft\", \"moderate\" or \"hard\"",
+            ));
+        }
+    }
+    if let Some(o) = &x.objects {
+        if o.get_ref().is_empty() || x.expect.is_some() {
+            return Err(cx.err(
+                o.span(),
+                "experiment.softness.objects",
+                if x.expect.is_some() {
+                    "is given with `expect`"
+                } else {
+                    "is empty"
+                },
+                "one or more classes to grasp in turn, instead of `expect`",
             ));
         }
     }

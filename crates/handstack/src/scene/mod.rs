@@ -46,6 +46,7 @@ use serde::Deserialize;
 use serde::de::DeserializeOwned;
 use std::path::Path;
 use tactile_nets::contact_cnn::ContactCnn;
+use tactile_nets::softness::SoftnessNet;
 use toml::Spanned;
 
 /// What a scene's `[experiment]` table holds: the experiments one program can run.
@@ -124,6 +125,9 @@ pub struct SceneOf<X> {
     /// The contact CNN `[estimators.contact] cnn_weights` names, read (relative to the scene
     /// file's directory); `None`: the built-in one ([`SceneOf::contact_cnn`]).
     pub cnn: Option<ContactCnn>,
+    /// The softness net `[estimators.softness] weights` names, read (relative to the scene
+    /// file's directory); `None`: the built-in one ([`SceneOf::softness_net`]).
+    pub softness: Option<SoftnessNet>,
 }
 
 impl<X: ExperimentTable> SceneOf<X> {
@@ -150,6 +154,7 @@ impl<X: ExperimentTable> SceneOf<X> {
         X::check(&parsed, &cx)?;
         let force = force_net(file, &parsed, &cx)?;
         let cnn = cnn_file(file, &parsed, &cx)?;
+        let softness = softness_file(file, &parsed, &cx)?;
         let name = Path::new(file)
             .file_stem()
             .map_or_else(|| file.to_owned(), |s| s.to_string_lossy().into_owned());
@@ -158,6 +163,7 @@ impl<X: ExperimentTable> SceneOf<X> {
             file: parsed,
             force,
             cnn,
+            softness,
         })
     }
 
@@ -184,6 +190,14 @@ impl<X: ExperimentTable> SceneOf<X> {
         }
     }
 
+    /// The softness net the scene runs: its `[estimators.softness] weights` file, or the
+    /// built-in one (the underactuated-hand softness paper, §2.3).
+    pub fn softness_net(&self) -> &SoftnessNet {
+        self.softness
+            .as_ref()
+            .unwrap_or(&tactile_nets::pretrained::SOFTNESS)
+    }
+
     /// The built-in force DNN `[estimators.force]` names (none without that table, or when it
     /// names a weights file).
     pub fn force_model(&self) -> Option<parts::ForceModel> {
@@ -208,21 +222,14 @@ fn force_net<X>(
     if let Some(m) = f.model {
         return Ok(Some(force::ForceNet::BuiltIn(m)));
     }
-    let Some(w) = &f.weights else {
-        return Ok(None);
-    };
-    let dir = Path::new(file).parent().unwrap_or(Path::new(""));
-    force::ForceNet::load(&dir.join(w.get_ref()))
-        .map(Some)
-        .map_err(|e| {
-            cx.err(
-                w.span(),
-                "estimators.force.weights",
-                format!("cannot be used: {e}"),
-                "a force DNN weights file (`handstack train force` writes one), relative to \
-                 the scene file",
-            )
-        })
+    weights_file(
+        file,
+        f.weights.as_ref(),
+        cx,
+        "estimators.force.weights",
+        "a force DNN weights file (`handstack train force` writes one)",
+        force::ForceNet::load,
+    )
 }
 
 /// The contact CNN weights file of the scene `file`, read relative to the scene's directory.
@@ -231,26 +238,64 @@ fn cnn_file<X>(
     scene: &SceneFile<X>,
     cx: &Checker<'_>,
 ) -> Result<Option<ContactCnn>, SceneError> {
-    let Some(w) = scene
+    let w = scene
         .estimators
         .contact
         .as_ref()
-        .and_then(|c| c.get_ref().cnn_weights.as_ref())
-    else {
+        .and_then(|c| c.get_ref().cnn_weights.as_ref());
+    weights_file(
+        file,
+        w,
+        cx,
+        "estimators.contact.cnn_weights",
+        "a contact CNN weights file (`handstack train contact-cnn` writes one)",
+        ContactCnn::load,
+    )
+}
+
+/// The softness net weights file of the scene `file`, read relative to the scene's directory.
+fn softness_file<X>(
+    file: &str,
+    scene: &SceneFile<X>,
+    cx: &Checker<'_>,
+) -> Result<Option<SoftnessNet>, SceneError> {
+    let w = scene
+        .estimators
+        .softness
+        .as_ref()
+        .and_then(|c| c.get_ref().weights.as_ref());
+    weights_file(
+        file,
+        w,
+        cx,
+        "estimators.softness.weights",
+        "a softness net weights file (`handstack train softness` writes one)",
+        SoftnessNet::load,
+    )
+}
+
+/// The model in the weights file `w` names (if it names one), read with `load` relative to
+/// the directory of the scene `file`; an error names `key` and says `what` the file must be.
+fn weights_file<M>(
+    file: &str,
+    w: Option<&Spanned<std::path::PathBuf>>,
+    cx: &Checker<'_>,
+    key: &str,
+    what: &str,
+    load: impl FnOnce(&Path) -> Result<M, tactile_nets::NetError>,
+) -> Result<Option<M>, SceneError> {
+    let Some(w) = w else {
         return Ok(None);
     };
     let dir = Path::new(file).parent().unwrap_or(Path::new(""));
-    ContactCnn::load(&dir.join(w.get_ref()))
-        .map(Some)
-        .map_err(|e| {
-            cx.err(
-                w.span(),
-                "estimators.contact.cnn_weights",
-                format!("cannot be used: {e}"),
-                "a contact CNN weights file (`handstack train contact-cnn` writes one), \
-                 relative to the scene file",
-            )
-        })
+    load(&dir.join(w.get_ref())).map(Some).map_err(|e| {
+        cx.err(
+            w.span(),
+            key,
+            format!("cannot be used: {e}"),
+            format!("{what}, relative to the scene file"),
+        )
+    })
 }
 
 /// The text of the scene file at `path`.

@@ -395,7 +395,11 @@ pub struct Contact {
 /// The softness classifier.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Softness {}
+pub struct Softness {
+    /// The softness net's weights file, relative to the scene file's directory: the user's
+    /// own hand's net as `handstack train softness` writes it (without it: the built-in one).
+    pub weights: Option<Spanned<std::path::PathBuf>>,
+}
 
 /// `[controller]`: the grasp policy.
 #[derive(Debug, Clone, Deserialize)]

@@ -12,10 +12,9 @@
 //! over 27 000 windows would leave the network untrained.
 
 use super::{TrainError, Trained, Written, cost_ns, held_out_at, write_model};
-use crate::collect;
 use crate::record::LABELS;
 use crate::record::pad::imu_topic;
-use crate::record::read::{ReadError, Recording};
+use crate::record::read::ReadError;
 use crate::runs::figure::{Target, measured, paper, target};
 use crate::runs::tap_to_move::{
     EXPERIMENT, PAPER_ACCURACY_PCT, PAPER_SOURCE, REGION, window_config,
@@ -24,7 +23,6 @@ use crate::stack::pad::FRAME_RATE_HZ;
 use crate::tap_to_move::{TapToMoveConfig, at_rate};
 use crate::{Line, Outcome, Plot};
 use hand_traits::ImuFrame;
-use hand_zenoh::msg::handstack_msgs::Label;
 use hand_zenoh::msg::sensor_msgs::Imu;
 use rand::SeedableRng;
 use std::path::PathBuf;
@@ -126,25 +124,13 @@ pub fn taps(bags: &[PathBuf]) -> Result<Vec<Tap>, ReadError> {
         .ok()
         .map_or_else(TapToMoveConfig::default, |cnn| window_config(&cnn))
         .frames_before;
+    let read =
+        super::labelled::<Imu>(bags, EXPERIMENT, "tapped", &imu_topic(), "the pad's frames")?;
     let mut out = Vec::new();
-    for bag in bags {
-        let rec = Recording::open(bag)?;
-        let labels = rec.messages::<Label>(LABELS)?;
-        if labels.is_empty() && collect::is_session(bag) {
-            continue;
-        }
-        let ours = collect::labels_of(&rec, &labels, EXPERIMENT, "tapped")?;
-        let topic = imu_topic();
-        let frames = rec.messages::<Imu>(&topic)?;
-        if frames.is_empty() {
-            return Err(ReadError::MissingTopic {
-                path: rec.path().to_owned(),
-                topic,
-                why: ", the pad's frames its labels cover (a bag of another device?)".into(),
-            });
-        }
+    for b in &read {
+        let (bag, rec, frames) = (&b.bag, &b.rec, &b.messages);
         let frames: Vec<(u64, ImuFrame)> = frames.iter().map(|(t, m)| (*t, frame(*t, m))).collect();
-        for l in ours.iter().filter(|l| l.name == REGION) {
+        for l in b.labels.iter().filter(|l| l.name == REGION) {
             let content = |problem: String| ReadError::Content {
                 path: rec.path().to_owned(),
                 topic: LABELS.into(),

@@ -10,14 +10,13 @@
 //! written is the model so scored.
 
 use super::{HOLD_OUT_EVERY, TrainError, Trained, Written, cost_ns, held_out_at, write_model};
-use crate::collect;
-use crate::record::read::{ReadError, Recording};
-use crate::record::{HAND_NS, LABELS};
+use crate::record::read::ReadError;
+use crate::record::{LABELS, raw_topic};
 use crate::runs::figure::{Target, measured, paper, target};
 use crate::runs::weight::{EXPERIMENT, PAPER_MAX_ERROR_GF, PAPER_SOURCE, TARE, WEIGHT_GF};
 use crate::{Line, Outcome, Plot};
 use hand_zenoh::msg::handstack_msgs::{Label, PressureFrame};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use tactile_nets::force_dnn::{ForceDnn, WeightSample, mixup, session_recipe};
 use tactile_nets::pretrained::ForceModel;
 
@@ -82,11 +81,6 @@ impl Step {
     }
 }
 
-/// The fingertip's frames in a bag.
-fn raw_topic() -> String {
-    format!("{HAND_NS}/tactile/raw")
-}
-
 /// Every weight step of `bags`. A session that recorded no label (stopped at its first
 /// question) is skipped; any other bag without weight labels is an error.
 ///
@@ -94,35 +88,30 @@ fn raw_topic() -> String {
 /// no tare, frames of another device, or a label that covers no frame — each naming the file
 /// and the topic.
 pub fn steps(bags: &[PathBuf]) -> Result<Vec<Step>, ReadError> {
+    let raw = raw_topic();
+    let read = super::labelled::<PressureFrame>(
+        bags,
+        EXPERIMENT,
+        "placed",
+        &raw,
+        "the fingertip's frames",
+    )?;
     let mut out = Vec::new();
-    for bag in bags {
-        let rec = Recording::open(bag)?;
-        let labels = rec.messages::<Label>(LABELS)?;
-        if labels.is_empty() && collect::is_session(bag) {
-            continue;
-        }
-        out.extend(bag_steps(bag, &rec, &labels)?);
+    for b in &read {
+        out.extend(bag_steps(b)?);
     }
     Ok(out)
 }
 
-fn bag_steps(bag: &Path, rec: &Recording, labels: &[(u64, Label)]) -> Result<Vec<Step>, ReadError> {
-    let path = rec.path().to_owned();
-    let ours = collect::labels_of(rec, labels, EXPERIMENT, "placed")?;
+fn bag_steps(b: &super::LabelledBag<PressureFrame>) -> Result<Vec<Step>, ReadError> {
+    let (bag, frames, raw) = (&b.bag, &b.messages, raw_topic());
+    let path = b.rec.path().to_owned();
+    let ours: Vec<&Label> = b.labels.iter().collect();
     let content = |topic: &str, problem: String| ReadError::Content {
         path: path.clone(),
         topic: topic.to_owned(),
         problem,
     };
-    let raw = raw_topic();
-    let frames = rec.messages::<PressureFrame>(&raw)?;
-    if frames.is_empty() {
-        return Err(ReadError::MissingTopic {
-            path,
-            topic: raw,
-            why: ", the fingertip's frames its labels cover (a bag of another device?)".into(),
-        });
-    }
     if let Some((_, f)) = frames.iter().find(|(_, f)| f.pressure_pa.len() != 3) {
         return Err(content(
             &raw,

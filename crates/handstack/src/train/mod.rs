@@ -3,9 +3,11 @@
 
 pub mod contact_cnn;
 pub mod force;
+pub mod softness;
 
 use crate::Outcome;
 use crate::record::read::ReadError;
+use hand_zenoh::msg::handstack_msgs::Label;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use tactile_nets::NetError;
@@ -64,6 +66,9 @@ enum Model {
     /// The contact CNN (Al & Martinez-Hernandez, §IV-A) from `[experiment.tap_to_move]`
     /// sessions.
     ContactCnn(contact_cnn::ContactCnnArgs),
+    /// The softness net (the underactuated-hand softness paper, §3.3) from
+    /// `[experiment.softness]` sessions with `objects`.
+    Softness(softness::SoftnessArgs),
 }
 
 impl TrainCommand {
@@ -72,6 +77,7 @@ impl TrainCommand {
         let ran = match &self.model {
             Model::Force(args) => args.run(),
             Model::ContactCnn(args) => args.run(),
+            Model::Softness(args) => args.run(),
         };
         match ran {
             Ok((outcome, json)) => {
@@ -94,6 +100,61 @@ impl TrainCommand {
             }
         }
     }
+}
+
+/// A collect session's bag, read: its labels of one experiment and the messages they cover.
+pub(crate) struct LabelledBag<M> {
+    /// The bag's directory.
+    pub bag: PathBuf,
+    /// The bag.
+    pub rec: crate::record::read::Recording,
+    /// Its labels of the experiment, in the order recorded.
+    pub labels: Vec<Label>,
+    /// Its messages on the topic the labels cover, with their bag times.
+    pub messages: Vec<(u64, M)>,
+}
+
+/// Each of `bags` with its labels of `experiment` (what the user `did`: placed, tapped,
+/// grasped) and the messages on `topic` (`what` they are) they cover. A collect session that
+/// recorded no label (stopped at its first question) is skipped.
+///
+/// Errors: a bag that cannot be read, has no labels or labels only of another experiment
+/// ([`crate::collect::labels_of`]), or no message on `topic` — each naming the file and the
+/// topic.
+pub(crate) fn labelled<M: hand_zenoh::msg::Message>(
+    bags: &[PathBuf],
+    experiment: &str,
+    did: &str,
+    topic: &str,
+    what: &str,
+) -> Result<Vec<LabelledBag<M>>, ReadError> {
+    let mut out = Vec::new();
+    for bag in bags {
+        let rec = crate::record::read::Recording::open(bag)?;
+        let all = rec.messages::<Label>(crate::record::LABELS)?;
+        if all.is_empty() && crate::collect::is_session(bag) {
+            continue;
+        }
+        let labels = crate::collect::labels_of(&rec, &all, experiment, did)?
+            .into_iter()
+            .cloned()
+            .collect();
+        let messages = rec.messages::<M>(topic)?;
+        if messages.is_empty() {
+            return Err(ReadError::MissingTopic {
+                path: rec.path().to_owned(),
+                topic: topic.to_owned(),
+                why: format!(", {what} its labels cover (a bag of another device?)"),
+            });
+        }
+        out.push(LabelledBag {
+            bag: bag.clone(),
+            rec,
+            labels,
+            messages,
+        });
+    }
+    Ok(out)
 }
 
 /// The metrics file written beside weights file `weights`: `my-tip.safetensors` →

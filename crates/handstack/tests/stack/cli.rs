@@ -79,10 +79,10 @@ fn a_bad_scene_exits_non_zero_and_says_why() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `collect` records weight or tap sessions: a scene that runs anything else is refused before
-/// a session directory is made; a scene that does not parse, as `run` refuses it.
+/// `collect` records weight, tap or grasp sessions: a scene that runs anything else is refused
+/// before a session directory is made; a scene that does not parse, as `run` refuses it.
 #[test]
-fn collect_refuses_a_scene_without_a_weight_series_or_taps() {
+fn collect_refuses_a_scene_without_weights_taps_or_objects_to_grasp() {
     let dir = empty_dir("collect");
     std::fs::write(dir.join("my-hand.toml"), SCENE).expect("write");
     let out = handstack(&dir, &["collect", "my-hand.toml", "--into", "sessions"]);
@@ -91,8 +91,8 @@ fn collect_refuses_a_scene_without_a_weight_series_or_taps() {
     assert!(
         err.contains(
             "my-hand.toml: `handstack collect` records one experiment's training data, \
-             [experiment.weight] (the force DNN's) or [experiment.tap_to_move] (the contact \
-             CNN's)"
+             [experiment.weight] (the force DNN's), [experiment.tap_to_move] (the contact \
+             CNN's) or [experiment.softness] with `objects` (the softness net's)"
         ),
         "{err}"
     );

@@ -14,4 +14,15 @@ mod scenes;
 #[cfg(feature = "train")]
 mod train_bags;
 #[cfg(feature = "train")]
+mod train_grasps;
+#[cfg(feature = "train")]
 mod train_taps;
+
+/// A new, empty directory `handstack-KIND-PID-NAME` under the system's temporary directory.
+#[cfg(feature = "train")]
+fn fresh_dir(kind: &str, name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("handstack-{kind}-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("dir");
+    d
+}

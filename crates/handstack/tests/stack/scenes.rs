@@ -166,6 +166,71 @@ fn the_underactuated_hand_runs_the_softness_experiment_and_nothing_else() {
 }
 
 #[test]
+fn a_softness_run_grasps_objects_in_turn_with_a_net_built_in_or_beside_the_scene() {
+    let objects = SOFTNESS.replace(
+        "expect = \"hard\"",
+        "objects = [\"soft\", \"hard\", \"soft\"]",
+    );
+    let s = Scene::parse("objects.toml", &objects).expect("valid");
+    let x = experiments(&s).softness.as_ref().expect("softness");
+    use hand_traits::Softness::{Hard, Soft};
+    assert_eq!(x.get_ref().objects(), [Soft, Hard, Soft]);
+    assert!(s.softness.is_none());
+    assert_eq!(
+        s.softness_net().flat(),
+        tactile_nets::pretrained::SOFTNESS.flat()
+    );
+    says(
+        &err(&objects.replace("\"hard\"", "\"squishy\"")),
+        8,
+        "experiment.softness.objects",
+        &["is \"squishy\"", "\"soft\", \"moderate\" or \"hard\""],
+    );
+    says(
+        &err(&objects.replace("objects = [\"soft\", \"hard\", \"soft\"]", "objects = []")),
+        8,
+        "experiment.softness.objects",
+        &["is empty"],
+    );
+    says(
+        &err(&format!("{objects}expect = \"hard\"\n")),
+        8,
+        "experiment.softness.objects",
+        &["is given with `expect`"],
+    );
+    // A weights file of the user's own hand, beside the scene.
+    let dir = std::env::temp_dir().join(format!("handstack-scene-soft-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut flat = tactile_nets::pretrained::SOFTNESS.flat();
+    flat[0] += 0.5;
+    let mine = tactile_nets::softness::SoftnessNet::from_flat(
+        &flat,
+        *tactile_nets::pretrained::SOFTNESS.scale(),
+    )
+    .expect("a net");
+    mine.save(&dir.join("my-hand.safetensors"), serde_json::json!({}))
+        .expect("saved");
+    let own = objects.replace(
+        "[estimators.softness]\n",
+        "[estimators.softness]\nweights = \"my-hand.safetensors\"\n",
+    );
+    let s = Scene::parse(&dir.join("own.toml").display().to_string(), &own).expect("valid");
+    assert_eq!(s.softness_net().flat(), flat);
+    // Not beside this scene: read relative to the scene, and the error says why.
+    says(
+        &err(&own),
+        4,
+        "estimators.softness.weights",
+        &[
+            "cannot be used",
+            "my-hand.safetensors",
+            "handstack train softness",
+        ],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn the_underactuated_hands_keys_are_checked_where_they_are_written() {
     let with = |extra: &str| SOFTNESS.replace("[experiment", &format!("{extra}[experiment"));
     says(

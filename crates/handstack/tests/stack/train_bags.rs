@@ -11,10 +11,7 @@ use handstack::train::{TrainError, held_out_at};
 use std::path::{Path, PathBuf};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("handstack-train-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("dir");
-    d
+    crate::fresh_dir("train", name)
 }
 
 const T0: u64 = 1_700_000_000_000_000_000;

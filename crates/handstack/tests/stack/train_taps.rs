@@ -13,10 +13,7 @@ use std::path::{Path, PathBuf};
 use tactile_nets::contact_cnn::{SI_TO_INPUT, WINDOW};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("handstack-taps-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("dir");
-    d
+    crate::fresh_dir("taps", name)
 }
 
 const T0: u64 = 1_700_000_000_000_000_000;

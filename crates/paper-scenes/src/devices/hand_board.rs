@@ -169,6 +169,9 @@ struct World {
     last: Duration,
     rng: ChaCha8Rng,
     error: Option<hand_sim::SimError>,
+    /// The seed of the first object's pose, and how many were put in the hand since.
+    seed: u64,
+    placed: u64,
 }
 
 impl World {
@@ -262,6 +265,8 @@ impl HandBoard {
             last: Duration::ZERO,
             rng: hand_sim::seed::stream(config.seed, "hand-board adc"),
             error: None,
+            seed: config.seed,
+            placed: 0,
         }));
         let board = SimConfig::default()
             .board(BOARD)
@@ -299,6 +304,39 @@ impl HandBoard {
             stalled: w.hand.stalled(),
             now_ns: w.hand.steps() * w.hand.step_ns(),
         }
+    }
+
+    /// Puts an object of `material` in the hand in place of the one it holds, its shape and
+    /// size kept and its pose drawn again (an object placed by hand never sits the same way
+    /// twice). The hand must be open — its tendon let out, as a run's release leaves it — or
+    /// the object could not be taken out.
+    ///
+    /// Errors: the tendon is pulled (the hand holds its object).
+    pub fn hold(&self, material: Material) -> Result<(), Error> {
+        let mut w = lock(&self.world);
+        if w.shaft_steps != 0 {
+            return Err(device(
+                "hand board",
+                format!(
+                    "the hand is closed ({} steps of tendon pulled): open it before another \
+                     object is put in",
+                    w.shaft_steps
+                ),
+            ));
+        }
+        let mut config = w.hand.config().clone();
+        config.object.material = material;
+        w.placed += 1;
+        let mut hand = Underactuated::new(&config, w.seed.wrapping_add(w.placed))?;
+        // The new hand's clock starts where the old one's was: the board's time goes on.
+        hand.drive_to(w.hand.steps() * w.hand.step_ns(), 0.0)?;
+        w.hand = hand;
+        Ok(())
+    }
+
+    /// What the hand holds now.
+    pub fn material(&self) -> Material {
+        lock(&self.world).hand.config().object.material
     }
 
     /// The first error the physics gave, if any (it then holds the hand where it was).

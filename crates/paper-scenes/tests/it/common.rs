@@ -327,3 +327,61 @@ pub fn weight_scene(path: &Path, port: &Path, force: &str, weights: &[f64], extr
     )
     .expect("scene written");
 }
+
+/// `handstack collect SCENE --into SESSIONS`'s arguments.
+pub fn collect_args<'a>(scene: &'a Path, sessions: &'a Path) -> Vec<&'a std::ffi::OsStr> {
+    vec![
+        "collect".as_ref(),
+        scene.as_os_str(),
+        "--into".as_ref(),
+        sessions.as_os_str(),
+    ]
+}
+
+/// What `handstack train MODEL SESSIONS --out FILE --json` printed.
+pub struct Trained {
+    /// The outcome.
+    pub outcome: serde_json::Value,
+    stdout: String,
+}
+
+impl Trained {
+    /// The value of the figure `name`.
+    pub fn figure(&self, name: &str) -> f64 {
+        self.outcome["figures"]
+            .as_array()
+            .and_then(|fs| fs.iter().find(|f| f["name"] == name))
+            .and_then(|f| f["value"].as_f64())
+            .unwrap_or_else(|| panic!("no {name}: {}", self.stdout))
+    }
+}
+
+/// Runs `handstack train MODEL SESSIONS --out FILE --json`, which must succeed.
+pub fn train_json(model: &str, sessions: &Path, out: &Path) -> Trained {
+    let run = Command::new(handstack())
+        .args(["train", model])
+        .arg(sessions)
+        .arg("--out")
+        .arg(out)
+        .arg("--json")
+        .output()
+        .expect("handstack train runs");
+    let (stdout, stderr) = (text(&run.stdout), text(&run.stderr));
+    assert_eq!(run.status.code(), Some(0), "{stdout}\n{stderr}");
+    Trained {
+        outcome: serde_json::from_str(&stdout).expect("JSON"),
+        stdout,
+    }
+}
+
+/// A collect session (`args`) after every step is recorded: it asks nothing, exits 0 and
+/// says to train `model`.
+pub fn nothing_left(args: &[&std::ffi::OsStr], model: &str) {
+    let (code, _, stderr) = Session::command(args).finish();
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(
+        stderr.contains("everything ")
+            && stderr.contains(&format!("train with `handstack train {model} ")),
+        "{stderr}"
+    );
+}

@@ -373,3 +373,70 @@ fn the_board_process_killed_is_a_disconnected_error() {
     assert!(matches!(e.kind, ErrorKind::Disconnected), "{e}");
     assert!(e.to_string().contains(path), "{e}");
 }
+
+/// `paper-scenes hand-board` takes `hold CLASS` lines as a user swaps objects: another object
+/// in the open hand, refused while the tendon is pulled; a class it does not know, refused.
+#[test]
+fn the_board_process_swaps_objects_only_in_the_open_hand() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_paper-scenes"))
+        .args(["hand-board", "--object", "soft", "--boot-ms", "150"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn paper-scenes hand-board");
+    let mut stdin = child.stdin.take().expect("piped");
+    let stdout = child.stdout.take().expect("piped");
+    let stderr = child.stderr.take().expect("piped");
+    let child = KillOnDrop(child);
+    let lines = |from: Box<dyn std::io::Read + Send>| {
+        let (tx, rx) = mpsc::channel();
+        std::thread::spawn(move || {
+            for l in BufReader::new(from).lines().map_while(Result::ok) {
+                let _ = tx.send(l);
+            }
+        });
+        rx
+    };
+    let (out, err) = (lines(Box::new(stdout)), lines(Box::new(stderr)));
+    let next = |rx: &mpsc::Receiver<String>| {
+        rx.recv_timeout(Duration::from_secs(20))
+            .expect("a line in time")
+    };
+    let path = next(&out);
+    let mut say = |line: &str| {
+        use std::io::Write;
+        writeln!(stdin, "{line}").expect("written");
+        stdin.flush().expect("sent");
+    };
+    say("hold hard");
+    assert_eq!(next(&out), "holding hard");
+    say("hold squishy");
+    assert!(next(&err).contains("`hold soft`, `hold moderate` or `hold hard`"));
+    // Closed on the hard object: it cannot be taken out.
+    let mut board = Board::open(path.trim_end(), &Options::default()).expect("open");
+    board
+        .stepper_config(STEPPER_DEVICE, &StepperConfig::driver(STEP_PIN, DIR_PIN))
+        .unwrap();
+    board.stepper_set_speed(STEPPER_DEVICE, SPEED).unwrap();
+    let mark = board.mark();
+    board.stepper_to(STEPPER_DEVICE, 200).unwrap();
+    board
+        .wait_stepper_complete(STEPPER_DEVICE, mark, TIMEOUT)
+        .expect("moved");
+    say("hold soft");
+    let e = next(&err);
+    assert!(
+        e.contains("the hand is closed (200 steps of tendon pulled)"),
+        "{e}"
+    );
+    // Opened again, it takes the soft one.
+    let mark = board.mark();
+    board.stepper_to(STEPPER_DEVICE, 0).unwrap();
+    board
+        .wait_stepper_complete(STEPPER_DEVICE, mark, TIMEOUT)
+        .expect("moved");
+    say("hold soft");
+    assert_eq!(next(&out), "holding soft");
+    drop(child);
+}

@@ -6,11 +6,12 @@
 //! tap-to-move with the new weights file locates taps on that pad, the arm (ur-sim on
 //! loopback) moving where they were located.
 
-use crate::common::{Session, figures, handstack, own_dir as dir, signal, text};
+use crate::common::{
+    Session, collect_args, figures, nothing_left, own_dir as dir, signal, train_json,
+};
 use paper_scenes::devices::pad_board::{PadBoard, PadBoardConfig};
 use std::net::Ipv4Addr;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Duration;
 use ur_sim::{SimConfig, TimeScale, UrSim};
 
@@ -117,12 +118,7 @@ fn a_pad_built_again_locates_taps_with_its_own_contact_cnn() {
     // stopped by Ctrl-C at a question…
     let sessions = dir.join("sessions");
     let collect_scene = scene(&dir, "collect", &pad, address, &rounds, "");
-    let args: Vec<&std::ffi::OsStr> = vec![
-        "collect".as_ref(),
-        collect_scene.as_os_str(),
-        "--into".as_ref(),
-        sessions.as_os_str(),
-    ];
+    let args = collect_args(&collect_scene, &sessions);
     let mut first = Session::command(&args);
     let asked_first = tap_asked(&mut first, &pad, FIRST_SESSION);
     assert_eq!(asked_first, rounds[..FIRST_SESSION], "{asked_first:?}");
@@ -140,33 +136,12 @@ fn a_pad_built_again_locates_taps_with_its_own_contact_cnn() {
     want.sort_unstable();
     asked_second.sort_unstable();
     assert_eq!(asked_second, want);
-    let (code, _, stderr) = Session::command(&args).finish();
-    assert_eq!(code, Some(0), "{stderr}");
-    assert!(
-        stderr.contains("train with `handstack train contact-cnn "),
-        "{stderr}"
-    );
+    nothing_left(&args, "contact-cnn");
 
     // Train: held-out taps scored with the new model and the built-in one.
     let model = dir.join("my-pad-cnn.safetensors");
-    let out = Command::new(handstack())
-        .args(["train", "contact-cnn"])
-        .arg(&sessions)
-        .arg("--out")
-        .arg(&model)
-        .arg("--json")
-        .output()
-        .expect("handstack train runs");
-    let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
-    assert_eq!(out.status.code(), Some(0), "{stdout}\n{stderr}");
-    let outcome: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
-    let figure = |name: &str| {
-        outcome["figures"]
-            .as_array()
-            .and_then(|fs| fs.iter().find(|f| f["name"] == name))
-            .and_then(|f| f["value"].as_f64())
-            .unwrap_or_else(|| panic!("no {name}: {stdout}"))
-    };
+    let trained = train_json("contact-cnn", &sessions, &model);
+    let figure = |name: &str| trained.figure(name);
     let (ours, theirs) = (
         figure("heldout_accuracy_pct"),
         figure("builtin_accuracy_pct"),

@@ -5,7 +5,9 @@
 //! resumed), `handstack train force` trains on it, and the scene naming the new weights file
 //! meets the tolerance on the same fingertip.
 
-use crate::common::{Session, figures, handstack, own_dir as dir, signal, text};
+use crate::common::{
+    Session, collect_args, figures, handstack, nothing_left, own_dir as dir, signal, text,
+};
 use paper_scenes::devices::fingertip_board::{FingertipBoard, FingertipBoardConfig};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -134,12 +136,7 @@ fn a_fingertip_of_another_skin_meets_table1_with_its_own_force_model() {
     // Collect: the first session is stopped by Ctrl-C at its seventh weight…
     let sessions = dir.join("sessions");
     let collect_scene = scene(&dir, "collect", &board, "model = \"sim\"", &collected());
-    let args: Vec<&std::ffi::OsStr> = vec![
-        "collect".as_ref(),
-        collect_scene.as_os_str(),
-        "--into".as_ref(),
-        sessions.as_os_str(),
-    ];
+    let args = collect_args(&collect_scene, &sessions);
     let mut first = Session::command(&args);
     let asked = place_asked(&mut first, &board, 6);
     assert_eq!(asked, collected()[..6], "{asked:?}");
@@ -158,12 +155,7 @@ fn a_fingertip_of_another_skin_meets_table1_with_its_own_force_model() {
     let (code, stdout, stderr) = second.finish();
     assert_eq!(code, Some(0), "{stdout}\n{stderr}");
     // A third has nothing left to ask.
-    let (code, _, stderr) = Session::command(&args).finish();
-    assert_eq!(code, Some(0), "{stderr}");
-    assert!(
-        stderr.contains("everything ") && stderr.contains("train with `handstack train force "),
-        "{stderr}"
-    );
+    nothing_left(&args, "force");
 
     // Train: the held-out weights within 2 gf; the same seed gives the same weights.
     let model = dir.join("my-tip-force.safetensors");
