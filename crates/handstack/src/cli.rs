@@ -1,6 +1,7 @@
 //! The `handstack` command line: run a tactile hand stack from a scene file on its real devices
 //! (`handstack run SCENE... [--json]`), or only check scene files (`handstack check SCENE...`);
-//! record guided sessions to train on (`handstack collect SCENE --into DIR`). With feature
+//! record guided sessions to train on (`handstack collect SCENE --into DIR`); zero the
+//! underactuated hand's potentiometers (`handstack calibrate SCENE`). With feature
 //! `train`: a model of the user's own from those sessions (`handstack train
 //! force|contact-cnn|softness DIR --out FILE`). With feature `cell`: a scene's stack as ROS 2 nodes on Zenoh (`handstack node SCENE`, or one
 //! part: `--part P [--namespace NS]`), and a cell of such nodes with a coordinator (`handstack
@@ -64,6 +65,16 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Zero the underactuated hand's potentiometers on the hand itself: with the hand open and
+    /// empty, read each distal angle and give the `[sensors.underactuated] pot` line that reads
+    /// the open joints as 0°. The stepper is not moved.
+    Calibrate {
+        /// The scene file naming the hand (`[hand] model = "underactuated4"`).
+        scene: PathBuf,
+        /// Print the outcome as JSON on stdout (no progress, no table).
+        #[arg(long)]
+        json: bool,
+    },
     /// Train a model of your own from collect sessions and write its weights file, which a
     /// scene then names.
     #[cfg(feature = "train")]
@@ -100,6 +111,7 @@ pub fn main(platforms: Platforms<'_>) -> ExitCode {
             }
         }
         Command::Collect { scene, into, json } => collect(scene, &into, json, platforms),
+        Command::Calibrate { scene, json } => calibrate(&scene, json),
         #[cfg(feature = "train")]
         Command::Train(cmd) => cmd.main(),
         Command::Check { scenes } => check(&scenes),
@@ -205,6 +217,33 @@ fn collect(
     match Recorder::create(&sessions.next_session()) {
         Ok(recorder) => run(&[scene], json, Some(recorder), Some(sessions), platforms),
         Err(e) => not_started(&e),
+    }
+}
+
+/// `handstack calibrate SCENE`: the hand's potentiometers zeroed, printed as a scene line.
+fn calibrate(path: &std::path::Path, json: bool) -> ExitCode {
+    let scene = match Scene::load(path) {
+        Ok(s) => s,
+        Err(e) => return not_started(&e),
+    };
+    if scene.file.underactuated_hand().is_none() {
+        return not_started(&format!(
+            "{}: `handstack calibrate` zeroes the underactuated hand's potentiometers, and the \
+             scene names no such hand ([hand] model = \"underactuated4\")",
+            path.display()
+        ));
+    }
+    let bars = Bars::new(!json);
+    let cx = RunContext::new(&bars).with_stop(crate::stop::signal_stop());
+    match crate::calibrate::calibrate(&scene, &cx) {
+        Ok(outcome) => {
+            crate::summary::print(&outcome, json);
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(crate::summary::ExitStatus::exit_code(&e))
+        }
     }
 }
 

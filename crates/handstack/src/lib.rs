@@ -28,7 +28,8 @@
 //! - [`record`]: a run recorded as a rosbag2 bag (MCAP) in the nodes' messages and topics, and
 //!   read back;
 //! - [`collect`]: guided collect sessions, the labelled recordings a user's own models are
-//!   trained on; `train` (feature `train`): the user's own force DNN from them;
+//!   trained on; `train` (feature `train`): the user's own force DNN, contact CNN and softness
+//!   net from them; [`calibrate`]: the underactuated hand's potentiometers zeroed on the hand;
 //! - [`cli`]: the command line, for the `handstack` binary and any program with a platform of its
 //!   own;
 //! - [`stop`]: what ends a run early (SIGINT, SIGTERM, SIGHUP), through its one shutdown path;
@@ -40,6 +41,7 @@
 //! their report and the speed / accuracy trade are the reproduction's (`paper-scenes`,
 //! `papers`).
 
+pub mod calibrate;
 #[cfg(feature = "cell")]
 pub mod cell;
 pub mod cli;

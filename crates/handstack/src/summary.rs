@@ -31,6 +31,21 @@ pub fn number(v: f64) -> String {
     }
 }
 
+/// Prints `outcome` on stdout: as JSON, or as its table and then its notes.
+pub fn print(outcome: &Outcome, json: bool) {
+    if json {
+        match serde_json::to_string_pretty(outcome) {
+            Ok(s) => println!("{s}"),
+            Err(e) => eprintln!("error: cannot write JSON: {e}"),
+        }
+    } else {
+        println!("{}", table(outcome));
+        for note in &outcome.notes {
+            println!("  {note}");
+        }
+    }
+}
+
 /// The summary of `outcome` as an aligned text table.
 ///
 /// ```

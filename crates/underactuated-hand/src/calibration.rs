@@ -138,6 +138,27 @@ impl PotMount {
         v / vcc_v * self.travel_deg - self.zero_deg
     }
 
+    /// This mounting zeroed where it is: the open joint (0°) at the wiper voltage `v` read with
+    /// the joint at its open stop, supply `vcc_v` — a potentiometer mounted a few degrees off
+    /// reads the open joint as those degrees, and this takes them out.
+    ///
+    /// ```
+    /// use underactuated_hand::calibration::PotMount;
+    /// let pot = PotMount::default(); // the open joint expected at 45° of the travel
+    /// let v = 50.0 / 270.0 * 5.0; // but read at 50°: mounted 5° off
+    /// assert!((pot.angle_deg(v, 5.0) - 5.0).abs() < 1e-12);
+    /// let zeroed = pot.zeroed_at(v, 5.0);
+    /// assert!((zeroed.zero_deg - 50.0).abs() < 1e-12);
+    /// assert!(zeroed.angle_deg(v, 5.0).abs() < 1e-12);
+    /// ```
+    #[must_use]
+    pub fn zeroed_at(&self, v: f64, vcc_v: f64) -> PotMount {
+        PotMount {
+            zero_deg: v / vcc_v * self.travel_deg,
+            ..*self
+        }
+    }
+
     /// What is wrong with the mounting, if anything.
     pub fn check(&self) -> Result<(), &'static str> {
         if !(self.travel_deg.is_finite() && self.travel_deg > 0.0 && self.zero_deg.is_finite()) {

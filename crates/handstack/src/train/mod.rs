@@ -81,17 +81,7 @@ impl TrainCommand {
         };
         match ran {
             Ok((outcome, json)) => {
-                if json {
-                    match serde_json::to_string_pretty(&outcome) {
-                        Ok(s) => println!("{s}"),
-                        Err(e) => eprintln!("error: cannot write JSON: {e}"),
-                    }
-                } else {
-                    println!("{}", crate::summary::table(&outcome));
-                    for note in &outcome.notes {
-                        println!("  {note}");
-                    }
-                }
+                crate::summary::print(&outcome, json);
                 ExitCode::SUCCESS
             }
             Err(e) => {

@@ -103,3 +103,22 @@ fn collect_refuses_a_scene_without_weights_taps_or_objects_to_grasp() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("none.toml: cannot read"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `calibrate` zeroes the underactuated hand's potentiometers: a scene without that hand is
+/// refused before anything is opened.
+#[test]
+fn calibrate_refuses_a_scene_without_the_underactuated_hand() {
+    let dir = empty_dir("calibrate");
+    std::fs::write(dir.join("my-hand.toml"), SCENE).expect("write");
+    let out = handstack(&dir, &["calibrate", "my-hand.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "my-hand.toml: `handstack calibrate` zeroes the underactuated hand's \
+             potentiometers, and the scene names no such hand"
+        ),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -4,6 +4,7 @@
 //! and handstack's grasp hold on simulated devices.
 
 mod bad_scenes;
+mod calibrate_hand;
 mod cell;
 mod cli;
 mod common;
