@@ -11,7 +11,7 @@
 //! recipe ([`recipe`]): a user's session is some tens of taps, where the paper's one epoch
 //! over 27 000 windows would leave the network untrained.
 
-use super::{TrainError, Trained, Written, cost_ns, held_out_at, write_model};
+use super::{TrainError, Trained, cost_ns, held_out_at};
 use crate::record::LABELS;
 use crate::record::pad::imu_topic;
 use crate::record::read::ReadError;
@@ -66,19 +66,18 @@ pub struct ContactCnnArgs {
 impl ContactCnnArgs {
     /// Reads the sessions, trains, writes the weights and metrics.
     pub(super) fn run(&self) -> Result<(Outcome, bool), TrainError> {
-        let start = std::time::Instant::now();
-        let bags = self.common.bags()?;
-        let taps = taps(&bags)?;
-        let trained = train(&taps, self.common.seed, !self.common.json)?;
-        let written = Written {
-            out: &self.common.out,
-            default_name: "contact-cnn",
-            title: format!("Contact CNN of your pad, from {} session(s)", bags.len()),
-            start,
+        let c = &self.common;
+        let kind = super::Kind {
+            name: "contact-cnn",
+            what: "Contact CNN of your pad",
             scene_key: "[estimators.contact] cnn_weights",
         };
-        let outcome = write_model(written, trained, |m, p| m.save(p))?;
-        Ok((outcome, self.common.json))
+        c.run(
+            &kind,
+            taps,
+            |taps| train(taps, c.seed, !c.json),
+            |m, p| m.save(p),
+        )
     }
 }
 

@@ -9,7 +9,7 @@
 //! weight against the weight, and so is the built-in `sim` model beside it. The weights file
 //! written is the model so scored.
 
-use super::{HOLD_OUT_EVERY, TrainError, Trained, Written, cost_ns, held_out_at, write_model};
+use super::{HOLD_OUT_EVERY, TrainError, Trained, cost_ns, held_out_at};
 use crate::record::read::ReadError;
 use crate::record::{LABELS, raw_topic};
 use crate::runs::figure::{Target, measured, paper, target};
@@ -36,27 +36,18 @@ pub struct ForceArgs {
 impl ForceArgs {
     /// Reads the sessions, trains, writes the weights and metrics.
     pub(super) fn run(&self) -> Result<(Outcome, bool), TrainError> {
-        let start = std::time::Instant::now();
-        let bags = self.common.bags()?;
-        let steps = steps(&bags)?;
-        let trained = train(
-            &steps,
-            self.common.seed,
-            self.tolerance_gf,
-            !self.common.json,
-        )?;
-        let written = Written {
-            out: &self.common.out,
-            default_name: "force",
-            title: format!(
-                "Force DNN of your fingertip, from {} session(s)",
-                bags.len()
-            ),
-            start,
+        let c = &self.common;
+        let kind = super::Kind {
+            name: "force",
+            what: "Force DNN of your fingertip",
             scene_key: "[estimators.force] weights",
         };
-        let outcome = write_model(written, trained, |m, p| m.save(p))?;
-        Ok((outcome, self.common.json))
+        c.run(
+            &kind,
+            steps,
+            |steps| train(steps, c.seed, self.tolerance_gf, !c.json),
+            |m, p| m.save(p),
+        )
     }
 }
 

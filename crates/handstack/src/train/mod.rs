@@ -222,55 +222,65 @@ pub struct Trained<M> {
     pub notes: Vec<String>,
 }
 
-/// What one `handstack train` command made, to write.
-struct Written<'a> {
-    /// The weights file.
-    out: &'a Path,
-    /// The outcome's name when `out` has no stem.
-    default_name: &'a str,
-    /// The outcome's title.
-    title: String,
-    /// When the command started.
-    start: std::time::Instant,
-    /// How a scene names the file (`[estimators.force] weights`).
-    scene_key: &'a str,
+impl<M> Trained<M> {
+    /// The value of the figure named `name` (`heldout_accuracy_pct`), if it has one.
+    pub fn figure(&self, name: &str) -> Option<f64> {
+        self.figures
+            .iter()
+            .find(|f| f.name == name)
+            .map(|f| f.value)
+    }
 }
 
-/// Writes `trained`'s model with `save` to `w.out`, then its outcome (with a note of how a
-/// scene names the file) to the metrics file beside it; returns the outcome written.
-fn write_model<M>(
-    w: Written<'_>,
-    trained: Trained<M>,
-    save: impl FnOnce(&M, &Path) -> Result<(), tactile_nets::NetError>,
-) -> Result<Outcome, TrainError> {
-    let Written {
-        out,
-        default_name,
-        title,
-        start,
-        scene_key,
-    } = w;
-    save(&trained.model, out).map_err(|e| TrainError::Write {
-        path: out.to_owned(),
-        reason: e.to_string(),
-    })?;
-    let mut outcome = Outcome {
-        scene: stem(out, default_name),
-        title,
-        figures: trained.figures,
-        plots: trained.plots,
-        notes: trained.notes,
-        wall_s: start.elapsed().as_secs_f64(),
-    };
-    let metrics = metrics_path(out);
-    outcome.notes.push(format!(
-        "weights written to {}, figures to {}: name it in a scene as `{scene_key} = \"{}\"`",
-        out.display(),
-        metrics.display(),
-        out.display()
-    ));
-    write_metrics(&metrics, &outcome)?;
-    Ok(outcome)
+/// What a `handstack train` command makes.
+struct Kind {
+    /// The outcome's name when `--out` has no file stem (`force`).
+    name: &'static str,
+    /// What the model is, for the outcome's title (`Force DNN of your fingertip`).
+    what: &'static str,
+    /// How a scene names its weights file (`[estimators.force] weights`).
+    scene_key: &'static str,
+}
+
+impl SessionArgs {
+    /// One `handstack train` command: the sessions' bags read with `read`, a model of `kind`
+    /// trained on what they hold with `train`, written with `save` to `--out`, and its
+    /// outcome (with a note of how a scene names the file) to the metrics file beside it.
+    /// Returns the outcome written and whether to print it as JSON.
+    fn run<D, M>(
+        &self,
+        kind: &Kind,
+        read: impl FnOnce(&[PathBuf]) -> Result<D, ReadError>,
+        train: impl FnOnce(&D) -> Result<Trained<M>, TrainError>,
+        save: impl FnOnce(&M, &Path) -> Result<(), tactile_nets::NetError>,
+    ) -> Result<(Outcome, bool), TrainError> {
+        let start = std::time::Instant::now();
+        let bags = self.bags()?;
+        let trained = train(&read(&bags)?)?;
+        let out = &self.out;
+        save(&trained.model, out).map_err(|e| TrainError::Write {
+            path: out.to_owned(),
+            reason: e.to_string(),
+        })?;
+        let mut outcome = Outcome {
+            scene: stem(out, kind.name),
+            title: format!("{}, from {} session(s)", kind.what, bags.len()),
+            figures: trained.figures,
+            plots: trained.plots,
+            notes: trained.notes,
+            wall_s: start.elapsed().as_secs_f64(),
+        };
+        let metrics = metrics_path(out);
+        outcome.notes.push(format!(
+            "weights written to {}, figures to {}: name it in a scene as `{} = \"{}\"`",
+            out.display(),
+            metrics.display(),
+            kind.scene_key,
+            out.display()
+        ));
+        write_metrics(&metrics, &outcome)?;
+        Ok((outcome, self.json))
+    }
 }
 
 /// Writes `outcome` as JSON to `path`.

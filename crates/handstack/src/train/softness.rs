@@ -11,7 +11,7 @@
 //! paper's Levenberg–Marquardt (§3.3), which needs the paper's many grasps: on a user's few it
 //! fits the training samples to 1e-13 and generalises by the luck of its initial weights.
 
-use super::{HOLD_OUT_EVERY, TrainError, Trained, Written, cost_ns, write_model};
+use super::{HOLD_OUT_EVERY, TrainError, Trained, cost_ns};
 use crate::record::read::ReadError;
 use crate::record::{LABELS, fingers_topic};
 use crate::runs::figure::measured;
@@ -58,25 +58,20 @@ pub struct SoftnessArgs {
 impl SoftnessArgs {
     /// Reads the sessions, trains, writes the weights and metrics.
     pub(super) fn run(&self) -> Result<(Outcome, bool), TrainError> {
-        let start = std::time::Instant::now();
-        let bags = self.common.bags()?;
-        let grasps = grasps(&bags)?;
-        let trained = train(&grasps, self.common.seed)?;
-        let written = Written {
-            out: &self.common.out,
-            default_name: "softness",
-            title: format!("Softness net of your hand, from {} session(s)", bags.len()),
-            start,
+        let c = &self.common;
+        let kind = super::Kind {
+            name: "softness",
+            what: "Softness net of your hand",
             scene_key: "[estimators.softness] weights",
         };
-        let seed = self.common.seed;
-        let outcome = write_model(written, trained, |m, p| {
-            m.save(
-                p,
-                serde_json::json!({ "trained_by": "handstack train softness", "seed": seed }),
-            )
-        })?;
-        Ok((outcome, self.common.json))
+        let metadata =
+            serde_json::json!({ "trained_by": "handstack train softness", "seed": c.seed });
+        c.run(
+            &kind,
+            grasps,
+            |grasps| train(grasps, c.seed),
+            |m, p| m.save(p, metadata),
+        )
     }
 }
 

@@ -124,14 +124,7 @@ fn separable_grasps_train_to_a_net_that_classifies_the_held_out_ones() {
     );
     let g = grasps(&[d.join("session-001")]).expect("grasps");
     let trained = train(&g, 8).expect("trained");
-    let figure = |name: &str| {
-        trained
-            .figures
-            .iter()
-            .find(|f| f.name == name)
-            .unwrap_or_else(|| panic!("no {name}"))
-            .value
-    };
+    let figure = |name: &str| trained.figure(name).unwrap_or_else(|| panic!("no {name}"));
     assert_eq!(figure("grasps"), 9.0);
     // The second grasp of each class held out.
     assert_eq!(figure("heldout_grasps"), 3.0);

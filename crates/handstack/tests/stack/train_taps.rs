@@ -126,14 +126,7 @@ fn separable_taps_train_to_a_model_that_locates_the_held_out_ones() {
     );
     let t = taps(&[d.join("session-001")]).expect("taps");
     let trained = train(&t, 8, false).expect("trained");
-    let figure = |name: &str| {
-        trained
-            .figures
-            .iter()
-            .find(|f| f.name == name)
-            .unwrap_or_else(|| panic!("no {name}"))
-            .value
-    };
+    let figure = |name: &str| trained.figure(name).unwrap_or_else(|| panic!("no {name}"));
     assert_eq!(figure("taps"), 36.0);
     assert_eq!(figure("heldout_taps"), 9.0);
     assert_eq!(figure("heldout_accuracy_pct"), 100.0);
