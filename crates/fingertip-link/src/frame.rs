@@ -34,9 +34,9 @@ pub const NONE_U8: u8 = 0xFF;
 pub const NONE_U16: u16 = 0xFFFF;
 
 /// Cells of the 3 × 3 Arrival-of-Time grid.
-const GRID_CELLS: u8 = 9;
+pub const GRID_CELLS: u8 = 9;
 /// Cells of the 4 × 6 pad.
-const PAD_CELLS: u8 = 24;
+pub const PAD_CELLS: u8 = 24;
 /// The largest torque limit an MX-28 takes, counts.
 const TORQUE_MAX: u16 = 1023;
 

@@ -48,6 +48,7 @@ mod frame;
 mod reader;
 
 pub use frame::{
-    BAUD, FAULT, Frame, FrameError, IN_CONTACT, LEN, NONE_U8, NONE_U16, SYNC, TARED, fletcher16,
+    BAUD, FAULT, Frame, FrameError, GRID_CELLS, IN_CONTACT, LEN, NONE_U8, NONE_U16, PAD_CELLS,
+    SYNC, TARED, fletcher16,
 };
 pub use reader::FrameReader;

@@ -3,7 +3,7 @@
 //! record guided sessions to train on (`handstack collect SCENE --into DIR`); zero the
 //! underactuated hand's potentiometers (`handstack calibrate SCENE`). With feature
 //! `train`: a model of the user's own from those sessions (`handstack train
-//! force|contact-cnn|softness DIR --out FILE`). With feature `cell`: a scene's stack as ROS 2 nodes on Zenoh (`handstack node SCENE`, or one
+//! force|contact-mlp|contact-cnn|softness DIR --out FILE`). With feature `cell`: a scene's stack as ROS 2 nodes on Zenoh (`handstack node SCENE`, or one
 //! part: `--part P [--namespace NS]`), and a cell of such nodes with a coordinator (`handstack
 //! cell CELL.toml`).
 //!
@@ -55,8 +55,8 @@ enum Command {
     /// in DIR. Run it again with the same DIR to go on where the last session stopped.
     Collect {
         /// The scene file: its `[experiment.weight]` lists the weights to collect, its
-        /// `[experiment.tap_to_move]` the regions to tap, or its `[experiment.softness]` the
-        /// `objects` to grasp.
+        /// `[experiment.contact]` the fingertip's cells to tap, its `[experiment.tap_to_move]`
+        /// the pad's regions to tap, or its `[experiment.softness]` the `objects` to grasp.
         scene: PathBuf,
         /// The collect directory: one bag per session (`session-001`, …).
         #[arg(long, value_name = "DIR")]
@@ -170,19 +170,20 @@ fn collect(
     let x = loaded.file.experiment.get_ref();
     let names = x.names();
     // What the session collects, and the command that trains on it.
-    let train = match (&x.weight, &x.tap_to_move, &x.softness) {
+    let train = match (&x.weight, &x.tap_to_move, &x.softness, &x.contact) {
         _ if names.len() != 1 => None,
-        (Some(_), _, _) => Some("force"),
-        (_, Some(_), _) => Some("contact-cnn"),
-        (_, _, Some(s)) if !s.get_ref().objects().is_empty() => Some("softness"),
+        (Some(_), ..) => Some("force"),
+        (_, Some(_), ..) => Some("contact-cnn"),
+        (_, _, Some(s), _) if !s.get_ref().objects().is_empty() => Some("softness"),
+        (.., Some(_)) => Some("contact-mlp"),
         _ => None,
     };
     let Some(train) = train else {
         return not_started(&format!(
             "{}: `handstack collect` records one experiment's training data, \
-             [experiment.weight] (the force DNN's), [experiment.tap_to_move] (the contact \
-             CNN's) or [experiment.softness] with `objects` (the softness net's); the scene \
-             runs {}",
+             [experiment.weight] (the force DNN's), [experiment.contact] (the contact \
+             MLP's), [experiment.tap_to_move] (the contact CNN's) or [experiment.softness] \
+             with `objects` (the softness net's); the scene runs {}",
             scene.display(),
             names.join(", ")
         ));
@@ -191,16 +192,17 @@ fn collect(
         Ok(s) => s,
         Err(e) => return not_started(&e),
     };
-    let left = match (&x.weight, &x.tap_to_move, &x.softness) {
-        (Some(w), _, _) => crate::runs::weight::to_collect(&w.get_ref().plan(), &sessions)
+    let left = match (&x.weight, &x.tap_to_move, &x.softness, &x.contact) {
+        (Some(w), ..) => crate::runs::weight::to_collect(&w.get_ref().plan(), &sessions)
             .weights_gf
             .len(),
-        (_, Some(t), _) => {
+        (_, Some(t), ..) => {
             crate::runs::tap_to_move::to_collect(&t.get_ref().regions(), &sessions).len()
         }
-        (_, _, Some(s)) => {
+        (_, _, Some(s), _) => {
             crate::runs::softness::to_collect(&s.get_ref().objects(), &sessions).len()
         }
+        (.., Some(c)) => crate::runs::contact::to_collect(&c.get_ref().cells(), &sessions).len(),
         _ => 0,
     };
     if left == 0 {

@@ -4,8 +4,12 @@
 //! to a USB serial adapter. A host reads it as it reads the board (`handstack`'s
 //! `[sensors.fingertip] serial_port`).
 //!
-//! `cargo run --release --example host_uart [-- --seed N]` prints the pty's path on one line,
-//! then runs until it is killed. Lines on stdin press the pad:
+//! `cargo run --release --example host_uart [-- --seed N] [--skin N] [--speed X]` prints the
+//! pty's path on one line, then runs until it is killed. `--skin N`: another fingertip, whose
+//! silicone responds as hand-sim's `LawParams::other_skin(N)` (the built-in models were trained
+//! on the calibrated one). `--speed X`: the board's clock runs X times as fast as the wall
+//! clock (frames and presses alike; for tests that tap many times). Lines on stdin press the
+//! pad:
 //!
 //! - `tap ROW COL [KGF]`: one cell (1-based, 4 × 6) pressed for 0.4 s, at 5 kgf by default;
 //! - `press ROW COL [KGF]`: pressed until `release`;
@@ -123,19 +127,31 @@ fn commands() -> Receiver<Command> {
 
 fn run() -> Result<(), String> {
     let mut args = std::env::args().skip(1);
-    let mut seed = 1u64;
+    let (mut seed, mut skin, mut speed) = (1u64, None, 1.0f64);
     while let Some(a) = args.next() {
         match (a.as_str(), args.next()) {
             ("--seed", Some(s)) => seed = s.parse().map_err(|_| format!("--seed {s:?}"))?,
+            ("--skin", Some(s)) => {
+                skin = Some(s.parse::<u64>().map_err(|_| format!("--skin {s:?}"))?);
+            }
+            ("--speed", Some(s)) => {
+                speed = s
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite() && (0.1..=100.0).contains(x))
+                    .ok_or_else(|| format!("--speed {s:?}: a factor from 0.1 to 100"))?;
+            }
             _ => {
                 return Err(format!(
-                    "unknown argument {a:?}; usage: host_uart [--seed N]"
+                    "unknown argument {a:?}; usage: host_uart [--seed N] [--skin N] [--speed X]"
                 ));
             }
         }
     }
-    let physics = FingertipPhysics::new(LawParams::CALIBRATED, BASELINE_HPA, 0.0)
-        .map_err(|e| e.to_string())?;
+    let law = skin.map_or(LawParams::CALIBRATED, |s| {
+        LawParams::CALIBRATED.other_skin(s)
+    });
+    let physics = FingertipPhysics::new(law, BASELINE_HPA, 0.0).map_err(|e| e.to_string())?;
     let physics = Rc::new(RefCell::new(physics));
     let clock = SimClock::new();
     let mux = board::mux(&physics, &clock, seed);
@@ -203,7 +219,7 @@ fn run() -> Result<(), String> {
         };
         seq = seq.wrapping_add(1);
         // The simulated clock ran through the cycle's conversions: the wall clock catches up.
-        let due = start + Duration::from_nanos(clock.now_ns() - start_ns);
+        let due = start + Duration::from_secs_f64((clock.now_ns() - start_ns) as f64 / 1e9 / speed);
         if let Some(wait) = due.checked_duration_since(Instant::now()) {
             std::thread::sleep(wait);
         }

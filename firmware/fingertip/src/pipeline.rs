@@ -1,12 +1,12 @@
 //! One fingertip's cycle: read → tare / estimate → force → contact → grasp torque.
 
-use aot_locate::{AotError, AotLocator, AreaGrid, ArrivalDetector, DetectorConfig, Geometry};
+use aot_locate::{AotError, AotLocator, AreaGrid, DetectorConfig, Geometry};
 use baro_drivers::{Measurement, Ms5611, Osr, Ready, SampleError, Scheduler, Transport, Uninit};
 use embedded_hal::delay::DelayNs;
 use fuzzy_mamdani::{EvalError, GraspController};
 use hand_traits::{ContactLocator, EstimateError, GraspPolicy, PressureEstimator, PressureFrame};
 use tactile_nets::RunError;
-use tactile_nets::contact_mlp::{TapReading, features};
+use tactile_nets::contact_mlp::{LiveTap, features};
 #[cfg(not(feature = "fixed-point"))]
 use tactile_nets::pretrained::{CONTACT_MLP_OSR1024, FORCE_DNN_SIM};
 #[cfg(feature = "fixed-point")]
@@ -144,7 +144,7 @@ pub struct Fingertip<DI> {
     config: Config,
     tare_left: u32,
     estimator: PressureEstimator<SENSORS>,
-    detector: ArrivalDetector,
+    live: LiveTap,
     aot: AotLocator,
     force: &'static ForceModel,
     mlp: &'static ContactModel,
@@ -184,7 +184,7 @@ where
             config,
             tare_left: config.tare_frames.max(1),
             estimator: PressureEstimator::new(config.contact_threshold_pa, config.rate_cutoff_hz),
-            detector: ArrivalDetector::new(DetectorConfig::DEFAULT),
+            live: LiveTap::new(DetectorConfig::DEFAULT),
             aot: AotLocator::new(pad),
             force: FORCE_DNN,
             mlp: CONTACT_MLP,
@@ -226,7 +226,8 @@ where
             t_us,
             pressure_pa: pressure_pa.map(|p| p as f32),
         };
-        let onset = self.detector.push_streaming(t_us as i64, frame.pressure_pa);
+        // Every frame, tared or not: a host given the frames rebuilds the same inputs.
+        let contact = self.live.push(t_us as i64, frame.pressure_pa);
         let mut out = Estimate {
             t_us,
             pressure_pa,
@@ -252,10 +253,9 @@ where
         out.tared = true;
         out.in_contact = pressure.in_contact;
         out.force_gf = Some(self.force.estimate_gf(&rise_hpa)?);
-        if let Some(onset) = onset {
-            let event = self.detector.event(onset, frame.pressure_pa);
+        if let Some((onset, reading)) = contact {
+            let event = self.live.detector().event(onset, frame.pressure_pa);
             let grid = self.aot.locate(&event).map_err(Error::Locate)?;
-            let reading = TapReading::from_detector(&self.detector, frame.pressure_pa, onset);
             let pad = self.mlp.predict(&features(&reading))?;
             out.grid_cell = u8::try_from(grid.region).ok();
             out.pad_cell = u8::try_from(pad.region).ok();

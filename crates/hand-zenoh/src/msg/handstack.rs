@@ -137,6 +137,34 @@ pub mod handstack_msgs {
             pub ends_run: bool,
         }
 
+        /// One frame of a fingertip's own microcontroller (the `fingertip-link` UART frame),
+        /// as it sent it: its sequence number and clock, so that a host can rebuild what the
+        /// board computed from an unbroken run of frames.
+        pub struct FingertipFrame = "handstack_msgs/msg/FingertipFrame" {
+            /// When the host read it; frame_id names the fingertip.
+            pub header: Header,
+            /// The board's sequence number (wraps at 256: a gap is a frame lost).
+            pub seq: u8,
+            /// The board's clock when it sampled the frame (µs, wraps after 71 min).
+            pub t_us: u32,
+            /// The three compensated pressures (Pa), in the sensor order of `SensorInfo`.
+            pub pressure_pa: [i32; 3],
+            /// Whether the board has tared its zero (until then nothing is estimated).
+            pub tared: bool,
+            /// Whether the pad is touched (mean rise above the board's threshold).
+            pub in_contact: bool,
+            /// Whether the board's cycle failed (everything else but `seq` and `t_us` is 0).
+            pub fault: bool,
+            /// The board's force estimate (gf; NaN: none).
+            pub force_gf: f32,
+            /// The board's Arrival-of-Time area on the 3 × 3 grid, row-major (255: none).
+            pub grid_cell: u8,
+            /// The board's contact-MLP cell on the 4 × 6 pad, row-major (255: none).
+            pub pad_cell: u8,
+            /// The grasp torque limit the board chose (MX-28 counts).
+            pub torque_raw: u16,
+        }
+
         /// What a guided collect session asked for and the user did: the truth a recording is
         /// trained on (a weight placed, a cell tapped), over the window of frames it covers.
         pub struct Label = "handstack_msgs/msg/Label" {

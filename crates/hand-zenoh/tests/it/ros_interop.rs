@@ -15,8 +15,8 @@ use hand_zenoh::msg::geometry_msgs::{
     Point, Pose, PoseStamped, Quaternion, Vector3, Wrench, WrenchStamped,
 };
 use hand_zenoh::msg::handstack_msgs::{
-    Contact, ContactArray, Fault, Figure, FingerFrame, GraspState, GripperCommand, Label,
-    PressureFrame, SensorInfo, Softness,
+    Contact, ContactArray, Fault, Figure, FingerFrame, FingertipFrame, GraspState, GripperCommand,
+    Label, PressureFrame, SensorInfo, Softness,
 };
 use hand_zenoh::msg::sensor_msgs::{ChannelFloat32, Imu, JointState};
 use hand_zenoh::msg::std_msgs::Header;
@@ -46,6 +46,7 @@ fn descriptions() -> Vec<TypeDescription> {
         Figure::description(),
         Fault::description(),
         Label::description(),
+        FingertipFrame::description(),
         Imu::description(),
         JointState::description(),
         ChannelFloat32::description(),
@@ -193,6 +194,23 @@ fn samples() -> Vec<(&'static str, Vec<u8>)> {
                     sec: 1_700_000_002,
                     nanosec: 500,
                 },
+            }
+            .to_cdr(),
+        ),
+        (
+            FingertipFrame::NAME,
+            FingertipFrame {
+                header: header("hand0"),
+                seq: 201,
+                t_us: 4_000_123,
+                pressure_pa: [101_325, 101_412, -7],
+                tared: true,
+                in_contact: true,
+                fault: false,
+                force_gf: 152.25,
+                grid_cell: 4,
+                pad_cell: 255,
+                torque_raw: 612,
             }
             .to_cdr(),
         ),

@@ -6,6 +6,7 @@
 //! | topic | type | when |
 //! |---|---|---|
 //! | `/hand0/tactile/raw` | `handstack_msgs/msg/PressureFrame` | each fingertip frame (grasp cycle, readout) |
+//! | `/hand0/tactile/mcu` | `handstack_msgs/msg/FingertipFrame` | each frame of a fingertip's microcontroller (contact) |
 //! | `/hand0/grasp/state` | `handstack_msgs/msg/GraspState` | each grasp cycle |
 //! | `/hand0/gripper/joint_states` | `sensor_msgs/msg/JointState` | each grasp cycle the servos answered |
 //! | `/hand0/gripper/command` | `handstack_msgs/msg/GripperCommand` | each command the loop sent |
@@ -21,6 +22,7 @@
 
 mod bag;
 pub mod grasp;
+pub mod mcu;
 pub mod pad;
 pub mod read;
 

@@ -46,6 +46,7 @@ use serde::Deserialize;
 use serde::de::DeserializeOwned;
 use std::path::Path;
 use tactile_nets::contact_cnn::ContactCnn;
+use tactile_nets::contact_mlp::ContactMlp;
 use tactile_nets::softness::SoftnessNet;
 use toml::Spanned;
 
@@ -125,6 +126,9 @@ pub struct SceneOf<X> {
     /// The contact CNN `[estimators.contact] cnn_weights` names, read (relative to the scene
     /// file's directory); `None`: the built-in one ([`SceneOf::contact_cnn`]).
     pub cnn: Option<ContactCnn>,
+    /// The contact MLP `[estimators.contact] mlp_weights` names, read (relative to the scene
+    /// file's directory); `None`: the one the fingertip's firmware runs.
+    pub mlp: Option<ContactMlp>,
     /// The softness net `[estimators.softness] weights` names, read (relative to the scene
     /// file's directory); `None`: the built-in one ([`SceneOf::softness_net`]).
     pub softness: Option<SoftnessNet>,
@@ -154,6 +158,7 @@ impl<X: ExperimentTable> SceneOf<X> {
         X::check(&parsed, &cx)?;
         let force = force_net(file, &parsed, &cx)?;
         let cnn = cnn_file(file, &parsed, &cx)?;
+        let mlp = mlp_file(file, &parsed, &cx)?;
         let softness = softness_file(file, &parsed, &cx)?;
         let name = Path::new(file)
             .file_stem()
@@ -163,6 +168,7 @@ impl<X: ExperimentTable> SceneOf<X> {
             file: parsed,
             force,
             cnn,
+            mlp,
             softness,
         })
     }
@@ -250,6 +256,27 @@ fn cnn_file<X>(
         "estimators.contact.cnn_weights",
         "a contact CNN weights file (`handstack train contact-cnn` writes one)",
         ContactCnn::load,
+    )
+}
+
+/// The contact MLP weights file of the scene `file`, read relative to the scene's directory.
+fn mlp_file<X>(
+    file: &str,
+    scene: &SceneFile<X>,
+    cx: &Checker<'_>,
+) -> Result<Option<ContactMlp>, SceneError> {
+    let w = scene
+        .estimators
+        .contact
+        .as_ref()
+        .and_then(|c| c.get_ref().mlp_weights.as_ref());
+    weights_file(
+        file,
+        w,
+        cx,
+        "estimators.contact.mlp_weights",
+        "a contact MLP weights file (`handstack train contact-mlp` writes one)",
+        ContactMlp::load,
     )
 }
 

@@ -390,6 +390,11 @@ pub struct Contact {
     /// pad's model as `handstack train contact-cnn` writes it (without it: the built-in paper
     /// variant).
     pub cnn_weights: Option<Spanned<std::path::PathBuf>>,
+    /// The contact MLP's weights file, relative to the scene file's directory: the user's own
+    /// fingertip's model as `handstack train contact-mlp` writes it, run on the host over the
+    /// frames of the fingertip's microcontroller (without it: the model built into the
+    /// fingertip's firmware).
+    pub mlp_weights: Option<Spanned<std::path::PathBuf>>,
 }
 
 /// The softness classifier.

@@ -300,6 +300,16 @@ pub(crate) fn check_parts<X>(scene: &SceneFile<X>, cx: &Checker<'_>) -> Result<(
                 ));
             }
         }
+        if let Some(w) = &c.get_ref().mlp_weights {
+            if !c.get_ref().locators.get_ref().contains(&Locator::Mlp) {
+                return Err(cx.err(
+                    w.span(),
+                    "estimators.contact.mlp_weights",
+                    "names a contact MLP the scene does not run",
+                    "\"mlp\" among `locators`, or no `mlp_weights`",
+                ));
+            }
+        }
         let locators = &c.get_ref().locators;
         if locators.get_ref().is_empty() {
             return Err(cx.err(

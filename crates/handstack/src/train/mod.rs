@@ -2,6 +2,7 @@
 //! written as weights files a scene names, with their held-out figures and cost.
 
 pub mod contact_cnn;
+pub mod contact_mlp;
 pub mod force;
 pub mod softness;
 
@@ -66,6 +67,9 @@ enum Model {
     /// The contact CNN (Al & Martinez-Hernandez, §IV-A) from `[experiment.tap_to_move]`
     /// sessions.
     ContactCnn(contact_cnn::ContactCnnArgs),
+    /// The contact MLP (Kim et al. 2020, §4) from `[experiment.contact]` sessions of a
+    /// fingertip's microcontroller.
+    ContactMlp(contact_mlp::ContactMlpArgs),
     /// The softness net (the underactuated-hand softness paper, §3.3) from
     /// `[experiment.softness]` sessions with `objects`.
     Softness(softness::SoftnessArgs),
@@ -77,6 +81,7 @@ impl TrainCommand {
         let ran = match &self.model {
             Model::Force(args) => args.run(),
             Model::ContactCnn(args) => args.run(),
+            Model::ContactMlp(args) => args.run(),
             Model::Softness(args) => args.run(),
         };
         match ran {
@@ -160,6 +165,28 @@ pub const HOLD_OUT_EVERY: usize = 4;
 /// last.
 pub fn held_out_at(i: usize, n: usize) -> bool {
     i % HOLD_OUT_EVERY == 2 && i + 1 < n
+}
+
+/// Which of `items` are held out when each has a class (`class_of`, below `classes`): of each
+/// class, in order, every [`HOLD_OUT_EVERY`]th from the second (the second, the sixth, …), so
+/// that every class with two or more is both tested and learnt, where steps held out in turn
+/// might all be of a few classes.
+pub fn held_out_by_class<T>(
+    items: &[T],
+    classes: usize,
+    class_of: impl Fn(&T) -> usize,
+) -> Vec<bool> {
+    let mut seen = vec![0usize; classes];
+    items
+        .iter()
+        .map(|t| {
+            let Some(k) = seen.get_mut(class_of(t)) else {
+                return false;
+            };
+            *k += 1;
+            *k % HOLD_OUT_EVERY == 2
+        })
+        .collect()
 }
 
 /// Fails when `path` exists (training never overwrites a file).

@@ -11,7 +11,7 @@
 //! paper's Levenberg–Marquardt (§3.3), which needs the paper's many grasps: on a user's few it
 //! fits the training samples to 1e-13 and generalises by the luck of its initial weights.
 
-use super::{HOLD_OUT_EVERY, TrainError, Trained, cost_ns};
+use super::{TrainError, Trained, cost_ns, held_out_by_class};
 use crate::record::read::ReadError;
 use crate::record::{LABELS, fingers_topic};
 use crate::runs::figure::measured;
@@ -185,16 +185,13 @@ pub fn train(grasps: &[Grasp], seed: u64) -> Result<Trained<SoftnessNet>, TrainE
         }
     }
     let n = grasps.len();
-    // Each grasp's place among its class's, in the order grasped.
-    let mut of_class = [0usize; tactile_nets::softness::CLASSES];
+    let out = held_out_by_class(grasps, tactile_nets::softness::CLASSES, |g| {
+        class_index(g.class)
+    });
     /// A grasp and its place in the order grasped.
     type Numbered<'g> = Vec<(usize, &'g Grasp)>;
     let (held, fit_on): (Numbered<'_>, Numbered<'_>) =
-        grasps.iter().enumerate().partition(|(_, g)| {
-            let k = &mut of_class[class_index(g.class)];
-            *k += 1;
-            *k % HOLD_OUT_EVERY == 2
-        });
+        grasps.iter().enumerate().partition(|(i, _)| out[*i]);
     let rows: Vec<(&[[f32; N_VARIABLES]], Softness)> = fit_on
         .iter()
         .map(|(_, g)| (g.series.as_slice(), g.class))

@@ -91,8 +91,9 @@ fn collect_refuses_a_scene_without_weights_taps_or_objects_to_grasp() {
     assert!(
         err.contains(
             "my-hand.toml: `handstack collect` records one experiment's training data, \
-             [experiment.weight] (the force DNN's), [experiment.tap_to_move] (the contact \
-             CNN's) or [experiment.softness] with `objects` (the softness net's)"
+             [experiment.weight] (the force DNN's), [experiment.contact] (the contact \
+             MLP's), [experiment.tap_to_move] (the contact CNN's) or [experiment.softness] \
+             with `objects` (the softness net's)"
         ),
         "{err}"
     );

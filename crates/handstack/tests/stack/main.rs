@@ -17,6 +17,8 @@ mod train_bags;
 mod train_grasps;
 #[cfg(feature = "train")]
 mod train_taps;
+#[cfg(feature = "train")]
+mod train_touches;
 
 /// A new, empty directory `handstack-KIND-PID-NAME` under the system's temporary directory.
 #[cfg(feature = "train")]

@@ -690,3 +690,50 @@ fn contact_needs_the_fingertips_microcontroller_and_checks_its_cells() {
         &["without `serial_port`"],
     );
 }
+
+#[test]
+fn a_contact_mlp_of_ones_own_is_a_weights_file_beside_the_scene() {
+    let s = Scene::parse("touches.toml", TOUCHES).expect("valid");
+    assert!(s.mlp.is_none(), "the board's own MLP by default");
+    let dir = std::env::temp_dir().join(format!("handstack-scene-mlp-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    tactile_nets::pretrained::contact_mlp(1024)
+        .expect("built-in")
+        .save(&dir.join("my-tip.safetensors"))
+        .expect("saved");
+    let own = TOUCHES.replace(
+        "[experiment.contact]",
+        "[estimators.contact]\nlocators = [\"mlp\"]\nmlp_weights = \"my-tip.safetensors\"\n\
+         [experiment.contact]",
+    );
+    let s = Scene::parse(&dir.join("own.toml").display().to_string(), &own).expect("valid");
+    assert_eq!(s.mlp.as_ref().map(|m| m.catalogue().len()), Some(68));
+    // Not beside this scene: read relative to the scene, and the error says why.
+    says(
+        &err(&own),
+        7,
+        "estimators.contact.mlp_weights",
+        &[
+            "cannot be used",
+            "my-tip.safetensors",
+            "handstack train contact-mlp",
+        ],
+    );
+    // A contact CNN's file is not a contact MLP.
+    tactile_nets::pretrained::contact_cnn(tactile_nets::contact_cnn::Variant::Paper)
+        .expect("built-in")
+        .save(&dir.join("cnn.safetensors"))
+        .expect("saved");
+    let wrong = own.replace("my-tip.safetensors", "cnn.safetensors");
+    let e = Scene::parse(&dir.join("wrong.toml").display().to_string(), &wrong).expect_err("a CNN");
+    assert_eq!(e.key(), Some("estimators.contact.mlp_weights"), "{e}");
+    // Weights for an MLP the scene does not run.
+    let e = err(&own.replace("locators = [\"mlp\"]", "locators = [\"aot\"]"));
+    says(
+        &e,
+        7,
+        "estimators.contact.mlp_weights",
+        &["names a contact MLP the scene does not run"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

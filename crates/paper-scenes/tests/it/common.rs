@@ -385,3 +385,59 @@ pub fn nothing_left(args: &[&std::ffi::OsStr], model: &str) {
         "{stderr}"
     );
 }
+
+/// The fingertip firmware on a pty: its process, its stdin, the port.
+pub struct Mcu {
+    child: Child,
+    stdin: ChildStdin,
+    /// The pty's path.
+    pub port: String,
+}
+
+impl Mcu {
+    /// Starts `host_uart` with `args` (`--skin N`, `--speed X`).
+    pub fn start(args: &[&str]) -> Mcu {
+        let exe = std::env::var_os("HANDSTACK_FINGERTIP_MCU")
+            .map(PathBuf::from)
+            .unwrap_or_else(|| {
+                crate::common::root().join("target/firmware/host-check/examples/host_uart")
+            });
+        assert!(
+            exe.exists(),
+            "{} is not built: `cargo xtask test` builds it (or, in firmware/fingertip, \
+             `cargo build --profile host-check --example host_uart` with \
+             CARGO_TARGET_DIR=../../target/firmware)",
+            exe.display()
+        );
+        let mut child = Command::new(&exe)
+            .args(args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("the fingertip starts");
+        let stdin = child.stdin.take().expect("stdin");
+        let mut port = String::new();
+        BufReader::new(child.stdout.take().expect("stdout"))
+            .read_line(&mut port)
+            .expect("the pty's path");
+        Mcu {
+            child,
+            stdin,
+            port: port.trim().to_owned(),
+        }
+    }
+
+    /// Writes `line` to the fingertip's stdin (`tap ROW COL`).
+    pub fn say(&mut self, line: &str) {
+        writeln!(self.stdin, "{line}").expect("a line to the fingertip");
+        self.stdin.flush().expect("sent");
+    }
+}
+
+impl Drop for Mcu {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}

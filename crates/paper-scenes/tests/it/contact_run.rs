@@ -5,63 +5,9 @@
 //! on each cell; the test, as the user, taps it (`tap ROW COL` on the device's stdin) and reads
 //! the figures back. The device process is killed mid-run too.
 
-use crate::common::{Session, figures, signal};
-use std::io::{BufRead, BufReader, Write};
+use crate::common::{Mcu, Session, figures, signal};
 use std::path::PathBuf;
-use std::process::{Child, ChildStdin, Command, Stdio};
 use std::time::{Duration, Instant};
-
-/// The fingertip firmware on a pty: its process, its stdin, the port.
-struct Mcu {
-    child: Child,
-    stdin: ChildStdin,
-    port: String,
-}
-
-impl Mcu {
-    fn start() -> Mcu {
-        let exe = std::env::var_os("HANDSTACK_FINGERTIP_MCU")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| {
-                crate::common::root().join("target/firmware/host-check/examples/host_uart")
-            });
-        assert!(
-            exe.exists(),
-            "{} is not built: `cargo xtask test` builds it (or, in firmware/fingertip, \
-             `cargo build --profile host-check --example host_uart` with \
-             CARGO_TARGET_DIR=../../target/firmware)",
-            exe.display()
-        );
-        let mut child = Command::new(&exe)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::inherit())
-            .spawn()
-            .expect("the fingertip starts");
-        let stdin = child.stdin.take().expect("stdin");
-        let mut port = String::new();
-        BufReader::new(child.stdout.take().expect("stdout"))
-            .read_line(&mut port)
-            .expect("the pty's path");
-        Mcu {
-            child,
-            stdin,
-            port: port.trim().to_owned(),
-        }
-    }
-
-    fn say(&mut self, line: &str) {
-        writeln!(self.stdin, "{line}").expect("a line to the fingertip");
-        self.stdin.flush().expect("sent");
-    }
-}
-
-impl Drop for Mcu {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
 
 fn scene(name: &str, mcu: &Mcu, cells: &[[u8; 2]]) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("handstack-contact-{}-{name}", std::process::id()));
@@ -93,7 +39,7 @@ fn asked(line: &str) -> (u8, u8) {
 /// reports where the board located each, and its accuracies are those of its lines.
 #[test]
 fn every_cell_tapped_is_located_by_the_fingertips_microcontroller() {
-    let mut mcu = Mcu::start();
+    let mut mcu = Mcu::start(&[]);
     let cells: Vec<[u8; 2]> = (1..=4u8)
         .flat_map(|r| (1..=6u8).map(move |c| [r, c]))
         .collect();
@@ -146,7 +92,7 @@ fn every_cell_tapped_is_located_by_the_fingertips_microcontroller() {
 /// as a fault naming the port; Ctrl-C at a question ends it as a stop.
 #[test]
 fn a_lost_fingertip_is_a_fault_and_ctrl_c_a_stop() {
-    let mcu = Mcu::start();
+    let mcu = Mcu::start(&[]);
     let mut run = Session::start(&scene("lost", &mcu, &[[1, 1], [2, 2]]));
     run.wait_for("Tap the fingertip at row 1, column 1");
     let port = mcu.port.clone();
@@ -157,7 +103,7 @@ fn a_lost_fingertip_is_a_fault_and_ctrl_c_a_stop() {
     assert!(stderr.contains(&port), "{stderr}");
     assert!(at.elapsed() < Duration::from_secs(5), "{:?}", at.elapsed());
 
-    let mcu = Mcu::start();
+    let mcu = Mcu::start(&[]);
     let mut run = Session::start(&scene("ctrl-c", &mcu, &[[3, 3]]));
     run.wait_for("Tap the fingertip at row 3, column 3");
     signal(run.child.id(), "INT");

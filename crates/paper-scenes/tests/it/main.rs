@@ -17,6 +17,7 @@ mod grasp_table5;
 mod hand_board;
 mod hand_loop_faults;
 mod own_contact_cnn;
+mod own_contact_mlp;
 mod own_force_model;
 mod own_softness;
 #[cfg(feature = "cell")]

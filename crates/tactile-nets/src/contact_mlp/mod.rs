@@ -82,6 +82,59 @@ impl TapReading {
     }
 }
 
+/// The MLP's inputs of a live pressure stream, frame by frame, as a fingertip computes them:
+/// an [`aot_locate::ArrivalDetector`] fed every frame in order ([`push_streaming`]), and once
+/// a contact has arrived, each frame's [`features`] of [`TapReading::from_detector`]. A host
+/// given the frames a board sampled (their clock and pressures, none lost) rebuilds the
+/// board's inputs exactly, so it can run another model on them.
+///
+/// ```
+/// use aot_locate::DetectorConfig;
+/// use tactile_nets::contact_mlp::{LiveTap, features};
+///
+/// let mut tap = LiveTap::new(DetectorConfig::DEFAULT);
+/// let rest = [101_000.0; 3];
+/// assert!(tap.push(0, rest).is_none());
+/// let mut inputs = None;
+/// for i in 1..20 {
+///     inputs = tap.push(i * 6_000, [101_600.0, 101_300.0, 101_000.0]);
+/// }
+/// let (_onset, reading) = inputs.expect("arrived");
+/// // The inputs: rises in hPa over the resting baseline, shares, arrivals.
+/// assert_eq!(&features(&reading)[..3], &[6.0, 3.0, 0.0]);
+/// ```
+///
+/// [`push_streaming`]: aot_locate::ArrivalDetector::push_streaming
+#[derive(Debug, Clone)]
+pub struct LiveTap {
+    detector: aot_locate::ArrivalDetector,
+}
+
+impl LiveTap {
+    /// Nothing seen yet; arrivals decided by `config`.
+    pub fn new(config: aot_locate::DetectorConfig) -> LiveTap {
+        LiveTap {
+            detector: aot_locate::ArrivalDetector::new(config),
+        }
+    }
+
+    /// Feeds the frame sampled at `t_us` (strictly later than the last); once a contact has
+    /// arrived, returns its onset (µs, on the same clock) and this frame's reading (the MLP's
+    /// inputs are its [`features`]).
+    pub fn push(&mut self, t_us: i64, pressure_pa: [f32; 3]) -> Option<(i64, TapReading)> {
+        let onset = self.detector.push_streaming(t_us, pressure_pa)?;
+        Some((
+            onset,
+            TapReading::from_detector(&self.detector, pressure_pa, onset),
+        ))
+    }
+
+    /// The detector (its baselines and arrivals, and Arrival-of-Time's event).
+    pub fn detector(&self) -> &aot_locate::ArrivalDetector {
+        &self.detector
+    }
+}
+
 /// One training example: a reading, the cells that were touched and where the contact was
 /// centred.
 #[derive(Debug, Clone, Copy, PartialEq)]
