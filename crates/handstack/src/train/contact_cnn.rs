@@ -12,6 +12,7 @@
 //! over 27 000 windows would leave the network untrained.
 
 use super::{TrainError, Trained, cost_ns, held_out_at};
+use crate::Outcome;
 use crate::record::LABELS;
 use crate::record::pad::imu_topic;
 use crate::record::read::ReadError;
@@ -21,7 +22,6 @@ use crate::runs::tap_to_move::{
 };
 use crate::stack::pad::FRAME_RATE_HZ;
 use crate::tap_to_move::{TapToMoveConfig, at_rate};
-use crate::{Line, Outcome, Plot};
 use hand_traits::ImuFrame;
 use hand_zenoh::msg::sensor_msgs::Imu;
 use rand::SeedableRng;
@@ -279,26 +279,16 @@ pub fn train(taps: &[Tap], seed: u64, progress: bool) -> Result<Trained<ContactC
             "ns",
         ),
     ];
-    let plots = vec![Plot::Lines {
-        title: "Training loss".into(),
-        x_label: "epoch".into(),
-        y_label: "cross-entropy".into(),
-        lines: vec![Line {
-            label: "training".into(),
-            points: log
-                .epoch_loss
-                .iter()
-                .enumerate()
-                .map(|(i, l)| (i as f64 + 1.0, f64::from(*l)))
-                .collect(),
-        }],
-    }];
+    let plots = vec![super::loss_plot(
+        "Training loss",
+        "epoch",
+        "cross-entropy",
+        1,
+        log.epoch_loss.iter().map(|l| f64::from(*l)),
+    )];
     let notes = vec![format!(
         "held out (never trained on): taps {} in the order tapped",
-        held.iter()
-            .map(|(i, _)| (i + 1).to_string())
-            .collect::<Vec<_>>()
-            .join(", ")
+        super::places(&held)
     )];
     Ok(Trained {
         model: cnn,

@@ -15,6 +15,7 @@
 //! cell-set head, on our [`recipe`].
 
 use super::{TrainError, Trained, cost_ns, held_out_by_class};
+use crate::Outcome;
 use crate::record::LABELS;
 use crate::record::mcu::{McuClock, from_message, mcu_topic};
 use crate::record::read::ReadError;
@@ -22,7 +23,6 @@ use crate::runs::contact::{
     CELL, EXPERIMENT, FIRMWARE_DETECTOR, MLP_TARGET_PCT, held, most_often, pressures, rise_over,
 };
 use crate::runs::figure::{Target, measured, target};
-use crate::{Line, Outcome, Plot};
 use aot_locate::CELLS;
 use hand_zenoh::msg::handstack_msgs::FingertipFrame;
 use std::path::PathBuf;
@@ -323,27 +323,16 @@ pub fn train(taps: &Taps, seed: u64, progress: bool) -> Result<Trained<ContactMl
             "ns",
         ),
     ];
-    let plots = vec![Plot::Lines {
-        title: "Training loss".into(),
-        x_label: "epoch".into(),
-        y_label: "cross-entropy".into(),
-        lines: vec![Line {
-            label: "training".into(),
-            points: log
-                .epoch_loss
-                .iter()
-                .enumerate()
-                .map(|(i, l)| (i as f64 + 1.0, f64::from(*l)))
-                .collect(),
-        }],
-    }];
+    let plots = vec![super::loss_plot(
+        "Training loss",
+        "epoch",
+        "cross-entropy",
+        1,
+        log.epoch_loss.iter().map(|l| f64::from(*l)),
+    )];
     let notes = vec![format!(
         "held out (never trained on): taps {} in the order tapped",
-        held_out
-            .iter()
-            .map(|(i, _)| (i + 1).to_string())
-            .collect::<Vec<_>>()
-            .join(", ")
+        super::places(&held_out)
     )];
     Ok(Trained {
         model: mlp,

@@ -297,20 +297,13 @@ pub fn train(
                 },
             ],
         },
-        Plot::Lines {
-            title: "Training loss".into(),
-            x_label: "epoch".into(),
-            y_label: "mean squared error (sigmoid output)".into(),
-            lines: vec![Line {
-                label: "training".into(),
-                points: log
-                    .epoch_loss
-                    .iter()
-                    .enumerate()
-                    .map(|(i, l)| (i as f64 + 1.0, f64::from(*l)))
-                    .collect(),
-            }],
-        },
+        super::loss_plot(
+            "Training loss",
+            "epoch",
+            "mean squared error (sigmoid output)",
+            1,
+            log.epoch_loss.iter().map(|l| f64::from(*l)),
+        ),
     ];
     let held_out: Vec<String> = held
         .iter()

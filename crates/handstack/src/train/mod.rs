@@ -320,6 +320,37 @@ fn write_metrics(path: &Path, outcome: &Outcome) -> Result<(), TrainError> {
     std::fs::write(path, text + "\n").map_err(|e| write(e.to_string()))
 }
 
+/// The training curve as a plot: `loss` per pass (counted from `first`), in `y_label`'s words.
+pub(crate) fn loss_plot(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    first: usize,
+    loss: impl IntoIterator<Item = f64>,
+) -> crate::Plot {
+    crate::Plot::Lines {
+        title: title.into(),
+        x_label: x_label.into(),
+        y_label: y_label.into(),
+        lines: vec![crate::Line {
+            label: "training".into(),
+            points: loss
+                .into_iter()
+                .enumerate()
+                .map(|(i, l)| ((i + first) as f64, l))
+                .collect(),
+        }],
+    }
+}
+
+/// The places (counted from 1) of the numbered steps `held`, listed.
+pub(crate) fn places<T>(held: &[(usize, T)]) -> String {
+    held.iter()
+        .map(|(i, _)| (i + 1).to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// The median time of one call of `f`, ns: 15 repeats of 1 000 calls (the trade report's cost
 /// measure, on this machine).
 pub fn cost_ns(mut f: impl FnMut()) -> f64 {

@@ -12,12 +12,12 @@
 //! fits the training samples to 1e-13 and generalises by the luck of its initial weights.
 
 use super::{TrainError, Trained, cost_ns, held_out_by_class};
+use crate::Outcome;
 use crate::record::read::ReadError;
 use crate::record::{LABELS, fingers_topic};
 use crate::runs::figure::measured;
 use crate::runs::softness::{CLASS, EXPERIMENT, class_index};
 use crate::scene::experiment::class_name;
-use crate::{Line, Outcome, Plot};
 use hand_traits::Softness;
 use hand_zenoh::msg::handstack_msgs::FingerFrame;
 use std::path::PathBuf;
@@ -255,20 +255,13 @@ pub fn train(grasps: &[Grasp], seed: u64) -> Result<Trained<SoftnessNet>, TrainE
             "ns",
         ),
     ];
-    let plots = vec![Plot::Lines {
-        title: "Training error".into(),
-        x_label: "Adam pass".into(),
-        y_label: "mean squared error".into(),
-        lines: vec![Line {
-            label: "training".into(),
-            points: report
-                .curve
-                .iter()
-                .enumerate()
-                .map(|(i, l)| (i as f64, *l))
-                .collect(),
-        }],
-    }];
+    let plots = vec![super::loss_plot(
+        "Training error",
+        "Adam pass",
+        "mean squared error",
+        0,
+        report.curve.iter().copied(),
+    )];
     let words = |cs: &[Softness]| {
         cs.iter()
             .map(|c| class_name(*c))
@@ -278,10 +271,7 @@ pub fn train(grasps: &[Grasp], seed: u64) -> Result<Trained<SoftnessNet>, TrainE
     let notes = vec![
         format!(
             "held out (never trained on): grasps {} in the order grasped, of {} objects",
-            held.iter()
-                .map(|(i, _)| (i + 1).to_string())
-                .collect::<Vec<_>>()
-                .join(", "),
+            super::places(&held),
             words(&held.iter().map(|(_, g)| g.class).collect::<Vec<_>>())
         ),
         format!(

@@ -374,6 +374,38 @@ pub fn train_json(model: &str, sessions: &Path, out: &Path) -> Trained {
     }
 }
 
+/// Collects `asked` in two sessions of `args`, as a user stopped half-way does: the first answers
+/// `first` questions (`answer` answers the next one and returns what it asked for), is stopped by
+/// Ctrl-C at the next `question`, and exits 130; the second asks only for the rest (in any
+/// order) and exits 0; a third asks nothing and says to train `model`. Returns what the first
+/// said on stderr.
+pub fn collect_in_two<T: Ord + Clone + std::fmt::Debug>(
+    args: &[&std::ffi::OsStr],
+    asked: &[T],
+    first: usize,
+    question: &str,
+    model: &str,
+    mut answer: impl FnMut(&mut Session) -> T,
+) -> String {
+    let mut one = Session::command(args);
+    let got: Vec<T> = (0..first).map(|_| answer(&mut one)).collect();
+    assert_eq!(got, asked[..first], "{got:?}");
+    one.wait_for(question);
+    signal(one.child.id(), "INT");
+    let (code, _, first_said) = one.finish();
+    assert_eq!(code, Some(130), "{first_said}");
+    let mut two = Session::command(args);
+    let mut got: Vec<T> = (first..asked.len()).map(|_| answer(&mut two)).collect();
+    let (code, stdout, stderr) = two.finish();
+    assert_eq!(code, Some(0), "{stdout}\n{stderr}");
+    let mut want = asked[first..].to_vec();
+    want.sort_unstable();
+    got.sort_unstable();
+    assert_eq!(got, want);
+    nothing_left(args, model);
+    first_said
+}
+
 /// A collect session (`args`) after every step is recorded: it asks nothing, exits 0 and
 /// says to train `model`.
 pub fn nothing_left(args: &[&std::ffi::OsStr], model: &str) {
@@ -428,6 +460,24 @@ impl Mcu {
         }
     }
 
+    /// Writes the contact scene `path` on this fingertip for `cells` (row, column from 1),
+    /// with `estimators` before its experiment (an `[estimators.contact]` table, or nothing).
+    pub fn scene(&self, path: &Path, cells: &[(u8, u8)], estimators: &str) -> PathBuf {
+        let cells: Vec<String> = cells.iter().map(|(r, c)| format!("[{r}, {c}]")).collect();
+        std::fs::write(
+            path,
+            format!(
+                "title = \"Where my fingertip is touched\"\n\
+                 [sensors.fingertip]\nosr = 1024\nserial_port = \"{}\"\n{estimators}\
+                 [experiment.contact]\ncells = [{}]\nwait_s = 20\n",
+                self.port,
+                cells.join(", ")
+            ),
+        )
+        .expect("scene written");
+        path.to_owned()
+    }
+
     /// Writes `line` to the fingertip's stdin (`tap ROW COL`).
     pub fn say(&mut self, line: &str) {
         writeln!(self.stdin, "{line}").expect("a line to the fingertip");
@@ -440,4 +490,11 @@ impl Drop for Mcu {
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
+}
+
+/// The cell a "Tap the fingertip at row R, column C" question asks for.
+pub fn asked_cell(line: &str) -> (u8, u8) {
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let n = |w: &str| w.trim_end_matches(',').parse::<u8>().expect("a number");
+    (n(words[5]), n(words[7]))
 }

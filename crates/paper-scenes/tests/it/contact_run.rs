@@ -5,34 +5,14 @@
 //! on each cell; the test, as the user, taps it (`tap ROW COL` on the device's stdin) and reads
 //! the figures back. The device process is killed mid-run too.
 
-use crate::common::{Mcu, Session, figures, signal};
+use crate::common::{Mcu, Session, asked_cell as asked, figures, signal};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-fn scene(name: &str, mcu: &Mcu, cells: &[[u8; 2]]) -> PathBuf {
+fn scene(name: &str, mcu: &Mcu, cells: &[(u8, u8)]) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("handstack-contact-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("scene dir");
-    let path = dir.join(format!("{name}.toml"));
-    let cells: Vec<String> = cells.iter().map(|[r, c]| format!("[{r}, {c}]")).collect();
-    std::fs::write(
-        &path,
-        format!(
-            "title = \"Where my fingertip is touched\"\n\
-             [sensors.fingertip]\nosr = 1024\nserial_port = \"{}\"\n\
-             [experiment.contact]\ncells = [{}]\nwait_s = 20\n",
-            mcu.port,
-            cells.join(", ")
-        ),
-    )
-    .expect("scene written");
-    path
-}
-
-/// The cell a "Tap the fingertip at row R, column C" question asks for.
-fn asked(line: &str) -> (u8, u8) {
-    let words: Vec<&str> = line.split_whitespace().collect();
-    let n = |w: &str| w.trim_end_matches(',').parse::<u8>().expect("a number");
-    (n(words[5]), n(words[7]))
+    mcu.scene(&dir.join(format!("{name}.toml")), cells, "")
 }
 
 /// Every cell of the pad tapped once at 5 kgf (the lightest of Table 2's forces): the run
@@ -40,8 +20,8 @@ fn asked(line: &str) -> (u8, u8) {
 #[test]
 fn every_cell_tapped_is_located_by_the_fingertips_microcontroller() {
     let mut mcu = Mcu::start(&[]);
-    let cells: Vec<[u8; 2]> = (1..=4u8)
-        .flat_map(|r| (1..=6u8).map(move |c| [r, c]))
+    let cells: Vec<(u8, u8)> = (1..=4u8)
+        .flat_map(|r| (1..=6u8).map(move |c| (r, c)))
         .collect();
     let bag = std::env::temp_dir().join(format!("handstack-contact-bag-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&bag);
@@ -50,7 +30,7 @@ fn every_cell_tapped_is_located_by_the_fingertips_microcontroller() {
         &["--record".as_ref(), bag.as_os_str()],
     );
     let (mut mlp_hits, mut aot_hits) = (0, 0);
-    for &[r, c] in &cells {
+    for &(r, c) in &cells {
         let question = run.wait_for("Tap the fingertip at row");
         assert_eq!(asked(&question), (r, c), "{question}");
         mcu.say(&format!("tap {r} {c}"));
@@ -93,7 +73,7 @@ fn every_cell_tapped_is_located_by_the_fingertips_microcontroller() {
 #[test]
 fn a_lost_fingertip_is_a_fault_and_ctrl_c_a_stop() {
     let mcu = Mcu::start(&[]);
-    let mut run = Session::start(&scene("lost", &mcu, &[[1, 1], [2, 2]]));
+    let mut run = Session::start(&scene("lost", &mcu, &[(1, 1), (2, 2)]));
     run.wait_for("Tap the fingertip at row 1, column 1");
     let port = mcu.port.clone();
     drop(mcu);
@@ -104,7 +84,7 @@ fn a_lost_fingertip_is_a_fault_and_ctrl_c_a_stop() {
     assert!(at.elapsed() < Duration::from_secs(5), "{:?}", at.elapsed());
 
     let mcu = Mcu::start(&[]);
-    let mut run = Session::start(&scene("ctrl-c", &mcu, &[[3, 3]]));
+    let mut run = Session::start(&scene("ctrl-c", &mcu, &[(3, 3)]));
     run.wait_for("Tap the fingertip at row 3, column 3");
     signal(run.child.id(), "INT");
     let (code, stdout, stderr) = run.finish();

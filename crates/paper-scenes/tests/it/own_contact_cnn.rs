@@ -6,9 +6,7 @@
 //! tap-to-move with the new weights file locates taps on that pad, the arm (ur-sim on
 //! loopback) moving where they were located.
 
-use crate::common::{
-    Session, collect_args, figures, nothing_left, own_dir as dir, signal, train_json,
-};
+use crate::common::{Session, collect_args, collect_in_two, figures, own_dir as dir, train_json};
 use paper_scenes::devices::pad_board::{PadBoard, PadBoardConfig};
 use std::net::Ipv4Addr;
 use std::path::{Path, PathBuf};
@@ -59,16 +57,12 @@ fn asked(question: &str) -> u8 {
         .unwrap_or_else(|| panic!("no region in {question:?}"))
 }
 
-/// Taps each of the next `n` regions `session` asks for; returns them.
-fn tap_asked(session: &mut Session, pad: &PadBoard, n: usize) -> Vec<u8> {
-    (0..n)
-        .map(|_| {
-            let r = asked(&session.wait_for("Tap region "));
-            pad.tap(r).expect("tapped");
-            session.wait_for("tap ");
-            r
-        })
-        .collect()
+/// Taps the region `session` asks for next; returns it.
+fn tap_asked(session: &mut Session, pad: &PadBoard) -> u8 {
+    let r = asked(&session.wait_for("Tap region "));
+    pad.tap(r).expect("tapped");
+    session.wait_for("tap ");
+    r
 }
 
 /// A tap-to-move run of `regions` with `cnn`: the regions located, and the accuracy figure.
@@ -114,29 +108,19 @@ fn a_pad_built_again_locates_taps_with_its_own_contact_cnn() {
     let dir = dir("pad");
     let rounds: Vec<u8> = (0..ROUNDS).flat_map(|_| 0..9u8).collect();
 
-    // Collect, with the arm off (a collect session leaves it alone): the first session is
-    // stopped by Ctrl-C at a question…
+    // Collect, with the arm off (a collect session leaves it alone), in two sessions, the first
+    // stopped by Ctrl-C at a question.
     let sessions = dir.join("sessions");
     let collect_scene = scene(&dir, "collect", &pad, address, &rounds, "");
     let args = collect_args(&collect_scene, &sessions);
-    let mut first = Session::command(&args);
-    let asked_first = tap_asked(&mut first, &pad, FIRST_SESSION);
-    assert_eq!(asked_first, rounds[..FIRST_SESSION], "{asked_first:?}");
-    first.wait_for("Tap region ");
-    signal(first.child.id(), "INT");
-    let (code, _, stderr) = first.finish();
-    assert_eq!(code, Some(130), "{stderr}");
-    // …and the second asks only for the taps the first did not record.
-    let mut second = Session::command(&args);
-    let left = rounds.len() - FIRST_SESSION;
-    let mut asked_second = tap_asked(&mut second, &pad, left);
-    let (code, stdout, stderr) = second.finish();
-    assert_eq!(code, Some(0), "{stdout}\n{stderr}");
-    let mut want = rounds[FIRST_SESSION..].to_vec();
-    want.sort_unstable();
-    asked_second.sort_unstable();
-    assert_eq!(asked_second, want);
-    nothing_left(&args, "contact-cnn");
+    collect_in_two(
+        &args,
+        &rounds,
+        FIRST_SESSION,
+        "Tap region ",
+        "contact-cnn",
+        |session| tap_asked(session, &pad),
+    );
 
     // Train: held-out taps scored with the new model and the built-in one.
     let model = dir.join("my-pad-cnn.safetensors");

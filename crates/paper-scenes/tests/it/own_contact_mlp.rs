@@ -7,7 +7,8 @@
 //! fingertip, the board's own MLP reported beside it.
 
 use crate::common::{
-    Mcu, Session, collect_args, figures, nothing_left, own_dir as dir, signal, train_json,
+    Mcu, Session, asked_cell as asked, collect_args, collect_in_two, figures, own_dir as dir,
+    train_json,
 };
 use std::path::{Path, PathBuf};
 
@@ -21,36 +22,16 @@ const ROUNDS: usize = 3;
 /// Taps the first session records before it is stopped.
 const FIRST_SESSION: usize = 30;
 
-/// A contact scene on the fingertip `mcu` for `cells`, with `mlp` as the extra lines of its
-/// `[estimators.contact]` (none: the board's built-in MLP).
+/// A contact scene on the fingertip `mcu` for `cells`, with the user's MLP `mlp` (none: the
+/// board's built-in one).
 fn scene(dir: &Path, name: &str, mcu: &Mcu, cells: &[(u8, u8)], mlp: Option<&Path>) -> PathBuf {
-    let path = dir.join(format!("{name}.toml"));
-    let cells: Vec<String> = cells.iter().map(|(r, c)| format!("[{r}, {c}]")).collect();
     let estimators = mlp.map_or(String::new(), |m| {
         format!(
             "[estimators.contact]\nlocators = [\"mlp\"]\nmlp_weights = \"{}\"\n",
             m.display()
         )
     });
-    std::fs::write(
-        &path,
-        format!(
-            "title = \"Where my fingertip is touched\"\n\
-             [sensors.fingertip]\nosr = 1024\nserial_port = \"{}\"\n{estimators}\
-             [experiment.contact]\ncells = [{}]\nwait_s = 20\n",
-            mcu.port,
-            cells.join(", ")
-        ),
-    )
-    .expect("scene written");
-    path
-}
-
-/// The cell a "Tap the fingertip at row R, column C" question asks for.
-fn asked(line: &str) -> (u8, u8) {
-    let words: Vec<&str> = line.split_whitespace().collect();
-    let n = |w: &str| w.trim_end_matches(',').parse::<u8>().expect("a number");
-    (n(words[5]), n(words[7]))
+    mcu.scene(&dir.join(format!("{name}.toml")), cells, &estimators)
 }
 
 /// Taps each of the next `n` cells `session` asks for, waiting for `after` each time; returns
@@ -75,28 +56,18 @@ fn a_fingertip_of_another_silicone_locates_taps_with_its_own_contact_mlp() {
         .collect();
     let rounds: Vec<(u8, u8)> = (0..ROUNDS).flat_map(|_| all.iter().copied()).collect();
 
-    // Collect: the first session is stopped by Ctrl-C at a question…
+    // Collect in two sessions, the first stopped by Ctrl-C at a question.
     let sessions = dir.join("sessions");
     let collect_scene = scene(&dir, "collect", &mcu, &rounds, None);
     let args = collect_args(&collect_scene, &sessions);
-    let mut first = Session::command(&args);
-    let asked_first = tap_asked(&mut first, &mut mcu, FIRST_SESSION, "tap ");
-    assert_eq!(asked_first, rounds[..FIRST_SESSION], "{asked_first:?}");
-    first.wait_for("Tap the fingertip at row");
-    signal(first.child.id(), "INT");
-    let (code, _, stderr) = first.finish();
-    assert_eq!(code, Some(130), "{stderr}");
-    // …and the second asks only for the taps the first did not record.
-    let mut second = Session::command(&args);
-    let left = rounds.len() - FIRST_SESSION;
-    let mut asked_second = tap_asked(&mut second, &mut mcu, left, "tap ");
-    let (code, stdout, stderr) = second.finish();
-    assert_eq!(code, Some(0), "{stdout}\n{stderr}");
-    let mut want = rounds[FIRST_SESSION..].to_vec();
-    want.sort_unstable();
-    asked_second.sort_unstable();
-    assert_eq!(asked_second, want);
-    nothing_left(&args, "contact-mlp");
+    collect_in_two(
+        &args,
+        &rounds,
+        FIRST_SESSION,
+        "Tap the fingertip at row",
+        "contact-mlp",
+        |session| tap_asked(session, &mut mcu, 1, "tap ")[0],
+    );
 
     // Train: held-out taps scored with the new model and the board's built-in one.
     let model = dir.join("my-tip-mlp.safetensors");

@@ -7,9 +7,7 @@
 //! closes are the user's own too: 10 mm/s and a 2 s window, where the paper's are 1.5 mm/s and
 //! 14 s (a user trading the paper's pace for a grasp in seconds trains a net for it).
 
-use crate::common::{
-    Session, collect_args, figures, nothing_left, own_dir as dir, signal, train_json,
-};
+use crate::common::{Session, collect_args, collect_in_two, figures, own_dir as dir, train_json};
 use hand_sim::underactuated::Material;
 use paper_scenes::devices::hand_board::{HandBoard, HandBoardConfig};
 use std::path::{Path, PathBuf};
@@ -106,32 +104,15 @@ fn a_hand_built_again_classifies_softness_with_its_own_net() {
     let dir = dir("hand");
     let rounds: Vec<&str> = (0..ROUNDS).flat_map(|_| CLASSES).collect();
 
-    // Collect: the first session is stopped by Ctrl-C at a question…
+    // Collect in two sessions, the first stopped by Ctrl-C at a question (the hand released).
     let sessions = dir.join("sessions");
     let collect_scene = scene(&dir, "collect", &board, &rounds, "");
     let args = collect_args(&collect_scene, &sessions);
-    let mut first = Session::command(&args);
-    let asked_first = grasp_asked(&mut first, &board, FIRST_SESSION, "grasp ");
-    assert_eq!(asked_first, rounds[..FIRST_SESSION], "{asked_first:?}");
-    first.wait_for("Put a ");
-    signal(first.child.id(), "INT");
-    let (code, _, stderr) = first.finish();
-    assert_eq!(code, Some(130), "{stderr}");
-    assert!(stderr.contains("hand released"), "{stderr}");
-    // …and the second asks only for the grasps the first did not record.
-    let mut second = Session::command(&args);
-    let left = rounds.len() - FIRST_SESSION;
-    let mut asked_second = grasp_asked(&mut second, &board, left, "grasp ");
-    let (code, stdout, stderr) = second.finish();
-    assert_eq!(code, Some(0), "{stdout}\n{stderr}");
-    let mut want: Vec<String> = rounds[FIRST_SESSION..]
-        .iter()
-        .map(|c| c.to_string())
-        .collect();
-    want.sort_unstable();
-    asked_second.sort_unstable();
-    assert_eq!(asked_second, want);
-    nothing_left(&args, "softness");
+    let asked: Vec<String> = rounds.iter().map(|c| c.to_string()).collect();
+    let first = collect_in_two(&args, &asked, FIRST_SESSION, "Put a ", "softness", |s| {
+        grasp_asked(s, &board, 1, "grasp ").remove(0)
+    });
+    assert!(first.contains("hand released"), "{first}");
 
     // Train: held-out grasps classified with the new net and the built-in one.
     let model = dir.join("my-hand-softness.safetensors");
