@@ -10,6 +10,9 @@
 
 use crate::process::{DxlSim, SIM_REPLY_TIMEOUT_MS, built, finish, signal, text};
 use hand_control::control_table::MX_28;
+use hand_zenoh::msg::handstack_msgs::GraspState;
+use hand_zenoh::msg::sensor_msgs::JointState;
+use handstack::record::read::Recording;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -79,9 +82,15 @@ fn start_run(scene: &Path, press: &str) -> Child {
 
 /// `handstack run SCENE` on the rig with its environment `env` (see `examples/bench_rig.rs`).
 fn start_rig(scene: &Path, env: &[(&str, &str)]) -> Child {
+    start_rig_with(scene, env, &[])
+}
+
+/// [`start_rig`] with more arguments for `run`.
+fn start_rig_with(scene: &Path, env: &[(&str, &str)], args: &[&std::ffi::OsStr]) -> Child {
     Command::new(built("examples/bench_rig"))
         .arg("run")
         .arg(scene)
+        .args(args)
         .envs(env.iter().copied())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -222,7 +231,12 @@ fn sighup_mid_grasp_with_on_end_hold_keeps_the_grip_torque_on() {
 fn a_servo_bus_that_dies_mid_hold_ends_the_run_at_once_saying_so() {
     let servos = servos();
     let dir = dir("bus");
-    let run = start_run(&scene(&dir, &servos.path, None, 20.0), "0.3");
+    let bag = dir.join("bag");
+    let run = start_rig_with(
+        &scene(&dir, &servos.path, None, 20.0),
+        &[("HANDSTACK_RIG_PRESS_S", "0.3")],
+        &["--record".as_ref(), bag.as_os_str()],
+    );
     servos.lines.wait_for("50 loop commands", |l| {
         l.iter().filter(|l| is_torque_limit(l)).count() >= 50
     });
@@ -232,7 +246,8 @@ fn a_servo_bus_that_dies_mid_hold_ends_the_run_at_once_saying_so() {
     let after = killed.elapsed();
     let err = text(&out.stderr);
     // A 20 s hold, ended by the lost bus: the loop sees it in the cycle its exchange fails
-    // (one cycle is 10 ms; the bound leaves room for a loaded machine).
+    // (one cycle is 10 ms; the wall-clock bound leaves room for a loaded machine; the cycles
+    // are counted below).
     assert!(
         after < Duration::from_secs(2),
         "ended {after:?} after the kill"
@@ -248,6 +263,29 @@ fn a_servo_bus_that_dies_mid_hold_ends_the_run_at_once_saying_so() {
     assert!(
         !err.contains("Io(") && !err.contains("Os {"),
         "Debug text: {err}"
+    );
+    // Counted in cycles from the recording: each cycle's `grasp/state`, and `joint_states`
+    // for each the servos answered. The run ends within two cycles of the last answer.
+    let rec = Recording::open(&bag).expect("the bag");
+    let states = rec
+        .messages::<GraspState>("/hand0/grasp/state")
+        .expect("grasp states");
+    let answered = rec
+        .messages::<JointState>("/hand0/gripper/joint_states")
+        .expect("joint states");
+    let last_answer = answered.last().map(|(t, _)| *t).expect("answers");
+    let after = states.iter().filter(|(t, _)| *t > last_answer).count();
+    eprintln!(
+        "{after} cycles after the last answer; {} cycles, {} answered",
+        states.len(),
+        answered.len()
+    );
+    assert!(answered.len() >= 50, "{} answers", answered.len());
+    assert!(
+        after <= 2,
+        "{after} cycles after the servos' last answer ({} cycles, {} answered)",
+        states.len(),
+        answered.len()
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
