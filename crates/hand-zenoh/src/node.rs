@@ -362,6 +362,26 @@ impl Router {
             .map_err(NodeError::zenoh)
     }
 
+    /// Opens a router on a free loopback port and returns it with its endpoint. A port found
+    /// free ([`crate::config::free_loopback_endpoint`]) can be taken by another socket before
+    /// the router binds it (an outbound connection's ephemeral port, on a busy machine): then
+    /// another port is tried, up to [`Router::LOOPBACK_TRIES`] in all.
+    pub fn open_on_loopback() -> Result<(Router, String), NodeError> {
+        let mut last = None;
+        for _ in 0..Self::LOOPBACK_TRIES {
+            let endpoint = crate::config::free_loopback_endpoint()
+                .map_err(|e| NodeError::Config(format!("no free loopback port: {e}")))?;
+            match Router::open(&endpoint) {
+                Ok(r) => return Ok((r, endpoint)),
+                Err(e) => last = Some(e),
+            }
+        }
+        Err(last.unwrap_or_else(|| NodeError::Config("no router opened".into())))
+    }
+
+    /// Ports [`Router::open_on_loopback`] tries.
+    pub const LOOPBACK_TRIES: usize = 5;
+
     /// Closes it now (its peers see their links drop).
     pub fn close(self) -> Result<(), NodeError> {
         self.0.close().wait().map_err(NodeError::zenoh)

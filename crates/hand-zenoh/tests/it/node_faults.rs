@@ -4,7 +4,7 @@
 //! lost); a force estimator's refusals are counted, not published; and nothing opens a UDP
 //! socket. All on 127.0.0.1, multicast scouting off.
 
-use crate::common::{free_endpoint, node};
+use crate::common::node;
 
 use hand_zenoh::attachment::{Attachment, AttachmentError, Layout};
 use hand_zenoh::keys::{self, EntityKind};
@@ -54,8 +54,7 @@ fn talking(
 
 #[test]
 fn malformed_samples_and_requests_are_counted_and_dropped() {
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let (a, b, mut publisher, mut sub) = talking(&endpoint, 64);
     let key = publisher.key().to_owned();
     let good = frame(101_325.0).to_cdr();
@@ -196,8 +195,7 @@ fn malformed_samples_and_requests_are_counted_and_dropped() {
 
 #[test]
 fn a_node_that_goes_is_seen_going() {
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let watcher = node(&endpoint, "/cell", "coordinator");
     let graph = watcher.graph().unwrap();
     let hand = node(&endpoint, "/hand0", "grasp");
@@ -232,8 +230,7 @@ fn a_node_that_goes_is_seen_going() {
 
 #[test]
 fn a_router_restart_loses_nothing_silently() {
-    let endpoint = free_endpoint();
-    let first = Router::open(&endpoint).unwrap();
+    let (first, endpoint) = Router::open_on_loopback().unwrap();
     let (_a, _b, mut publisher, mut sub) = talking(&endpoint, 1024);
     let mut published = 0;
     let mut first_seq = None;
@@ -275,8 +272,7 @@ fn a_router_restart_loses_nothing_silently() {
 
 #[test]
 fn no_udp_socket_is_opened() {
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let (_a, _b, mut publisher, mut sub) = talking(&endpoint, 8);
     publisher.publish(&frame(1.0)).unwrap();
     assert!(sub.recv_timeout(WAIT).unwrap().is_some());
@@ -334,8 +330,7 @@ impl hand_traits::ForceEstimator for Linear {
 fn a_force_estimate_is_published_once_tared_and_a_refusal_is_counted() {
     use hand_zenoh::msg::geometry_msgs::WrenchStamped;
     use hand_zenoh::tactile::{TactileInfo, TactileNode};
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let a = node(&endpoint, "/hand0", "tactile");
     let b = node(&endpoint, "/hand0", "reader");
     let source = Loaded {

@@ -5,7 +5,7 @@
 //! calling our service and getting its sequence number and GID back, and our client calling a
 //! current-layout service server (and refusing replies that do not echo).
 
-use crate::common::{free_endpoint, node};
+use crate::common::node;
 use crate::python::{Background, background, client, hex, msgs_dir, python, unhex};
 
 use hand_zenoh::NodeError;
@@ -90,8 +90,7 @@ fn gids_are_what_python_xxhash_makes_of_the_tokens() {
 #[test]
 fn a_current_layout_publisher_commands_our_subscription() {
     let Some(py) = python() else { return };
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let hand = node(&endpoint, "/hand0", "grasp");
     let mut commands = hand
         .subscription::<GripperCommand>("gripper/command", 64)
@@ -159,8 +158,7 @@ fn a_current_layout_publisher_commands_our_subscription() {
 #[test]
 fn a_current_layout_client_gets_its_sequence_number_and_gid_back() {
     let Some(py) = python() else { return };
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let tactile = node(&endpoint, "/hand0", "tactile");
     let server = tactile
         .service::<Trigger, _>("tactile/tare", |_| TriggerResponse {
@@ -229,8 +227,7 @@ fn python_server(py: &Path, endpoint: &str, service: &str, mode: &str, count: u3
 #[test]
 fn our_client_calls_a_current_layout_server() {
     let Some(py) = python() else { return };
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let server = python_server(&py, &endpoint, "tactile/tare", "echo", 3);
     let grasp = node(&endpoint, "/hand0", "grasp");
     let found = grasp
@@ -273,8 +270,7 @@ fn our_client_calls_a_current_layout_server() {
 #[test]
 fn our_client_refuses_a_reply_that_does_not_echo() {
     let Some(py) = python() else { return };
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let grasp = node(&endpoint, "/hand0", "grasp");
     // A service of its own for each server: the last one's token may not be gone yet.
     for (mode, name) in [

@@ -398,8 +398,7 @@ fn check_report(report: &Value, key: &str) {
 #[test]
 fn python_subscriber_reads_frames_and_tares_over_hashed_keys() {
     let Some(py) = python() else { return };
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let (report, key) = python_sees_tactile_node(&py, &endpoint, HashMode::Rihs01);
     assert!(key.contains("/RIHS01_"), "{key}");
     check_report(&report, &key);
@@ -408,8 +407,7 @@ fn python_subscriber_reads_frames_and_tares_over_hashed_keys() {
 #[test]
 fn python_subscriber_reads_frames_over_humble_keys() {
     let Some(py) = python() else { return };
-    let endpoint = free_endpoint();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let (report, key) = python_sees_tactile_node(&py, &endpoint, HashMode::Humble);
     assert!(key.ends_with("/TypeHashNotSupported"), "{key}");
     check_report(&report, &key);

@@ -114,8 +114,7 @@ fn the_arm_stops_when_its_commander_leaves_mid_move() {
     }
     let address = "127.0.0.95";
     let sim = UrSim::start(address);
-    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let stop = Stop::new();
     let arm_thread = {
         let (endpoint, stop) = (endpoint.clone(), stop.clone());
@@ -171,8 +170,7 @@ fn a_controller_that_dies_mid_move_ends_the_arm_node_saying_so() {
     }
     let host = "127.0.0.96";
     let ur = UrSim::start(host);
-    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let (arm_node, _stdin, dir) = arm_node(host, &endpoint, "dies");
     let _moving = move_under_way(&endpoint);
     let killed = Instant::now();
@@ -203,8 +201,7 @@ fn sigterm_mid_move_stops_the_arm_and_ends_the_node_with_its_status() {
     }
     let host = "127.0.0.97";
     let ur = UrSim::start(host);
-    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let (arm_node, _stdin, dir) = arm_node(host, &endpoint, "term");
     let (_commander, _tcp, _goal, target) = move_under_way(&endpoint);
     signal(arm_node.id(), "TERM");

@@ -353,8 +353,7 @@ fn closing_on_nothing_is_a_failed_grasp_not_a_met_target() {
 fn sigint_ends_a_hand_node_through_its_end_action() {
     let servos = servos();
     let dir = dir("node-sigint");
-    let endpoint = hand_zenoh::config::free_loopback_endpoint().expect("a loopback port");
-    let _router = hand_zenoh::node::Router::open(&endpoint).expect("router");
+    let (_router, endpoint) = hand_zenoh::node::Router::open_on_loopback().expect("router");
     let scene = scene(&dir, &servos.path, Some("torque_off"), 20.0);
     let mut node = Command::new(built("examples/bench_rig"))
         .arg("node")

@@ -60,8 +60,7 @@ mod node {
         let sim = FirmataSim::start(&[]);
         let dir = temp("node");
         let scene = pad_scene(&dir, &sim.path, "");
-        let endpoint = hand_zenoh::config::free_loopback_endpoint().expect("a loopback port");
-        let _router = Router::open(&endpoint).expect("the router");
+        let (_router, endpoint) = Router::open_on_loopback().expect("the router");
         let mut options = NodeOptions::new("/cell", "listener");
         options.session = SessionConfig::peer(&endpoint);
         let listener = Node::open(options).expect("the listener");

@@ -44,8 +44,7 @@ fn a_fingertip_node_publishes_the_pressures_read_through_the_board() {
         ),
     )
     .expect("scene");
-    let endpoint = hand_zenoh::config::free_loopback_endpoint().expect("a loopback port");
-    let _router = Router::open(&endpoint).expect("the router");
+    let (_router, endpoint) = Router::open_on_loopback().expect("the router");
     let mut options = NodeOptions::new("/cell", "listener");
     options.session = SessionConfig::peer(&endpoint);
     let listener = Node::open(options).expect("the listener");

@@ -192,8 +192,7 @@ fn a_hand_node_goes_to_its_safe_state_when_its_command_stream_stops() {
     use std::time::Duration;
 
     let wait = Duration::from_secs(20);
-    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     let stop = Stop::new();
     // The Table 5 world (its first object, the cube) behind the real driver and Protocol 2.0,
     // paced at 5 × real time, with the built-in force DNN; the world is single-threaded, so it
@@ -374,8 +373,7 @@ fn a_scenes_whole_stack_runs_as_one_node_process() {
     }
     let _one = ONE_CELL.lock().unwrap_or_else(|e| e.into_inner());
     let wait = Duration::from_secs(30);
-    let endpoint = hand_zenoh::config::free_loopback_endpoint().unwrap();
-    let _router = Router::open(&endpoint).unwrap();
+    let (_router, endpoint) = Router::open_on_loopback().unwrap();
     // The full hand, no --part: its hand (with the fingertip and the force DNN), its pad and
     // its arm, each a node in its default namespace.
     let mut child = Command::new(program())

@@ -130,8 +130,7 @@ fn a_pad_node_with_the_cnn_publishes_where_each_tap_landed() {
     )
     .expect("a valid pad scene");
 
-    let endpoint = hand_zenoh::config::free_loopback_endpoint().expect("a loopback port");
-    let _router = Router::open(&endpoint).expect("the router");
+    let (_router, endpoint) = Router::open_on_loopback().expect("the router");
     let mut options = NodeOptions::new("/cell", "listener");
     options.session = SessionConfig::peer(&endpoint);
     let listener = Node::open(options).expect("the listener");
